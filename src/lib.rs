@@ -1,0 +1,26 @@
+//! Pedestrian dead reckoning for a phone carried in a trouser pocket.
+//!
+//! Layers point down only:
+//! - [`engine`]: pure maths and state (no files, no browsers). Basso 2016 and 2021.
+//! - [`sim`]: a gait simulator producing phone-in-pocket IMU streams with known truth.
+//! - [`io`]: the project's own log format and track exports.
+//! - [`plot`]: drawing, generic over the plotters backend.
+//! - `web` (wasm32 only): wasm-bindgen glue.
+//!
+//! # Conventions (one set, everywhere)
+//! - Time: seconds (`f64`) on the log's own clock.
+//! - Device frame: W3C / Android: x to the right of the screen, y to the top of the screen,
+//!   z out of the screen. Right-handed.
+//! - Navigation frame: local East-North-Up (ENU), metres. Headings are compass headings:
+//!   radians clockwise from north (0 = north, π/2 = east).
+//! - Acceleration: m/s², *specific force including gravity* as Android reports it: a phone lying
+//!   face up at rest reads (0, 0, +9.81).
+//! - Angular rate: rad/s, right-handed about the device axes. Magnetic field: µT.
+
+pub mod engine;
+pub mod io;
+pub mod plot;
+pub mod sim;
+
+#[cfg(target_arch = "wasm32")]
+pub mod web;
