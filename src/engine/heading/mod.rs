@@ -1,0 +1,230 @@
+//! Heading of each step from the horizontal acceleration in the navigation frame.
+//!
+//! - [`tip_to_tail`]: Basso 2016 Algorithm 1 (second-order Fourier over the last stride, tip and
+//!   tail of the pseudo-ellipse).
+//! - [`closed_form`]: Basso 2021 §2.2.3–2.2.4, eqs. 6–22 (first harmonic over the last step, the
+//!   time of maximal planar acceleration in closed form).
+//! - [`pca`]: principal component of the horizontal acceleration over a 2 s window, the literature
+//!   baseline (Steinhoff & Schiele 2010) that Basso 2016 §I argues against.
+//!
+//! # Angles
+//! Headings are compass headings in radians, clockwise from north, in [0, 2π). Averages of two
+//! headings are circular means ([`crate::engine::math::circular_mean2`]), so 350° and 10° average
+//! to 0°, never 180°.
+//!
+//! # The 180° ambiguity
+//! An axis of the horizontal acceleration only gives a *line* of motion. Basso 2016 §III says the
+//! tip lies "on the acceleration phase" but gives no computable rule, and the 2021 closed form
+//! returns one of two opposite maxima depending on where the step window starts. We resolve the
+//! direction the same way for all three methods, from gait kinematics: the pelvis moves as an
+//! inverted pendulum, so its height is lowest and its forward speed highest at double support,
+//! where the vertical acceleration peaks. With a_up ∝ cos ωt the forward acceleration is
+//! ∝ −sin ωt, that is, proportional to +d a_up/dt. So the forward direction u is the one for which
+//! ∫ (a_h · u) (d a_up/dt) dt > 0 over the window. For the Fourier methods this integral is
+//! evaluated on the coefficients at the step frequency: ∫ = (T/2)·ω·(p·d − q·c) with (p, q) the
+//! cos/sin coefficients of a_h·u and (c, d) those of a_up ([`forward_sign`]).
+
+pub mod closed_form;
+pub mod pca;
+pub mod tip_to_tail;
+
+use super::types::{positive, ConfigError};
+use std::collections::VecDeque;
+use std::f64::consts::TAU;
+
+/// One sample in the navigation frame, as kept in the heading window.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NavSample {
+    /// Time, s.
+    pub t: f64,
+    /// East acceleration, m/s².
+    pub e: f64,
+    /// North acceleration, m/s².
+    pub n: f64,
+    /// Vertical linear acceleration, m/s², up positive.
+    pub up: f64,
+}
+
+impl NavSample {
+    fn lerp(a: &NavSample, b: &NavSample, t: f64) -> NavSample {
+        let w = if b.t > a.t { (t - a.t) / (b.t - a.t) } else { 0.0 };
+        NavSample { t, e: a.e + w * (b.e - a.e), n: a.n + w * (b.n - a.n), up: a.up + w * (b.up - a.up) }
+    }
+}
+
+/// Which heading method to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HeadingMethod {
+    /// Basso 2016 Algorithm 1.
+    TipToTail2016,
+    /// Basso 2021 closed form.
+    ClosedForm2021,
+    /// PCA over a window.
+    Pca,
+}
+
+/// Settings of the heading stage.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct HeadingConfig {
+    /// The method.
+    pub method: HeadingMethod,
+    /// Average the last two single-step directions (A-HE, Basso 2016 Algorithm 1 step e; Basso
+    /// 2021 end of §2.2.3). Default on.
+    pub average_two: bool,
+    /// PCA window, s (2 s, "commonly used" per Basso 2016 §I).
+    pub pca_window_s: f64,
+}
+
+impl Default for HeadingConfig {
+    fn default() -> Self {
+        HeadingConfig { method: HeadingMethod::TipToTail2016, average_two: true, pca_window_s: 2.0 }
+    }
+}
+
+impl HeadingConfig {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("heading.pca_window_s", self.pca_window_s)
+    }
+
+    /// How far back the window buffer must reach, s, given a step period.
+    pub fn history_s(&self) -> f64 {
+        // Two strides of the slowest walking (2 × 2 × 1/1.2 Hz) or the PCA window, plus the
+        // motion detector's look-back.
+        (4.0f64).max(self.pca_window_s) + 2.0
+    }
+}
+
+/// Fourier coefficients of the three navigation-frame channels at one harmonic.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Harmonic {
+    /// cos coefficients (east, north, up).
+    pub alpha: [f64; 3],
+    /// sin coefficients (east, north, up).
+    pub beta: [f64; 3],
+}
+
+/// Computes, over the window [t0, t1] of period T = t1 − t0, the coefficients
+/// α_n = (2/T)∫ a(τ) cos(nωτ) dτ and β_n = (2/T)∫ a(τ) sin(nωτ) dτ (τ = t − t0, ω = 2π/T) for
+/// n = 1 and 2 (Basso 2016 §III; Basso 2021 eqs. 8 and 13), by the trapezoidal rule on the
+/// irregular samples, with the end values interpolated at t0 and t1.
+/// Returns `None` when the buffer does not cover the window or has fewer than 4 samples in it.
+pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic; 2]> {
+    let period = t1 - t0;
+    let first = buf.front()?;
+    let last = buf.back()?;
+    if !(period > 0.0) || first.t > t0 || last.t < t1 {
+        return None;
+    }
+    let start = buf.partition_point(|s| s.t <= t0);
+    let end = buf.partition_point(|s| s.t < t1);
+    if end < start + 2 || start == 0 || end >= buf.len() {
+        return None;
+    }
+    let w = TAU / period;
+    let mut h = [Harmonic::default(); 2];
+    let mut prev: Option<(f64, [f64; 3], [f64; 4])> = None;
+    let mut add = |s: &NavSample| {
+        let tau = s.t - t0;
+        let (s1, c1) = libm::sincos(w * tau);
+        // Second harmonic by the double-angle formulas: one sincos per sample.
+        let trig = [c1, s1, c1 * c1 - s1 * s1, 2.0 * s1 * c1];
+        let v = [s.e, s.n, s.up];
+        if let Some((tp, vp, gp)) = prev {
+            let half = 0.5 * (tau - tp);
+            for k in 0..3 {
+                h[0].alpha[k] += half * (vp[k] * gp[0] + v[k] * trig[0]);
+                h[0].beta[k] += half * (vp[k] * gp[1] + v[k] * trig[1]);
+                h[1].alpha[k] += half * (vp[k] * gp[2] + v[k] * trig[2]);
+                h[1].beta[k] += half * (vp[k] * gp[3] + v[k] * trig[3]);
+            }
+        }
+        prev = Some((tau, v, trig));
+    };
+    add(&NavSample::lerp(&buf[start - 1], &buf[start], t0));
+    for i in start..end {
+        add(&buf[i]);
+    }
+    add(&NavSample::lerp(&buf[end - 1], &buf[end], t1));
+    let scale = 2.0 / period;
+    for hk in &mut h {
+        for k in 0..3 {
+            hk.alpha[k] *= scale;
+            hk.beta[k] *= scale;
+        }
+    }
+    Some(h)
+}
+
+/// Returns +1 or −1: the sign that makes the horizontal unit vector `u` = (east, north) point
+/// forward, from the harmonic `h` at the step frequency (see the module documentation).
+pub fn forward_sign(h: &Harmonic, u: (f64, f64)) -> f64 {
+    let p = h.alpha[0] * u.0 + h.alpha[1] * u.1;
+    let q = h.beta[0] * u.0 + h.beta[1] * u.1;
+    let (c, d) = (h.alpha[2], h.beta[2]);
+    if p * d - q * c >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Step boundaries handed to a heading method.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepWindow {
+    /// End of the step before the previous one, t_{k−2}.
+    pub t_km2: f64,
+    /// End of the previous step, t_{k−1}.
+    pub t_km1: f64,
+    /// End of this step, t_k.
+    pub t_k: f64,
+}
+
+/// Single-step heading (before any averaging) by the configured method, radians from north.
+pub fn single_step(cfg: &HeadingConfig, buf: &VecDeque<NavSample>, w: StepWindow) -> Option<f64> {
+    match cfg.method {
+        HeadingMethod::TipToTail2016 => tip_to_tail::heading(buf, w),
+        HeadingMethod::ClosedForm2021 => closed_form::heading(buf, w),
+        HeadingMethod::Pca => pca::heading(buf, w.t_k - cfg.pca_window_s, w.t_k),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fourier_recovers_coefficients_on_irregular_samples() {
+        let (t0, t1) = (10.0, 10.6);
+        let w = TAU / (t1 - t0);
+        let mut buf = VecDeque::new();
+        let mut t = 9.9;
+        let mut i = 0u32;
+        while t < 10.7 {
+            let tau = t - t0;
+            buf.push_back(NavSample {
+                t,
+                e: 1.5 * (w * tau).cos() - 0.5 * (2.0 * w * tau).sin(),
+                n: 0.7 * (w * tau).sin() + 0.2,
+                up: 2.0 * (2.0 * w * tau).cos(),
+            });
+            i += 1;
+            t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;
+        }
+        let h = fourier(&buf, t0, t1).unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() < 0.01;
+        assert!(close(h[0].alpha[0], 1.5) && close(h[1].beta[0], -0.5), "{h:?}");
+        assert!(close(h[0].beta[1], 0.7) && close(h[0].alpha[1], 0.0), "{h:?}");
+        assert!(close(h[1].alpha[2], 2.0), "{h:?}");
+    }
+
+    #[test]
+    fn forward_sign_follows_inverted_pendulum() {
+        // a_up = cos ωt, forward (north) a = −sin ωt.
+        let h = Harmonic { alpha: [0.0, 0.0, 1.0], beta: [0.0, -1.0, 0.0] };
+        assert_eq!(forward_sign(&h, (0.0, 1.0)), 1.0);
+        assert_eq!(forward_sign(&h, (0.0, -1.0)), -1.0);
+    }
+}

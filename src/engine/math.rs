@@ -1,0 +1,116 @@
+//! Small numeric helpers shared by the stages.
+//!
+//! Every transcendental function goes through `libm`, a pure-Rust implementation, so that a
+//! replay gives bit-identical results natively and in WebAssembly.
+
+use std::f64::consts::{PI, TAU};
+
+/// Wraps an angle to (−π, π].
+pub fn wrap_pi(a: f64) -> f64 {
+    let mut x = libm::remainder(a, TAU);
+    if x <= -PI {
+        x += TAU;
+    }
+    x
+}
+
+/// Wraps an angle to [0, 2π).
+pub fn wrap_2pi(a: f64) -> f64 {
+    let x = a.rem_euclid(TAU);
+    if x >= TAU {
+        0.0
+    } else {
+        x
+    }
+}
+
+/// Circular mean of two angles: the direction of the sum of their unit vectors. When the two are
+/// exactly opposite the mean is undefined and the newer angle `b` is returned.
+pub fn circular_mean2(a: f64, b: f64) -> f64 {
+    let (sa, ca) = libm::sincos(a);
+    let (sb, cb) = libm::sincos(b);
+    let (s, c) = (sa + sb, ca + cb);
+    if s.hypot(c) < 1e-9 {
+        b
+    } else {
+        libm::atan2(s, c)
+    }
+}
+
+/// Compass heading (radians clockwise from north) of the horizontal vector (east, north).
+pub fn heading_of(east: f64, north: f64) -> f64 {
+    wrap_2pi(libm::atan2(east, north))
+}
+
+/// First-order low-pass filter for irregular sampling.
+///
+/// Backward-Euler discretisation of `τ ẏ = x − y`: `y += dt/(τ+dt) · (x − y)`. It is stable for any
+/// `dt` and needs no `exp` per sample; for `dt ≪ τ` it matches the exact exponential response.
+/// Biquads (e.g. the `biquad` crate) assume a fixed sample rate, which our inputs do not have.
+#[derive(Debug, Clone, Copy)]
+pub struct OnePole {
+    tau: f64,
+    y: Option<f64>,
+}
+
+impl OnePole {
+    /// A filter with time constant `tau` seconds (cut-off `1/(2πτ)` Hz).
+    pub fn new(tau: f64) -> Self {
+        OnePole { tau, y: None }
+    }
+
+    /// A filter with the given −3 dB cut-off frequency in Hz.
+    pub fn with_cutoff_hz(fc: f64) -> Self {
+        Self::new(1.0 / (TAU * fc))
+    }
+
+    /// Feeds `x` after `dt` seconds; the first call initialises the output to `x`.
+    pub fn update(&mut self, x: f64, dt: f64) -> f64 {
+        let y = match self.y {
+            None => x,
+            Some(y) => y + dt / (self.tau + dt) * (x - y),
+        };
+        self.y = Some(y);
+        y
+    }
+
+    /// The current output, if any input was seen.
+    pub fn value(&self) -> Option<f64> {
+        self.y
+    }
+
+    /// Forgets the state.
+    pub fn reset(&mut self) {
+        self.y = None;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_and_mean() {
+        assert!((wrap_pi(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap_2pi(-0.5) - (TAU - 0.5)).abs() < 1e-12);
+        // Across the wrap: 350° and 10° average to 0°, not 180°.
+        let m = circular_mean2(350f64.to_radians(), 10f64.to_radians());
+        assert!(wrap_pi(m).abs() < 1e-9);
+        assert!((heading_of(1.0, 0.0) - PI / 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn one_pole_step_response_independent_of_rate() {
+        // Reaching ~63 % after one time constant, at 15 Hz and at 200 Hz alike.
+        for rate in [15.0, 200.0] {
+            let mut f = OnePole::new(1.0);
+            f.update(0.0, 0.0);
+            let mut y = 0.0;
+            let n = (rate * 1.0) as usize;
+            for _ in 0..n {
+                y = f.update(1.0, 1.0 / rate);
+            }
+            assert!((y - 0.632).abs() < 0.05, "rate {rate}: {y}");
+        }
+    }
+}

@@ -1,0 +1,251 @@
+//! Orientation into the navigation frame (East-North-Up).
+//!
+//! Three sources (issue "Engine core" item 2):
+//! - [`OrientationSource::Os`]: the quaternion the operating system supplies. Basso 2016 §II.A
+//!   relies on the phone's built-in AHRS to cast samples into the navigation frame.
+//! - [`OrientationSource::Madgwick`]: the Madgwick gradient-descent filter on accelerometer and
+//!   gyroscope, with the magnetometer as the optional absolute-yaw reference (Basso 2021 §2.2.1,
+//!   eqs. 1–5). The filter itself is the `ahrs` crate; we set its sample period on every sample
+//!   from the timestamps.
+//! - [`OrientationSource::GravityLowPass`]: acceleration only. Gravity is tracked by a low-pass
+//!   filter; this yields vertical acceleration (so steps) but no horizontal axes, so no heading.
+
+use super::math::OnePole;
+use super::types::{positive, ConfigError, DeviceVec, ImuSample, InputError};
+use ahrs::Ahrs;
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+
+/// Standard gravity, m/s².
+pub const G0: f64 = 9.806_65;
+
+/// Which orientation source to use.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum OrientationSource {
+    /// Pick per input, from its first sample: the OS quaternion if present, else Madgwick if a
+    /// gyroscope is present, else the gravity low-pass.
+    Auto,
+    /// The OS-supplied quaternion on every sample.
+    Os,
+    /// Madgwick filter with gain `beta` (rad/s). Uses the magnetometer when the sample has one.
+    Madgwick {
+        /// Gradient-descent gain β (Madgwick 2010 eq. 50 suggests √(3/4)·gyro error; 0.1 is the
+        /// reference implementation's default).
+        beta: f64,
+    },
+    /// Gravity from a low-pass filter of the accelerometer with time constant `tau_s`.
+    GravityLowPass {
+        /// Time constant of the gravity filter, seconds.
+        tau_s: f64,
+    },
+}
+
+impl Default for OrientationSource {
+    fn default() -> Self {
+        OrientationSource::Auto
+    }
+}
+
+impl OrientationSource {
+    /// Default Madgwick configuration.
+    pub const MADGWICK: OrientationSource = OrientationSource::Madgwick { beta: 0.1 };
+    /// Default gravity low-pass configuration (1 s: well below the ~1.8 Hz gait).
+    pub const GRAVITY: OrientationSource = OrientationSource::GravityLowPass { tau_s: 1.0 };
+
+    /// Checks the parameters.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        match *self {
+            OrientationSource::Madgwick { beta } => positive("orientation.beta", beta),
+            OrientationSource::GravityLowPass { tau_s } => positive("orientation.tau_s", tau_s),
+            _ => Ok(()),
+        }
+    }
+
+    /// The concrete source `Auto` picks for a first sample.
+    pub fn resolve(&self, first: &ImuSample) -> OrientationSource {
+        match self {
+            OrientationSource::Auto if first.orientation.is_some() => OrientationSource::Os,
+            OrientationSource::Auto if first.gyro.is_some() => OrientationSource::MADGWICK,
+            OrientationSource::Auto => OrientationSource::GRAVITY,
+            other => *other,
+        }
+    }
+}
+
+/// A sample cast into the navigation frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NavAccel {
+    /// Vertical linear acceleration (gravity removed), m/s², up positive.
+    pub up: f64,
+    /// Horizontal acceleration (east, north), m/s²; `None` when the source has no heading.
+    pub horizontal: Option<(f64, f64)>,
+}
+
+/// The running orientation estimator.
+pub struct Orientation {
+    kind: Kind,
+}
+
+enum Kind {
+    Os,
+    Madgwick { filter: Option<ahrs::Madgwick<f64>>, beta: f64 },
+    Gravity { lp: [OnePole; 3] },
+}
+
+/// Rotation from Madgwick's earth frame (x magnetic north, y west, z up) to ENU.
+fn nwu_to_enu() -> UnitQuaternion<f64> {
+    UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(Matrix3::new(
+        0.0, -1.0, 0.0, //
+        1.0, 0.0, 0.0, //
+        0.0, 0.0, 1.0,
+    )))
+}
+
+/// Device→ENU attitude from one accelerometer (and optional magnetometer) reading, by TRIAD.
+/// Without a magnetometer, yaw is set so that the device's y axis points north.
+pub fn attitude_from_vectors(accel: &DeviceVec, mag: Option<&DeviceVec>) -> Option<UnitQuaternion<f64>> {
+    let up = accel.try_normalize(1e-9)?;
+    let east = match mag.and_then(|m| m.cross(&up).try_normalize(1e-9)) {
+        Some(e) => e,
+        None => {
+            // Yaw reference: the device y axis (or x if y is vertical), projected horizontally.
+            let y = Vector3::y();
+            let yh = y - up * y.dot(&up);
+            let n = yh.try_normalize(1e-3).or_else(|| {
+                let x = Vector3::x();
+                (x - up * x.dot(&up)).try_normalize(1e-3)
+            })?;
+            n.cross(&up)
+        }
+    };
+    let north = up.cross(&east);
+    // Rows are the ENU axes expressed in device coordinates: v_enu = R v_dev.
+    let r = Matrix3::from_rows(&[east.transpose(), north.transpose(), up.transpose()]);
+    Some(UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r)))
+}
+
+impl Orientation {
+    /// A new estimator for a concrete (already resolved) source.
+    pub fn new(source: OrientationSource) -> Self {
+        let kind = match source {
+            OrientationSource::Madgwick { beta } => Kind::Madgwick { filter: None, beta },
+            OrientationSource::GravityLowPass { tau_s } => Kind::Gravity { lp: [OnePole::new(tau_s); 3] },
+            _ => Kind::Os,
+        };
+        Orientation { kind }
+    }
+
+    /// Whether this source provides horizontal axes (and so heading).
+    pub fn has_heading(&self) -> bool {
+        !matches!(self.kind, Kind::Gravity { .. })
+    }
+
+    /// Forgets the state (after a gap in the data).
+    pub fn reset(&mut self) {
+        match &mut self.kind {
+            Kind::Os => {}
+            Kind::Madgwick { filter, .. } => *filter = None,
+            Kind::Gravity { lp } => lp.iter_mut().for_each(OnePole::reset),
+        }
+    }
+
+    /// The current device→ENU attitude, if the source has one.
+    pub fn attitude(&self) -> Option<UnitQuaternion<f64>> {
+        match &self.kind {
+            Kind::Madgwick { filter: Some(f), .. } => Some(nwu_to_enu() * f.quat),
+            _ => None,
+        }
+    }
+
+    /// Feeds one sample taken `dt` seconds after the previous one and returns its acceleration in
+    /// the navigation frame.
+    pub fn update(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
+        let q = match &mut self.kind {
+            Kind::Os => s.orientation.ok_or(InputError::MissingField { t: s.t, field: "orientation" })?,
+            Kind::Madgwick { filter, beta } => {
+                let gyro = s.gyro.ok_or(InputError::MissingField { t: s.t, field: "gyro" })?;
+                match filter {
+                    None => {
+                        // Start from the attitude the first sample implies, so there is no long
+                        // convergence transient from the identity quaternion.
+                        if let Some(q0) = attitude_from_vectors(&s.accel, s.mag.as_ref()) {
+                            let q_nwu = nwu_to_enu().inverse() * q0;
+                            *filter = Some(ahrs::Madgwick::new_with_quat(dt.max(1e-3), *beta, q_nwu));
+                        }
+                    }
+                    Some(f) => {
+                        *f.sample_period_mut() = dt;
+                        // The crate refuses a zero accelerometer or magnetometer norm; the
+                        // attitude is then simply propagated by the previous estimate.
+                        let _ = match s.mag {
+                            Some(m) => f.update(&gyro, &s.accel, &m),
+                            None => f.update_imu(&gyro, &s.accel),
+                        };
+                    }
+                }
+                match filter {
+                    Some(f) => nwu_to_enu() * f.quat,
+                    None => return Ok(NavAccel { up: 0.0, horizontal: None }),
+                }
+            }
+            Kind::Gravity { lp } => {
+                let g = Vector3::new(
+                    lp[0].update(s.accel.x, dt),
+                    lp[1].update(s.accel.y, dt),
+                    lp[2].update(s.accel.z, dt),
+                );
+                let n = g.norm();
+                if n < 1e-6 {
+                    return Ok(NavAccel { up: 0.0, horizontal: None });
+                }
+                return Ok(NavAccel { up: s.accel.dot(&g) / n - n, horizontal: None });
+            }
+        };
+        let a = q * s.accel;
+        Ok(NavAccel { up: a.z - G0, horizontal: Some((a.x, a.y)) })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn triad_flat_phone_pointing_north() {
+        // Face up, top of the phone towards magnetic north (field points north and down).
+        let q = attitude_from_vectors(&Vector3::new(0.0, 0.0, G0), Some(&Vector3::new(0.0, 20.0, -40.0))).unwrap();
+        let y = q * Vector3::y();
+        assert!((y - Vector3::new(0.0, 1.0, 0.0)).norm() < 1e-9, "{y}");
+    }
+
+    #[test]
+    fn madgwick_frame_convention_is_device_to_enu() {
+        // Phone face up, top towards east; the field points north and down.
+        let accel = Vector3::new(0.0, 0.0, G0);
+        // Top (device y) east and face (z) up make device x point south, so north is device −x.
+        let mag = Vector3::new(-20.0, 0.0, -40.0);
+        let mut o = Orientation::new(OrientationSource::MADGWICK);
+        let s = ImuSample { t: 0.0, accel, gyro: Some(Vector3::zeros()), mag: Some(mag), orientation: None };
+        for i in 0..200 {
+            o.update(&ImuSample { t: i as f64 * 0.01, ..s }, 0.01).unwrap();
+        }
+        let q = o.attitude().unwrap();
+        let top = q * Vector3::y();
+        assert!((top - Vector3::new(1.0, 0.0, 0.0)).norm() < 0.02, "device y should point east, got {top}");
+        let face = q * Vector3::z();
+        assert!((face - Vector3::z()).norm() < 0.02, "{face}");
+    }
+
+    #[test]
+    fn gravity_lowpass_gives_vertical_only() {
+        let mut o = Orientation::new(OrientationSource::GRAVITY);
+        let mut last = None;
+        for i in 0..500 {
+            let t = i as f64 * 0.01;
+            let s = ImuSample::accel_only(t, Vector3::new(0.0, G0, 0.0));
+            last = Some(o.update(&s, 0.01).unwrap());
+        }
+        let n = last.unwrap();
+        assert!(n.up.abs() < 1e-9 && n.horizontal.is_none());
+    }
+}

@@ -1,0 +1,262 @@
+//! Step detection by a phase-locked loop on vertical acceleration (Basso 2016 §II.C, Fig. 2;
+//! Basso 2021 §2.2.2, Fig. 5).
+//!
+//! The loop has the three blocks of Basso 2016 Fig. 2:
+//! - **Phase detector**: a multiplier. With the normalised input x = A cos φᵢ and the oscillator
+//!   phase φ, e = −x·sin φ = (A/2)·sin(φᵢ − φ) + (terms at 2f), so e ≈ K_d (φᵢ − φ) with
+//!   K_d = A/2. The input is normalised by the σ_z of the motion detector, so A ≈ √2 and the loop
+//!   gain does not depend on how hard the person walks.
+//! - **Loop low-pass filter**: a first-order low-pass (cut-off [`PllConfig::loop_lpf_hz`]) that
+//!   removes the 2f product term, followed by a proportional-integral stage. The PI stage makes the
+//!   loop type 2: a frequency step is tracked with zero steady-state phase error, so the
+//!   oscillator peaks stay on the vertical-acceleration peaks whatever the cadence.
+//! - **Controlled oscillator**: φ advances by 2π f dt with the `dt` of each sample.
+//!
+//! A step is counted at each peak of the oscillator output cos φ (φ crossing a multiple of 2π),
+//! at a time interpolated inside the sample interval, and f_k = 1/T_k (Basso 2016 §II.C).
+//!
+//! # Loop design
+//! Linearised, the closed loop is s² + 2π K_d K_p s + 2π K_d K_i = 0, so with natural frequency
+//! ω_n = 2π·[`PllConfig::natural_hz`] and damping ζ: K_p = 2ζω_n / (2π K_d), K_i = ω_n² / (2π K_d).
+//! Defaults: f_n = 0.3 Hz, ζ = 0.707, so the noise bandwidth B_L = ω_n(ζ + 1/(4ζ))/2 ≈ 1.0 rad/s
+//! (0.17 Hz) and the loop settles in about 4/(ζω_n) ≈ 3 s. The lock-in range (lock within one
+//! beat cycle) is about ±2ζω_n/2π ≈ ±0.42 Hz around the free-running frequency; with the integrator
+//! the pull-in range covers the whole band the frequency is clamped to.
+//!
+//! # Free-running frequencies and bands
+//! Walking: 1.8 Hz (Basso 2016 and 2021), band 1.2–2.7 Hz. Running: 3.4 Hz, the middle of Basso
+//! 2016's 2.7–4.2 Hz running band (geometric mean 3.37 Hz), band 2.3–4.6 Hz. The band follows the
+//! motion state; clamping to it keeps the loop off the stride sub-harmonic (f/2, strong for a
+//! phone on the thigh) and off the second harmonic.
+//!
+//! # Loss of lock
+//! A lock indicator, the low-passed in-phase product x·cos φ (≈ 0.7 when locked, ≈ 0 otherwise), is
+//! reported for diagnostics. When the input stops being periodic the oscillator keeps running near
+//! its last frequency; such cycles are not counted because each cycle must itself carry motion:
+//! the RMS of the input over the cycle must reach [`PllConfig::cycle_rms_min`]. While the person is
+//! still the integrator relaxes to the free-running frequency.
+
+use super::math::OnePole;
+use super::motion::Motion;
+use super::types::{positive, ConfigError};
+use std::f64::consts::TAU;
+
+/// Settings of the PLL step detector.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct PllConfig {
+    /// Free-running frequency while walking or still, Hz (Basso: 1.8).
+    pub free_running_walk_hz: f64,
+    /// Free-running frequency while running, Hz.
+    pub free_running_run_hz: f64,
+    /// Frequency band while walking or still, Hz.
+    pub walk_band_hz: (f64, f64),
+    /// Frequency band while running, Hz.
+    pub run_band_hz: (f64, f64),
+    /// Loop natural frequency, Hz.
+    pub natural_hz: f64,
+    /// Loop damping ratio.
+    pub damping: f64,
+    /// Cut-off of the loop low-pass filter, Hz.
+    pub loop_lpf_hz: f64,
+    /// Minimum RMS of the vertical acceleration over one oscillator cycle for its peak to count
+    /// as a step, m/s². Default: 2/3 of the still threshold of the motion detector.
+    pub cycle_rms_min: f64,
+}
+
+impl Default for PllConfig {
+    fn default() -> Self {
+        PllConfig {
+            free_running_walk_hz: 1.8,
+            free_running_run_hz: 3.4,
+            walk_band_hz: (1.2, 2.7),
+            run_band_hz: (2.3, 4.6),
+            natural_hz: 0.3,
+            damping: 0.707,
+            loop_lpf_hz: 1.5,
+            cycle_rms_min: 1.0,
+        }
+    }
+}
+
+impl PllConfig {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("pll.natural_hz", self.natural_hz)?;
+        positive("pll.damping", self.damping)?;
+        positive("pll.loop_lpf_hz", self.loop_lpf_hz)?;
+        positive("pll.cycle_rms_min", self.cycle_rms_min)?;
+        for (band, free, name) in [
+            (self.walk_band_hz, self.free_running_walk_hz, "pll.walk_band_hz"),
+            (self.run_band_hz, self.free_running_run_hz, "pll.run_band_hz"),
+        ] {
+            positive(name, band.0)?;
+            if !(band.1 > band.0 && free >= band.0 && free <= band.1) {
+                return Err(ConfigError::new(name, format!("band {band:?} must be increasing and contain the free-running frequency {free}")));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A step candidate from a detector: its time, and the detector's period estimate for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Candidate {
+    /// Step time, seconds.
+    pub t: f64,
+    /// The detector's current period estimate, seconds.
+    pub period_s: f64,
+}
+
+/// The PLL's running state.
+#[derive(Debug, Clone)]
+pub struct Pll {
+    cfg: PllConfig,
+    kp: f64,
+    ki: f64,
+    phase: f64,
+    freq: f64,
+    integ: f64,
+    loop_lpf: OnePole,
+    lock: OnePole,
+    cycle_sq: f64,
+    cycle_dt: f64,
+    output: f64,
+}
+
+impl Pll {
+    /// A loop at the walking free-running frequency.
+    pub fn new(cfg: PllConfig) -> Self {
+        // K_d ≈ A/2 with the normalised amplitude A = √2.
+        let kd = std::f64::consts::FRAC_1_SQRT_2;
+        let wn = TAU * cfg.natural_hz;
+        let kp = 2.0 * cfg.damping * wn / (TAU * kd);
+        let ki = wn * wn / (TAU * kd);
+        Pll {
+            cfg,
+            kp,
+            ki,
+            phase: 0.0,
+            freq: cfg.free_running_walk_hz,
+            integ: cfg.free_running_walk_hz,
+            loop_lpf: OnePole::with_cutoff_hz(cfg.loop_lpf_hz),
+            lock: OnePole::new(1.0),
+            cycle_sq: 0.0,
+            cycle_dt: 0.0,
+            output: 1.0,
+        }
+    }
+
+    fn band(&self, m: Motion) -> (f64, f64, f64) {
+        match m {
+            Motion::Running => (self.cfg.run_band_hz.0, self.cfg.run_band_hz.1, self.cfg.free_running_run_hz),
+            _ => (self.cfg.walk_band_hz.0, self.cfg.walk_band_hz.1, self.cfg.free_running_walk_hz),
+        }
+    }
+
+    /// Restarts the oscillator at a peak at time of the next sample (after a gap).
+    pub fn reset_phase(&mut self) {
+        self.phase = 0.0;
+        self.cycle_sq = 0.0;
+        self.cycle_dt = 0.0;
+        self.loop_lpf.reset();
+    }
+
+    /// Feeds one vertical-acceleration sample `a` (m/s²) taken `dt` s after the previous one,
+    /// with the motion detector's window mean `mu` and deviation `sigma` and state `motion`.
+    pub fn push(&mut self, t: f64, dt: f64, a: f64, mu: f64, sigma: f64, motion: Motion) -> Option<Candidate> {
+        let (lo, hi, free) = self.band(motion);
+        if self.integ < lo || self.integ > hi {
+            self.integ = free;
+        }
+        if motion == Motion::Still {
+            // Relax towards the free-running frequency (time constant 2 s).
+            self.integ += dt / (2.0 + dt) * (free - self.integ);
+        }
+        // Controlled oscillator.
+        let prev = self.phase;
+        self.phase += TAU * self.freq * dt;
+        let mut out = None;
+        let d = a - mu;
+        if self.phase >= TAU {
+            let frac = if self.phase > prev { (TAU - prev) / (self.phase - prev) } else { 1.0 };
+            let t_peak = t - dt + frac * dt;
+            // The part of this interval before the peak belongs to the ending cycle.
+            let rms = ((self.cycle_sq + d * d * dt * frac) / (self.cycle_dt + dt * frac).max(1e-9)).sqrt();
+            if rms >= self.cfg.cycle_rms_min {
+                out = Some(Candidate { t: t_peak, period_s: 1.0 / self.freq });
+            }
+            self.phase -= TAU * (self.phase / TAU).floor();
+            self.cycle_sq = d * d * dt * (1.0 - frac);
+            self.cycle_dt = dt * (1.0 - frac);
+        } else {
+            self.cycle_sq += d * d * dt;
+            self.cycle_dt += dt;
+        }
+        // Phase detector on the normalised input. The floor keeps noise small while still.
+        let x = (d / sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
+        let (s, c) = libm::sincos(self.phase);
+        self.output = c;
+        let e = self.loop_lpf.update(-x * s, dt);
+        self.lock.update(x * c, dt);
+        if motion != Motion::Still {
+            self.integ = (self.integ + self.ki * e * dt).clamp(lo, hi);
+        }
+        self.freq = (self.integ + self.kp * e).clamp(lo, hi);
+        out
+    }
+
+    /// Current oscillator frequency, Hz.
+    pub fn frequency(&self) -> f64 {
+        self.freq
+    }
+
+    /// Oscillator output cos φ.
+    pub fn output(&self) -> f64 {
+        self.output
+    }
+
+    /// Lock indicator: low-passed in-phase product (≈0.7 locked, ≈0 unlocked).
+    pub fn lock_indicator(&self) -> f64 {
+        self.lock.value().unwrap_or(0.0)
+    }
+
+    /// Whether the loop is considered locked (indicator above 0.35).
+    pub fn locked(&self) -> bool {
+        self.lock_indicator() > 0.35
+    }
+
+    /// Oscillator phase in [0, 2π), 0 at the output peak.
+    pub fn phase(&self) -> f64 {
+        self.phase
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn count(f_in: f64, seconds: f64, rate: f64) -> (usize, f64) {
+        let mut p = Pll::new(PllConfig::default());
+        let mut n = 0;
+        let steps = (seconds * rate) as usize;
+        for i in 1..steps {
+            let t = i as f64 / rate;
+            let a = 3.0 * (TAU * f_in * t).cos();
+            if p.push(t, 1.0 / rate, a, 0.0, 3.0 / 2f64.sqrt(), Motion::Walking).is_some() {
+                n += 1;
+            }
+        }
+        (n, p.frequency())
+    }
+
+    #[test]
+    fn locks_to_walking_cadences() {
+        for f in [1.3, 1.5, 1.8, 2.2, 2.5] {
+            let (n, fr) = count(f, 60.0, 100.0);
+            let expect = f * 60.0;
+            assert!((n as f64 - expect).abs() <= 3.0, "f={f}: counted {n}, expected {expect}");
+            assert!((fr - f).abs() < 0.05, "f={f}: tracked {fr}");
+        }
+    }
+}

@@ -1,0 +1,202 @@
+//! Step length.
+//!
+//! - [`StepLengthProfile`]: Basso 2016 §II.D. Within a band of frequencies the step length is
+//!   nearly linear in step frequency, SL = a·f + b, with one line for walking (about 1.5–2.2 Hz)
+//!   and one for running (about 2.7–4.2 Hz): a piecewise-linear function. (Basso 2021 eq. 23 writes
+//!   the same law as a·f − b.) The user's lines come from calibration by least squares
+//!   ([`fit_line`], with f̄ by eq. 1 [`harmonic_mean_frequency`] and SL̄ = D/N by eq. 2).
+//! - Weinberg (Analog Devices AN-602, cited by Basso 2016 as [18]): SL = K·(a_max − a_min)^¼ of
+//!   the vertical acceleration over the step.
+//!
+//! # Default coefficients
+//! The papers publish no numbers for the lines (Basso 2016 Fig. 4 shows two users only). The
+//! defaults are a population placeholder until the user calibrates:
+//! - walking SL = 0.375·f + 0.025 m: 0.70 m at 1.8 Hz (1.26 m/s, a typical comfortable adult
+//!   walking speed), 0.59 m at 1.5 Hz and 0.85 m at 2.2 Hz;
+//! - running SL = 0.90·f − 1.50 m: 0.93 m at 2.7 Hz (2.5 m/s), 1.47 m at 3.3 Hz (4.9 m/s);
+//! - clamped to the physiological range 0.2–2.5 m.
+//!
+//! Between the bands the line is chosen by frequency, switching at the midpoint of the gap
+//! (2.45 Hz by default); outside the bands each line is extrapolated, then clamped.
+
+use super::types::{positive, ConfigError};
+
+/// One line SL = a·f + b, valid over [f_lo, f_hi].
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Line {
+    /// Slope, m/Hz.
+    pub a: f64,
+    /// Offset, m.
+    pub b: f64,
+    /// Lower end of the band, Hz.
+    pub f_lo: f64,
+    /// Upper end of the band, Hz.
+    pub f_hi: f64,
+}
+
+impl Line {
+    /// SL at frequency `f`, m.
+    pub fn eval(&self, f: f64) -> f64 {
+        self.a * f + self.b
+    }
+}
+
+/// A user's piecewise-linear step-length profile.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct StepLengthProfile {
+    /// Walking line.
+    pub walking: Line,
+    /// Running line.
+    pub running: Line,
+    /// Smallest step length returned, m.
+    pub min_m: f64,
+    /// Largest step length returned, m.
+    pub max_m: f64,
+}
+
+impl Default for StepLengthProfile {
+    fn default() -> Self {
+        StepLengthProfile {
+            walking: Line { a: 0.375, b: 0.025, f_lo: 1.5, f_hi: 2.2 },
+            running: Line { a: 0.90, b: -1.50, f_lo: 2.7, f_hi: 4.2 },
+            min_m: 0.2,
+            max_m: 2.5,
+        }
+    }
+}
+
+impl StepLengthProfile {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        for (l, name) in [(self.walking, "step_length.walking"), (self.running, "step_length.running")] {
+            if ![l.a, l.b, l.f_lo, l.f_hi].iter().all(|v| v.is_finite()) || !(l.f_hi > l.f_lo) || l.f_lo <= 0.0 {
+                return Err(ConfigError::new(name, "coefficients must be finite and the band increasing and positive"));
+            }
+        }
+        if !(self.running.f_lo >= self.walking.f_hi) {
+            return Err(ConfigError::new("step_length.running", "running band must lie above the walking band"));
+        }
+        positive("step_length.min_m", self.min_m)?;
+        if !(self.max_m > self.min_m) {
+            return Err(ConfigError::new("step_length.max_m", "must exceed min_m"));
+        }
+        Ok(())
+    }
+
+    /// Step length at step frequency `f` (Hz), m.
+    pub fn length(&self, f: f64) -> f64 {
+        let split = 0.5 * (self.walking.f_hi + self.running.f_lo);
+        let line = if f < split { &self.walking } else { &self.running };
+        line.eval(f).clamp(self.min_m, self.max_m)
+    }
+}
+
+/// How step length is computed.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum StepLengthModel {
+    /// Basso 2016 piecewise-linear in frequency.
+    Frequency(StepLengthProfile),
+    /// Weinberg: K·(a_max − a_min)^¼.
+    Weinberg {
+        /// K, m/(m/s²)^¼. Default 0.47 gives 0.70 m at a 5 m/s² peak-to-peak.
+        k: f64,
+    },
+}
+
+impl Default for StepLengthModel {
+    fn default() -> Self {
+        StepLengthModel::Frequency(StepLengthProfile::default())
+    }
+}
+
+impl StepLengthModel {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        match self {
+            StepLengthModel::Frequency(p) => p.validate(),
+            StepLengthModel::Weinberg { k } => positive("step_length.k", *k),
+        }
+    }
+
+    /// Step length, m, from the step frequency (Hz) and the vertical peak-to-peak (m/s²).
+    pub fn length(&self, freq_hz: f64, peak_to_peak: f64) -> f64 {
+        match self {
+            StepLengthModel::Frequency(p) => p.length(freq_hz),
+            StepLengthModel::Weinberg { k } => (k * libm::sqrt(libm::sqrt(peak_to_peak.max(0.0)))).clamp(0.2, 2.5),
+        }
+    }
+}
+
+/// Basso 2016 eq. 1: the mean step frequency of a calibration walk, the harmonic mean
+/// f̄ = (1/N Σ 1/f_k)⁻¹ (equivalently N / Σ T_k). `None` for an empty or non-positive input.
+pub fn harmonic_mean_frequency(freqs: &[f64]) -> Option<f64> {
+    if freqs.is_empty() || freqs.iter().any(|f| !(*f > 0.0)) {
+        return None;
+    }
+    Some(freqs.len() as f64 / freqs.iter().map(|f| 1.0 / f).sum::<f64>())
+}
+
+/// Basso 2016 eq. 2: SL̄ = D/N.
+pub fn mean_step_length(distance_m: f64, steps: usize) -> Option<f64> {
+    (steps > 0 && distance_m.is_finite() && distance_m > 0.0).then(|| distance_m / steps as f64)
+}
+
+/// A least-squares line fit with its quality.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct LineFit {
+    /// Slope, m/Hz.
+    pub a: f64,
+    /// Offset, m.
+    pub b: f64,
+    /// Coefficient of determination.
+    pub r2: f64,
+    /// Residuals SL_i − (a f_i + b), m.
+    pub residuals: Vec<f64>,
+}
+
+/// Least-squares fit of SL = a·f + b through the calibration points P_i = (f̄_i, SL̄_i)
+/// (Basso 2016 §II.D). Needs two distinct frequencies.
+pub fn fit_line(points: &[(f64, f64)]) -> Option<LineFit> {
+    let n = points.len() as f64;
+    if points.len() < 2 {
+        return None;
+    }
+    let mf = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let ms = points.iter().map(|p| p.1).sum::<f64>() / n;
+    let sff: f64 = points.iter().map(|p| (p.0 - mf).powi(2)).sum();
+    let sfs: f64 = points.iter().map(|p| (p.0 - mf) * (p.1 - ms)).sum();
+    if !(sff > 1e-12) {
+        return None;
+    }
+    let a = sfs / sff;
+    let b = ms - a * mf;
+    let residuals: Vec<f64> = points.iter().map(|p| p.1 - (a * p.0 + b)).collect();
+    let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
+    let ss_tot: f64 = points.iter().map(|p| (p.1 - ms).powi(2)).sum();
+    let r2 = if ss_tot > 0.0 { 1.0 - ss_res / ss_tot } else { 1.0 };
+    Some(LineFit { a, b, r2, residuals })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn piecewise_and_clamped() {
+        let p = StepLengthProfile::default();
+        assert!((p.length(1.8) - 0.7).abs() < 1e-9);
+        assert!(p.length(3.0) > p.length(2.2));
+        assert_eq!(p.length(20.0), p.max_m);
+        assert_eq!(p.length(0.01), p.min_m);
+    }
+
+    #[test]
+    fn calibration_equations() {
+        // Eq. 1: steps of 0.5 s and 0.6 s: 2 steps in 1.1 s.
+        assert!((harmonic_mean_frequency(&[2.0, 1.0 / 0.6]).unwrap() - 2.0 / 1.1).abs() < 1e-12);
+        assert_eq!(mean_step_length(70.0, 100), Some(0.7));
+        let fit = fit_line(&[(1.5, 0.6), (1.8, 0.7), (2.1, 0.8)]).unwrap();
+        assert!((fit.a - 1.0 / 3.0).abs() < 1e-9 && (fit.r2 - 1.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,189 @@
+//! Input records and the error types of the engine's boundary.
+//!
+//! Units and frames are those stated in the crate documentation: seconds, m/s² (specific force
+//! including gravity, Android sign), rad/s, µT, device frame x-right / y-up-screen / z-out,
+//! navigation frame East-North-Up. Missing data is `None`, never a zero vector or a NaN.
+
+use nalgebra::{UnitQuaternion, Vector3};
+use std::fmt;
+
+/// A 3-vector in the device frame (x right, y top of screen, z out of screen).
+pub type DeviceVec = Vector3<f64>;
+
+/// One inertial sample.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImuSample {
+    /// Time, seconds on the log's clock.
+    pub t: f64,
+    /// Specific force including gravity, m/s², device frame. Face-up at rest: (0, 0, +9.81).
+    pub accel: DeviceVec,
+    /// Angular rate, rad/s, device frame, right-handed.
+    pub gyro: Option<DeviceVec>,
+    /// Magnetic field, µT, device frame.
+    pub mag: Option<DeviceVec>,
+    /// Orientation supplied by the operating system: the rotation taking device-frame vectors to
+    /// the East-North-Up frame (`v_enu = q * v_device`).
+    pub orientation: Option<UnitQuaternion<f64>>,
+}
+
+impl ImuSample {
+    /// A sample with acceleration only.
+    pub fn accel_only(t: f64, accel: DeviceVec) -> Self {
+        ImuSample { t, accel, gyro: None, mag: None, orientation: None }
+    }
+
+    /// Checks that every value present is finite; names the first field that is not.
+    pub fn check_finite(&self) -> Result<(), InputError> {
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
+        if !self.t.is_finite() {
+            return bad("t");
+        }
+        if !all_finite(self.accel.iter()) {
+            return bad("accel");
+        }
+        if let Some(g) = self.gyro {
+            if !all_finite(g.iter()) {
+                return bad("gyro");
+            }
+        }
+        if let Some(m) = self.mag {
+            if !all_finite(m.iter()) {
+                return bad("mag");
+            }
+        }
+        if let Some(q) = self.orientation {
+            if !all_finite(q.coords.iter()) {
+                return bad("orientation");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One GNSS position fix.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GnssFix {
+    /// Time, seconds on the log's clock.
+    pub t: f64,
+    /// WGS84 latitude, degrees.
+    pub lat_deg: f64,
+    /// WGS84 longitude, degrees.
+    pub lon_deg: f64,
+    /// Horizontal accuracy (1σ radius as the platform reports it), metres.
+    pub h_accuracy_m: f64,
+    /// Altitude above the WGS84 ellipsoid, metres.
+    pub altitude_m: Option<f64>,
+    /// Ground speed, m/s.
+    pub speed_mps: Option<f64>,
+    /// Course over ground, degrees clockwise from true north.
+    pub bearing_deg: Option<f64>,
+}
+
+impl GnssFix {
+    /// Checks finiteness and ranges; names the first bad field.
+    pub fn check(&self) -> Result<(), InputError> {
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
+        if !self.t.is_finite() {
+            return bad("t");
+        }
+        if !self.lat_deg.is_finite() || self.lat_deg.abs() > 90.0 {
+            return bad("lat_deg");
+        }
+        if !self.lon_deg.is_finite() || self.lon_deg.abs() > 180.0 {
+            return bad("lon_deg");
+        }
+        if !self.h_accuracy_m.is_finite() || self.h_accuracy_m < 0.0 {
+            return bad("h_accuracy_m");
+        }
+        for (v, f) in [
+            (self.altitude_m, "altitude_m"),
+            (self.speed_mps, "speed_mps"),
+            (self.bearing_deg, "bearing_deg"),
+        ] {
+            if matches!(v, Some(x) if !x.is_finite()) {
+                return bad(f);
+            }
+        }
+        Ok(())
+    }
+}
+
+fn all_finite<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {
+    it.all(|v| v.is_finite())
+}
+
+/// Why an input record was refused. The engine's state is untouched by a refused record.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InputError {
+    /// A field holds NaN or ±∞ (or, for GNSS, is out of range).
+    NonFinite {
+        /// The record's time (may itself be the bad field).
+        t: f64,
+        /// The offending field.
+        field: &'static str,
+    },
+    /// The record's time is earlier than the previous accepted record of the same stream.
+    TimeWentBackwards {
+        /// The record's time.
+        t: f64,
+        /// The last accepted time.
+        last: f64,
+    },
+    /// The selected orientation source needs a field this sample lacks.
+    MissingField {
+        /// The record's time.
+        t: f64,
+        /// The missing field.
+        field: &'static str,
+    },
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InputError::NonFinite { t, field } => {
+                write!(f, "record at t={t}: field `{field}` is not a finite, in-range number")
+            }
+            InputError::TimeWentBackwards { t, last } => {
+                write!(f, "record at t={t}: time went backwards (previous record at t={last})")
+            }
+            InputError::MissingField { t, field } => {
+                write!(f, "record at t={t}: field `{field}` is required by the configured orientation source")
+            }
+        }
+    }
+}
+
+impl std::error::Error for InputError {}
+
+/// A configuration value that fails validation; names the field.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfigError {
+    /// Dotted path of the bad field, e.g. `pll.free_running_walk_hz`.
+    pub field: &'static str,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+impl ConfigError {
+    pub(crate) fn new(field: &'static str, reason: impl Into<String>) -> Self {
+        ConfigError { field, reason: reason.into() }
+    }
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "invalid configuration `{}`: {}", self.field, self.reason)
+    }
+}
+
+impl std::error::Error for ConfigError {}
+
+/// Returns `Ok` when `v` is finite and strictly positive.
+pub(crate) fn positive(field: &'static str, v: f64) -> Result<(), ConfigError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(ConfigError::new(field, format!("must be a finite positive number, got {v}")))
+    }
+}
