@@ -53,7 +53,7 @@ impl Default for StepDetectorConfig {
 }
 
 /// Every choice of the pipeline, with published defaults.
-#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct PipelineConfig {
     /// Orientation source.
@@ -69,6 +69,19 @@ pub struct PipelineConfig {
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
+}
+
+impl Default for PipelineConfig {
+    fn default() -> Self {
+        PipelineConfig {
+            orientation: OrientationSource::default(),
+            motion: MotionConfig::default(),
+            detector: StepDetectorConfig::default(),
+            heading: HeadingConfig::default(),
+            step_length: StepLengthModel::default(),
+            gap_s: 0.5,
+        }
+    }
 }
 
 impl PipelineConfig {

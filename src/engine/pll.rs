@@ -29,12 +29,20 @@
 //! motion state; clamping to it keeps the loop off the stride sub-harmonic (f/2, strong for a
 //! phone on the thigh) and off the second harmonic.
 //!
+//! # Acquisition aid
+//! Pull-in from far outside the lock-in range takes seconds with a loop this narrow (e.g. from
+//! 1.8 Hz to 3.4 Hz when someone starts running). While the loop is unlocked, the frequency of
+//! four regular upward zero crossings (three cycles) of the input re-seeds the integrator when it differs by
+//! more than the lock-in range (a frequency-assisted PLL, Best 2007 ch. 2).
+//!
 //! # Loss of lock
 //! A lock indicator, the low-passed in-phase product x·cos φ (≈ 0.7 when locked, ≈ 0 otherwise), is
 //! reported for diagnostics. When the input stops being periodic the oscillator keeps running near
 //! its last frequency; such cycles are not counted because each cycle must itself carry motion:
 //! the RMS of the input over the cycle must reach [`PllConfig::cycle_rms_min`]. While the person is
-//! still the integrator relaxes to the free-running frequency.
+//! still the loop keeps running over the union of both bands (so that it is already locked when
+//! the motion detector catches up with a start), and when there is nothing to follow its
+//! integrator relaxes to the free-running frequency.
 
 use super::math::OnePole;
 use super::motion::Motion;
@@ -122,6 +130,10 @@ pub struct Pll {
     cycle_sq: f64,
     cycle_dt: f64,
     output: f64,
+    // Acquisition aid: times of upward zero crossings (with hysteresis) of the input.
+    armed: bool,
+    crossings: [f64; 4],
+    n_cross: usize,
 }
 
 impl Pll {
@@ -144,13 +156,19 @@ impl Pll {
             cycle_sq: 0.0,
             cycle_dt: 0.0,
             output: 1.0,
+            armed: false,
+            crossings: [0.0; 4],
+            n_cross: 0,
         }
     }
 
     fn band(&self, m: Motion) -> (f64, f64, f64) {
+        let (w, r) = (self.cfg.walk_band_hz, self.cfg.run_band_hz);
         match m {
-            Motion::Running => (self.cfg.run_band_hz.0, self.cfg.run_band_hz.1, self.cfg.free_running_run_hz),
-            _ => (self.cfg.walk_band_hz.0, self.cfg.walk_band_hz.1, self.cfg.free_running_walk_hz),
+            Motion::Running => (r.0, r.1, self.cfg.free_running_run_hz),
+            Motion::Walking => (w.0, w.1, self.cfg.free_running_walk_hz),
+            // While still (and so during the onset look-back) the loop may follow either gait.
+            Motion::Still => (w.0.min(r.0), w.1.max(r.1), self.cfg.free_running_walk_hz),
         }
     }
 
@@ -160,17 +178,39 @@ impl Pll {
         self.cycle_sq = 0.0;
         self.cycle_dt = 0.0;
         self.loop_lpf.reset();
+        self.n_cross = 0;
+    }
+
+    /// Frequency from the last upward zero crossings of the input, when they are regular.
+    fn crossing_frequency(&mut self, t: f64, x: f64) -> Option<f64> {
+        if x < -0.3 {
+            self.armed = true;
+        } else if x > 0.3 && self.armed {
+            self.armed = false;
+            self.crossings.rotate_left(1);
+            self.crossings[3] = t;
+            self.n_cross = (self.n_cross + 1).min(4);
+            if self.n_cross == 4 {
+                let c = &self.crossings;
+                let span = c[3] - c[0];
+                let regular = (1..4).all(|i| ((c[i] - c[i - 1]) * 3.0 / span - 1.0).abs() < 0.2);
+                if regular && span > 0.0 {
+                    return Some(3.0 / span);
+                }
+            }
+        }
+        None
     }
 
     /// Feeds one vertical-acceleration sample `a` (m/s²) taken `dt` s after the previous one,
     /// with the motion detector's window mean `mu` and deviation `sigma` and state `motion`.
     pub fn push(&mut self, t: f64, dt: f64, a: f64, mu: f64, sigma: f64, motion: Motion) -> Option<Candidate> {
         let (lo, hi, free) = self.band(motion);
-        if self.integ < lo || self.integ > hi {
-            self.integ = free;
-        }
-        if motion == Motion::Still {
-            // Relax towards the free-running frequency (time constant 2 s).
+        // A change of band (walking ↔ running) clamps the estimate into the new band, so the
+        // loop keeps its lock across the transition.
+        self.integ = self.integ.clamp(lo, hi);
+        if motion == Motion::Still && sigma < 0.5 * self.cfg.cycle_rms_min {
+            // Nothing to follow: relax towards the free-running frequency (time constant 2 s).
             self.integ += dt / (2.0 + dt) * (free - self.integ);
         }
         // Controlled oscillator.
@@ -184,7 +224,7 @@ impl Pll {
             // The part of this interval before the peak belongs to the ending cycle.
             let rms = ((self.cycle_sq + d * d * dt * frac) / (self.cycle_dt + dt * frac).max(1e-9)).sqrt();
             if rms >= self.cfg.cycle_rms_min {
-                out = Some(Candidate { t: t_peak, period_s: 1.0 / self.freq });
+                out = Some(Candidate { t: t_peak, period_s: 1.0 / self.integ });
             }
             self.phase -= TAU * (self.phase / TAU).floor();
             self.cycle_sq = d * d * dt * (1.0 - frac);
@@ -195,20 +235,28 @@ impl Pll {
         }
         // Phase detector on the normalised input. The floor keeps noise small while still.
         let x = (d / sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
+        // Acquisition aid: a type-2 loop this narrow pulls in slowly from far away (seconds for
+        // walking → running from a standstill). When the loop is not locked and three regular
+        // input cycles disagree with it by more than its lock-in range, re-seed the integrator.
+        if let Some(fz) = self.crossing_frequency(t, x) {
+            let lock_in = 2.0 * self.cfg.damping * self.cfg.natural_hz;
+            if !self.locked() && (fz - self.integ).abs() > lock_in && fz >= lo && fz <= hi {
+                self.integ = fz;
+            }
+        }
         let (s, c) = libm::sincos(self.phase);
         self.output = c;
         let e = self.loop_lpf.update(-x * s, dt);
         self.lock.update(x * c, dt);
-        if motion != Motion::Still {
-            self.integ = (self.integ + self.ki * e * dt).clamp(lo, hi);
-        }
+        self.integ = (self.integ + self.ki * e * dt).clamp(lo, hi);
         self.freq = (self.integ + self.kp * e).clamp(lo, hi);
         out
     }
 
-    /// Current oscillator frequency, Hz.
+    /// Tracked step frequency, Hz: the integrator of the loop filter, which is the oscillator
+    /// frequency without the proportional term's ripple.
     pub fn frequency(&self) -> f64 {
-        self.freq
+        self.integ
     }
 
     /// Oscillator output cos φ.

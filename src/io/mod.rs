@@ -1,1 +1,1 @@
-//! TODO
+//! Files: the project's own log format and track exports.

@@ -1,1 +1,526 @@
-//! TODO
+//! A gait simulator: phone-in-pocket IMU streams with known truth.
+//!
+//! # Model
+//! The walker follows a script of [`Segment`]s (still, handled, walking, running), each with a
+//! cadence ramp and a total turn. The step phase φ advances by 2π f dt; a step ends at each
+//! vertical-acceleration peak (φ ≡ 0 mod 2π). In the navigation frame (ENU) the phone's
+//! acceleration is the sum of:
+//! - the pelvis as an inverted pendulum: vertical a_up = A_v cos φ (+ a second harmonic),
+//!   forward a_f = −A_f sin φ (forward speed peaks at double support, where a_up peaks);
+//! - lateral sway at the stride frequency, A_l sin(φ/2), alternating left and right each step;
+//! - waist rotation: the pelvis yaws ±W at the stride frequency, so each step's forward
+//!   acceleration points slightly right or left of the path (Basso 2016 §III);
+//! - the thigh swing: the pocket sits `lever_m` below the hip and the thigh pitches ±Θ at the
+//!   stride frequency, adding its tangential and centripetal acceleration;
+//! - the path itself: dv/dt along the path (cadence ramps) and v·dψ/dt across it (turns).
+//!
+//! The phone's attitude is path yaw ∘ waist yaw ∘ thigh pitch ∘ pocket mount, where the mount
+//! holds the phone upright with its screen facing out of the thigh, rotated by an arbitrary
+//! `pocket_yaw_deg` about the vertical. Gyroscope readings are the exact angular velocity of that
+//! attitude plus bias and noise; accelerometer readings are the specific force R^T(a + g ẑ) plus
+//! noise; the magnetometer sees a fixed field (20 µT north, 43 µT down).
+//!
+//! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,
+//! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
+//! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
+
+pub mod scenarios;
+
+use crate::engine::pipeline::Record;
+use crate::engine::step_length::StepLengthProfile;
+use crate::engine::types::ImuSample;
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// Standard gravity used by the simulator, m/s².
+const G: f64 = crate::engine::orientation::G0;
+
+/// What the walker does during a segment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Gait {
+    /// Phone still in the pocket of a standing person.
+    Still,
+    /// Phone slowly handled (turned and moved by hand), below the motion threshold.
+    Handled,
+    /// Walking.
+    Walk,
+    /// Running.
+    Run,
+}
+
+impl Gait {
+    fn moving(self) -> bool {
+        matches!(self, Gait::Walk | Gait::Run)
+    }
+}
+
+/// One piece of the script.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Segment {
+    /// What the walker does.
+    pub gait: Gait,
+    /// Duration, s.
+    pub duration_s: f64,
+    /// Cadence at the start and at the end of the segment (linear ramp), Hz. Ignored when still.
+    pub cadence_hz: (f64, f64),
+    /// Total heading change over the segment, degrees, clockwise positive.
+    pub turn_deg: f64,
+}
+
+impl Segment {
+    /// Standing still for `s` seconds.
+    pub fn still(s: f64) -> Self {
+        Segment { gait: Gait::Still, duration_s: s, cadence_hz: (0.0, 0.0), turn_deg: 0.0 }
+    }
+
+    /// Handling the phone for `s` seconds.
+    pub fn handled(s: f64) -> Self {
+        Segment { gait: Gait::Handled, ..Segment::still(s) }
+    }
+
+    /// Walking for `s` seconds at cadence `f` Hz.
+    pub fn walk(s: f64, f: f64) -> Self {
+        Segment { gait: Gait::Walk, duration_s: s, cadence_hz: (f, f), turn_deg: 0.0 }
+    }
+
+    /// Running for `s` seconds at cadence `f` Hz.
+    pub fn run(s: f64, f: f64) -> Self {
+        Segment { gait: Gait::Run, ..Segment::walk(s, f) }
+    }
+
+    /// Walking `metres` at cadence `f` with the walker's step-length law.
+    pub fn walk_distance(metres: f64, f: f64, walker: &Walker) -> Self {
+        Segment::walk(metres / (walker.step_length.length(f) * f), f)
+    }
+
+    /// The same segment turning by `deg` over its duration.
+    pub fn turning(self, deg: f64) -> Self {
+        Segment { turn_deg: deg, ..self }
+    }
+
+    /// The same segment with the cadence ramping to `f_end`.
+    pub fn ramp_to(self, f_end: f64) -> Self {
+        Segment { cadence_hz: (self.cadence_hz.0, f_end), ..self }
+    }
+}
+
+/// The walker's body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Walker {
+    /// The true step-length law.
+    pub step_length: StepLengthProfile,
+    /// Waist yaw amplitude, degrees.
+    pub waist_yaw_deg: f64,
+    /// Thigh pitch amplitude, degrees.
+    pub thigh_pitch_deg: f64,
+    /// Distance from the hip joint to the pocket, m.
+    pub lever_m: f64,
+    /// Lateral sway amplitude, m/s².
+    pub sway: f64,
+}
+
+impl Default for Walker {
+    fn default() -> Self {
+        Walker { step_length: StepLengthProfile::default(), waist_yaw_deg: 6.0, thigh_pitch_deg: 20.0, lever_m: 0.12, sway: 0.6 }
+    }
+}
+
+/// The phone's sensors and sampling.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sensors {
+    /// Nominal rate, Hz.
+    pub rate_hz: f64,
+    /// Uniform jitter of each interval, as a fraction of the nominal interval.
+    pub jitter: f64,
+    /// Intervals with no samples, (start, end) s.
+    pub gaps: Vec<(f64, f64)>,
+    /// Accelerometer white noise, m/s² (1σ).
+    pub accel_noise: f64,
+    /// Gyroscope white noise, rad/s (1σ).
+    pub gyro_noise: f64,
+    /// Gyroscope bias, rad/s, device frame.
+    pub gyro_bias: [f64; 3],
+    /// Magnetometer noise, µT (1σ).
+    pub mag_noise: f64,
+    /// Round acceleration to this step, m/s² (Chrome's virtual sensors: 0.1).
+    pub accel_quantum: Option<f64>,
+    /// Include the gyroscope.
+    pub gyro: bool,
+    /// Include the magnetometer.
+    pub mag: bool,
+    /// Include the OS orientation quaternion.
+    pub os_orientation: bool,
+    /// Yaw error of the OS orientation, degrees (1σ, slowly varying).
+    pub os_yaw_error_deg: f64,
+}
+
+impl Default for Sensors {
+    fn default() -> Self {
+        Sensors {
+            rate_hz: 100.0,
+            jitter: 0.0,
+            gaps: Vec::new(),
+            accel_noise: 0.08,
+            gyro_noise: 0.005,
+            gyro_bias: [0.004, -0.003, 0.002],
+            mag_noise: 0.5,
+            accel_quantum: None,
+            gyro: true,
+            mag: true,
+            os_orientation: true,
+            os_yaw_error_deg: 0.0,
+        }
+    }
+}
+
+/// A complete scenario.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scenario {
+    /// The script.
+    pub segments: Vec<Segment>,
+    /// The body.
+    pub walker: Walker,
+    /// The sensors.
+    pub sensors: Sensors,
+    /// Phone yaw about the vertical inside the pocket, degrees.
+    pub pocket_yaw_deg: f64,
+    /// Initial compass heading of the path, degrees.
+    pub start_heading_deg: f64,
+    /// Noise seed.
+    pub seed: u64,
+}
+
+impl Scenario {
+    /// A scenario with default body and sensors.
+    pub fn new(segments: Vec<Segment>) -> Self {
+        Scenario { segments, walker: Walker::default(), sensors: Sensors::default(), pocket_yaw_deg: 30.0, start_heading_deg: 0.0, seed: 1 }
+    }
+
+    /// Total duration, s.
+    pub fn duration_s(&self) -> f64 {
+        self.segments.iter().map(|s| s.duration_s).sum()
+    }
+}
+
+/// One true step.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TruthStep {
+    /// End of the step, s.
+    pub t: f64,
+    /// Position after the step, m.
+    pub east_m: f64,
+    /// Position after the step, m.
+    pub north_m: f64,
+    /// Path heading at the step, rad from north.
+    pub heading_rad: f64,
+    /// Step length, m.
+    pub length_m: f64,
+    /// Cadence, Hz.
+    pub freq_hz: f64,
+    /// Whether the step was observable (not inside a sampling gap).
+    pub observed: bool,
+}
+
+/// The truth of a simulated walk.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Truth {
+    /// Every step taken.
+    pub steps: Vec<TruthStep>,
+    /// Path length, m.
+    pub distance_m: f64,
+    /// Final position (east, north), m.
+    pub end: (f64, f64),
+    /// (start, end, gait) of each segment.
+    pub segments: Vec<(f64, f64, Gait)>,
+}
+
+impl Truth {
+    /// Steps that fall outside sampling gaps.
+    pub fn observed_steps(&self) -> usize {
+        self.steps.iter().filter(|s| s.observed).count()
+    }
+}
+
+/// A generated walk.
+pub struct Simulation {
+    /// The samples, in time order.
+    pub records: Vec<Record>,
+    /// What really happened.
+    pub truth: Truth,
+}
+
+/// SplitMix64 with Box–Muller normals.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn uniform(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn normal(&mut self) -> f64 {
+        let u1 = self.uniform().max(1e-300);
+        let u2 = self.uniform();
+        libm::sqrt(-2.0 * libm::log(u1)) * libm::cos(TAU * u2)
+    }
+    fn vec3(&mut self, s: f64) -> Vector3<f64> {
+        Vector3::new(self.normal() * s, self.normal() * s, self.normal() * s)
+    }
+}
+
+/// Kinematic state at one instant.
+struct State {
+    gait: Gait,
+    /// Step phase, rad (peaks of a_up at multiples of 2π).
+    phi: f64,
+    /// Cadence, Hz.
+    f: f64,
+    /// Cadence rate, Hz/s.
+    fdot: f64,
+    /// Path heading (compass), rad, and its rate.
+    psi: f64,
+    psi_dot: f64,
+    /// Time into a still/handled segment, s.
+    tau: f64,
+}
+
+/// Segment timeline with phase continuity.
+struct Timeline {
+    segs: Vec<(f64, Segment, f64, f64)>, // (t_start, seg, phi_start, psi_start)
+}
+
+impl Timeline {
+    fn new(sc: &Scenario) -> Self {
+        let mut t = 0.0;
+        let mut phi = PI;
+        let mut psi = sc.start_heading_deg.to_radians();
+        let mut segs = Vec::new();
+        let mut prev_moving = false;
+        for s in &sc.segments {
+            if s.gait.moving() && !prev_moving {
+                // Start each bout half a cycle before a step ends.
+                phi = PI + TAU * (phi / TAU).floor();
+            }
+            segs.push((t, *s, phi, psi));
+            if s.gait.moving() {
+                phi += TAU * s.duration_s * 0.5 * (s.cadence_hz.0 + s.cadence_hz.1);
+            }
+            psi += s.turn_deg.to_radians();
+            t += s.duration_s;
+            prev_moving = s.gait.moving();
+        }
+        Timeline { segs }
+    }
+
+    fn state(&self, t: f64, hint: &mut usize) -> State {
+        while *hint + 1 < self.segs.len() && t >= self.segs[*hint + 1].0 {
+            *hint += 1;
+        }
+        let (t0, s, phi0, psi0) = self.segs[*hint];
+        let tau = (t - t0).clamp(0.0, s.duration_s);
+        let fdot = (s.cadence_hz.1 - s.cadence_hz.0) / s.duration_s;
+        let psi_dot = s.turn_deg.to_radians() / s.duration_s;
+        let (f, phi) = if s.gait.moving() {
+            (s.cadence_hz.0 + fdot * tau, phi0 + TAU * (s.cadence_hz.0 * tau + 0.5 * fdot * tau * tau))
+        } else {
+            (0.0, phi0)
+        };
+        State { gait: s.gait, phi, f, fdot: if s.gait.moving() { fdot } else { 0.0 }, psi: psi0 + psi_dot * tau, psi_dot, tau }
+    }
+}
+
+/// Gait accelerations amplitudes (vertical, forward, lateral) for a gait and cadence.
+fn amplitudes(gait: Gait, f: f64, sway: f64) -> (f64, f64, f64) {
+    match gait {
+        Gait::Walk => {
+            let av = 3.2 + 2.0 * (f - 1.8);
+            (av, 0.5 * av, sway)
+        }
+        Gait::Run => {
+            let av = 11.5 + 2.0 * (f - 3.0);
+            (av, 0.4 * av, 1.6 * sway)
+        }
+        _ => (0.0, 0.0, 0.0),
+    }
+}
+
+fn rz(a: f64) -> Matrix3<f64> {
+    let (s, c) = libm::sincos(a);
+    Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+}
+
+fn ry(a: f64) -> Matrix3<f64> {
+    let (s, c) = libm::sincos(a);
+    Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
+}
+
+fn rx(a: f64) -> Matrix3<f64> {
+    let (s, c) = libm::sincos(a);
+    Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+}
+
+impl Scenario {
+    /// The phone-in-body mount: upright (device y up), screen facing out of the right thigh,
+    /// then yawed by `pocket_yaw_deg` about the vertical. Body frame: x forward, y left, z up.
+    fn mount(&self) -> Matrix3<f64> {
+        let base = Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+        rz(self.pocket_yaw_deg.to_radians()) * base
+    }
+
+    /// World attitude, world angular velocity and world acceleration of the phone.
+    fn kinematics(&self, st: &State, mount: &Matrix3<f64>) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
+        let w = &self.walker;
+        let omega = TAU * st.f;
+        let half = 0.5 * st.phi;
+        let (yaw_amp, pitch_amp) = if st.gait.moving() {
+            let k = if st.gait == Gait::Run { 1.4 } else { 1.0 };
+            (w.waist_yaw_deg.to_radians(), k * w.thigh_pitch_deg.to_radians())
+        } else {
+            (0.0, 0.0)
+        };
+        // Angles as functions of time near t (first order in the phase).
+        // Pelvis yaw and thigh flexion both peak at the heel strike of the pocket leg.
+        let waist = |dt: f64| yaw_amp * libm::cos(half + 0.5 * omega * dt);
+        let pitch = |dt: f64| pitch_amp * libm::cos(half + 0.5 * omega * dt);
+        let handled = st.gait == Gait::Handled;
+        let attitude = |dt: f64| {
+            let heading = st.psi + st.psi_dot * dt + waist(dt);
+            let mut r = rz(FRAC_PI_2 - heading) * ry(pitch(dt));
+            if handled {
+                let tt = st.tau + dt;
+                r *= rx(0.25 * libm::sin(TAU * 0.31 * tt)) * ry(0.2 * libm::sin(TAU * 0.17 * tt + 1.0));
+            }
+            r * mount
+        };
+        let r = attitude(0.0);
+        // Angular velocity from the attitude's derivative: [ω]× = Ṙ Rᵀ (central difference of an
+        // analytic function of time; error O(h²)).
+        let h = 1e-4;
+        let rdot = (attitude(h) - attitude(-h)) / (2.0 * h);
+        let skew = rdot * r.transpose();
+        let w_world = Vector3::new(0.5 * (skew[(2, 1)] - skew[(1, 2)]), 0.5 * (skew[(0, 2)] - skew[(2, 0)]), 0.5 * (skew[(1, 0)] - skew[(0, 1)]));
+        // Accelerations.
+        let mut a = Vector3::zeros();
+        if st.gait.moving() {
+            let (av, af, al) = amplitudes(st.gait, st.f, w.sway);
+            let body_heading = st.psi + waist(0.0);
+            let fwd = Vector3::new(libm::sin(body_heading), libm::cos(body_heading), 0.0);
+            let path_fwd = Vector3::new(libm::sin(st.psi), libm::cos(st.psi), 0.0);
+            let right = Vector3::new(libm::cos(st.psi), -libm::sin(st.psi), 0.0);
+            let (sp, cp) = libm::sincos(st.phi);
+            a += Vector3::z() * (av * cp + 0.3 * av * libm::cos(2.0 * st.phi + 0.5));
+            a += fwd * (-af * sp);
+            a += right * (al * libm::sin(half));
+            // Path: dv/dt along, v dψ/dt across.
+            let sl = &w.step_length;
+            let v = sl.length(st.f) * st.f;
+            let dv = (sl.length(st.f + 1e-4) * (st.f + 1e-4) - v) / 1e-4 * st.fdot;
+            a += path_fwd * dv + right * (v * st.psi_dot);
+            // Thigh lever: second derivative of the pocket offset, by central differences.
+            let offset = |dt: f64| {
+                let heading = st.psi + st.psi_dot * dt + waist(dt);
+                rz(FRAC_PI_2 - heading) * ry(pitch(dt)) * Vector3::new(0.0, 0.0, -w.lever_m)
+            };
+            let hh = 1e-3;
+            a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
+        } else if handled {
+            let tt = st.tau;
+            a += Vector3::new(0.3 * libm::sin(TAU * 0.9 * tt), 0.25 * libm::sin(TAU * 0.6 * tt + 2.0), 0.35 * libm::sin(TAU * 1.3 * tt + 0.7));
+        }
+        (r, w_world, a)
+    }
+
+    /// Generates the samples and the truth.
+    pub fn generate(&self) -> Simulation {
+        let tl = Timeline::new(self);
+        let mut rng = Rng(self.seed ^ 0x5EED_0F_0D0F);
+        let mount = self.mount();
+        let dur = self.duration_s();
+        let in_gap = |t: f64| self.sensors.gaps.iter().any(|&(a, b)| t > a && t < b);
+        let mag_world = Vector3::new(0.0, 20.0, -43.0);
+        let bias = Vector3::from(self.sensors.gyro_bias);
+        let nominal = 1.0 / self.sensors.rate_hz;
+        let mut records = Vec::with_capacity((dur * self.sensors.rate_hz) as usize + 1);
+        let mut hint = 0;
+        let mut t = 0.0;
+        let mut yaw_err = 0.0;
+        while t <= dur {
+            if !in_gap(t) {
+                let st = tl.state(t, &mut hint);
+                let (r, w_world, a) = self.kinematics(&st, &mount);
+                let rt = r.transpose();
+                let mut accel = rt * (a + Vector3::new(0.0, 0.0, G)) + rng.vec3(self.sensors.accel_noise);
+                if let Some(q) = self.sensors.accel_quantum {
+                    accel = accel.map(|v| (v / q).round() * q);
+                }
+                let gyro = self.sensors.gyro.then(|| rt * w_world + bias + rng.vec3(self.sensors.gyro_noise));
+                let mag = self.sensors.mag.then(|| rt * mag_world + rng.vec3(self.sensors.mag_noise));
+                yaw_err = 0.999 * yaw_err + 0.045 * self.sensors.os_yaw_error_deg.to_radians() * rng.normal();
+                let orientation = self.sensors.os_orientation.then(|| {
+                    let rot = Rotation3::from_matrix_unchecked(rz(yaw_err) * r);
+                    UnitQuaternion::from_rotation_matrix(&rot)
+                });
+                records.push(Record::Imu(ImuSample { t, accel, gyro, mag, orientation }));
+            }
+            let j = if self.sensors.jitter > 0.0 { self.sensors.jitter * (2.0 * rng.uniform() - 1.0) } else { 0.0 };
+            t += nominal * (1.0 + j);
+        }
+        Simulation { records, truth: self.truth(&tl) }
+    }
+
+    fn truth(&self, tl: &Timeline) -> Truth {
+        let mut tr = Truth::default();
+        let dt = 1e-3;
+        let dur = self.duration_s();
+        let mut hint = 0;
+        let (mut e, mut n, mut dist) = (0.0, 0.0, 0.0);
+        let mut last_step_dist = 0.0;
+        let mut prev = tl.state(0.0, &mut hint);
+        let mut t = 0.0;
+        while t < dur {
+            let t1 = (t + dt).min(dur);
+            let st = tl.state(t1, &mut hint);
+            if st.gait.moving() {
+                let mid = tl.state(0.5 * (t + t1), &mut hint.clone());
+                let v = self.walker.step_length.length(mid.f) * mid.f;
+                let ds = v * (t1 - t);
+                e += ds * libm::sin(mid.psi);
+                n += ds * libm::cos(mid.psi);
+                dist += ds;
+                if prev.gait.moving() && (st.phi / TAU).floor() > (prev.phi / TAU).floor() {
+                    // Interpolate the crossing of the multiple of 2π.
+                    let k = (st.phi / TAU).floor() * TAU;
+                    let frac = (k - prev.phi) / (st.phi - prev.phi);
+                    let tc = t + frac * (t1 - t);
+                    let observed = !self.sensors.gaps.iter().any(|&(a, b)| tc > a && tc < b);
+                    tr.steps.push(TruthStep {
+                        t: tc,
+                        east_m: e,
+                        north_m: n,
+                        heading_rad: crate::engine::math::wrap_2pi(st.psi),
+                        length_m: dist - last_step_dist,
+                        freq_hz: st.f,
+                        observed,
+                    });
+                    last_step_dist = dist;
+                }
+            }
+            prev = st;
+            t = t1;
+        }
+        tr.distance_m = dist;
+        tr.end = (e, n);
+        let mut t0 = 0.0;
+        for s in &self.segments {
+            tr.segments.push((t0, t0 + s.duration_s, s.gait));
+            t0 += s.duration_s;
+        }
+        tr
+    }
+}

@@ -98,7 +98,7 @@ mod tests {
     fn published_formula_misses_the_maximum() {
         // Eq. 19 as printed: tan(2ωt*) = B/A with A = |β|² − |α|², same rules (c)–(d) with the
         // printed second derivative of eq. 21.
-        let (alpha, beta, period) = ((1.0, 0.3), (0.4, -0.8), 0.55);
+        let (alpha, beta, period): ((f64, f64), (f64, f64), f64) = ((1.0, 0.3), (0.4, -0.8), 0.55);
         let w = TAU / period;
         let a = beta.0 * beta.0 + beta.1 * beta.1 - alpha.0 * alpha.0 - alpha.1 * alpha.1;
         let b = alpha.0 * beta.0 + alpha.1 * beta.1;

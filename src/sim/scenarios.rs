@@ -1,0 +1,63 @@
+//! Named scenarios used by the tests, the benchmark and the demo page.
+
+use super::{Scenario, Segment, Walker};
+
+/// A straight walk of `seconds` at cadence `f` Hz, preceded and followed by 3 s still.
+pub fn straight_walk(f: f64, seconds: f64) -> Scenario {
+    Scenario::new(vec![Segment::still(3.0), Segment::walk(seconds, f), Segment::still(3.0)])
+}
+
+/// A straight run.
+pub fn straight_run(f: f64, seconds: f64) -> Scenario {
+    Scenario::new(vec![Segment::still(3.0), Segment::run(seconds, f), Segment::still(3.0)])
+}
+
+/// A closed square of `side_m` metres, walked clockwise at 1.8 Hz with 90° turns taken over
+/// about three steps at each corner.
+pub fn square(side_m: f64) -> Scenario {
+    let walker = Walker::default();
+    let f = 1.8;
+    let turn_s = 1.7;
+    let turn_len = walker.step_length.length(f) * f * turn_s;
+    let mut segs = vec![Segment::still(3.0)];
+    for i in 0..4 {
+        // Each corner's turn is split between the end of one side and the start of the next.
+        let straight = side_m - turn_len;
+        if i == 0 {
+            segs.push(Segment::walk_distance(straight + turn_len / 2.0, f, &walker));
+        } else {
+            segs.push(Segment::walk_distance(straight, f, &walker));
+        }
+        if i < 3 {
+            segs.push(Segment::walk(turn_s, f).turning(90.0));
+        } else {
+            segs.push(Segment::walk_distance(turn_len / 2.0, f, &walker));
+        }
+    }
+    segs.push(Segment::still(3.0));
+    Scenario { walker, ..Scenario::new(segs) }
+}
+
+/// The demo walk of the web page: about three minutes around a block, with a stop, a stretch at
+/// a faster pace, a short run, and the phone handled while standing.
+pub fn demo_walk() -> Scenario {
+    let w = Walker::default();
+    let segs = vec![
+        Segment::still(2.0),
+        Segment::walk_distance(40.0, 1.8, &w),
+        Segment::walk(2.0, 1.8).turning(90.0),
+        Segment::walk_distance(30.0, 1.8, &w).ramp_to(2.0),
+        Segment::walk(3.0, 2.0).turning(-120.0),
+        Segment::walk_distance(25.0, 1.7, &w),
+        Segment::still(4.0),
+        Segment::handled(5.0),
+        Segment::walk_distance(20.0, 1.75, &w),
+        Segment::run(12.0, 2.9).turning(60.0),
+        Segment::walk(3.0, 1.9).turning(75.0),
+        Segment::walk_distance(45.0, 1.85, &w).turning(20.0),
+        Segment::walk(2.5, 1.8).turning(90.0),
+        Segment::walk_distance(30.0, 1.8, &w),
+        Segment::still(3.0),
+    ];
+    Scenario { seed: 2016, start_heading_deg: 20.0, ..Scenario::new(segs) }
+}
