@@ -17,6 +17,7 @@
 //!   face up at rest reads (0, 0, +9.81).
 //! - Angular rate: rad/s, right-handed about the device axes. Magnetic field: µT.
 
+pub mod demo;
 pub mod engine;
 pub mod io;
 pub mod plot;

@@ -1,1 +1,36 @@
-//! Files: the project's own log format and track exports.
+//! Files: the project's own log format ([`pdrlog`]) and track exports ([`export`]).
+
+pub mod export;
+pub mod pdrlog;
+
+use std::fmt;
+
+/// A problem with one field of one line of an input file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParseError {
+    /// File name as given by the caller.
+    pub file: String,
+    /// 1-based line number.
+    pub line: u64,
+    /// 1-based column (field index) when known.
+    pub column: Option<usize>,
+    /// Field name when known.
+    pub field: Option<String>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for ParseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.file, self.line)?;
+        if let Some(c) = self.column {
+            write!(f, ":{c}")?;
+        }
+        if let Some(name) = &self.field {
+            write!(f, " field `{name}`")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for ParseError {}

@@ -1,0 +1,44 @@
+//! WebAssembly entry points (wasm-bindgen). Errors become `JsError` here and only here.
+
+use crate::demo::{run_demo, DemoSummary};
+use crate::plot::{draw_track, Theme};
+use plotters::prelude::IntoDrawingArea;
+use plotters_canvas::CanvasBackend;
+use wasm_bindgen::prelude::*;
+use web_sys::HtmlCanvasElement;
+
+/// The embedded demo walk, processed once and drawn on demand.
+#[wasm_bindgen]
+pub struct Demo {
+    summary: DemoSummary,
+}
+
+#[wasm_bindgen]
+impl Demo {
+    /// Simulates the demo walk and runs it through the engine.
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> Demo {
+        Demo { summary: run_demo() }
+    }
+
+    /// The figures: `{steps, truth_steps, distance_m, truth_distance_m, end_error_m, duration_s,
+    /// samples}`.
+    pub fn summary(&self) -> Result<JsValue, JsError> {
+        serde_wasm_bindgen::to_value(&self.summary).map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Draws the track on `canvas`, whose backing store the caller has sized to CSS size × `dpr`.
+    pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
+        let backend = CanvasBackend::with_canvas_object(canvas.clone()).ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
+        let area = backend.into_drawing_area();
+        let theme = if dark { Theme::DARK } else { Theme::LIGHT };
+        draw_track(&area, &self.summary.track, Some(&self.summary.truth_path), &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
+        area.present().map_err(|e| JsError::new(&e.to_string()))
+    }
+}
+
+impl Default for Demo {
+    fn default() -> Self {
+        Self::new()
+    }
+}
