@@ -32,7 +32,8 @@ pub struct DemoSummary {
 /// Generates and processes the demo walk.
 pub fn run_demo() -> DemoSummary {
     let sim = scenarios::demo_walk().generate();
-    let r = replay(PipelineConfig::default(), &sim.records).expect("the default configuration is valid");
+    let r = replay(PipelineConfig::default(), &sim.records)
+        .expect("the default configuration is valid");
     let d = r.pipeline.diagnostics();
     let track = r.pipeline.track().to_vec();
     let end = track.last().map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
@@ -45,6 +46,8 @@ pub fn run_demo() -> DemoSummary {
         duration_s: d.time_span.map_or(0.0, |(a, b)| b - a),
         samples: d.samples,
         track,
-        truth_path: std::iter::once((0.0, 0.0)).chain(sim.truth.steps.iter().map(|s| (s.east_m, s.north_m))).collect(),
+        truth_path: std::iter::once((0.0, 0.0))
+            .chain(sim.truth.steps.iter().map(|s| (s.east_m, s.north_m)))
+            .collect(),
     }
 }

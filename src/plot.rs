@@ -50,7 +50,12 @@ impl Theme {
 /// Bounds (min_e, max_e, min_n, max_n) of the points with a margin, widened so that one metre
 /// spans the same number of pixels on both axes.
 fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f64, f64, f64, f64) {
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for (x, y) in points {
         x0 = x0.min(x);
         x1 = x1.max(x);
@@ -79,7 +84,11 @@ fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f6
 pub fn scale_bar_length(span: f64) -> f64 {
     let target = span / 4.0;
     let k = 10f64.powf(target.log10().floor());
-    [5.0, 2.0, 1.0].into_iter().map(|m| m * k).find(|&l| l <= target).unwrap_or(k)
+    [5.0, 2.0, 1.0]
+        .into_iter()
+        .map(|m| m * k)
+        .find(|&l| l <= target)
+        .unwrap_or(k)
 }
 
 /// Draws the track in metres (east right, north up, equal scale) with start and end marks, the
@@ -95,11 +104,15 @@ pub fn draw_track<DB: DrawingBackend>(
     area.fill(&theme.background)?;
     let (w, h) = area.dim_in_pixel();
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
-    let font = ("sans-serif", 13.0 * scale).into_font().color(&theme.foreground);
+    let font = ("sans-serif", 13.0 * scale)
+        .into_font()
+        .color(&theme.foreground);
     let label_area = px(34.0);
     let plot_w = (w as f64 - label_area as f64 - px(12.0) as f64).max(10.0);
     let plot_h = (h as f64 - label_area as f64 - px(12.0) as f64).max(10.0);
-    let pts = std::iter::once((0.0, 0.0)).chain(track.iter().map(|s| (s.east_m, s.north_m))).chain(reference.unwrap_or(&[]).iter().copied());
+    let pts = std::iter::once((0.0, 0.0))
+        .chain(track.iter().map(|s| (s.east_m, s.north_m)))
+        .chain(reference.unwrap_or(&[]).iter().copied());
     let (x0, x1, y0, y1) = equal_aspect(pts, plot_w, plot_h);
     let mut chart = ChartBuilder::on(area)
         .margin(px(12.0))
@@ -118,13 +131,29 @@ pub fn draw_track<DB: DrawingBackend>(
         .y_label_formatter(&|v| format!("{v:.0}"))
         .draw()?;
     if let Some(r) = reference {
-        chart.draw_series(LineSeries::new(r.iter().copied(), ShapeStyle::from(&theme.reference).stroke_width(px(2.0))))?;
+        chart.draw_series(LineSeries::new(
+            r.iter().copied(),
+            ShapeStyle::from(&theme.reference).stroke_width(px(2.0)),
+        ))?;
     }
-    let path: Vec<(f64, f64)> = std::iter::once((0.0, 0.0)).chain(track.iter().map(|s| (s.east_m, s.north_m))).collect();
-    chart.draw_series(LineSeries::new(path.iter().copied(), ShapeStyle::from(&theme.track).stroke_width(px(3.0))))?;
-    chart.draw_series(std::iter::once(Circle::new((0.0, 0.0), px(6.0), theme.start.filled())))?;
+    let path: Vec<(f64, f64)> = std::iter::once((0.0, 0.0))
+        .chain(track.iter().map(|s| (s.east_m, s.north_m)))
+        .collect();
+    chart.draw_series(LineSeries::new(
+        path.iter().copied(),
+        ShapeStyle::from(&theme.track).stroke_width(px(3.0)),
+    ))?;
+    chart.draw_series(std::iter::once(Circle::new(
+        (0.0, 0.0),
+        px(6.0),
+        theme.start.filled(),
+    )))?;
     if let Some(&end) = path.last() {
-        chart.draw_series(std::iter::once(Circle::new(end, px(6.0), theme.end.filled())))?;
+        chart.draw_series(std::iter::once(Circle::new(
+            end,
+            px(6.0),
+            theme.end.filled(),
+        )))?;
     }
     // North arrow (top right) and scale bar (bottom left), in pixel space.
     let plot_area = chart.plotting_area();
@@ -133,16 +162,42 @@ pub fn draw_track<DB: DrawingBackend>(
     let top = px_range_y.start + px(14.0) as i32;
     let len = px(28.0) as i32;
     let fg = ShapeStyle::from(&theme.foreground).stroke_width(px(2.0));
-    area.draw(&PathElement::new(vec![(right, top + len), (right, top)], fg))?;
-    area.draw(&Polygon::new(vec![(right, top - px(4.0) as i32), (right - px(6.0) as i32, top + px(8.0) as i32), (right + px(6.0) as i32, top + px(8.0) as i32)], theme.foreground.filled()))?;
-    area.draw(&Text::new("N", (right - px(5.0) as i32, top + len + px(4.0) as i32), font.clone()))?;
+    area.draw(&PathElement::new(
+        vec![(right, top + len), (right, top)],
+        fg,
+    ))?;
+    area.draw(&Polygon::new(
+        vec![
+            (right, top - px(4.0) as i32),
+            (right - px(6.0) as i32, top + px(8.0) as i32),
+            (right + px(6.0) as i32, top + px(8.0) as i32),
+        ],
+        theme.foreground.filled(),
+    ))?;
+    area.draw(&Text::new(
+        "N",
+        (right - px(5.0) as i32, top + len + px(4.0) as i32),
+        font.clone(),
+    ))?;
     let span = x1 - x0;
     let bar_m = scale_bar_length(span);
     let bar_px = (bar_m / span * (px_range_x.end - px_range_x.start) as f64).round() as i32;
     let bx = px_range_x.start + px(12.0) as i32;
     let by = px_range_y.end - px(16.0) as i32;
-    area.draw(&PathElement::new(vec![(bx, by - px(5.0) as i32), (bx, by), (bx + bar_px, by), (bx + bar_px, by - px(5.0) as i32)], fg))?;
-    area.draw(&Text::new(format!("{bar_m:.0} m"), (bx, by - px(22.0) as i32), font))?;
+    area.draw(&PathElement::new(
+        vec![
+            (bx, by - px(5.0) as i32),
+            (bx, by),
+            (bx + bar_px, by),
+            (bx + bar_px, by - px(5.0) as i32),
+        ],
+        fg,
+    ))?;
+    area.draw(&Text::new(
+        format!("{bar_m:.0} m"),
+        (bx, by - px(22.0) as i32),
+        font,
+    ))?;
     Ok(())
 }
 
@@ -177,16 +232,34 @@ mod tests {
         fn present(&mut self) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
             Ok(())
         }
-        fn draw_pixel(&mut self, p: BackendCoord, c: BackendColor) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-            if p.0 >= 0 && p.1 >= 0 && (p.0 as u32) < self.w && (p.1 as u32) < self.h && c.alpha > 0.5 {
+        fn draw_pixel(
+            &mut self,
+            p: BackendCoord,
+            c: BackendColor,
+        ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+            if p.0 >= 0
+                && p.1 >= 0
+                && (p.0 as u32) < self.w
+                && (p.1 as u32) < self.h
+                && c.alpha > 0.5
+            {
                 self.px.borrow_mut()[(p.1 as u32 * self.w + p.0 as u32) as usize] = c.rgb;
             }
             Ok(())
         }
-        fn draw_text<S: BackendTextStyle>(&mut self, _: &str, _: &S, _: BackendCoord) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        fn draw_text<S: BackendTextStyle>(
+            &mut self,
+            _: &str,
+            _: &S,
+            _: BackendCoord,
+        ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
             Ok(())
         }
-        fn estimate_text_size<S: BackendTextStyle>(&self, text: &str, _: &S) -> Result<(u32, u32), DrawingErrorKind<Self::ErrorType>> {
+        fn estimate_text_size<S: BackendTextStyle>(
+            &self,
+            text: &str,
+            _: &S,
+        ) -> Result<(u32, u32), DrawingErrorKind<Self::ErrorType>> {
             Ok((7 * text.len() as u32, 13))
         }
     }
@@ -196,11 +269,27 @@ mod tests {
         let demo = crate::demo::run_demo();
         let (w, h) = (400u32, 300u32);
         let px = std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); (w * h) as usize]));
-        let area = Raster { w, h, px: px.clone() }.into_drawing_area();
-        draw_track(&area, &demo.track, Some(&demo.truth_path), &Theme::LIGHT, 1.0).unwrap();
+        let area = Raster {
+            w,
+            h,
+            px: px.clone(),
+        }
+        .into_drawing_area();
+        draw_track(
+            &area,
+            &demo.track,
+            Some(&demo.truth_path),
+            &Theme::LIGHT,
+            1.0,
+        )
+        .unwrap();
         let px = px.borrow();
         let count = |c: RGBColor| px.iter().filter(|p| **p == (c.0, c.1, c.2)).count();
-        assert!(count(Theme::LIGHT.track) > 300, "track: {}", count(Theme::LIGHT.track));
+        assert!(
+            count(Theme::LIGHT.track) > 300,
+            "track: {}",
+            count(Theme::LIGHT.track)
+        );
         assert!(count(Theme::LIGHT.start) > 20 && count(Theme::LIGHT.end) > 20);
         assert!(count(Theme::LIGHT.reference) > 100);
     }

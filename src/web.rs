@@ -18,7 +18,9 @@ impl Demo {
     /// Simulates the demo walk and runs it through the engine.
     #[wasm_bindgen(constructor)]
     pub fn new() -> Demo {
-        Demo { summary: run_demo() }
+        Demo {
+            summary: run_demo(),
+        }
     }
 
     /// The figures: `{steps, truth_steps, distance_m, truth_distance_m, end_error_m, duration_s,
@@ -29,10 +31,18 @@ impl Demo {
 
     /// Draws the track on `canvas`, whose backing store the caller has sized to CSS size × `dpr`.
     pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
-        let backend = CanvasBackend::with_canvas_object(canvas.clone()).ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
+        let backend = CanvasBackend::with_canvas_object(canvas.clone())
+            .ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
         let area = backend.into_drawing_area();
         let theme = if dark { Theme::DARK } else { Theme::LIGHT };
-        draw_track(&area, &self.summary.track, Some(&self.summary.truth_path), &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
+        draw_track(
+            &area,
+            &self.summary.track,
+            Some(&self.summary.truth_path),
+            &theme,
+            dpr.clamp(1.0, 4.0),
+        )
+        .map_err(|e| JsError::new(&e.to_string()))?;
         area.present().map_err(|e| JsError::new(&e.to_string()))
     }
 }

@@ -13,7 +13,11 @@ fn ecef(lat: f64, lon: f64, h: f64) -> [f64; 3] {
     let (sl, cl) = libm::sincos(lat);
     let (so, co) = libm::sincos(lon);
     let n = A / (1.0 - E2 * sl * sl).sqrt();
-    [(n + h) * cl * co, (n + h) * cl * so, (n * (1.0 - E2) + h) * sl]
+    [
+        (n + h) * cl * co,
+        (n + h) * cl * so,
+        (n * (1.0 - E2) + h) * sl,
+    ]
 }
 
 /// A local tangent plane anchored at a geodetic origin.
@@ -32,13 +36,22 @@ impl LocalFrame {
     /// A frame with its origin at the given point.
     pub fn new(lat0_deg: f64, lon0_deg: f64, h0_m: f64) -> Self {
         let origin = ecef(lat0_deg.to_radians(), lon0_deg.to_radians(), h0_m);
-        LocalFrame { lat0_deg, lon0_deg, h0_m, origin }
+        LocalFrame {
+            lat0_deg,
+            lon0_deg,
+            h0_m,
+            origin,
+        }
     }
 
     /// Geodetic → (east, north, up), m.
     pub fn to_enu(&self, lat_deg: f64, lon_deg: f64, h_m: f64) -> [f64; 3] {
         let p = ecef(lat_deg.to_radians(), lon_deg.to_radians(), h_m);
-        let d = [p[0] - self.origin[0], p[1] - self.origin[1], p[2] - self.origin[2]];
+        let d = [
+            p[0] - self.origin[0],
+            p[1] - self.origin[1],
+            p[2] - self.origin[2],
+        ];
         let (sl, cl) = libm::sincos(self.lat0_deg.to_radians());
         let (so, co) = libm::sincos(self.lon0_deg.to_radians());
         [
@@ -76,7 +89,8 @@ pub fn haversine_m(lat1: f64, lon1: f64, lat2: f64, lon2: f64) -> f64 {
     let (p1, p2) = (lat1.to_radians(), lat2.to_radians());
     let dp = p2 - p1;
     let dl = (lon2 - lon1).to_radians();
-    let a = libm::sin(dp / 2.0).powi(2) + libm::cos(p1) * libm::cos(p2) * libm::sin(dl / 2.0).powi(2);
+    let a =
+        libm::sin(dp / 2.0).powi(2) + libm::cos(p1) * libm::cos(p2) * libm::sin(dl / 2.0).powi(2);
     2.0 * EARTH_RADIUS_M * libm::asin(a.sqrt().min(1.0))
 }
 
@@ -89,7 +103,9 @@ mod tests {
         let f = LocalFrame::new(43.7696, 11.2558, 50.0);
         let enu = f.to_enu(43.7705, 11.2570, 50.0);
         let (lat, lon, h) = f.to_geodetic(enu);
-        assert!((lat - 43.7705).abs() < 1e-9 && (lon - 11.2570).abs() < 1e-9 && (h - 50.0).abs() < 1e-3);
+        assert!(
+            (lat - 43.7705).abs() < 1e-9 && (lon - 11.2570).abs() < 1e-9 && (h - 50.0).abs() < 1e-3
+        );
         let d = haversine_m(43.7696, 11.2558, 43.7705, 11.2570);
         assert!((d - enu[0].hypot(enu[1])).abs() < 0.5, "{d} vs {enu:?}");
     }

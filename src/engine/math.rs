@@ -42,6 +42,53 @@ pub fn heading_of(east: f64, north: f64) -> f64 {
     wrap_2pi(libm::atan2(east, north))
 }
 
+/// sin and cos of `x`. For |x| ≤ 1 (the per-sample phase increments of the oscillator and of the
+/// Fourier integrals) by Taylor series to x¹⁷ / x¹⁸, absolute error below 3e-16, with no range
+/// reduction; larger angles go to `libm`. Pure arithmetic, so identical natively and in wasm.
+#[inline]
+pub fn sincos_small(x: f64) -> (f64, f64) {
+    if x.abs() > 1.0 {
+        return libm::sincos(x);
+    }
+    let x2 = x * x;
+    let s = x
+        * (1.0
+            - x2 * (1.0 / 6.0)
+                * (1.0
+                    - x2 * (1.0 / 20.0)
+                        * (1.0
+                            - x2 * (1.0 / 42.0)
+                                * (1.0
+                                    - x2 * (1.0 / 72.0)
+                                        * (1.0
+                                            - x2 * (1.0 / 110.0)
+                                                * (1.0
+                                                    - x2 * (1.0 / 156.0)
+                                                        * (1.0
+                                                            - x2 * (1.0 / 210.0)
+                                                                * (1.0 - x2 * (1.0 / 272.0)))))))));
+    let c = 1.0
+        - x2 * 0.5
+            * (1.0
+                - x2 * (1.0 / 12.0)
+                    * (1.0
+                        - x2 * (1.0 / 30.0)
+                            * (1.0
+                                - x2 * (1.0 / 56.0)
+                                    * (1.0
+                                        - x2 * (1.0 / 90.0)
+                                            * (1.0
+                                                - x2 * (1.0 / 132.0)
+                                                    * (1.0
+                                                        - x2 * (1.0 / 182.0)
+                                                            * (1.0
+                                                                - x2 * (1.0 / 240.0)
+                                                                    * (1.0
+                                                                        - x2 * (1.0
+                                                                            / 306.0)))))))));
+    (s, c)
+}
+
 /// First-order low-pass filter for irregular sampling.
 ///
 /// Backward-Euler discretisation of `τ ẏ = x − y`: `y += dt/(τ+dt) · (x − y)`. It is stable for any
@@ -97,6 +144,17 @@ mod tests {
         let m = circular_mean2(350f64.to_radians(), 10f64.to_radians());
         assert!(wrap_pi(m).abs() < 1e-9);
         assert!((heading_of(1.0, 0.0) - PI / 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn small_angle_sincos_is_exact_enough() {
+        let mut worst: f64 = 0.0;
+        for i in -2000..=2000 {
+            let x = i as f64 / 1500.0;
+            let (s, c) = sincos_small(x);
+            worst = worst.max((s - x.sin()).abs()).max((c - x.cos()).abs());
+        }
+        assert!(worst < 1e-15, "{worst}");
     }
 
     #[test]

@@ -24,6 +24,8 @@ pub mod types;
 pub use heading::{HeadingConfig, HeadingMethod};
 pub use motion::{Motion, MotionConfig};
 pub use orientation::OrientationSource;
-pub use pipeline::{replay, Diagnostics, Pipeline, PipelineConfig, Record, Replay, StepDetectorConfig, StepRecord};
+pub use pipeline::{
+    replay, Diagnostics, Pipeline, PipelineConfig, Record, Replay, StepDetectorConfig, StepRecord,
+};
 pub use step_length::{StepLengthModel, StepLengthProfile};
 pub use types::{ConfigError, GnssFix, ImuSample, InputError};

@@ -54,7 +54,12 @@ pub struct MotionConfig {
 
 impl Default for MotionConfig {
     fn default() -> Self {
-        MotionConfig { window_s: 2.0, still_max: 1.5, walk_max: 5.0, min_span_s: 0.5 }
+        MotionConfig {
+            window_s: 2.0,
+            still_max: 1.5,
+            walk_max: 5.0,
+            min_span_s: 0.5,
+        }
     }
 }
 
@@ -65,10 +70,16 @@ impl MotionConfig {
         positive("motion.still_max", self.still_max)?;
         positive("motion.min_span_s", self.min_span_s)?;
         if !(self.walk_max > self.still_max) {
-            return Err(ConfigError::new("motion.walk_max", "must exceed motion.still_max"));
+            return Err(ConfigError::new(
+                "motion.walk_max",
+                "must exceed motion.still_max",
+            ));
         }
         if self.min_span_s > self.window_s {
-            return Err(ConfigError::new("motion.min_span_s", "must not exceed motion.window_s"));
+            return Err(ConfigError::new(
+                "motion.min_span_s",
+                "must not exceed motion.window_s",
+            ));
         }
         Ok(())
     }
@@ -90,7 +101,16 @@ pub struct MotionDetector {
 impl MotionDetector {
     /// A detector in the still state.
     pub fn new(cfg: MotionConfig) -> Self {
-        MotionDetector { cfg, buf: VecDeque::new(), sum: 0.0, sum_sq: 0.0, pops: 0, state: Motion::Still, sigma: 0.0, mean: 0.0 }
+        MotionDetector {
+            cfg,
+            buf: VecDeque::new(),
+            sum: 0.0,
+            sum_sq: 0.0,
+            pops: 0,
+            state: Motion::Still,
+            sigma: 0.0,
+            mean: 0.0,
+        }
     }
 
     /// Adds a vertical-acceleration sample (m/s², gravity removed) and returns the state.
@@ -167,7 +187,11 @@ mod tests {
             all.push((t, a));
         }
         let t_end = all.last().unwrap().0;
-        let w: Vec<f64> = all.iter().filter(|p| p.0 >= t_end - 2.0).map(|p| p.1).collect();
+        let w: Vec<f64> = all
+            .iter()
+            .filter(|p| p.0 >= t_end - 2.0)
+            .map(|p| p.1)
+            .collect();
         let m = w.iter().sum::<f64>() / w.len() as f64;
         let s = (w.iter().map(|a| (a - m).powi(2)).sum::<f64>() / w.len() as f64).sqrt();
         assert!((d.sigma() - s).abs() < 1e-9 && (d.mean() - m).abs() < 1e-12);

@@ -88,8 +88,13 @@ pub struct Orientation {
 
 enum Kind {
     Os,
-    Madgwick { filter: Option<ahrs::Madgwick<f64>>, beta: f64 },
-    Gravity { lp: [OnePole; 3] },
+    Madgwick {
+        filter: Option<ahrs::Madgwick<f64>>,
+        beta: f64,
+    },
+    Gravity {
+        lp: [OnePole; 3],
+    },
 }
 
 /// Rotation from Madgwick's earth frame (x magnetic north, y west, z up) to ENU.
@@ -103,7 +108,10 @@ fn nwu_to_enu() -> UnitQuaternion<f64> {
 
 /// Device→ENU attitude from one accelerometer (and optional magnetometer) reading, by TRIAD.
 /// Without a magnetometer, yaw is set so that the device's y axis points north.
-pub fn attitude_from_vectors(accel: &DeviceVec, mag: Option<&DeviceVec>) -> Option<UnitQuaternion<f64>> {
+pub fn attitude_from_vectors(
+    accel: &DeviceVec,
+    mag: Option<&DeviceVec>,
+) -> Option<UnitQuaternion<f64>> {
     let up = accel.try_normalize(1e-9)?;
     let east = match mag.and_then(|m| m.cross(&up).try_normalize(1e-9)) {
         Some(e) => e,
@@ -121,7 +129,9 @@ pub fn attitude_from_vectors(accel: &DeviceVec, mag: Option<&DeviceVec>) -> Opti
     let north = up.cross(&east);
     // Rows are the ENU axes expressed in device coordinates: v_enu = R v_dev.
     let r = Matrix3::from_rows(&[east.transpose(), north.transpose(), up.transpose()]);
-    Some(UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(r)))
+    Some(UnitQuaternion::from_rotation_matrix(
+        &Rotation3::from_matrix_unchecked(r),
+    ))
 }
 
 impl Orientation {
@@ -129,7 +139,9 @@ impl Orientation {
     pub fn new(source: OrientationSource) -> Self {
         let kind = match source {
             OrientationSource::Madgwick { beta } => Kind::Madgwick { filter: None, beta },
-            OrientationSource::GravityLowPass { tau_s } => Kind::Gravity { lp: [OnePole::new(tau_s); 3] },
+            OrientationSource::GravityLowPass { tau_s } => Kind::Gravity {
+                lp: [OnePole::new(tau_s); 3],
+            },
             _ => Kind::Os,
         };
         Orientation { kind }
@@ -152,7 +164,9 @@ impl Orientation {
     /// The current device→ENU attitude, if the source has one.
     pub fn attitude(&self) -> Option<UnitQuaternion<f64>> {
         match &self.kind {
-            Kind::Madgwick { filter: Some(f), .. } => Some(nwu_to_enu() * f.quat),
+            Kind::Madgwick {
+                filter: Some(f), ..
+            } => Some(nwu_to_enu() * f.quat),
             _ => None,
         }
     }
@@ -161,16 +175,23 @@ impl Orientation {
     /// the navigation frame.
     pub fn update(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
         let q = match &mut self.kind {
-            Kind::Os => s.orientation.ok_or(InputError::MissingField { t: s.t, field: "orientation" })?,
+            Kind::Os => s.orientation.ok_or(InputError::MissingField {
+                t: s.t,
+                field: "orientation",
+            })?,
             Kind::Madgwick { filter, beta } => {
-                let gyro = s.gyro.ok_or(InputError::MissingField { t: s.t, field: "gyro" })?;
+                let gyro = s.gyro.ok_or(InputError::MissingField {
+                    t: s.t,
+                    field: "gyro",
+                })?;
                 match filter {
                     None => {
                         // Start from the attitude the first sample implies, so there is no long
                         // convergence transient from the identity quaternion.
                         if let Some(q0) = attitude_from_vectors(&s.accel, s.mag.as_ref()) {
                             let q_nwu = nwu_to_enu().inverse() * q0;
-                            *filter = Some(ahrs::Madgwick::new_with_quat(dt.max(1e-3), *beta, q_nwu));
+                            *filter =
+                                Some(ahrs::Madgwick::new_with_quat(dt.max(1e-3), *beta, q_nwu));
                         }
                     }
                     Some(f) => {
@@ -185,7 +206,12 @@ impl Orientation {
                 }
                 match filter {
                     Some(f) => nwu_to_enu() * f.quat,
-                    None => return Ok(NavAccel { up: 0.0, horizontal: None }),
+                    None => {
+                        return Ok(NavAccel {
+                            up: 0.0,
+                            horizontal: None,
+                        })
+                    }
                 }
             }
             Kind::Gravity { lp } => {
@@ -196,13 +222,22 @@ impl Orientation {
                 );
                 let n = g.norm();
                 if n < 1e-6 {
-                    return Ok(NavAccel { up: 0.0, horizontal: None });
+                    return Ok(NavAccel {
+                        up: 0.0,
+                        horizontal: None,
+                    });
                 }
-                return Ok(NavAccel { up: s.accel.dot(&g) / n - n, horizontal: None });
+                return Ok(NavAccel {
+                    up: s.accel.dot(&g) / n - n,
+                    horizontal: None,
+                });
             }
         };
         let a = q * s.accel;
-        Ok(NavAccel { up: a.z - G0, horizontal: Some((a.x, a.y)) })
+        Ok(NavAccel {
+            up: a.z - G0,
+            horizontal: Some((a.x, a.y)),
+        })
     }
 }
 
@@ -213,7 +248,11 @@ mod tests {
     #[test]
     fn triad_flat_phone_pointing_north() {
         // Face up, top of the phone towards magnetic north (field points north and down).
-        let q = attitude_from_vectors(&Vector3::new(0.0, 0.0, G0), Some(&Vector3::new(0.0, 20.0, -40.0))).unwrap();
+        let q = attitude_from_vectors(
+            &Vector3::new(0.0, 0.0, G0),
+            Some(&Vector3::new(0.0, 20.0, -40.0)),
+        )
+        .unwrap();
         let y = q * Vector3::y();
         assert!((y - Vector3::new(0.0, 1.0, 0.0)).norm() < 1e-9, "{y}");
     }
@@ -225,13 +264,29 @@ mod tests {
         // Top (device y) east and face (z) up make device x point south, so north is device −x.
         let mag = Vector3::new(-20.0, 0.0, -40.0);
         let mut o = Orientation::new(OrientationSource::MADGWICK);
-        let s = ImuSample { t: 0.0, accel, gyro: Some(Vector3::zeros()), mag: Some(mag), orientation: None };
+        let s = ImuSample {
+            t: 0.0,
+            accel,
+            gyro: Some(Vector3::zeros()),
+            mag: Some(mag),
+            orientation: None,
+        };
         for i in 0..200 {
-            o.update(&ImuSample { t: i as f64 * 0.01, ..s }, 0.01).unwrap();
+            o.update(
+                &ImuSample {
+                    t: i as f64 * 0.01,
+                    ..s
+                },
+                0.01,
+            )
+            .unwrap();
         }
         let q = o.attitude().unwrap();
         let top = q * Vector3::y();
-        assert!((top - Vector3::new(1.0, 0.0, 0.0)).norm() < 0.02, "device y should point east, got {top}");
+        assert!(
+            (top - Vector3::new(1.0, 0.0, 0.0)).norm() < 0.02,
+            "device y should point east, got {top}"
+        );
         let face = q * Vector3::z();
         assert!((face - Vector3::z()).norm() < 0.02, "{face}");
     }

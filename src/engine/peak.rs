@@ -24,7 +24,11 @@ pub struct PeakConfig {
 
 impl Default for PeakConfig {
     fn default() -> Self {
-        PeakConfig { lpf_hz: 3.0, min_interval_s: 0.2, cycle_rms_min: 1.0 }
+        PeakConfig {
+            lpf_hz: 3.0,
+            min_interval_s: 0.2,
+            cycle_rms_min: 1.0,
+        }
     }
 }
 
@@ -65,7 +69,10 @@ impl PeakDetector {
 
     /// Forgets the signal history (after a gap).
     pub fn reset(&mut self) {
-        *self = PeakDetector { period: self.period, ..PeakDetector::new(self.cfg) };
+        *self = PeakDetector {
+            period: self.period,
+            ..PeakDetector::new(self.cfg)
+        };
     }
 
     /// Feeds one vertical-acceleration sample; same contract as [`super::pll::Pll::push`].
@@ -77,13 +84,18 @@ impl PeakDetector {
             if y < yp && self.rising {
                 // (tp, yp) was a local maximum.
                 let rise = yp - self.trough;
-                let spaced = self.last_step.map_or(true, |ls| tp - ls >= self.cfg.min_interval_s);
+                let spaced = self
+                    .last_step
+                    .map_or(true, |ls| tp - ls >= self.cfg.min_interval_s);
                 if spaced && rise >= 2.0 * std::f64::consts::SQRT_2 * self.cfg.cycle_rms_min {
                     if let Some(ls) = self.last_step {
                         self.period = (tp - ls).clamp(0.2, 1.5);
                     }
                     self.last_step = Some(tp);
-                    out = Some(Candidate { t: tp, period_s: self.period });
+                    out = Some(Candidate {
+                        t: tp,
+                        period_s: self.period,
+                    });
                     self.trough = f64::INFINITY;
                 }
             }

@@ -87,7 +87,13 @@ impl Default for PipelineConfig {
 impl PipelineConfig {
     /// A configuration with the given heading method and every other value at its default.
     pub fn with_heading(method: heading::HeadingMethod) -> Self {
-        PipelineConfig { heading: HeadingConfig { method, ..HeadingConfig::default() }, ..Self::default() }
+        PipelineConfig {
+            heading: HeadingConfig {
+                method,
+                ..HeadingConfig::default()
+            },
+            ..Self::default()
+        }
     }
 
     /// Checks every value; the error names the field.
@@ -257,7 +263,12 @@ impl Pipeline {
         let nav = orientation.update(s, dt)?;
         let state = self.motion.push(s.t, nav.up);
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
-        self.buf.push_back(NavSample { t: s.t, e, n, up: nav.up });
+        self.buf.push_back(NavSample {
+            t: s.t,
+            e,
+            n,
+            up: nav.up,
+        });
         while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
             self.buf.pop_front();
         }
@@ -283,7 +294,11 @@ impl Pipeline {
                 self.held.push_back(c);
             }
         }
-        while self.held.front().is_some_and(|c| c.t < s.t - self.cfg.motion.window_s) {
+        while self
+            .held
+            .front()
+            .is_some_and(|c| c.t < s.t - self.cfg.motion.window_s)
+        {
             self.held.pop_front();
         }
         self.prev_state = state;
@@ -302,8 +317,16 @@ impl Pipeline {
             None => self.cfg.orientation.resolve(s),
         };
         match src {
-            OrientationSource::Os if s.orientation.is_none() => Err(InputError::MissingField { t: s.t, field: "orientation" }),
-            OrientationSource::Madgwick { .. } if s.gyro.is_none() => Err(InputError::MissingField { t: s.t, field: "gyro" }),
+            OrientationSource::Os if s.orientation.is_none() => Err(InputError::MissingField {
+                t: s.t,
+                field: "orientation",
+            }),
+            OrientationSource::Madgwick { .. } if s.gyro.is_none() => {
+                Err(InputError::MissingField {
+                    t: s.t,
+                    field: "gyro",
+                })
+            }
             _ => Ok(()),
         }
     }
@@ -339,18 +362,33 @@ impl Pipeline {
 
     fn emit(&mut self, c: Candidate, state: Motion) {
         // Continuous with the previous step unless a cycle was skipped or a stop intervened.
-        let cont = self.t_km1.filter(|&p| c.t - p > 0.0 && c.t - p < 1.6 * c.period_s);
+        let cont = self
+            .t_km1
+            .filter(|&p| c.t - p > 0.0 && c.t - p < 1.6 * c.period_s);
         let period = cont.map_or(c.period_s, |p| c.t - p);
         let t_km1 = c.t - period;
         let t_km2 = match (cont, self.t_km2) {
             (Some(p1), Some(p2)) if p1 - p2 > 0.0 && p1 - p2 < 1.6 * c.period_s => p2,
             _ => t_km1 - period,
         };
-        let w = StepWindow { t_km2, t_km1, t_k: c.t };
-        let has_heading = self.orientation.as_ref().is_some_and(Orientation::has_heading);
-        let theta = if has_heading { heading::single_step(&self.cfg.heading, &self.buf, w) } else { None };
+        let w = StepWindow {
+            t_km2,
+            t_km1,
+            t_k: c.t,
+        };
+        let has_heading = self
+            .orientation
+            .as_ref()
+            .is_some_and(Orientation::has_heading);
+        let theta = if has_heading {
+            heading::single_step(&self.cfg.heading, &self.buf, w)
+        } else {
+            None
+        };
         let averaged = match (theta, self.last_step_heading) {
-            (Some(th), Some(prev)) if self.cfg.heading.average_two && cont.is_some() => Some(circular_mean2(prev, th)),
+            (Some(th), Some(prev)) if self.cfg.heading.average_two && cont.is_some() => {
+                Some(circular_mean2(prev, th))
+            }
             (th, _) => th,
         };
         let heading_used = averaged.or(self.last_heading);
@@ -377,7 +415,11 @@ impl Pipeline {
             step_heading_rad: theta,
             length_m: length,
             freq_hz: freq,
-            motion: if state.is_moving() { state } else { Motion::Walking },
+            motion: if state.is_moving() {
+                state
+            } else {
+                Motion::Walking
+            },
         });
         self.diag.steps += 1;
         self.t_km2 = cont;
@@ -392,7 +434,13 @@ impl Pipeline {
 
     fn peak_to_peak(&self, t0: f64, t1: f64) -> f64 {
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for s in self.buf.iter().rev().take_while(|s| s.t >= t0).filter(|s| s.t <= t1) {
+        for s in self
+            .buf
+            .iter()
+            .rev()
+            .take_while(|s| s.t >= t0)
+            .filter(|s| s.t <= t1)
+        {
             lo = lo.min(s.up);
             hi = hi.max(s.up);
         }
@@ -417,7 +465,11 @@ impl Pipeline {
         }
         self.last_gnss_t = Some(f.t);
         if self.frame.is_none() {
-            self.frame = Some(LocalFrame::new(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(0.0)));
+            self.frame = Some(LocalFrame::new(
+                f.lat_deg,
+                f.lon_deg,
+                f.altitude_m.unwrap_or(0.0),
+            ));
         }
         self.fixes.push(*f);
         self.diag.gnss_fixes += 1;
@@ -481,7 +533,10 @@ pub struct Replay {
 }
 
 /// Replays records through a new pipeline: a loop over the same calls live input uses.
-pub fn replay<'a>(cfg: PipelineConfig, records: impl IntoIterator<Item = &'a Record>) -> Result<Replay, ConfigError> {
+pub fn replay<'a>(
+    cfg: PipelineConfig,
+    records: impl IntoIterator<Item = &'a Record>,
+) -> Result<Replay, ConfigError> {
     let mut pipeline = Pipeline::new(cfg)?;
     let mut errors = Vec::new();
     for (i, r) in records.into_iter().enumerate() {

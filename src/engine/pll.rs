@@ -95,8 +95,16 @@ impl PllConfig {
         positive("pll.loop_lpf_hz", self.loop_lpf_hz)?;
         positive("pll.cycle_rms_min", self.cycle_rms_min)?;
         for (band, free, name) in [
-            (self.walk_band_hz, self.free_running_walk_hz, "pll.walk_band_hz"),
-            (self.run_band_hz, self.free_running_run_hz, "pll.run_band_hz"),
+            (
+                self.walk_band_hz,
+                self.free_running_walk_hz,
+                "pll.walk_band_hz",
+            ),
+            (
+                self.run_band_hz,
+                self.free_running_run_hz,
+                "pll.run_band_hz",
+            ),
         ] {
             positive(name, band.0)?;
             if !(band.1 > band.0 && free >= band.0 && free <= band.1) {
@@ -130,6 +138,7 @@ pub struct Pll {
     cycle_sq: f64,
     cycle_dt: f64,
     output: f64,
+    phasor: (f64, f64),
     // Acquisition aid: times of upward zero crossings (with hysteresis) of the input.
     armed: bool,
     crossings: [f64; 4],
@@ -156,6 +165,7 @@ impl Pll {
             cycle_sq: 0.0,
             cycle_dt: 0.0,
             output: 1.0,
+            phasor: (0.0, 1.0),
             armed: false,
             crossings: [0.0; 4],
             n_cross: 0,
@@ -175,6 +185,7 @@ impl Pll {
     /// Restarts the oscillator at a peak at time of the next sample (after a gap).
     pub fn reset_phase(&mut self) {
         self.phase = 0.0;
+        self.phasor = (0.0, 1.0);
         self.cycle_sq = 0.0;
         self.cycle_dt = 0.0;
         self.loop_lpf.reset();
@@ -204,7 +215,15 @@ impl Pll {
 
     /// Feeds one vertical-acceleration sample `a` (m/s²) taken `dt` s after the previous one,
     /// with the motion detector's window mean `mu` and deviation `sigma` and state `motion`.
-    pub fn push(&mut self, t: f64, dt: f64, a: f64, mu: f64, sigma: f64, motion: Motion) -> Option<Candidate> {
+    pub fn push(
+        &mut self,
+        t: f64,
+        dt: f64,
+        a: f64,
+        mu: f64,
+        sigma: f64,
+        motion: Motion,
+    ) -> Option<Candidate> {
         let (lo, hi, free) = self.band(motion);
         // A change of band (walking ↔ running) clamps the estimate into the new band, so the
         // loop keeps its lock across the transition.
@@ -218,13 +237,22 @@ impl Pll {
         self.phase += TAU * self.freq * dt;
         let mut out = None;
         let d = a - mu;
-        if self.phase >= TAU {
-            let frac = if self.phase > prev { (TAU - prev) / (self.phase - prev) } else { 1.0 };
+        let wrapped = self.phase >= TAU;
+        if wrapped {
+            let frac = if self.phase > prev {
+                (TAU - prev) / (self.phase - prev)
+            } else {
+                1.0
+            };
             let t_peak = t - dt + frac * dt;
             // The part of this interval before the peak belongs to the ending cycle.
-            let rms = ((self.cycle_sq + d * d * dt * frac) / (self.cycle_dt + dt * frac).max(1e-9)).sqrt();
+            let rms = ((self.cycle_sq + d * d * dt * frac) / (self.cycle_dt + dt * frac).max(1e-9))
+                .sqrt();
             if rms >= self.cfg.cycle_rms_min {
-                out = Some(Candidate { t: t_peak, period_s: 1.0 / self.integ });
+                out = Some(Candidate {
+                    t: t_peak,
+                    period_s: 1.0 / self.integ,
+                });
             }
             self.phase -= TAU * (self.phase / TAU).floor();
             self.cycle_sq = d * d * dt * (1.0 - frac);
@@ -244,7 +272,15 @@ impl Pll {
                 self.integ = fz;
             }
         }
-        let (s, c) = libm::sincos(self.phase);
+        // Oscillator phasor: rotated by the phase increment; re-anchored at every wrap.
+        if wrapped {
+            self.phasor = libm::sincos(self.phase);
+        } else {
+            let (ds, dc) = crate::engine::math::sincos_small(self.phase - prev);
+            let (s0, c0) = self.phasor;
+            self.phasor = (s0 * dc + c0 * ds, c0 * dc - s0 * ds);
+        }
+        let (s, c) = self.phasor;
         self.output = c;
         let e = self.loop_lpf.update(-x * s, dt);
         self.lock.update(x * c, dt);
@@ -291,7 +327,9 @@ mod tests {
         for i in 1..steps {
             let t = i as f64 / rate;
             let a = 3.0 * (TAU * f_in * t).cos();
-            if p.push(t, 1.0 / rate, a, 0.0, 3.0 / 2f64.sqrt(), Motion::Walking).is_some() {
+            if p.push(t, 1.0 / rate, a, 0.0, 3.0 / 2f64.sqrt(), Motion::Walking)
+                .is_some()
+            {
                 n += 1;
             }
         }
@@ -303,7 +341,10 @@ mod tests {
         for f in [1.3, 1.5, 1.8, 2.2, 2.5] {
             let (n, fr) = count(f, 60.0, 100.0);
             let expect = f * 60.0;
-            assert!((n as f64 - expect).abs() <= 3.0, "f={f}: counted {n}, expected {expect}");
+            assert!(
+                (n as f64 - expect).abs() <= 3.0,
+                "f={f}: counted {n}, expected {expect}"
+            );
             assert!((fr - f).abs() < 0.05, "f={f}: tracked {fr}");
         }
     }

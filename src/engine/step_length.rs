@@ -57,8 +57,18 @@ pub struct StepLengthProfile {
 impl Default for StepLengthProfile {
     fn default() -> Self {
         StepLengthProfile {
-            walking: Line { a: 0.375, b: 0.025, f_lo: 1.5, f_hi: 2.2 },
-            running: Line { a: 0.90, b: -1.50, f_lo: 2.7, f_hi: 4.2 },
+            walking: Line {
+                a: 0.375,
+                b: 0.025,
+                f_lo: 1.5,
+                f_hi: 2.2,
+            },
+            running: Line {
+                a: 0.90,
+                b: -1.50,
+                f_lo: 2.7,
+                f_hi: 4.2,
+            },
             min_m: 0.2,
             max_m: 2.5,
         }
@@ -68,13 +78,25 @@ impl Default for StepLengthProfile {
 impl StepLengthProfile {
     /// Checks the values.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        for (l, name) in [(self.walking, "step_length.walking"), (self.running, "step_length.running")] {
-            if ![l.a, l.b, l.f_lo, l.f_hi].iter().all(|v| v.is_finite()) || !(l.f_hi > l.f_lo) || l.f_lo <= 0.0 {
-                return Err(ConfigError::new(name, "coefficients must be finite and the band increasing and positive"));
+        for (l, name) in [
+            (self.walking, "step_length.walking"),
+            (self.running, "step_length.running"),
+        ] {
+            if ![l.a, l.b, l.f_lo, l.f_hi].iter().all(|v| v.is_finite())
+                || !(l.f_hi > l.f_lo)
+                || l.f_lo <= 0.0
+            {
+                return Err(ConfigError::new(
+                    name,
+                    "coefficients must be finite and the band increasing and positive",
+                ));
             }
         }
         if !(self.running.f_lo >= self.walking.f_hi) {
-            return Err(ConfigError::new("step_length.running", "running band must lie above the walking band"));
+            return Err(ConfigError::new(
+                "step_length.running",
+                "running band must lie above the walking band",
+            ));
         }
         positive("step_length.min_m", self.min_m)?;
         if !(self.max_m > self.min_m) {
@@ -86,7 +108,11 @@ impl StepLengthProfile {
     /// Step length at step frequency `f` (Hz), m.
     pub fn length(&self, f: f64) -> f64 {
         let split = 0.5 * (self.walking.f_hi + self.running.f_lo);
-        let line = if f < split { &self.walking } else { &self.running };
+        let line = if f < split {
+            &self.walking
+        } else {
+            &self.running
+        };
         line.eval(f).clamp(self.min_m, self.max_m)
     }
 }
@@ -123,7 +149,9 @@ impl StepLengthModel {
     pub fn length(&self, freq_hz: f64, peak_to_peak: f64) -> f64 {
         match self {
             StepLengthModel::Frequency(p) => p.length(freq_hz),
-            StepLengthModel::Weinberg { k } => (k * libm::sqrt(libm::sqrt(peak_to_peak.max(0.0)))).clamp(0.2, 2.5),
+            StepLengthModel::Weinberg { k } => {
+                (k * libm::sqrt(libm::sqrt(peak_to_peak.max(0.0)))).clamp(0.2, 2.5)
+            }
         }
     }
 }
@@ -174,8 +202,17 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<LineFit> {
     let residuals: Vec<f64> = points.iter().map(|p| p.1 - (a * p.0 + b)).collect();
     let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
     let ss_tot: f64 = points.iter().map(|p| (p.1 - ms).powi(2)).sum();
-    let r2 = if ss_tot > 0.0 { 1.0 - ss_res / ss_tot } else { 1.0 };
-    Some(LineFit { a, b, r2, residuals })
+    let r2 = if ss_tot > 0.0 {
+        1.0 - ss_res / ss_tot
+    } else {
+        1.0
+    };
+    Some(LineFit {
+        a,
+        b,
+        r2,
+        residuals,
+    })
 }
 
 #[cfg(test)]

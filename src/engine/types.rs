@@ -29,7 +29,13 @@ pub struct ImuSample {
 impl ImuSample {
     /// A sample with acceleration only.
     pub fn accel_only(t: f64, accel: DeviceVec) -> Self {
-        ImuSample { t, accel, gyro: None, mag: None, orientation: None }
+        ImuSample {
+            t,
+            accel,
+            gyro: None,
+            mag: None,
+            orientation: None,
+        }
     }
 
     /// Checks that every value present is finite; names the first field that is not.
@@ -142,10 +148,16 @@ impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             InputError::NonFinite { t, field } => {
-                write!(f, "record at t={t}: field `{field}` is not a finite, in-range number")
+                write!(
+                    f,
+                    "record at t={t}: field `{field}` is not a finite, in-range number"
+                )
             }
             InputError::TimeWentBackwards { t, last } => {
-                write!(f, "record at t={t}: time went backwards (previous record at t={last})")
+                write!(
+                    f,
+                    "record at t={t}: time went backwards (previous record at t={last})"
+                )
             }
             InputError::MissingField { t, field } => {
                 write!(f, "record at t={t}: field `{field}` is required by the configured orientation source")
@@ -167,7 +179,10 @@ pub struct ConfigError {
 
 impl ConfigError {
     pub(crate) fn new(field: &'static str, reason: impl Into<String>) -> Self {
-        ConfigError { field, reason: reason.into() }
+        ConfigError {
+            field,
+            reason: reason.into(),
+        }
     }
 }
 
@@ -184,6 +199,9 @@ pub(crate) fn positive(field: &'static str, v: f64) -> Result<(), ConfigError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(ConfigError::new(field, format!("must be a finite positive number, got {v}")))
+        Err(ConfigError::new(
+            field,
+            format!("must be a finite positive number, got {v}"),
+        ))
     }
 }

@@ -28,8 +28,20 @@ pub fn track_csv(track: &[StepRecord], frame: Option<&LocalFrame>) -> String {
     s.push_str(csv_header(frame.is_some()));
     s.push('\n');
     for r in track {
-        let heading = r.heading_rad.map(|h| format!("{:.2}", h.to_degrees())).unwrap_or_default();
-        let _ = write!(s, "{:.3},{:.3},{:.3},{heading},{:.3},{:.3},{}", r.t, r.east_m, r.north_m, r.length_m, r.freq_hz, r.motion.as_str());
+        let heading = r
+            .heading_rad
+            .map(|h| format!("{:.2}", h.to_degrees()))
+            .unwrap_or_default();
+        let _ = write!(
+            s,
+            "{:.3},{:.3},{:.3},{heading},{:.3},{:.3},{}",
+            r.t,
+            r.east_m,
+            r.north_m,
+            r.length_m,
+            r.freq_hz,
+            r.motion.as_str()
+        );
         if let Some(f) = frame {
             let (lat, lon, _) = f.to_geodetic([r.east_m, r.north_m, 0.0]);
             let _ = write!(s, ",{lat:.8},{lon:.8}");
@@ -51,7 +63,11 @@ pub fn track_geojson(track: &[StepRecord], frame: Option<&LocalFrame>) -> serde_
             .collect(),
         None => points.map(|(e, n)| [e, n]).collect(),
     };
-    let distance: f64 = track.iter().filter(|r| r.heading_rad.is_some()).map(|r| r.length_m).sum();
+    let distance: f64 = track
+        .iter()
+        .filter(|r| r.heading_rad.is_some())
+        .map(|r| r.length_m)
+        .sum();
     serde_json::json!({
         "type": "FeatureCollection",
         "features": [{

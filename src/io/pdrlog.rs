@@ -34,8 +34,19 @@ use std::io::BufRead;
 /// The version tag line.
 pub const HEADER: &str = "# pdr-log 1";
 
-const IMU_FIELDS: [&str; 15] = ["kind", "t_s", "ax", "ay", "az", "gx", "gy", "gz", "mx", "my", "mz", "qw", "qx", "qy", "qz"];
-const GNSS_FIELDS: [&str; 8] = ["kind", "t_s", "lat_deg", "lon_deg", "acc_m", "alt_m", "speed_mps", "bearing_deg"];
+const IMU_FIELDS: [&str; 15] = [
+    "kind", "t_s", "ax", "ay", "az", "gx", "gy", "gz", "mx", "my", "mz", "qw", "qx", "qy", "qz",
+];
+const GNSS_FIELDS: [&str; 8] = [
+    "kind",
+    "t_s",
+    "lat_deg",
+    "lon_deg",
+    "acc_m",
+    "alt_m",
+    "speed_mps",
+    "bearing_deg",
+];
 const GAP_FIELDS: [&str; 3] = ["kind", "t0_s", "t1_s"];
 
 /// The text a new log starts with: the version tag and the schema as comments.
@@ -68,12 +79,21 @@ pub fn line(r: &Record) -> String {
                 }
             }
             let q = i.orientation.map(|q| q.into_inner());
-            for v in [q.map(|q| q.w), q.map(|q| q.i), q.map(|q| q.j), q.map(|q| q.k)] {
+            for v in [
+                q.map(|q| q.w),
+                q.map(|q| q.i),
+                q.map(|q| q.j),
+                q.map(|q| q.k),
+            ] {
                 opt(&mut s, v);
             }
         }
         Record::Gnss(g) => {
-            let _ = write!(s, "gnss,{},{},{},{}", g.t, g.lat_deg, g.lon_deg, g.h_accuracy_m);
+            let _ = write!(
+                s,
+                "gnss,{},{},{},{}",
+                g.t, g.lat_deg, g.lon_deg, g.h_accuracy_m
+            );
             for v in [g.altitude_m, g.speed_mps, g.bearing_deg] {
                 opt(&mut s, v);
             }
@@ -114,12 +134,28 @@ pub fn read(mut input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
         message,
     };
     let mut first = String::new();
-    input.read_line(&mut first).map_err(|e| err(1, None, None, format!("cannot read: {e}")))?;
-    let tag = first.trim_end_matches(['\r', '\n']).trim_start_matches('\u{feff}');
+    input
+        .read_line(&mut first)
+        .map_err(|e| err(1, None, None, format!("cannot read: {e}")))?;
+    let tag = first
+        .trim_end_matches(['\r', '\n'])
+        .trim_start_matches('\u{feff}');
     if tag != HEADER {
-        return Err(err(1, None, None, format!("not a pdr-log version 1 file: the first line must be `{HEADER}`, found `{}`", tag.chars().take(60).collect::<String>())));
+        return Err(err(
+            1,
+            None,
+            None,
+            format!(
+                "not a pdr-log version 1 file: the first line must be `{HEADER}`, found `{}`",
+                tag.chars().take(60).collect::<String>()
+            ),
+        ));
     }
-    let mut rdr = csv::ReaderBuilder::new().has_headers(false).flexible(true).comment(Some(b'#')).from_reader(input);
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .from_reader(input);
     let mut out = Parsed::default();
     let mut rec = csv::StringRecord::new();
     loop {
@@ -153,10 +189,24 @@ fn parse_record(rec: &csv::StringRecord) -> Result<Record, FieldErr> {
         "imu" => &IMU_FIELDS,
         "gnss" => &GNSS_FIELDS,
         "gap" => &GAP_FIELDS,
-        other => return Err((Some(1), Some("kind"), format!("unknown record kind `{other}` (expected imu, gnss or gap)"))),
+        other => {
+            return Err((
+                Some(1),
+                Some("kind"),
+                format!("unknown record kind `{other}` (expected imu, gnss or gap)"),
+            ))
+        }
     };
     if rec.len() != names.len() {
-        return Err((None, None, format!("a `{kind}` record has {} fields, found {}", names.len(), rec.len())));
+        return Err((
+            None,
+            None,
+            format!(
+                "a `{kind}` record has {} fields, found {}",
+                names.len(),
+                rec.len()
+            ),
+        ));
     }
     let num = |i: usize| -> Result<Option<f64>, FieldErr> {
         let s = rec[i].trim();
@@ -165,16 +215,38 @@ fn parse_record(rec: &csv::StringRecord) -> Result<Record, FieldErr> {
         }
         match s.parse::<f64>() {
             Ok(v) if v.is_finite() => Ok(Some(v)),
-            Ok(_) => Err((Some(i + 1), Some(names[i]), format!("`{s}` is not a finite number"))),
-            Err(_) => Err((Some(i + 1), Some(names[i]), format!("`{s}` is not a number"))),
+            Ok(_) => Err((
+                Some(i + 1),
+                Some(names[i]),
+                format!("`{s}` is not a finite number"),
+            )),
+            Err(_) => Err((
+                Some(i + 1),
+                Some(names[i]),
+                format!("`{s}` is not a number"),
+            )),
         }
     };
-    let req = |i: usize| num(i)?.ok_or((Some(i + 1), Some(names[i]), "required value is empty".to_string()));
+    let req = |i: usize| {
+        num(i)?.ok_or((
+            Some(i + 1),
+            Some(names[i]),
+            "required value is empty".to_string(),
+        ))
+    };
     let group = |i: usize| -> Result<Option<[f64; 3]>, FieldErr> {
         match (num(i)?, num(i + 1)?, num(i + 2)?) {
             (Some(a), Some(b), Some(c)) => Ok(Some([a, b, c])),
             (None, None, None) => Ok(None),
-            _ => Err((Some(i + 1), Some(names[i]), format!("the group {}..{} must be all present or all empty", names[i], names[i + 2]))),
+            _ => Err((
+                Some(i + 1),
+                Some(names[i]),
+                format!(
+                    "the group {}..{} must be all present or all empty",
+                    names[i],
+                    names[i + 2]
+                ),
+            )),
         }
     };
     Ok(match kind {
@@ -184,13 +256,27 @@ fn parse_record(rec: &csv::StringRecord) -> Result<Record, FieldErr> {
                     let q = Quaternion::new(w, x, y, z);
                     let n = q.norm();
                     if (n - 1.0).abs() > 0.01 {
-                        return Err((Some(12), Some("qw"), format!("quaternion norm is {n:.4}, not 1")));
+                        return Err((
+                            Some(12),
+                            Some("qw"),
+                            format!("quaternion norm is {n:.4}, not 1"),
+                        ));
                     }
                     // Keep a quaternion written by us bit for bit; renormalise anything else.
-                    Some(if (n - 1.0).abs() < 1e-12 { UnitQuaternion::new_unchecked(q) } else { UnitQuaternion::from_quaternion(q) })
+                    Some(if (n - 1.0).abs() < 1e-12 {
+                        UnitQuaternion::new_unchecked(q)
+                    } else {
+                        UnitQuaternion::from_quaternion(q)
+                    })
                 }
                 (None, None) => None,
-                _ => return Err((Some(12), Some("qw"), "the group qw..qz must be all present or all empty".into())),
+                _ => {
+                    return Err((
+                        Some(12),
+                        Some("qw"),
+                        "the group qw..qz must be all present or all empty".into(),
+                    ))
+                }
             };
             Record::Imu(ImuSample {
                 t: req(1)?,
@@ -221,13 +307,25 @@ mod tests {
     #[test]
     fn round_trip_is_exact() {
         let mut sim = scenarios::straight_walk(1.8, 3.0).generate();
-        sim.records.push(Record::Gnss(GnssFix { t: 5.0, lat_deg: 43.77, lon_deg: 11.25, h_accuracy_m: 4.5, altitude_m: None, speed_mps: Some(1.3), bearing_deg: None }));
+        sim.records.push(Record::Gnss(GnssFix {
+            t: 5.0,
+            lat_deg: 43.77,
+            lon_deg: 11.25,
+            h_accuracy_m: 4.5,
+            altitude_m: None,
+            speed_mps: Some(1.3),
+            bearing_deg: None,
+        }));
         sim.records.push(Record::Gap(6.0, 9.5));
         let text = to_string(&sim.records);
         let back = read(text.as_bytes(), "mem").unwrap();
         assert!(back.errors.is_empty(), "{:?}", back.errors);
         assert_eq!(back.records.len(), sim.records.len());
-        let first_diff = back.records.iter().zip(&sim.records).position(|(a, b)| a != b);
+        let first_diff = back
+            .records
+            .iter()
+            .zip(&sim.records)
+            .position(|(a, b)| a != b);
         assert_eq!(first_diff, None, "records differ after a round trip");
     }
 
@@ -238,9 +336,21 @@ mod tests {
         assert_eq!(p.records.len(), 2);
         let msgs: Vec<String> = p.errors.iter().map(|e| e.to_string()).collect();
         assert_eq!(msgs[0], "walk.pdrlog:3:4 field `ay`: `x` is not a number");
-        assert!(msgs[1].starts_with("walk.pdrlog:4: a `gnss` record has 8 fields"), "{}", msgs[1]);
-        assert!(msgs[2].starts_with("walk.pdrlog:5:6 field `gx`"), "{}", msgs[2]);
-        assert!(msgs[3].starts_with("walk.pdrlog:6:1 field `kind`"), "{}", msgs[3]);
+        assert!(
+            msgs[1].starts_with("walk.pdrlog:4: a `gnss` record has 8 fields"),
+            "{}",
+            msgs[1]
+        );
+        assert!(
+            msgs[2].starts_with("walk.pdrlog:5:6 field `gx`"),
+            "{}",
+            msgs[2]
+        );
+        assert!(
+            msgs[3].starts_with("walk.pdrlog:6:1 field `kind`"),
+            "{}",
+            msgs[3]
+        );
         assert!(read("imu,0,0,0,9.8\n".as_bytes(), "x").is_err());
     }
 }

@@ -71,22 +71,38 @@ pub struct Segment {
 impl Segment {
     /// Standing still for `s` seconds.
     pub fn still(s: f64) -> Self {
-        Segment { gait: Gait::Still, duration_s: s, cadence_hz: (0.0, 0.0), turn_deg: 0.0 }
+        Segment {
+            gait: Gait::Still,
+            duration_s: s,
+            cadence_hz: (0.0, 0.0),
+            turn_deg: 0.0,
+        }
     }
 
     /// Handling the phone for `s` seconds.
     pub fn handled(s: f64) -> Self {
-        Segment { gait: Gait::Handled, ..Segment::still(s) }
+        Segment {
+            gait: Gait::Handled,
+            ..Segment::still(s)
+        }
     }
 
     /// Walking for `s` seconds at cadence `f` Hz.
     pub fn walk(s: f64, f: f64) -> Self {
-        Segment { gait: Gait::Walk, duration_s: s, cadence_hz: (f, f), turn_deg: 0.0 }
+        Segment {
+            gait: Gait::Walk,
+            duration_s: s,
+            cadence_hz: (f, f),
+            turn_deg: 0.0,
+        }
     }
 
     /// Running for `s` seconds at cadence `f` Hz.
     pub fn run(s: f64, f: f64) -> Self {
-        Segment { gait: Gait::Run, ..Segment::walk(s, f) }
+        Segment {
+            gait: Gait::Run,
+            ..Segment::walk(s, f)
+        }
     }
 
     /// Walking `metres` at cadence `f` with the walker's step-length law.
@@ -96,12 +112,18 @@ impl Segment {
 
     /// The same segment turning by `deg` over its duration.
     pub fn turning(self, deg: f64) -> Self {
-        Segment { turn_deg: deg, ..self }
+        Segment {
+            turn_deg: deg,
+            ..self
+        }
     }
 
     /// The same segment with the cadence ramping to `f_end`.
     pub fn ramp_to(self, f_end: f64) -> Self {
-        Segment { cadence_hz: (self.cadence_hz.0, f_end), ..self }
+        Segment {
+            cadence_hz: (self.cadence_hz.0, f_end),
+            ..self
+        }
     }
 }
 
@@ -122,7 +144,13 @@ pub struct Walker {
 
 impl Default for Walker {
     fn default() -> Self {
-        Walker { step_length: StepLengthProfile::default(), waist_yaw_deg: 6.0, thigh_pitch_deg: 20.0, lever_m: 0.12, sway: 0.6 }
+        Walker {
+            step_length: StepLengthProfile::default(),
+            waist_yaw_deg: 6.0,
+            thigh_pitch_deg: 20.0,
+            lever_m: 0.12,
+            sway: 0.6,
+        }
     }
 }
 
@@ -194,7 +222,14 @@ pub struct Scenario {
 impl Scenario {
     /// A scenario with default body and sensors.
     pub fn new(segments: Vec<Segment>) -> Self {
-        Scenario { segments, walker: Walker::default(), sensors: Sensors::default(), pocket_yaw_deg: 30.0, start_heading_deg: 0.0, seed: 1 }
+        Scenario {
+            segments,
+            walker: Walker::default(),
+            sensors: Sensors::default(),
+            pocket_yaw_deg: 30.0,
+            start_heading_deg: 0.0,
+            seed: 1,
+        }
     }
 
     /// Total duration, s.
@@ -327,11 +362,22 @@ impl Timeline {
         let fdot = (s.cadence_hz.1 - s.cadence_hz.0) / s.duration_s;
         let psi_dot = s.turn_deg.to_radians() / s.duration_s;
         let (f, phi) = if s.gait.moving() {
-            (s.cadence_hz.0 + fdot * tau, phi0 + TAU * (s.cadence_hz.0 * tau + 0.5 * fdot * tau * tau))
+            (
+                s.cadence_hz.0 + fdot * tau,
+                phi0 + TAU * (s.cadence_hz.0 * tau + 0.5 * fdot * tau * tau),
+            )
         } else {
             (0.0, phi0)
         };
-        State { gait: s.gait, phi, f, fdot: if s.gait.moving() { fdot } else { 0.0 }, psi: psi0 + psi_dot * tau, psi_dot, tau }
+        State {
+            gait: s.gait,
+            phi,
+            f,
+            fdot: if s.gait.moving() { fdot } else { 0.0 },
+            psi: psi0 + psi_dot * tau,
+            psi_dot,
+            tau,
+        }
     }
 }
 
@@ -374,13 +420,20 @@ impl Scenario {
     }
 
     /// World attitude, world angular velocity and world acceleration of the phone.
-    fn kinematics(&self, st: &State, mount: &Matrix3<f64>) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
+    fn kinematics(
+        &self,
+        st: &State,
+        mount: &Matrix3<f64>,
+    ) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
         let w = &self.walker;
         let omega = TAU * st.f;
         let half = 0.5 * st.phi;
         let (yaw_amp, pitch_amp) = if st.gait.moving() {
             let k = if st.gait == Gait::Run { 1.4 } else { 1.0 };
-            (w.waist_yaw_deg.to_radians(), k * w.thigh_pitch_deg.to_radians())
+            (
+                w.waist_yaw_deg.to_radians(),
+                k * w.thigh_pitch_deg.to_radians(),
+            )
         } else {
             (0.0, 0.0)
         };
@@ -394,7 +447,8 @@ impl Scenario {
             let mut r = rz(FRAC_PI_2 - heading) * ry(pitch(dt));
             if handled {
                 let tt = st.tau + dt;
-                r *= rx(0.25 * libm::sin(TAU * 0.31 * tt)) * ry(0.2 * libm::sin(TAU * 0.17 * tt + 1.0));
+                r *= rx(0.25 * libm::sin(TAU * 0.31 * tt))
+                    * ry(0.2 * libm::sin(TAU * 0.17 * tt + 1.0));
             }
             r * mount
         };
@@ -404,7 +458,11 @@ impl Scenario {
         let h = 1e-4;
         let rdot = (attitude(h) - attitude(-h)) / (2.0 * h);
         let skew = rdot * r.transpose();
-        let w_world = Vector3::new(0.5 * (skew[(2, 1)] - skew[(1, 2)]), 0.5 * (skew[(0, 2)] - skew[(2, 0)]), 0.5 * (skew[(1, 0)] - skew[(0, 1)]));
+        let w_world = Vector3::new(
+            0.5 * (skew[(2, 1)] - skew[(1, 2)]),
+            0.5 * (skew[(0, 2)] - skew[(2, 0)]),
+            0.5 * (skew[(1, 0)] - skew[(0, 1)]),
+        );
         // Accelerations.
         let mut a = Vector3::zeros();
         if st.gait.moving() {
@@ -431,7 +489,11 @@ impl Scenario {
             a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
         } else if handled {
             let tt = st.tau;
-            a += Vector3::new(0.3 * libm::sin(TAU * 0.9 * tt), 0.25 * libm::sin(TAU * 0.6 * tt + 2.0), 0.35 * libm::sin(TAU * 1.3 * tt + 0.7));
+            a += Vector3::new(
+                0.3 * libm::sin(TAU * 0.9 * tt),
+                0.25 * libm::sin(TAU * 0.6 * tt + 2.0),
+                0.35 * libm::sin(TAU * 1.3 * tt + 0.7),
+            );
         }
         (r, w_world, a)
     }
@@ -455,23 +517,44 @@ impl Scenario {
                 let st = tl.state(t, &mut hint);
                 let (r, w_world, a) = self.kinematics(&st, &mount);
                 let rt = r.transpose();
-                let mut accel = rt * (a + Vector3::new(0.0, 0.0, G)) + rng.vec3(self.sensors.accel_noise);
+                let mut accel =
+                    rt * (a + Vector3::new(0.0, 0.0, G)) + rng.vec3(self.sensors.accel_noise);
                 if let Some(q) = self.sensors.accel_quantum {
                     accel = accel.map(|v| (v / q).round() * q);
                 }
-                let gyro = self.sensors.gyro.then(|| rt * w_world + bias + rng.vec3(self.sensors.gyro_noise));
-                let mag = self.sensors.mag.then(|| rt * mag_world + rng.vec3(self.sensors.mag_noise));
-                yaw_err = 0.999 * yaw_err + 0.045 * self.sensors.os_yaw_error_deg.to_radians() * rng.normal();
+                let gyro = self
+                    .sensors
+                    .gyro
+                    .then(|| rt * w_world + bias + rng.vec3(self.sensors.gyro_noise));
+                let mag = self
+                    .sensors
+                    .mag
+                    .then(|| rt * mag_world + rng.vec3(self.sensors.mag_noise));
+                yaw_err = 0.999 * yaw_err
+                    + 0.045 * self.sensors.os_yaw_error_deg.to_radians() * rng.normal();
                 let orientation = self.sensors.os_orientation.then(|| {
                     let rot = Rotation3::from_matrix_unchecked(rz(yaw_err) * r);
                     UnitQuaternion::from_rotation_matrix(&rot)
                 });
-                records.push(Record::Imu(ImuSample { t, accel, gyro, mag, orientation }));
+                records.push(Record::Imu(ImuSample {
+                    t,
+                    accel,
+                    gyro,
+                    mag,
+                    orientation,
+                }));
             }
-            let j = if self.sensors.jitter > 0.0 { self.sensors.jitter * (2.0 * rng.uniform() - 1.0) } else { 0.0 };
+            let j = if self.sensors.jitter > 0.0 {
+                self.sensors.jitter * (2.0 * rng.uniform() - 1.0)
+            } else {
+                0.0
+            };
             t += nominal * (1.0 + j);
         }
-        Simulation { records, truth: self.truth(&tl) }
+        Simulation {
+            records,
+            truth: self.truth(&tl),
+        }
     }
 
     fn truth(&self, tl: &Timeline) -> Truth {

@@ -4,12 +4,20 @@ use super::{Scenario, Segment, Walker};
 
 /// A straight walk of `seconds` at cadence `f` Hz, preceded and followed by 3 s still.
 pub fn straight_walk(f: f64, seconds: f64) -> Scenario {
-    Scenario::new(vec![Segment::still(3.0), Segment::walk(seconds, f), Segment::still(3.0)])
+    Scenario::new(vec![
+        Segment::still(3.0),
+        Segment::walk(seconds, f),
+        Segment::still(3.0),
+    ])
 }
 
 /// A straight run.
 pub fn straight_run(f: f64, seconds: f64) -> Scenario {
-    Scenario::new(vec![Segment::still(3.0), Segment::run(seconds, f), Segment::still(3.0)])
+    Scenario::new(vec![
+        Segment::still(3.0),
+        Segment::run(seconds, f),
+        Segment::still(3.0),
+    ])
 }
 
 /// A closed square of `side_m` metres, walked clockwise at 1.8 Hz with 90° turns taken over
@@ -24,7 +32,11 @@ pub fn square(side_m: f64) -> Scenario {
         // Each corner's turn is split between the end of one side and the start of the next.
         let straight = side_m - turn_len;
         if i == 0 {
-            segs.push(Segment::walk_distance(straight + turn_len / 2.0, f, &walker));
+            segs.push(Segment::walk_distance(
+                straight + turn_len / 2.0,
+                f,
+                &walker,
+            ));
         } else {
             segs.push(Segment::walk_distance(straight, f, &walker));
         }
@@ -35,7 +47,10 @@ pub fn square(side_m: f64) -> Scenario {
         }
     }
     segs.push(Segment::still(3.0));
-    Scenario { walker, ..Scenario::new(segs) }
+    Scenario {
+        walker,
+        ..Scenario::new(segs)
+    }
 }
 
 /// The demo walk of the web page: about three minutes around a block, with a stop, a stretch at
@@ -59,5 +74,9 @@ pub fn demo_walk() -> Scenario {
         Segment::walk_distance(30.0, 1.8, &w),
         Segment::still(3.0),
     ];
-    Scenario { seed: 2016, start_heading_deg: 20.0, ..Scenario::new(segs) }
+    Scenario {
+        seed: 2016,
+        start_heading_deg: 20.0,
+        ..Scenario::new(segs)
+    }
 }

@@ -12,7 +12,11 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 #[derive(Parser)]
-#[command(name = "pdr", version, about = "Pedestrian dead reckoning (Basso 2016/2021)")]
+#[command(
+    name = "pdr",
+    version,
+    about = "Pedestrian dead reckoning (Basso 2016/2021)"
+)]
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
@@ -166,7 +170,17 @@ enum Cmd {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.cmd {
-        Cmd::Run { file, track, geojson, methods } => run(&file, track.as_deref(), geojson.as_deref(), methods.config()),
+        Cmd::Run {
+            file,
+            track,
+            geojson,
+            methods,
+        } => run(
+            &file,
+            track.as_deref(),
+            geojson.as_deref(),
+            methods.config(),
+        ),
         Cmd::Demo { json } => demo(json),
         Cmd::Simulate { scenario, out } => simulate(scenario, &out),
         Cmd::Simcheck => {
@@ -177,7 +191,17 @@ fn main() -> ExitCode {
             bench(minutes, repeats);
             Ok(())
         }
-        Cmd::Serve { root, http_port, https_port, cert_dir } => serve::serve(serve::ServeOpts { root, http_port, https_port, cert_dir }),
+        Cmd::Serve {
+            root,
+            http_port,
+            https_port,
+            cert_dir,
+        } => serve::serve(serve::ServeOpts {
+            root,
+            http_port,
+            https_port,
+            cert_dir,
+        }),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -188,7 +212,12 @@ fn main() -> ExitCode {
     }
 }
 
-fn run(file: &Path, track_out: Option<&Path>, geojson_out: Option<&Path>, cfg: PipelineConfig) -> Result<(), String> {
+fn run(
+    file: &Path,
+    track_out: Option<&Path>,
+    geojson_out: Option<&Path>,
+    cfg: PipelineConfig,
+) -> Result<(), String> {
     let name = file.display().to_string();
     let f = std::fs::File::open(file).map_err(|e| format!("{name}: {e}"))?;
     let parsed = pdrlog::read(std::io::BufReader::new(f), &name).map_err(|e| e.to_string())?;
@@ -204,7 +233,12 @@ fn run(file: &Path, track_out: Option<&Path>, geojson_out: Option<&Path>, cfg: P
     let track = p.track();
     let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
     println!("file          {name}");
-    println!("records       {} ({} lines skipped, {} records refused)", parsed.records.len(), parsed.errors.len(), r.errors.len());
+    println!(
+        "records       {} ({} lines skipped, {} records refused)",
+        parsed.records.len(),
+        parsed.errors.len(),
+        r.errors.len()
+    );
     println!("orientation   {:?}", d.orientation);
     println!("duration      {:.1} s", t1 - t0);
     println!("steps         {}", track.len());
@@ -215,17 +249,25 @@ fn run(file: &Path, track_out: Option<&Path>, geojson_out: Option<&Path>, cfg: P
     }
     println!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
     if d.steps_without_heading > 0 {
-        println!("no heading    {} steps (orientation source gives no heading)", d.steps_without_heading);
+        println!(
+            "no heading    {} steps (orientation source gives no heading)",
+            d.steps_without_heading
+        );
     }
     if let Some(fr) = p.frame() {
-        println!("origin        {:.7}, {:.7} (first GNSS fix)", fr.lat0_deg, fr.lon0_deg);
+        println!(
+            "origin        {:.7}, {:.7} (first GNSS fix)",
+            fr.lat0_deg, fr.lon0_deg
+        );
     }
     if let Some(out) = track_out {
-        std::fs::write(out, export::track_csv(track, p.frame())).map_err(|e| format!("{}: {e}", out.display()))?;
+        std::fs::write(out, export::track_csv(track, p.frame()))
+            .map_err(|e| format!("{}: {e}", out.display()))?;
         println!("track         {}", out.display());
     }
     if let Some(out) = geojson_out {
-        let text = serde_json::to_string_pretty(&export::track_geojson(track, p.frame())).map_err(|e| e.to_string())?;
+        let text = serde_json::to_string_pretty(&export::track_geojson(track, p.frame()))
+            .map_err(|e| e.to_string())?;
         std::fs::write(out, text).map_err(|e| format!("{}: {e}", out.display()))?;
         println!("geojson       {}", out.display());
     }
@@ -237,7 +279,10 @@ fn demo(json: bool) -> Result<(), String> {
     if json {
         println!("{}", serde_json::to_string(&s).map_err(|e| e.to_string())?);
     } else {
-        println!("steps {} (truth {}), distance {:.1} m (truth {:.1} m), end error {:.2} m", s.steps, s.truth_steps, s.distance_m, s.truth_distance_m, s.end_error_m);
+        println!(
+            "steps {} (truth {}), distance {:.1} m (truth {:.1} m), end error {:.2} m",
+            s.steps, s.truth_steps, s.distance_m, s.truth_distance_m, s.end_error_m
+        );
     }
     Ok(())
 }
@@ -249,8 +294,15 @@ fn simulate(which: ScenarioArg, out: &Path) -> Result<(), String> {
         ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
     };
     let sim = sc.generate();
-    std::fs::write(out, pdrlog::to_string(&sim.records)).map_err(|e| format!("{}: {e}", out.display()))?;
-    println!("wrote {} records, {} true steps, {:.1} m, to {}", sim.records.len(), sim.truth.steps.len(), sim.truth.distance_m, out.display());
+    std::fs::write(out, pdrlog::to_string(&sim.records))
+        .map_err(|e| format!("{}: {e}", out.display()))?;
+    println!(
+        "wrote {} records, {} true steps, {:.1} m, to {}",
+        sim.records.len(),
+        sim.truth.steps.len(),
+        sim.truth.distance_m,
+        out.display()
+    );
     Ok(())
 }
 
@@ -259,31 +311,64 @@ fn heading_err(sim: &Simulation, track: &[pdr::engine::StepRecord]) -> f64 {
     let mut errs = Vec::new();
     for s in track.iter().skip(2) {
         let Some(h) = s.heading_rad else { continue };
-        let nearest = sim.truth.steps.iter().min_by(|a, b| (a.t - s.t).abs().total_cmp(&(b.t - s.t).abs()));
+        let nearest = sim
+            .truth
+            .steps
+            .iter()
+            .min_by(|a, b| (a.t - s.t).abs().total_cmp(&(b.t - s.t).abs()));
         if let Some(tr) = nearest {
-            errs.push(pdr::engine::math::wrap_pi(h - tr.heading_rad).abs().to_degrees());
+            errs.push(
+                pdr::engine::math::wrap_pi(h - tr.heading_rad)
+                    .abs()
+                    .to_degrees(),
+            );
         }
     }
     errs.iter().sum::<f64>() / errs.len().max(1) as f64
 }
 
 fn simcheck() {
-    let methods = [("tip-to-tail 2016", HeadingMethod::TipToTail2016), ("closed form 2021", HeadingMethod::ClosedForm2021), ("PCA 2 s", HeadingMethod::Pca)];
+    let methods = [
+        ("tip-to-tail 2016", HeadingMethod::TipToTail2016),
+        ("closed form 2021", HeadingMethod::ClosedForm2021),
+        ("PCA 2 s", HeadingMethod::Pca),
+    ];
     println!("Step counts (PLL vs peak detector), count error against truth:");
     let mut cases: Vec<(String, Simulation)> = Vec::new();
     for f in [1.5, 1.8, 2.2] {
-        cases.push((format!("walk {f} Hz 70 s"), scenarios::straight_walk(f, 70.0).generate()));
+        cases.push((
+            format!("walk {f} Hz 70 s"),
+            scenarios::straight_walk(f, 70.0).generate(),
+        ));
     }
     for f in [2.7, 3.4, 4.2] {
-        cases.push((format!("run {f} Hz 35 s"), scenarios::straight_run(f, 35.0).generate()));
+        cases.push((
+            format!("run {f} Hz 35 s"),
+            scenarios::straight_run(f, 35.0).generate(),
+        ));
     }
     cases.push(("demo walk".into(), scenarios::demo_walk().generate()));
     for (label, sim) in &cases {
-        let pll = replay(PipelineConfig::default(), &sim.records).unwrap().pipeline.track().len();
-        let peak_cfg = PipelineConfig { detector: StepDetectorConfig::Peak(Default::default()), ..Default::default() };
-        let peak = replay(peak_cfg, &sim.records).unwrap().pipeline.track().len();
+        let pll = replay(PipelineConfig::default(), &sim.records)
+            .unwrap()
+            .pipeline
+            .track()
+            .len();
+        let peak_cfg = PipelineConfig {
+            detector: StepDetectorConfig::Peak(Default::default()),
+            ..Default::default()
+        };
+        let peak = replay(peak_cfg, &sim.records)
+            .unwrap()
+            .pipeline
+            .track()
+            .len();
         let truth = sim.truth.observed_steps();
-        println!("  {label:<20} truth {truth:>4}  PLL {pll:>4} ({:+})  peak {peak:>4} ({:+})", pll as i64 - truth as i64, peak as i64 - truth as i64);
+        println!(
+            "  {label:<20} truth {truth:>4}  PLL {pll:>4} ({:+})  peak {peak:>4} ({:+})",
+            pll as i64 - truth as i64,
+            peak as i64 - truth as i64
+        );
     }
     println!("Heading, mean absolute error of the used (averaged) heading, straight 1.8 Hz walks:");
     for (name, m) in methods {
@@ -294,19 +379,32 @@ fn simcheck() {
             sc.start_heading_deg = 60.0;
             let sim = sc.generate();
             let r = replay(PipelineConfig::with_heading(m), &sim.records).unwrap();
-            row.push(format!("yaw {yaw:>3}°: {:.2}°", heading_err(&sim, r.pipeline.track())));
+            row.push(format!(
+                "yaw {yaw:>3}°: {:.2}°",
+                heading_err(&sim, r.pipeline.track())
+            ));
         }
         println!("  {name:<18} {}", row.join("  "));
     }
     println!("Square 4 × 25 m, loop-closure error:");
     let sim = scenarios::square(25.0).generate();
     for (name, m) in methods {
-        for (oname, o) in [("OS", OrientationSource::Os), ("Madgwick", OrientationSource::MADGWICK)] {
-            let cfg = PipelineConfig { orientation: o, ..PipelineConfig::with_heading(m) };
+        for (oname, o) in [
+            ("OS", OrientationSource::Os),
+            ("Madgwick", OrientationSource::MADGWICK),
+        ] {
+            let cfg = PipelineConfig {
+                orientation: o,
+                ..PipelineConfig::with_heading(m)
+            };
             let r = replay(cfg, &sim.records).unwrap();
             let last = r.pipeline.track().last().copied();
             let c = last.map_or(f64::NAN, |l| l.east_m.hypot(l.north_m));
-            println!("  {name:<18} {oname:<9} {c:.2} m ({:.2} % of {:.0} m)", 100.0 * c / sim.truth.distance_m, sim.truth.distance_m);
+            println!(
+                "  {name:<18} {oname:<9} {c:.2} m ({:.2} % of {:.0} m)",
+                100.0 * c / sim.truth.distance_m,
+                sim.truth.distance_m
+            );
         }
     }
 }
@@ -314,7 +412,12 @@ fn simcheck() {
 fn bench(minutes: f64, repeats: usize) {
     let mut segs = Vec::new();
     let w = pdr::sim::Walker::default();
-    while segs.iter().map(|s: &pdr::sim::Segment| s.duration_s).sum::<f64>() < minutes * 60.0 {
+    while segs
+        .iter()
+        .map(|s: &pdr::sim::Segment| s.duration_s)
+        .sum::<f64>()
+        < minutes * 60.0
+    {
         segs.push(pdr::sim::Segment::walk_distance(60.0, 1.8, &w));
         segs.push(pdr::sim::Segment::walk(2.0, 1.8).turning(90.0));
         segs.push(pdr::sim::Segment::still(5.0));
@@ -323,14 +426,44 @@ fn bench(minutes: f64, repeats: usize) {
     let t = Instant::now();
     let sim = pdr::sim::Scenario::new(segs).generate();
     let n = sim.records.len();
-    println!("simulated {n} IMU samples ({minutes} min at 100 Hz) in {:.2} s", t.elapsed().as_secs_f64());
+    println!(
+        "simulated {n} IMU samples ({minutes} min at 100 Hz) in {:.2} s",
+        t.elapsed().as_secs_f64()
+    );
     let configs = [
-        ("default: OS orientation, PLL, tip-to-tail 2016", PipelineConfig::default()),
-        ("OS, PLL, closed form 2021", PipelineConfig::with_heading(HeadingMethod::ClosedForm2021)),
-        ("OS, PLL, PCA", PipelineConfig::with_heading(HeadingMethod::Pca)),
-        ("Madgwick (MARG), PLL, tip-to-tail", PipelineConfig { orientation: OrientationSource::MADGWICK, ..Default::default() }),
-        ("gravity low-pass, PLL (no heading)", PipelineConfig { orientation: OrientationSource::GRAVITY, ..Default::default() }),
-        ("OS, peak detector, tip-to-tail", PipelineConfig { detector: StepDetectorConfig::Peak(Default::default()), ..Default::default() }),
+        (
+            "default: OS orientation, PLL, tip-to-tail 2016",
+            PipelineConfig::default(),
+        ),
+        (
+            "OS, PLL, closed form 2021",
+            PipelineConfig::with_heading(HeadingMethod::ClosedForm2021),
+        ),
+        (
+            "OS, PLL, PCA",
+            PipelineConfig::with_heading(HeadingMethod::Pca),
+        ),
+        (
+            "Madgwick (MARG), PLL, tip-to-tail",
+            PipelineConfig {
+                orientation: OrientationSource::MADGWICK,
+                ..Default::default()
+            },
+        ),
+        (
+            "gravity low-pass, PLL (no heading)",
+            PipelineConfig {
+                orientation: OrientationSource::GRAVITY,
+                ..Default::default()
+            },
+        ),
+        (
+            "OS, peak detector, tip-to-tail",
+            PipelineConfig {
+                detector: StepDetectorConfig::Peak(Default::default()),
+                ..Default::default()
+            },
+        ),
     ];
     let imu: Vec<Record> = sim.records;
     for (name, cfg) in configs {
@@ -342,6 +475,9 @@ fn bench(minutes: f64, repeats: usize) {
             best = best.min(t.elapsed().as_secs_f64());
             steps = r.pipeline.track().len();
         }
-        println!("{:>7.2} M samples/s  {name}  ({steps} steps)", n as f64 / best / 1e6);
+        println!(
+            "{:>7.2} M samples/s  {name}  ({steps} steps)",
+            n as f64 / best / 1e6
+        );
     }
 }

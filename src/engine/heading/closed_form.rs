@@ -82,15 +82,25 @@ mod tests {
     }
 
     fn brute_max(alpha: (f64, f64), beta: (f64, f64), period: f64) -> f64 {
-        (0..10_000).map(|i| norm2(alpha, beta, period, i as f64 * period / 10_000.0)).fold(0.0, f64::max)
+        (0..10_000)
+            .map(|i| norm2(alpha, beta, period, i as f64 * period / 10_000.0))
+            .fold(0.0, f64::max)
     }
 
     #[test]
     fn corrected_formula_finds_the_maximum() {
-        for (alpha, beta) in [((1.0, 0.3), (0.4, -0.8)), ((0.0, 2.0), (1.0, 0.5)), ((-0.3, 0.2), (0.9, 0.9)), ((1.0, 0.0), (0.0, 0.2))] {
+        for (alpha, beta) in [
+            ((1.0, 0.3), (0.4, -0.8)),
+            ((0.0, 2.0), (1.0, 0.5)),
+            ((-0.3, 0.2), (0.9, 0.9)),
+            ((1.0, 0.0), (0.0, 0.2)),
+        ] {
             let t = t_star(alpha, beta, 0.55);
             let got = norm2(alpha, beta, 0.55, t);
-            assert!((got - brute_max(alpha, beta, 0.55)).abs() < 1e-6, "{alpha:?} {beta:?}");
+            assert!(
+                (got - brute_max(alpha, beta, 0.55)).abs() < 1e-6,
+                "{alpha:?} {beta:?}"
+            );
         }
     }
 

@@ -47,8 +47,17 @@ pub struct NavSample {
 
 impl NavSample {
     fn lerp(a: &NavSample, b: &NavSample, t: f64) -> NavSample {
-        let w = if b.t > a.t { (t - a.t) / (b.t - a.t) } else { 0.0 };
-        NavSample { t, e: a.e + w * (b.e - a.e), n: a.n + w * (b.n - a.n), up: a.up + w * (b.up - a.up) }
+        let w = if b.t > a.t {
+            (t - a.t) / (b.t - a.t)
+        } else {
+            0.0
+        };
+        NavSample {
+            t,
+            e: a.e + w * (b.e - a.e),
+            n: a.n + w * (b.n - a.n),
+            up: a.up + w * (b.up - a.up),
+        }
     }
 }
 
@@ -79,7 +88,11 @@ pub struct HeadingConfig {
 
 impl Default for HeadingConfig {
     fn default() -> Self {
-        HeadingConfig { method: HeadingMethod::TipToTail2016, average_two: true, pca_window_s: 2.0 }
+        HeadingConfig {
+            method: HeadingMethod::TipToTail2016,
+            average_two: true,
+            pca_window_s: 2.0,
+        }
     }
 }
 
@@ -124,30 +137,51 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
         return None;
     }
     let w = TAU / period;
-    let mut h = [Harmonic::default(); 2];
-    let mut prev: Option<(f64, [f64; 3], [f64; 4])> = None;
+    // Trapezoidal rule: ∫ ≈ Σ ½Δτᵢ (Pᵢ₋₁ + Pᵢ) with P the 12 products channel × {cos ωτ, sin ωτ,
+    // cos 2ωτ, sin 2ωτ}. Each point's products are formed once and carried to the next interval.
+    let mut acc = [0.0f64; 12];
+    let mut prev_p = [0.0f64; 12];
+    let mut prev_tau = 0.0;
+    // The phasor (cos ωτ, sin ωτ) is rotated from sample to sample by the small angle ω·Δτ.
+    let mut phasor = (1.0f64, 0.0f64);
+    let mut first = true;
     let mut add = |s: &NavSample| {
         let tau = s.t - t0;
-        let (s1, c1) = libm::sincos(w * tau);
-        // Second harmonic by the double-angle formulas: one sincos per sample.
+        if !first {
+            let (ds, dc) = crate::engine::math::sincos_small(w * (tau - prev_tau));
+            phasor = (phasor.0 * dc - phasor.1 * ds, phasor.1 * dc + phasor.0 * ds);
+        }
+        let (c1, s1) = phasor;
         let trig = [c1, s1, c1 * c1 - s1 * s1, 2.0 * s1 * c1];
         let v = [s.e, s.n, s.up];
-        if let Some((tp, vp, gp)) = prev {
-            let half = 0.5 * (tau - tp);
-            for k in 0..3 {
-                h[0].alpha[k] += half * (vp[k] * gp[0] + v[k] * trig[0]);
-                h[0].beta[k] += half * (vp[k] * gp[1] + v[k] * trig[1]);
-                h[1].alpha[k] += half * (vp[k] * gp[2] + v[k] * trig[2]);
-                h[1].beta[k] += half * (vp[k] * gp[3] + v[k] * trig[3]);
+        let mut p = [0.0f64; 12];
+        for k in 0..3 {
+            for j in 0..4 {
+                p[4 * k + j] = v[k] * trig[j];
             }
         }
-        prev = Some((tau, v, trig));
+        if !first {
+            let half = 0.5 * (tau - prev_tau);
+            for i in 0..12 {
+                acc[i] += half * (prev_p[i] + p[i]);
+            }
+        }
+        first = false;
+        prev_p = p;
+        prev_tau = tau;
     };
     add(&NavSample::lerp(&buf[start - 1], &buf[start], t0));
     for i in start..end {
         add(&buf[i]);
     }
     add(&NavSample::lerp(&buf[end - 1], &buf[end], t1));
+    let mut h = [Harmonic::default(); 2];
+    for k in 0..3 {
+        h[0].alpha[k] = acc[4 * k];
+        h[0].beta[k] = acc[4 * k + 1];
+        h[1].alpha[k] = acc[4 * k + 2];
+        h[1].beta[k] = acc[4 * k + 3];
+    }
     let scale = 2.0 / period;
     for hk in &mut h {
         for k in 0..3 {
@@ -215,15 +249,24 @@ mod tests {
         }
         let h = fourier(&buf, t0, t1).unwrap();
         let close = |a: f64, b: f64| (a - b).abs() < 0.01;
-        assert!(close(h[0].alpha[0], 1.5) && close(h[1].beta[0], -0.5), "{h:?}");
-        assert!(close(h[0].beta[1], 0.7) && close(h[0].alpha[1], 0.0), "{h:?}");
+        assert!(
+            close(h[0].alpha[0], 1.5) && close(h[1].beta[0], -0.5),
+            "{h:?}"
+        );
+        assert!(
+            close(h[0].beta[1], 0.7) && close(h[0].alpha[1], 0.0),
+            "{h:?}"
+        );
         assert!(close(h[1].alpha[2], 2.0), "{h:?}");
     }
 
     #[test]
     fn forward_sign_follows_inverted_pendulum() {
         // a_up = cos ωt, forward (north) a = −sin ωt.
-        let h = Harmonic { alpha: [0.0, 0.0, 1.0], beta: [0.0, -1.0, 0.0] };
+        let h = Harmonic {
+            alpha: [0.0, 0.0, 1.0],
+            beta: [0.0, -1.0, 0.0],
+        };
         assert_eq!(forward_sign(&h, (0.0, 1.0)), 1.0);
         assert_eq!(forward_sign(&h, (0.0, -1.0)), -1.0);
     }
