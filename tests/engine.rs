@@ -12,7 +12,11 @@ wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 fn run(sim: &Simulation, cfg: PipelineConfig) -> Vec<StepRecord> {
     let r = replay(cfg, &sim.records).expect("valid config");
-    assert!(r.errors.is_empty(), "clean input refused: {:?}", r.errors.first());
+    assert!(
+        r.errors.is_empty(),
+        "clean input refused: {:?}",
+        r.errors.first()
+    );
     r.pipeline.track().to_vec()
 }
 
@@ -23,13 +27,25 @@ fn tolerance(truth: usize) -> usize {
 
 fn assert_count(label: &str, counted: usize, truth: usize) {
     let err = counted.abs_diff(truth);
-    assert!(err <= tolerance(truth), "{label}: counted {counted} steps, truth {truth}");
+    assert!(
+        err <= tolerance(truth),
+        "{label}: counted {counted} steps, truth {truth}"
+    );
 }
 
 /// Mean absolute heading error in degrees over the steps of the walking bout, skipping the first
 /// two steps (the two-step average needs a previous step).
 fn heading_error_deg(track: &[StepRecord], truth_heading_deg: f64) -> f64 {
-    let errs: Vec<f64> = track.iter().skip(2).filter_map(|s| s.heading_rad).map(|h| wrap_pi(h - truth_heading_deg.to_radians()).abs().to_degrees()).collect();
+    let errs: Vec<f64> = track
+        .iter()
+        .skip(2)
+        .filter_map(|s| s.heading_rad)
+        .map(|h| {
+            wrap_pi(h - truth_heading_deg.to_radians())
+                .abs()
+                .to_degrees()
+        })
+        .collect();
     assert!(!errs.is_empty());
     errs.iter().sum::<f64>() / errs.len() as f64
 }
@@ -63,16 +79,29 @@ fn pll_follows_cadence_changes() {
     let track = run(&sim, PipelineConfig::default());
     assert_count("cadence change", track.len(), sim.truth.steps.len());
     // The frequency estimate follows: the last walking steps near 2.1 Hz, running near 2.9 Hz.
-    let near = |t: f64| track.iter().min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs())).unwrap();
+    let near = |t: f64| {
+        track
+            .iter()
+            .min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs()))
+            .unwrap()
+    };
     assert!((near(60.0).freq_hz - 2.1).abs() < 0.1, "{:?}", near(60.0));
     assert!((near(80.0).freq_hz - 2.9).abs() < 0.15, "{:?}", near(80.0));
 }
 
 #[wasm_bindgen_test(unsupported = test)]
 fn no_steps_while_still_or_slowly_handled() {
-    let sim = Scenario::new(vec![Segment::still(30.0), Segment::handled(40.0), Segment::still(10.0)]).generate();
+    let sim = Scenario::new(vec![
+        Segment::still(30.0),
+        Segment::handled(40.0),
+        Segment::still(10.0),
+    ])
+    .generate();
     assert_eq!(run(&sim, PipelineConfig::default()).len(), 0);
-    let peak = PipelineConfig { detector: pdr::engine::StepDetectorConfig::Peak(Default::default()), ..Default::default() };
+    let peak = PipelineConfig {
+        detector: pdr::engine::StepDetectorConfig::Peak(Default::default()),
+        ..Default::default()
+    };
     assert_eq!(run(&sim, peak).len(), 0);
 }
 
@@ -86,7 +115,10 @@ fn both_heading_methods_within_3_degrees_for_any_pocket_yaw() {
             let sim = sc.generate();
             let track = run(&sim, PipelineConfig::with_heading(method));
             let err = heading_error_deg(&track, 60.0);
-            assert!(err < 3.0, "{method:?} pocket yaw {yaw}°: mean error {err:.2}°");
+            assert!(
+                err < 3.0,
+                "{method:?} pocket yaw {yaw}°: mean error {err:.2}°"
+            );
         }
     }
 }
@@ -102,13 +134,22 @@ fn square_of_4x25m_closes_within_3_percent() {
     for method in [HeadingMethod::TipToTail2016, HeadingMethod::ClosedForm2021] {
         let track = run(&sim, PipelineConfig::with_heading(method));
         let c = closure(&track);
-        assert!(c < 0.03 * 100.0, "{method:?}: closure error {c:.2} m over 100 m");
+        assert!(
+            c < 0.03 * 100.0,
+            "{method:?}: closure error {c:.2} m over 100 m"
+        );
     }
 }
 
 #[wasm_bindgen_test(unsupported = test)]
 fn sigma_thresholds_switch_states_at_the_right_times() {
-    let sc = Scenario::new(vec![Segment::still(6.0), Segment::walk(10.0, 1.8), Segment::run(10.0, 3.0), Segment::walk(10.0, 1.8), Segment::still(6.0)]);
+    let sc = Scenario::new(vec![
+        Segment::still(6.0),
+        Segment::walk(10.0, 1.8),
+        Segment::run(10.0, 3.0),
+        Segment::walk(10.0, 1.8),
+        Segment::still(6.0),
+    ]);
     let sim = sc.generate();
     let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
     let mut at = Vec::new();
@@ -120,7 +161,13 @@ fn sigma_thresholds_switch_states_at_the_right_times() {
     }
     let state_at = |t: f64| at.iter().find(|(ts, _)| *ts >= t).unwrap().1;
     // Each state holds from 2.5 s (the 2 s window plus margin) after a change to the next change.
-    for (t0, t1, want) in [(2.0, 6.0, Motion::Still), (8.5, 16.0, Motion::Walking), (18.5, 26.0, Motion::Running), (28.5, 36.0, Motion::Walking), (38.5, 42.0, Motion::Still)] {
+    for (t0, t1, want) in [
+        (2.0, 6.0, Motion::Still),
+        (8.5, 16.0, Motion::Walking),
+        (18.5, 26.0, Motion::Running),
+        (28.5, 36.0, Motion::Walking),
+        (38.5, 42.0, Motion::Still),
+    ] {
         let mut t = t0;
         while t < t1 {
             assert_eq!(state_at(t), want, "at t={t:.1}");
@@ -144,10 +191,16 @@ fn irregular_timing_keeps_counts_and_headings() {
         sc
     };
     let cases = [
-        ("60 Hz with ±40 % jitter", with_timing(base(), 60.0, 0.4, vec![])),
+        (
+            "60 Hz with ±40 % jitter",
+            with_timing(base(), 60.0, 0.4, vec![]),
+        ),
         ("fixed 16 ms", with_timing(base(), 62.5, 0.0, vec![])),
         ("15 Hz", with_timing(base(), 15.0, 0.1, vec![])),
-        ("3 s gap", with_timing(base(), 100.0, 0.0, vec![(30.0, 33.0)])),
+        (
+            "3 s gap",
+            with_timing(base(), 100.0, 0.0, vec![(30.0, 33.0)]),
+        ),
     ];
     for (label, sim) in cases {
         for method in [HeadingMethod::TipToTail2016, HeadingMethod::ClosedForm2021] {
@@ -161,9 +214,17 @@ fn irregular_timing_keeps_counts_and_headings() {
 
 #[wasm_bindgen_test(unsupported = test)]
 fn gap_is_not_bridged_with_phantom_steps() {
-    let sim = with_timing(scenarios::straight_walk(1.8, 60.0), 100.0, 0.0, vec![(25.0, 31.0)]);
+    let sim = with_timing(
+        scenarios::straight_walk(1.8, 60.0),
+        100.0,
+        0.0,
+        vec![(25.0, 31.0)],
+    );
     let track = run(&sim, PipelineConfig::default());
-    assert!(!track.iter().any(|s| s.t > 25.0 && s.t < 31.0), "a step was placed inside the gap");
+    assert!(
+        !track.iter().any(|s| s.t > 25.0 && s.t < 31.0),
+        "a step was placed inside the gap"
+    );
     let r = replay(PipelineConfig::default(), &sim.records).unwrap();
     assert_eq!(r.pipeline.diagnostics().gaps, 1);
 }
@@ -181,16 +242,35 @@ fn bad_input_is_refused_and_changes_nothing() {
                 bad.accel.y = f64::NAN;
                 dirty.push(Record::Imu(bad));
                 dirty.push(Record::Imu(ImuSample { t: s.t - 0.5, ..*s }));
-                dirty.push(Record::Imu(ImuSample { gyro: Some(nalgebra::Vector3::new(f64::INFINITY, 0.0, 0.0)), ..*s }));
+                dirty.push(Record::Imu(ImuSample {
+                    gyro: Some(nalgebra::Vector3::new(f64::INFINITY, 0.0, 0.0)),
+                    ..*s
+                }));
             }
         }
     }
     let r = replay(PipelineConfig::default(), &dirty).unwrap();
     let d = r.pipeline.diagnostics();
     assert!(d.rejected_non_finite > 0 && d.rejected_backwards > 0);
-    assert_eq!(r.errors.len() as u64, d.rejected_non_finite + d.rejected_backwards);
-    assert!(r.errors.iter().any(|(_, e)| matches!(e, InputError::NonFinite { field: "accel", .. })));
-    assert!(r.errors.iter().any(|(_, e)| matches!(e, InputError::NonFinite { field: "gyro", .. })));
-    assert!(r.errors.iter().any(|(_, e)| matches!(e, InputError::TimeWentBackwards { .. })));
-    assert_eq!(r.pipeline.track(), &clean[..], "refused records changed the track");
+    assert_eq!(
+        r.errors.len() as u64,
+        d.rejected_non_finite + d.rejected_backwards
+    );
+    assert!(r
+        .errors
+        .iter()
+        .any(|(_, e)| matches!(e, InputError::NonFinite { field: "accel", .. })));
+    assert!(r
+        .errors
+        .iter()
+        .any(|(_, e)| matches!(e, InputError::NonFinite { field: "gyro", .. })));
+    assert!(r
+        .errors
+        .iter()
+        .any(|(_, e)| matches!(e, InputError::TimeWentBackwards { .. })));
+    assert_eq!(
+        r.pipeline.track(),
+        &clean[..],
+        "refused records changed the track"
+    );
 }
