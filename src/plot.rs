@@ -121,7 +121,7 @@ pub fn draw_track<DB: DrawingBackend>(
         .build_cartesian_2d(x0..x1, y0..y1)?;
     chart
         .configure_mesh()
-        .light_line_style(theme.grid)
+        .light_line_style(TRANSPARENT)
         .bold_line_style(theme.grid)
         .axis_style(theme.foreground)
         .label_style(font.clone())

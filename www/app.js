@@ -17,8 +17,10 @@ async function main() {
   const demo = new Demo();
   const s = demo.summary();
   $('steps').textContent = String(s.steps);
-  $('distance').textContent = `${s.distance_m.toFixed(1)} m`;
-  $('end-error').textContent = `${s.end_error_m.toFixed(1)} m`;
+  $('steps-truth').textContent = `true: ${s.truth_steps}`;
+  $('distance').textContent = s.distance_m.toFixed(1);
+  $('distance-truth').textContent = `true: ${s.truth_distance_m.toFixed(1)} m`;
+  $('end-error').textContent = s.end_error_m.toFixed(1);
 
   const canvas = $('track');
   const draw = () => {
