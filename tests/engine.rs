@@ -274,3 +274,33 @@ fn bad_input_is_refused_and_changes_nothing() {
         "refused records changed the track"
     );
 }
+
+/// FNV-1a over the bits of every field of every step.
+fn digest(track: &[StepRecord]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |x: u64| {
+        for b in x.to_le_bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    for s in track {
+        for v in [s.t, s.east_m, s.north_m, s.heading_rad.unwrap_or(-1.0), s.length_m, s.freq_hz] {
+            eat(v.to_bits());
+        }
+    }
+    h
+}
+
+/// The demo walk's track, bit for bit. The same constant is checked natively and in Chromium, so
+/// this fails if the two builds ever disagree. When an intended engine change alters the track,
+/// update the constant from the native failure message (and check the wasm run agrees).
+#[wasm_bindgen_test(unsupported = test)]
+fn replay_is_bit_identical_natively_and_in_wasm() {
+    let demo = pdr::demo::run_demo();
+    let again = pdr::demo::run_demo();
+    assert_eq!(digest(&demo.track), digest(&again.track), "two replays differ");
+    assert_eq!(digest(&demo.track), DEMO_DIGEST, "demo track digest changed: {:#x}", digest(&demo.track));
+}
+
+const DEMO_DIGEST: u64 = 0x5007_3126_9218_530b;
