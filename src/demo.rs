@@ -42,7 +42,7 @@ pub fn run_demo() -> DemoSummary {
         truth_steps: sim.truth.steps.len(),
         distance_m: d.distance_m,
         truth_distance_m: sim.truth.distance_m,
-        end_error_m: (end.0 - sim.truth.end.0).hypot(end.1 - sim.truth.end.1),
+        end_error_m: libm::hypot(end.0 - sim.truth.end.0, end.1 - sim.truth.end.1),
         duration_s: d.time_span.map_or(0.0, |(a, b)| b - a),
         samples: d.samples,
         track,

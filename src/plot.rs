@@ -83,7 +83,7 @@ fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f6
 /// A "nice" scale-bar length (1, 2 or 5 × 10^k m) close to a quarter of `span` metres.
 pub fn scale_bar_length(span: f64) -> f64 {
     let target = span / 4.0;
-    let k = 10f64.powf(target.log10().floor());
+    let k = libm::pow(10.0, libm::log10(target).floor());
     [5.0, 2.0, 1.0]
         .into_iter()
         .map(|m| m * k)

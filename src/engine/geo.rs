@@ -71,7 +71,7 @@ impl LocalFrame {
         let y = self.origin[1] + co * e - sl * so * n + cl * so * u;
         let z = self.origin[2] + cl * n + sl * u;
         let lon = libm::atan2(y, x);
-        let p = x.hypot(y);
+        let p = libm::hypot(x, y);
         let mut lat = libm::atan2(z, p * (1.0 - E2));
         let mut h = 0.0;
         for _ in 0..5 {
@@ -89,12 +89,13 @@ pub fn haversine_m(lat1: f64, lon1: f64, lat2: f64, lon2: f64) -> f64 {
     let (p1, p2) = (lat1.to_radians(), lat2.to_radians());
     let dp = p2 - p1;
     let dl = (lon2 - lon1).to_radians();
-    let a =
-        libm::sin(dp / 2.0).powi(2) + libm::cos(p1) * libm::cos(p2) * libm::sin(dl / 2.0).powi(2);
+    let (sp, sl) = (libm::sin(dp / 2.0), libm::sin(dl / 2.0));
+    let a = sp * sp + libm::cos(p1) * libm::cos(p2) * sl * sl;
     2.0 * EARTH_RADIUS_M * libm::asin(a.sqrt().min(1.0))
 }
 
 #[cfg(test)]
+#[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
 

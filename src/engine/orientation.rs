@@ -19,11 +19,12 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 pub const G0: f64 = 9.806_65;
 
 /// Which orientation source to use.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum OrientationSource {
     /// Pick per input, from its first sample: the OS quaternion if present, else Madgwick if a
     /// gyroscope is present, else the gravity low-pass.
+    #[default]
     Auto,
     /// The OS-supplied quaternion on every sample.
     Os,
@@ -38,12 +39,6 @@ pub enum OrientationSource {
         /// Time constant of the gravity filter, seconds.
         tau_s: f64,
     },
-}
-
-impl Default for OrientationSource {
-    fn default() -> Self {
-        OrientationSource::Auto
-    }
 }
 
 impl OrientationSource {

@@ -317,6 +317,7 @@ impl Pll {
 }
 
 #[cfg(test)]
+#[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
 

@@ -192,7 +192,7 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<LineFit> {
     }
     let mf = points.iter().map(|p| p.0).sum::<f64>() / n;
     let ms = points.iter().map(|p| p.1).sum::<f64>() / n;
-    let sff: f64 = points.iter().map(|p| (p.0 - mf).powi(2)).sum();
+    let sff: f64 = points.iter().map(|p| (p.0 - mf) * (p.0 - mf)).sum();
     let sfs: f64 = points.iter().map(|p| (p.0 - mf) * (p.1 - ms)).sum();
     if !(sff > 1e-12) {
         return None;
@@ -201,7 +201,7 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<LineFit> {
     let b = ms - a * mf;
     let residuals: Vec<f64> = points.iter().map(|p| p.1 - (a * p.0 + b)).collect();
     let ss_res: f64 = residuals.iter().map(|r| r * r).sum();
-    let ss_tot: f64 = points.iter().map(|p| (p.1 - ms).powi(2)).sum();
+    let ss_tot: f64 = points.iter().map(|p| (p.1 - ms) * (p.1 - ms)).sum();
     let r2 = if ss_tot > 0.0 {
         1.0 - ss_res / ss_tot
     } else {

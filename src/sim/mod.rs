@@ -501,7 +501,7 @@ impl Scenario {
     /// Generates the samples and the truth.
     pub fn generate(&self) -> Simulation {
         let tl = Timeline::new(self);
-        let mut rng = Rng(self.seed ^ 0x5EED_0F_0D0F);
+        let mut rng = Rng(self.seed ^ 0x5EED_0F0D);
         let mount = self.mount();
         let dur = self.duration_s();
         let in_gap = |t: f64| self.sensors.gaps.iter().any(|&(a, b)| t > a && t < b);

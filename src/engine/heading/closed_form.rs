@@ -62,7 +62,7 @@ pub fn heading(buf: &VecDeque<NavSample>, w: StepWindow) -> Option<f64> {
     let ts = t_star(alpha, beta, period);
     let (s, c) = libm::sincos(TAU * ts / period);
     let v = (alpha.0 * c + beta.0 * s, alpha.1 * c + beta.1 * s);
-    let norm = v.0.hypot(v.1);
+    let norm = libm::hypot(v.0, v.1);
     if !(norm > 1e-9) {
         return None;
     }
@@ -72,6 +72,7 @@ pub fn heading(buf: &VecDeque<NavSample>, w: StepWindow) -> Option<f64> {
 }
 
 #[cfg(test)]
+#[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
 

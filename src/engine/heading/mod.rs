@@ -171,8 +171,8 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
         prev_tau = tau;
     };
     add(&NavSample::lerp(&buf[start - 1], &buf[start], t0));
-    for i in start..end {
-        add(&buf[i]);
+    for s in buf.range(start..end) {
+        add(s);
     }
     add(&NavSample::lerp(&buf[end - 1], &buf[end], t1));
     let mut h = [Harmonic::default(); 2];
@@ -226,6 +226,7 @@ pub fn single_step(cfg: &HeadingConfig, buf: &VecDeque<NavSample>, w: StepWindow
 }
 
 #[cfg(test)]
+#[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
 

@@ -95,7 +95,7 @@ pub fn heading(buf: &VecDeque<NavSample>, w: StepWindow) -> Option<f64> {
     }
     let (pa, pb) = (eval(best[0].0), eval(best[1].0));
     let (de, dn) = (pa.0 - pb.0, pa.1 - pb.1);
-    let norm = de.hypot(dn);
+    let norm = libm::hypot(de, dn);
     if !(norm > 1e-9) {
         return None;
     }

@@ -1,0 +1,483 @@
+//! The command-line interface: replay logs, benchmark the engine, serve the web app.
+
+use crate::serve;
+use clap::{Parser, Subcommand, ValueEnum};
+use pdr::engine::heading::HeadingMethod;
+use pdr::engine::pipeline::{replay, PipelineConfig, Record, StepDetectorConfig};
+use pdr::engine::{OrientationSource, StepLengthModel};
+use pdr::io::{export, pdrlog};
+use pdr::sim::{scenarios, Simulation};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(
+    name = "pdr",
+    version,
+    about = "Pedestrian dead reckoning (Basso 2016/2021)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum HeadingArg {
+    /// Basso 2016 Algorithm 1 (default).
+    TipToTail,
+    /// Basso 2021 closed form.
+    ClosedForm,
+    /// PCA over 2 s.
+    Pca,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum DetectorArg {
+    /// Phase-locked loop (default).
+    Pll,
+    /// Low-pass and peak.
+    Peak,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum OrientationArg {
+    /// OS quaternion, else Madgwick, else gravity (default).
+    Auto,
+    /// OS quaternion.
+    Os,
+    /// Madgwick filter.
+    Madgwick,
+    /// Gravity low-pass (no heading).
+    Gravity,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum LengthArg {
+    /// Piecewise linear in frequency (default).
+    Frequency,
+    /// Weinberg.
+    Weinberg,
+}
+
+#[derive(clap::Args)]
+struct Methods {
+    /// Heading method.
+    #[arg(long, value_enum, default_value = "tip-to-tail")]
+    heading: HeadingArg,
+    /// Step detector.
+    #[arg(long, value_enum, default_value = "pll")]
+    detector: DetectorArg,
+    /// Orientation source.
+    #[arg(long, value_enum, default_value = "auto")]
+    orientation: OrientationArg,
+    /// Step-length model.
+    #[arg(long, value_enum, default_value = "frequency")]
+    step_length: LengthArg,
+}
+
+impl Methods {
+    fn config(&self) -> PipelineConfig {
+        let mut c = PipelineConfig::with_heading(match self.heading {
+            HeadingArg::TipToTail => HeadingMethod::TipToTail2016,
+            HeadingArg::ClosedForm => HeadingMethod::ClosedForm2021,
+            HeadingArg::Pca => HeadingMethod::Pca,
+        });
+        if let DetectorArg::Peak = self.detector {
+            c.detector = StepDetectorConfig::Peak(Default::default());
+        }
+        c.orientation = match self.orientation {
+            OrientationArg::Auto => OrientationSource::Auto,
+            OrientationArg::Os => OrientationSource::Os,
+            OrientationArg::Madgwick => OrientationSource::MADGWICK,
+            OrientationArg::Gravity => OrientationSource::GRAVITY,
+        };
+        if let LengthArg::Weinberg = self.step_length {
+            c.step_length = StepLengthModel::Weinberg { k: 0.47 };
+        }
+        c
+    }
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ScenarioArg {
+    /// The demo walk of the web page.
+    Demo,
+    /// A closed 4 × 25 m square.
+    Square,
+    /// 70 s straight walk at 1.8 Hz.
+    Straight,
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Replay a pdr-log file: print a summary and write the per-step track.
+    Run {
+        /// The log (pdr-log format, see README).
+        file: PathBuf,
+        /// Write the per-step track as CSV.
+        #[arg(long)]
+        track: Option<PathBuf>,
+        /// Write the track as GeoJSON.
+        #[arg(long)]
+        geojson: Option<PathBuf>,
+        #[command(flatten)]
+        methods: Methods,
+    },
+    /// Run the embedded demo walk (the one the web page shows) and print its figures.
+    Demo {
+        /// Print JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Write a simulated walk as a pdr-log file.
+    Simulate {
+        /// Which walk.
+        #[arg(long, value_enum, default_value = "demo")]
+        scenario: ScenarioArg,
+        /// Output file.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Accuracy of every method on simulated walks with known truth.
+    Simcheck,
+    /// Full-pipeline throughput in IMU samples per second on a long simulated walk.
+    Bench {
+        /// Minutes of simulated walking.
+        #[arg(long, default_value_t = 30.0)]
+        minutes: f64,
+        /// Replays per configuration (the best is reported).
+        #[arg(long, default_value_t = 5)]
+        repeats: usize,
+    },
+    /// Serve the built web app: HTTP on localhost and HTTPS (self-signed) on all interfaces.
+    Serve {
+        /// Folder holding the built static site.
+        #[arg(long, default_value = "dist")]
+        root: PathBuf,
+        /// HTTP port (localhost only).
+        #[arg(long, default_value_t = 8080)]
+        http_port: u16,
+        /// HTTPS port (all interfaces).
+        #[arg(long, default_value_t = 8443)]
+        https_port: u16,
+        /// Where to keep the self-signed certificate (default: the user's data directory).
+        #[arg(long)]
+        cert_dir: Option<PathBuf>,
+    },
+}
+
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.cmd {
+        Cmd::Run {
+            file,
+            track,
+            geojson,
+            methods,
+        } => run(
+            &file,
+            track.as_deref(),
+            geojson.as_deref(),
+            methods.config(),
+        ),
+        Cmd::Demo { json } => demo(json),
+        Cmd::Simulate { scenario, out } => simulate(scenario, &out),
+        Cmd::Simcheck => {
+            simcheck();
+            Ok(())
+        }
+        Cmd::Bench { minutes, repeats } => {
+            bench(minutes, repeats);
+            Ok(())
+        }
+        Cmd::Serve {
+            root,
+            http_port,
+            https_port,
+            cert_dir,
+        } => serve::serve(serve::ServeOpts {
+            root,
+            http_port,
+            https_port,
+            cert_dir,
+        }),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("pdr: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(
+    file: &Path,
+    track_out: Option<&Path>,
+    geojson_out: Option<&Path>,
+    cfg: PipelineConfig,
+) -> Result<(), String> {
+    let name = file.display().to_string();
+    let f = std::fs::File::open(file).map_err(|e| format!("{name}: {e}"))?;
+    let parsed = pdrlog::read(std::io::BufReader::new(f), &name).map_err(|e| e.to_string())?;
+    for e in &parsed.errors {
+        eprintln!("warning: {e} (line skipped)");
+    }
+    let r = replay(cfg, &parsed.records).map_err(|e| e.to_string())?;
+    for (i, e) in &r.errors {
+        eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
+    }
+    let p = &r.pipeline;
+    let d = p.diagnostics();
+    let track = p.track();
+    let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
+    println!("file          {name}");
+    println!(
+        "records       {} ({} lines skipped, {} records refused)",
+        parsed.records.len(),
+        parsed.errors.len(),
+        r.errors.len()
+    );
+    println!("orientation   {:?}", d.orientation);
+    println!("duration      {:.1} s", t1 - t0);
+    println!("steps         {}", track.len());
+    println!("distance      {:.1} m", d.distance_m);
+    if let Some(last) = track.last() {
+        println!("final east    {:.1} m", last.east_m);
+        println!("final north   {:.1} m", last.north_m);
+    }
+    println!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
+    if d.steps_without_heading > 0 {
+        println!(
+            "no heading    {} steps (orientation source gives no heading)",
+            d.steps_without_heading
+        );
+    }
+    if let Some(fr) = p.frame() {
+        println!(
+            "origin        {:.7}, {:.7} (first GNSS fix)",
+            fr.lat0_deg, fr.lon0_deg
+        );
+    }
+    if let Some(out) = track_out {
+        std::fs::write(out, export::track_csv(track, p.frame()))
+            .map_err(|e| format!("{}: {e}", out.display()))?;
+        println!("track         {}", out.display());
+    }
+    if let Some(out) = geojson_out {
+        let text = serde_json::to_string_pretty(&export::track_geojson(track, p.frame()))
+            .map_err(|e| e.to_string())?;
+        std::fs::write(out, text).map_err(|e| format!("{}: {e}", out.display()))?;
+        println!("geojson       {}", out.display());
+    }
+    Ok(())
+}
+
+fn demo(json: bool) -> Result<(), String> {
+    let s = pdr::demo::run_demo();
+    if json {
+        println!("{}", serde_json::to_string(&s).map_err(|e| e.to_string())?);
+    } else {
+        println!(
+            "steps {} (truth {}), distance {:.1} m (truth {:.1} m), end error {:.2} m",
+            s.steps, s.truth_steps, s.distance_m, s.truth_distance_m, s.end_error_m
+        );
+    }
+    Ok(())
+}
+
+fn simulate(which: ScenarioArg, out: &Path) -> Result<(), String> {
+    let sc = match which {
+        ScenarioArg::Demo => scenarios::demo_walk(),
+        ScenarioArg::Square => scenarios::square(25.0),
+        ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
+    };
+    let sim = sc.generate();
+    std::fs::write(out, pdrlog::to_string(&sim.records))
+        .map_err(|e| format!("{}: {e}", out.display()))?;
+    println!(
+        "wrote {} records, {} true steps, {:.1} m, to {}",
+        sim.records.len(),
+        sim.truth.steps.len(),
+        sim.truth.distance_m,
+        out.display()
+    );
+    Ok(())
+}
+
+/// Heading error statistics (mean absolute, degrees) of the used heading against the truth.
+fn heading_err(sim: &Simulation, track: &[pdr::engine::StepRecord]) -> f64 {
+    let mut errs = Vec::new();
+    for s in track.iter().skip(2) {
+        let Some(h) = s.heading_rad else { continue };
+        let nearest = sim
+            .truth
+            .steps
+            .iter()
+            .min_by(|a, b| (a.t - s.t).abs().total_cmp(&(b.t - s.t).abs()));
+        if let Some(tr) = nearest {
+            errs.push(
+                pdr::engine::math::wrap_pi(h - tr.heading_rad)
+                    .abs()
+                    .to_degrees(),
+            );
+        }
+    }
+    errs.iter().sum::<f64>() / errs.len().max(1) as f64
+}
+
+fn simcheck() {
+    let methods = [
+        ("tip-to-tail 2016", HeadingMethod::TipToTail2016),
+        ("closed form 2021", HeadingMethod::ClosedForm2021),
+        ("PCA 2 s", HeadingMethod::Pca),
+    ];
+    println!("Step counts (PLL vs peak detector), count error against truth:");
+    let mut cases: Vec<(String, Simulation)> = Vec::new();
+    for f in [1.5, 1.8, 2.2] {
+        cases.push((
+            format!("walk {f} Hz 70 s"),
+            scenarios::straight_walk(f, 70.0).generate(),
+        ));
+    }
+    for f in [2.7, 3.4, 4.2] {
+        cases.push((
+            format!("run {f} Hz 35 s"),
+            scenarios::straight_run(f, 35.0).generate(),
+        ));
+    }
+    cases.push(("demo walk".into(), scenarios::demo_walk().generate()));
+    for (label, sim) in &cases {
+        let pll = replay(PipelineConfig::default(), &sim.records)
+            .unwrap()
+            .pipeline
+            .track()
+            .len();
+        let peak_cfg = PipelineConfig {
+            detector: StepDetectorConfig::Peak(Default::default()),
+            ..Default::default()
+        };
+        let peak = replay(peak_cfg, &sim.records)
+            .unwrap()
+            .pipeline
+            .track()
+            .len();
+        let truth = sim.truth.observed_steps();
+        println!(
+            "  {label:<20} truth {truth:>4}  PLL {pll:>4} ({:+})  peak {peak:>4} ({:+})",
+            pll as i64 - truth as i64,
+            peak as i64 - truth as i64
+        );
+    }
+    println!("Heading, mean absolute error of the used (averaged) heading, straight 1.8 Hz walks:");
+    for (name, m) in methods {
+        let mut row = Vec::new();
+        for yaw in [0.0, 90.0, 180.0, 270.0] {
+            let mut sc = scenarios::straight_walk(1.8, 40.0);
+            sc.pocket_yaw_deg = yaw;
+            sc.start_heading_deg = 60.0;
+            let sim = sc.generate();
+            let r = replay(PipelineConfig::with_heading(m), &sim.records).unwrap();
+            row.push(format!(
+                "yaw {yaw:>3}°: {:.2}°",
+                heading_err(&sim, r.pipeline.track())
+            ));
+        }
+        println!("  {name:<18} {}", row.join("  "));
+    }
+    println!("Square 4 × 25 m, loop-closure error:");
+    let sim = scenarios::square(25.0).generate();
+    for (name, m) in methods {
+        for (oname, o) in [
+            ("OS", OrientationSource::Os),
+            ("Madgwick", OrientationSource::MADGWICK),
+        ] {
+            let cfg = PipelineConfig {
+                orientation: o,
+                ..PipelineConfig::with_heading(m)
+            };
+            let r = replay(cfg, &sim.records).unwrap();
+            let last = r.pipeline.track().last().copied();
+            let c = last.map_or(f64::NAN, |l| libm::hypot(l.east_m, l.north_m));
+            println!(
+                "  {name:<18} {oname:<9} {c:.2} m ({:.2} % of {:.0} m)",
+                100.0 * c / sim.truth.distance_m,
+                sim.truth.distance_m
+            );
+        }
+    }
+}
+
+fn bench(minutes: f64, repeats: usize) {
+    let mut segs = Vec::new();
+    let w = pdr::sim::Walker::default();
+    while segs
+        .iter()
+        .map(|s: &pdr::sim::Segment| s.duration_s)
+        .sum::<f64>()
+        < minutes * 60.0
+    {
+        segs.push(pdr::sim::Segment::walk_distance(60.0, 1.8, &w));
+        segs.push(pdr::sim::Segment::walk(2.0, 1.8).turning(90.0));
+        segs.push(pdr::sim::Segment::still(5.0));
+        segs.push(pdr::sim::Segment::run(20.0, 3.0));
+    }
+    let t = Instant::now();
+    let sim = pdr::sim::Scenario::new(segs).generate();
+    let n = sim.records.len();
+    println!(
+        "simulated {n} IMU samples ({minutes} min at 100 Hz) in {:.2} s",
+        t.elapsed().as_secs_f64()
+    );
+    let configs = [
+        (
+            "default: OS orientation, PLL, tip-to-tail 2016",
+            PipelineConfig::default(),
+        ),
+        (
+            "OS, PLL, closed form 2021",
+            PipelineConfig::with_heading(HeadingMethod::ClosedForm2021),
+        ),
+        (
+            "OS, PLL, PCA",
+            PipelineConfig::with_heading(HeadingMethod::Pca),
+        ),
+        (
+            "Madgwick (MARG), PLL, tip-to-tail",
+            PipelineConfig {
+                orientation: OrientationSource::MADGWICK,
+                ..Default::default()
+            },
+        ),
+        (
+            "gravity low-pass, PLL (no heading)",
+            PipelineConfig {
+                orientation: OrientationSource::GRAVITY,
+                ..Default::default()
+            },
+        ),
+        (
+            "OS, peak detector, tip-to-tail",
+            PipelineConfig {
+                detector: StepDetectorConfig::Peak(Default::default()),
+                ..Default::default()
+            },
+        ),
+    ];
+    let imu: Vec<Record> = sim.records;
+    for (name, cfg) in configs {
+        let mut best = f64::INFINITY;
+        let mut steps = 0;
+        for _ in 0..repeats.max(1) {
+            let t = Instant::now();
+            let r = replay(cfg.clone(), &imu).unwrap();
+            best = best.min(t.elapsed().as_secs_f64());
+            steps = r.pipeline.track().len();
+        }
+        println!(
+            "{:>7.2} M samples/s  {name}  ({steps} steps)",
+            n as f64 / best / 1e6
+        );
+    }
+}
