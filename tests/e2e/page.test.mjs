@@ -1,0 +1,141 @@
+// End-to-end tests of the first page in a real headless Chromium, against `pdr serve`.
+// Run by `./dev test` (which starts the server and sets the variables below).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdirSync } from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
+const URL_HTTPS = process.env.PDR_E2E_HTTPS_URL ?? 'https://127.0.0.1:8443/';
+const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
+const DIST = process.env.PDR_DIST ?? path.join(here, '../../dist');
+const ARTIFACTS = path.join(here, 'artifacts');
+mkdirSync(ARTIFACTS, { recursive: true });
+
+let browser;
+before(async () => {
+  // Playwright gives each launch a fresh temporary profile (user data dir).
+  browser = await chromium.launch({
+    executablePath: '/usr/bin/chromium',
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync'],
+  });
+});
+after(async () => { await browser?.close(); });
+
+/** Opens the page, collecting console errors, page errors, requests and failed responses. */
+async function open(url, contextOptions = {}) {
+  const context = await browser.newContext(contextOptions);
+  const page = await context.newPage();
+  const errors = [];
+  const requests = [];
+  const failures = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('request', (r) => requests.push(r.url()));
+  page.on('response', (r) => { if (r.status() >= 400) failures.push(`${r.status()} ${r.url()}`); });
+  await page.goto(url);
+  await page.waitForFunction(() => ['ready', 'error'].includes(document.documentElement.dataset.state), null, { timeout: 30_000 });
+  const state = await page.evaluate(() => document.documentElement.dataset.state);
+  const message = await page.evaluate(() => document.getElementById('error')?.textContent ?? '');
+  assert.equal(state, 'ready', `page did not become ready: ${message}`);
+  return { context, page, errors, requests, failures };
+}
+
+/** Pixel statistics of the track canvas. */
+async function canvasStats(page) {
+  return page.evaluate(() => {
+    const c = document.getElementById('track');
+    const ctx = c.getContext('2d');
+    const { data } = ctx.getImageData(0, 0, c.width, c.height);
+    const bg = [data[0], data[1], data[2]];
+    let differing = 0;
+    let blue = 0;
+    for (let i = 0; i < data.length; i += 4) {
+      const [r, g, b] = [data[i], data[i + 1], data[i + 2]];
+      if (Math.abs(r - bg[0]) + Math.abs(g - bg[1]) + Math.abs(b - bg[2]) > 30) differing++;
+      if (b > 150 && b > r + 60 && b > g + 20) blue++; // the track's blue, light or dark scheme
+    }
+    const rect = c.getBoundingClientRect();
+    return { width: c.width, height: c.height, cssWidth: rect.width, cssHeight: rect.height, differing, blue, total: data.length / 4 };
+  });
+}
+
+test('page loads without errors, WASM initialises and the track is drawn', async () => {
+  const { context, page, errors } = await open(URL_HTTP, { viewport: { width: 1100, height: 900 } });
+  const s = await canvasStats(page);
+  assert.ok(s.differing > 0.01 * s.total, `canvas looks blank: ${s.differing} of ${s.total} pixels differ from the background`);
+  assert.ok(s.blue > 500, `too few track-coloured pixels: ${s.blue}`);
+  const shot = path.join(ARTIFACTS, 'desktop.png');
+  await page.screenshot({ path: shot, fullPage: true });
+  console.log(`screenshot: ${shot}`);
+  const ready = await page.evaluate(() => window.__pdr.ready_ms);
+  console.log(`load to first drawn track: ${ready.toFixed(0)} ms`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the step count shown matches the engine run natively on the same demo walk', async () => {
+  const native = JSON.parse(execFileSync(BIN, ['demo', '--json'], { encoding: 'utf8' }));
+  const { context, page } = await open(URL_HTTP);
+  const shown = Number(await page.textContent('#steps'));
+  const fromWasm = await page.evaluate(() => window.__pdr);
+  assert.equal(shown, native.steps);
+  assert.equal(fromWasm.steps, native.steps);
+  assert.equal(fromWasm.distance_m, native.distance_m, 'wasm and native distances differ');
+  assert.equal(await page.textContent('#distance'), native.distance_m.toFixed(1));
+  await context.close();
+});
+
+test('on a phone-sized screen the canvas fills the width and is sharp at the device pixel ratio', async () => {
+  const { context, page } = await open(URL_HTTP, { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true });
+  const s = await canvasStats(page);
+  assert.equal(s.width, Math.round(s.cssWidth * 3));
+  assert.equal(s.height, Math.round(s.cssHeight * 3));
+  const bodyWidth = await page.evaluate(() => document.documentElement.clientWidth);
+  assert.ok(s.cssWidth > 0.8 * bodyWidth, `canvas ${s.cssWidth}px of ${bodyWidth}px`);
+  const noOverflow = await page.evaluate(() => document.documentElement.scrollWidth <= document.documentElement.clientWidth);
+  assert.ok(noOverflow, 'the page scrolls sideways on a phone');
+  const shot = path.join(ARTIFACTS, 'phone.png');
+  await page.screenshot({ path: shot, fullPage: true });
+  console.log(`screenshot: ${shot}`);
+  await context.close();
+});
+
+test('dark scheme draws on a dark background', async () => {
+  const { context, page } = await open(URL_HTTP, { colorScheme: 'dark', viewport: { width: 800, height: 800 } });
+  const bg = await page.evaluate(() => {
+    const d = document.getElementById('track').getContext('2d').getImageData(2, 2, 1, 1).data;
+    return d[0] + d[1] + d[2];
+  });
+  assert.ok(bg < 150, `background is not dark: ${bg}`);
+  const s = await canvasStats(page);
+  assert.ok(s.blue > 500);
+  await page.screenshot({ path: path.join(ARTIFACTS, 'dark.png') });
+  await context.close();
+});
+
+test('HTTPS with the self-signed certificate serves the same working page', async () => {
+  const { context, page, errors } = await open(URL_HTTPS, { ignoreHTTPSErrors: true });
+  assert.ok(await page.evaluate(() => window.isSecureContext));
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('static deployment: dist/ holds every file the page loads', async () => {
+  const { context, requests, failures } = await open(URL_HTTP);
+  const origin = new URL(URL_HTTP).origin;
+  const local = requests.filter((u) => u.startsWith(origin)).map((u) => new URL(u).pathname);
+  assert.ok(local.some((p) => p.endsWith('.wasm')), 'the page did not load the wasm module');
+  for (const p of local) {
+    const file = path.join(DIST, p === '/' ? 'index.html' : decodeURIComponent(p));
+    assert.ok(existsSync(file), `dist/ lacks ${p}`);
+  }
+  assert.deepEqual(failures, []);
+  assert.deepEqual(requests.filter((u) => !u.startsWith(origin) && !u.startsWith('data:')), [], 'the page fetches from another origin');
+  await context.close();
+});
