@@ -25,7 +25,12 @@ pub struct ServeOpts {
 
 /// MIME type for a file name.
 pub fn mime(path: &Path) -> &'static str {
-    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
         Some("html") | Some("htm") => "text/html; charset=utf-8",
         Some("js") | Some("mjs") => "text/javascript; charset=utf-8",
         Some("css") => "text/css; charset=utf-8",
@@ -43,7 +48,9 @@ pub fn mime(path: &Path) -> &'static str {
 /// Maps a request URL to a file below `root`, refusing anything that would leave it.
 pub fn resolve(root: &Path, url: &str) -> Option<PathBuf> {
     let path = url.split(['?', '#']).next().unwrap_or("/");
-    let decoded = percent_encoding::percent_decode_str(path).decode_utf8().ok()?;
+    let decoded = percent_encoding::percent_decode_str(path)
+        .decode_utf8()
+        .ok()?;
     let mut out = root.to_path_buf();
     for comp in Path::new(decoded.trim_start_matches('/')).components() {
         match comp {
@@ -68,7 +75,12 @@ fn default_cert_dir() -> PathBuf {
 
 fn lan_ips() -> Vec<IpAddr> {
     let mut ips: Vec<IpAddr> = local_ip_address::list_afinet_netifas()
-        .map(|l| l.into_iter().map(|(_, ip)| ip).filter(|ip| ip.is_ipv4() && !ip.is_loopback()).collect())
+        .map(|l| {
+            l.into_iter()
+                .map(|(_, ip)| ip)
+                .filter(|ip| ip.is_ipv4() && !ip.is_loopback())
+                .collect()
+        })
         .unwrap_or_default();
     ips.sort();
     ips.dedup();
@@ -77,15 +89,27 @@ fn lan_ips() -> Vec<IpAddr> {
 
 /// Loads the certificate from `dir`, or makes a new one when missing or when its names differ.
 fn certificate(dir: &Path, names: &[String]) -> Result<(Vec<u8>, Vec<u8>), String> {
-    let (cert_p, key_p, names_p) = (dir.join("cert.pem"), dir.join("key.pem"), dir.join("names.txt"));
+    let (cert_p, key_p, names_p) = (
+        dir.join("cert.pem"),
+        dir.join("key.pem"),
+        dir.join("names.txt"),
+    );
     let wanted = names.join("\n");
-    if let (Ok(c), Ok(k), Ok(n)) = (std::fs::read(&cert_p), std::fs::read(&key_p), std::fs::read_to_string(&names_p)) {
+    if let (Ok(c), Ok(k), Ok(n)) = (
+        std::fs::read(&cert_p),
+        std::fs::read(&key_p),
+        std::fs::read_to_string(&names_p),
+    ) {
         if n == wanted {
             return Ok((c, k));
         }
     }
-    let certified = rcgen::generate_simple_self_signed(names.to_vec()).map_err(|e| format!("cannot make a certificate: {e}"))?;
-    let (c, k) = (certified.cert.pem().into_bytes(), certified.signing_key.serialize_pem().into_bytes());
+    let certified = rcgen::generate_simple_self_signed(names.to_vec())
+        .map_err(|e| format!("cannot make a certificate: {e}"))?;
+    let (c, k) = (
+        certified.cert.pem().into_bytes(),
+        certified.signing_key.serialize_pem().into_bytes(),
+    );
     std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     std::fs::write(&cert_p, &c).map_err(|e| format!("{}: {e}", cert_p.display()))?;
     std::fs::write(&key_p, &k).map_err(|e| format!("{}: {e}", key_p.display()))?;
@@ -98,9 +122,15 @@ fn handle(root: &Path, req: tiny_http::Request) {
     let found = resolve(root, req.url()).and_then(|p| std::fs::read(&p).ok().map(|body| (p, body)));
     let result = match found {
         Some((path, body)) => {
-            let ct = tiny_http::Header::from_bytes("Content-Type", mime(&path)).expect("static header");
-            let cc = tiny_http::Header::from_bytes("Cache-Control", "no-cache").expect("static header");
-            req.respond(tiny_http::Response::from_data(body).with_header(ct).with_header(cc))
+            let ct =
+                tiny_http::Header::from_bytes("Content-Type", mime(&path)).expect("static header");
+            let cc =
+                tiny_http::Header::from_bytes("Cache-Control", "no-cache").expect("static header");
+            req.respond(
+                tiny_http::Response::from_data(body)
+                    .with_header(ct)
+                    .with_header(cc),
+            )
         }
         None => req.respond(tiny_http::Response::from_string("not found").with_status_code(404)),
     };
@@ -120,7 +150,10 @@ fn spawn(server: tiny_http::Server, root: Arc<PathBuf>) -> std::thread::JoinHand
 /// Serves `opts.root` until the process is stopped.
 pub fn serve(opts: ServeOpts) -> Result<(), String> {
     if !opts.root.join("index.html").is_file() {
-        return Err(format!("{} has no index.html: build the site first (./dev build)", opts.root.display()));
+        return Err(format!(
+            "{} has no index.html: build the site first (./dev build)",
+            opts.root.display()
+        ));
     }
     let root = Arc::new(opts.root.clone());
     let ips = lan_ips();
@@ -128,11 +161,24 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
     names.extend(ips.iter().map(|ip| ip.to_string()));
     let cert_dir = opts.cert_dir.clone().unwrap_or_else(default_cert_dir);
     let (certificate, private_key) = certificate(&cert_dir, &names)?;
-    let http = tiny_http::Server::http(("127.0.0.1", opts.http_port)).map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", opts.http_port))?;
-    let https = tiny_http::Server::https(("0.0.0.0", opts.https_port), tiny_http::SslConfig { certificate, private_key })
-        .map_err(|e| format!("cannot listen on 0.0.0.0:{}: {e}", opts.https_port))?;
-    let http_port = http.server_addr().to_ip().map_or(opts.http_port, |a| a.port());
-    let https_port = https.server_addr().to_ip().map_or(opts.https_port, |a| a.port());
+    let http = tiny_http::Server::http(("127.0.0.1", opts.http_port))
+        .map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", opts.http_port))?;
+    let https = tiny_http::Server::https(
+        ("0.0.0.0", opts.https_port),
+        tiny_http::SslConfig {
+            certificate,
+            private_key,
+        },
+    )
+    .map_err(|e| format!("cannot listen on 0.0.0.0:{}: {e}", opts.https_port))?;
+    let http_port = http
+        .server_addr()
+        .to_ip()
+        .map_or(opts.http_port, |a| a.port());
+    let https_port = https
+        .server_addr()
+        .to_ip()
+        .map_or(opts.https_port, |a| a.port());
     println!("Serving {}", opts.root.display());
     println!("  this machine:  http://localhost:{http_port}/");
     println!("                 https://localhost:{https_port}/");
@@ -145,7 +191,12 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
             println!("  phone (LAN):   {url}");
             println!("The certificate is self-signed: on the phone, accept the warning once.");
             if let Ok(code) = qrcode::QrCode::new(url.as_bytes()) {
-                println!("{}", code.render::<qrcode::render::unicode::Dense1x2>().quiet_zone(true).build());
+                println!(
+                    "{}",
+                    code.render::<qrcode::render::unicode::Dense1x2>()
+                        .quiet_zone(true)
+                        .build()
+                );
             }
         }
         None => println!("  no LAN address found: a phone cannot reach this machine"),
@@ -153,7 +204,8 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
     println!("Certificate: {}   Stop with Ctrl-C.", cert_dir.display());
     let a = spawn(http, root.clone());
     let b = spawn(https, root);
-    a.join().map_err(|_| "the HTTP server stopped".to_string())?;
+    a.join()
+        .map_err(|_| "the HTTP server stopped".to_string())?;
     b.join().map_err(|_| "the HTTPS server stopped".to_string())
 }
 
@@ -171,10 +223,19 @@ mod tests {
     #[test]
     fn paths_stay_inside_the_root() {
         let root = Path::new("/srv/site");
-        assert_eq!(resolve(root, "/www/app.js?v=1"), Some(PathBuf::from("/srv/site/www/app.js")));
-        assert_eq!(resolve(root, "/"), Some(PathBuf::from("/srv/site/index.html")));
+        assert_eq!(
+            resolve(root, "/www/app.js?v=1"),
+            Some(PathBuf::from("/srv/site/www/app.js"))
+        );
+        assert_eq!(
+            resolve(root, "/"),
+            Some(PathBuf::from("/srv/site/index.html"))
+        );
         assert_eq!(resolve(root, "/../etc/passwd"), None);
         assert_eq!(resolve(root, "/www/%2e%2e/%2e%2e/etc/passwd"), None);
-        assert_eq!(resolve(root, "/a%20b.txt"), Some(PathBuf::from("/srv/site/a b.txt")));
+        assert_eq!(
+            resolve(root, "/a%20b.txt"),
+            Some(PathBuf::from("/srv/site/a b.txt"))
+        );
     }
 }
