@@ -137,44 +137,34 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
         return None;
     }
     let w = TAU / period;
-    // Trapezoidal rule: ∫ ≈ Σ ½Δτᵢ (Pᵢ₋₁ + Pᵢ) with P the 12 products channel × {cos ωτ, sin ωτ,
-    // cos 2ωτ, sin 2ωτ}. Each point's products are formed once and carried to the next interval.
+    // Trapezoidal rule written as a weighted sum: ∫ f ≈ Σ wᵢ fᵢ with wᵢ = (τᵢ₊₁ − τᵢ₋₁)/2 (half
+    // intervals at the ends), over the interpolated end points and the samples between them. The
+    // phasor (cos ωτ, sin ωτ) is rotated from point to point by the small angle ω·Δτ.
+    let p0 = NavSample::lerp(&buf[start - 1], &buf[start], t0);
+    let p1 = NavSample::lerp(&buf[end - 1], &buf[end], t1);
     let mut acc = [0.0f64; 12];
-    let mut prev_p = [0.0f64; 12];
-    let mut prev_tau = 0.0;
-    // The phasor (cos ωτ, sin ωτ) is rotated from sample to sample by the small angle ω·Δτ.
     let mut phasor = (1.0f64, 0.0f64);
-    let mut first = true;
-    let mut add = |s: &NavSample| {
-        let tau = s.t - t0;
-        if !first {
-            let (ds, dc) = crate::engine::math::sincos_small(w * (tau - prev_tau));
-            phasor = (phasor.0 * dc - phasor.1 * ds, phasor.1 * dc + phasor.0 * ds);
-        }
+    let mut prev_t = t0;
+    let mut cur = p0;
+    let mut inner = buf.range(start..end).copied().chain(std::iter::once(p1));
+    loop {
+        let next = inner.next();
+        let next_t = next.map_or(cur.t, |n| n.t);
+        let weight = 0.5 * (next_t - prev_t);
         let (c1, s1) = phasor;
         let trig = [c1, s1, c1 * c1 - s1 * s1, 2.0 * s1 * c1];
-        let v = [s.e, s.n, s.up];
-        let mut p = [0.0f64; 12];
+        let v = [cur.e * weight, cur.n * weight, cur.up * weight];
         for k in 0..3 {
             for j in 0..4 {
-                p[4 * k + j] = v[k] * trig[j];
+                acc[4 * k + j] += v[k] * trig[j];
             }
         }
-        if !first {
-            let half = 0.5 * (tau - prev_tau);
-            for i in 0..12 {
-                acc[i] += half * (prev_p[i] + p[i]);
-            }
-        }
-        first = false;
-        prev_p = p;
-        prev_tau = tau;
-    };
-    add(&NavSample::lerp(&buf[start - 1], &buf[start], t0));
-    for s in buf.range(start..end) {
-        add(s);
+        let Some(n) = next else { break };
+        let (ds, dc) = crate::engine::math::sincos_small(w * (n.t - cur.t));
+        phasor = (phasor.0 * dc - phasor.1 * ds, phasor.1 * dc + phasor.0 * ds);
+        prev_t = cur.t;
+        cur = n;
     }
-    add(&NavSample::lerp(&buf[end - 1], &buf[end], t1));
     let mut h = [Harmonic::default(); 2];
     for k in 0..3 {
         h[0].alpha[k] = acc[4 * k];
