@@ -12,7 +12,11 @@ fn main() {
     }
     let sim = Scenario::new(segs).generate();
     let mut r = replay(PipelineConfig::default(), &sim.records).unwrap();
-    for _ in 0..9 {
+    for _ in 0..std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(9)
+    {
         r = replay(PipelineConfig::default(), &sim.records).unwrap();
     }
     println!(
