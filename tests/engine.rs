@@ -319,4 +319,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0x25db_1c9c_8e27_15be;
+const DEMO_DIGEST: u64 = 0xeec5_d99d_e785_9b64;

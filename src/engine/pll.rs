@@ -276,7 +276,7 @@ impl Pll {
         if wrapped {
             self.phasor = libm::sincos(self.phase);
         } else {
-            let (ds, dc) = crate::engine::math::sincos_small(self.phase - prev);
+            let (ds, dc) = crate::engine::math::sincos_increment(self.phase - prev);
             let (s0, c0) = self.phasor;
             self.phasor = (s0 * dc + c0 * ds, c0 * dc - s0 * ds);
         }

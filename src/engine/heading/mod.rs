@@ -142,35 +142,35 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
     // phasor (cos ωτ, sin ωτ) is rotated from point to point by the small angle ω·Δτ.
     let p0 = NavSample::lerp(&buf[start - 1], &buf[start], t0);
     let p1 = NavSample::lerp(&buf[end - 1], &buf[end], t1);
-    let mut acc = [0.0f64; 12];
-    let mut phasor = (1.0f64, 0.0f64);
-    let mut prev_t = t0;
-    let mut cur = p0;
-    let mut inner = buf.range(start..end).copied().chain(std::iter::once(p1));
-    loop {
-        let next = inner.next();
-        let next_t = next.map_or(cur.t, |n| n.t);
-        let weight = 0.5 * (next_t - prev_t);
-        let (c1, s1) = phasor;
+    let mut acc = [[0.0f64; 4]; 3];
+    let mut add = |p: &NavSample, weight: f64, (c1, s1): (f64, f64)| {
         let trig = [c1, s1, c1 * c1 - s1 * s1, 2.0 * s1 * c1];
-        let v = [cur.e * weight, cur.n * weight, cur.up * weight];
-        for k in 0..3 {
+        for (a, v) in acc.iter_mut().zip([p.e, p.n, p.up]) {
+            let vw = v * weight;
             for j in 0..4 {
-                acc[4 * k + j] += v[k] * trig[j];
+                a[j] += vw * trig[j];
             }
         }
-        let Some(n) = next else { break };
-        let (ds, dc) = crate::engine::math::sincos_small(w * (n.t - cur.t));
-        phasor = (phasor.0 * dc - phasor.1 * ds, phasor.1 * dc + phasor.0 * ds);
+    };
+    let mut phasor = (1.0f64, 0.0f64);
+    let rotate = |(c, s): (f64, f64), dt: f64| {
+        let (ds, dc) = crate::engine::math::sincos_increment(w * dt);
+        (c * dc - s * ds, s * dc + c * ds)
+    };
+    let (mut prev_t, mut cur) = (t0, p0);
+    for n in buf.range(start..end).chain(std::iter::once(&p1)) {
+        add(&cur, 0.5 * (n.t - prev_t), phasor);
+        phasor = rotate(phasor, n.t - cur.t);
         prev_t = cur.t;
-        cur = n;
+        cur = *n;
     }
+    add(&cur, 0.5 * (cur.t - prev_t), phasor);
     let mut h = [Harmonic::default(); 2];
     for k in 0..3 {
-        h[0].alpha[k] = acc[4 * k];
-        h[0].beta[k] = acc[4 * k + 1];
-        h[1].alpha[k] = acc[4 * k + 2];
-        h[1].beta[k] = acc[4 * k + 3];
+        h[0].alpha[k] = acc[k][0];
+        h[0].beta[k] = acc[k][1];
+        h[1].alpha[k] = acc[k][2];
+        h[1].beta[k] = acc[k][3];
     }
     let scale = 2.0 / period;
     for hk in &mut h {
