@@ -165,21 +165,18 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
         cur = *n;
     }
     add(&cur, 0.5 * (cur.t - prev_t), phasor);
-    let mut h = [Harmonic::default(); 2];
-    for k in 0..3 {
-        h[0].alpha[k] = acc[k][0];
-        h[0].beta[k] = acc[k][1];
-        h[1].alpha[k] = acc[k][2];
-        h[1].beta[k] = acc[k][3];
-    }
     let scale = 2.0 / period;
-    for hk in &mut h {
-        for k in 0..3 {
-            hk.alpha[k] *= scale;
-            hk.beta[k] *= scale;
-        }
-    }
-    Some(h)
+    let coef = |j: usize| acc.map(|a| a[j] * scale);
+    Some([
+        Harmonic {
+            alpha: coef(0),
+            beta: coef(1),
+        },
+        Harmonic {
+            alpha: coef(2),
+            beta: coef(3),
+        },
+    ])
 }
 
 /// Returns +1 or −1: the sign that makes the horizontal unit vector `u` = (east, north) point
