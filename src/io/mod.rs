@@ -1,6 +1,8 @@
-//! Files: the project's own log format ([`pdrlog`]) and track exports ([`export`]).
+//! Files: the project's own log format ([`pdrlog`]), the formats other apps record ([`import`])
+//! and track exports ([`export`]).
 
 pub mod export;
+pub mod import;
 pub mod pdrlog;
 
 use std::fmt;

@@ -1,0 +1,185 @@
+//! Where the files of a recording come from: a folder, a zip archive, or memory (uploads).
+
+use std::io::{self, BufRead, BufReader, Cursor, Read, Seek};
+use std::path::{Path, PathBuf};
+
+/// How many bytes [`FileSet::head`] reads to recognise a format.
+pub const HEAD_BYTES: usize = 4096;
+
+/// A set of named files. Names are relative, `/`-separated and sorted.
+pub trait FileSet {
+    /// Every file name.
+    fn names(&self) -> &[String];
+    /// Opens one file for streaming.
+    fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>>;
+    /// The name to show in messages (the full path, or `archive.zip/inner/name`).
+    fn label(&self, name: &str) -> String;
+    /// The first [`HEAD_BYTES`] bytes of a file, as text (invalid UTF-8 replaced).
+    fn head(&mut self, name: &str) -> io::Result<String> {
+        let mut buf = Vec::with_capacity(HEAD_BYTES);
+        self.open(name)?
+            .take(HEAD_BYTES as u64)
+            .read_to_end(&mut buf)?;
+        Ok(String::from_utf8_lossy(&buf).into_owned())
+    }
+}
+
+/// The folder part of a name, with its trailing `/` (empty at the top).
+pub fn parent(name: &str) -> &str {
+    match name.rfind('/') {
+        Some(i) => &name[..=i],
+        None => "",
+    }
+}
+
+/// The file part of a name.
+pub fn base(name: &str) -> &str {
+    &name[parent(name).len()..]
+}
+
+/// Files on disk: a folder walked recursively, or a single file.
+pub struct DirSet {
+    root: PathBuf,
+    single: bool,
+    names: Vec<String>,
+}
+
+impl DirSet {
+    /// A folder (every file under it) or a single file.
+    pub fn new(path: &Path) -> io::Result<Self> {
+        let meta = std::fs::metadata(path)?;
+        if meta.is_file() {
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            return Ok(DirSet {
+                root: path.to_path_buf(),
+                single: true,
+                names: vec![name],
+            });
+        }
+        let mut names = Vec::new();
+        let mut stack = vec![PathBuf::new()];
+        while let Some(rel) = stack.pop() {
+            for entry in std::fs::read_dir(path.join(&rel))? {
+                let entry = entry?;
+                let r = rel.join(entry.file_name());
+                if entry.file_type()?.is_dir() {
+                    stack.push(r);
+                } else {
+                    names.push(r.to_string_lossy().replace('\\', "/"));
+                }
+            }
+        }
+        names.sort();
+        Ok(DirSet {
+            root: path.to_path_buf(),
+            single: false,
+            names,
+        })
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        if self.single {
+            self.root.clone()
+        } else {
+            self.root.join(name)
+        }
+    }
+}
+
+impl FileSet for DirSet {
+    fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {
+        let f = std::fs::File::open(self.path(name))?;
+        Ok(Box::new(BufReader::with_capacity(1 << 16, f)))
+    }
+
+    fn label(&self, name: &str) -> String {
+        self.path(name).display().to_string()
+    }
+}
+
+/// The files of a zip archive, decompressed as they are read.
+pub struct ZipSet<R: Read + Seek> {
+    label: String,
+    archive: zip::ZipArchive<R>,
+    names: Vec<String>,
+}
+
+impl<R: Read + Seek> ZipSet<R> {
+    /// Opens an archive; `label` names it in messages.
+    pub fn new(reader: R, label: &str) -> io::Result<Self> {
+        let archive = zip::ZipArchive::new(reader).map_err(io::Error::other)?;
+        let mut names: Vec<String> = archive
+            .file_names()
+            .filter(|n| !n.ends_with('/') && !n.starts_with("__MACOSX/"))
+            .map(str::to_string)
+            .collect();
+        names.sort();
+        Ok(ZipSet {
+            label: label.to_string(),
+            archive,
+            names,
+        })
+    }
+}
+
+impl<R: Read + Seek> FileSet for ZipSet<R> {
+    fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {
+        let f = self.archive.by_name(name).map_err(io::Error::other)?;
+        Ok(Box::new(BufReader::with_capacity(1 << 16, f)))
+    }
+
+    fn label(&self, name: &str) -> String {
+        format!("{}/{name}", self.label)
+    }
+}
+
+/// Files held in memory (a browser upload).
+#[derive(Default)]
+pub struct MemSet {
+    files: Vec<(String, Vec<u8>)>,
+    names: Vec<String>,
+}
+
+impl MemSet {
+    /// A set from `(name, bytes)` pairs.
+    pub fn new(mut files: Vec<(String, Vec<u8>)>) -> Self {
+        files.sort_by(|a, b| a.0.cmp(&b.0));
+        let names = files.iter().map(|f| f.0.clone()).collect();
+        MemSet { files, names }
+    }
+}
+
+impl FileSet for MemSet {
+    fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {
+        let (_, bytes) = self
+            .files
+            .iter()
+            .find(|f| f.0 == name)
+            .ok_or_else(|| io::Error::new(io::ErrorKind::NotFound, name.to_string()))?;
+        Ok(Box::new(Cursor::new(bytes.as_slice())))
+    }
+
+    fn label(&self, name: &str) -> String {
+        name.to_string()
+    }
+}
+
+/// Whether bytes start like a zip archive.
+pub fn is_zip(head: &[u8]) -> bool {
+    head.starts_with(b"PK\x03\x04") || head.starts_with(b"PK\x05\x06")
+}

@@ -1,0 +1,429 @@
+//! Import: the recordings people make, read into the engine's own records.
+//!
+//! One layer for the CLI, the upload page (in wasm) and the tests. The input is a [`FileSet`]: a
+//! folder, a zip archive, or files held in memory. [`import_all`] finds every recognisable log in
+//! it (a folder of per-sensor CSVs is one log; a file of mixed records is one log), detects each
+//! format from file names and first lines, and returns one [`Log`] per recording.
+//!
+//! # One convention after import
+//! - Time: seconds on one clock per log, with no offset (Unix ms and ns become s; a time in
+//!   seconds stays as it is).
+//! - Units: m/s², rad/s, µT, WGS84 degrees, metres.
+//! - Acceleration: specific force including gravity, Android sign (face up at rest: z = +9.81),
+//!   device frame x right, y top of the screen, z out of the screen. iOS sources, whose
+//!   acceleration has the opposite sign, are converted by [`Platform::to_android`].
+//! - Orientation: the unit quaternion taking device vectors to East-North-Up.
+//! - Sensors on separate clocks and rates are merged in time order by [`Streams::into_records`]:
+//!   one IMU record per accelerometer sample, carrying the latest gyroscope, magnetometer and
+//!   orientation samples not older than [`HOLD_S`]. Nothing is resampled.
+//!
+//! # Errors
+//! A log that cannot be read at all gives a [`ParseError`] naming the file, line and column. A bad
+//! line inside a readable log is skipped and kept in [`Log::warnings`]; every good line is kept.
+
+pub mod datasets;
+pub mod fileset;
+
+pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
+
+use super::ParseError;
+use crate::engine::pipeline::Record;
+use crate::engine::types::{GnssFix, ImuSample};
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// Standard gravity, m/s² (for sources that give acceleration in g).
+pub const G0: f64 = 9.80665;
+
+/// Longest a gyroscope, magnetometer or orientation sample is carried forward to later
+/// accelerometer samples, s. Longer than one period of the slowest stream we read (a 10 Hz
+/// orientation), shorter than a step.
+pub const HOLD_S: f64 = 0.2;
+
+/// Most warnings kept per log; further bad lines are only counted.
+pub const MAX_WARNINGS: usize = 100;
+
+/// The formats we read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Format {
+    /// The project's own `pdr-log`.
+    PdrLog,
+    /// Sensor Logger (Android/iOS), a folder or zip of per-sensor CSVs.
+    SensorLogger,
+    /// Sensor Logger's JSON export.
+    SensorLoggerJson,
+    /// phyphox CSV export.
+    Phyphox,
+    /// Google GnssLogger `.txt`.
+    GnssLogger,
+    /// GetSensorData (IPIN competitions) `.txt`.
+    GetSensorData,
+    /// Oxford Step Counter data set trace folder.
+    OxfordSteps,
+    /// Microsoft Indoor Location Competition 2.0 trace.
+    MsIndoor,
+    /// x-io Gait-Tracking foot-mounted CSV.
+    XioFoot,
+}
+
+impl Format {
+    /// The name used in reports (`pdr eval`), stable.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Format::PdrLog => "pdr-log",
+            Format::SensorLogger => "sensor-logger",
+            Format::SensorLoggerJson => "sensor-logger-json",
+            Format::Phyphox => "phyphox",
+            Format::GnssLogger => "gnss-logger",
+            Format::GetSensorData => "get-sensor-data",
+            Format::OxfordSteps => "oxford-steps",
+            Format::MsIndoor => "ms-indoor",
+            Format::XioFoot => "xio-foot",
+        }
+    }
+}
+
+/// The phone platform a recording came from, when it matters for axis signs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Platform {
+    /// Android: specific force, face up at rest z = +9.81.
+    Android,
+    /// iOS (Core Motion): acceleration in the opposite sign, face up at rest z = −1 g.
+    Ios,
+}
+
+impl Platform {
+    /// Converts an acceleration (or gravity) vector of this platform to the Android sign.
+    pub fn to_android(self, v: Vector3<f64>) -> Vector3<f64> {
+        match self {
+            Platform::Android => v,
+            Platform::Ios => -v,
+        }
+    }
+
+    /// Guesses the platform from acceleration including gravity, when no metadata says: over a
+    /// recording the mean acceleration points against gravity on Android (the phone feels the
+    /// floor pushing up) and along it on iOS. The mean vector is compared with the mean gravity
+    /// direction we can only know from the sign convention itself, so the rule uses the axis with
+    /// the largest mean magnitude: a phone rests mostly face up/down (z), upright (y) or on its
+    /// side (x), and at rest upright or face up Android reads +9.81 on y or z. Returns `None` when
+    /// there is no sample. Document of the rule: README "Import".
+    pub fn guess(mean_accel: Vector3<f64>) -> Option<Platform> {
+        let (i, _) = mean_accel.iamax_full();
+        let v = mean_accel[i];
+        if !v.is_finite() || v == 0.0 {
+            return None;
+        }
+        // Face up (z) or upright (y) is how phones are held and carried; face down or upside
+        // down happen too, but a pocket or a hand makes the common pose the positive one.
+        Some(if v > 0.0 {
+            Platform::Android
+        } else {
+            Platform::Ios
+        })
+    }
+}
+
+/// A ground-truth waypoint: where the walker was at a time, in a local metric frame (metres,
+/// x to the right of y, as east is to north; the frame need not point north).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Waypoint {
+    /// Time, s, on the log's clock.
+    pub t: f64,
+    /// x, m.
+    pub x_m: f64,
+    /// y, m.
+    pub y_m: f64,
+}
+
+/// Ground truth a recording carries.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct Truth {
+    /// The true number of steps.
+    pub steps: Option<u64>,
+    /// Waypoints (or landmarks) in time order.
+    pub waypoints: Vec<Waypoint>,
+    /// The walk ends where it started.
+    pub loop_closure: bool,
+}
+
+/// One recording, read.
+#[derive(Debug, Clone)]
+pub struct Log {
+    /// Where it came from (path, or path inside a zip), for reports.
+    pub source: String,
+    /// Its format.
+    pub format: Format,
+    /// The platform, when known or detected.
+    pub platform: Option<Platform>,
+    /// The engine's records, in time order.
+    pub records: Vec<Record>,
+    /// Ground truth carried by the file.
+    pub truth: Truth,
+    /// Lines skipped, at most [`MAX_WARNINGS`] of them (see `skipped`).
+    pub warnings: Vec<ParseError>,
+    /// Number of lines skipped in total.
+    pub skipped: u64,
+}
+
+impl Log {
+    /// An empty log of a format.
+    pub fn new(source: impl Into<String>, format: Format) -> Self {
+        Log {
+            source: source.into(),
+            format,
+            platform: None,
+            records: Vec::new(),
+            truth: Truth::default(),
+            warnings: Vec::new(),
+            skipped: 0,
+        }
+    }
+
+    /// Records a skipped line.
+    pub fn warn(&mut self, e: ParseError) {
+        self.skipped += 1;
+        if self.warnings.len() < MAX_WARNINGS {
+            self.warnings.push(e);
+        }
+    }
+
+    /// Number of IMU samples.
+    pub fn imu_samples(&self) -> usize {
+        self.records
+            .iter()
+            .filter(|r| matches!(r, Record::Imu(_)))
+            .count()
+    }
+
+    /// First and last record time, s.
+    pub fn time_span(&self) -> Option<(f64, f64)> {
+        let t = |r: &Record| match r {
+            Record::Imu(s) => s.t,
+            Record::Gnss(f) => f.t,
+            Record::Gap(a, _) => *a,
+        };
+        Some((t(self.records.first()?), t(self.records.last()?)))
+    }
+}
+
+/// Per-sensor streams of one recording on the log's clock, before merging.
+#[derive(Debug, Clone, Default)]
+pub struct Streams {
+    /// Acceleration including gravity, Android sign, m/s².
+    pub accel: Vec<(f64, Vector3<f64>)>,
+    /// Angular rate, rad/s.
+    pub gyro: Vec<(f64, Vector3<f64>)>,
+    /// Magnetic field, µT.
+    pub mag: Vec<(f64, Vector3<f64>)>,
+    /// Device → ENU orientation.
+    pub orientation: Vec<(f64, UnitQuaternion<f64>)>,
+    /// GNSS fixes.
+    pub fixes: Vec<GnssFix>,
+}
+
+/// Carries the latest sample of a stream forward to later times.
+struct Hold<'a, T: Copy> {
+    items: &'a [(f64, T)],
+    next: usize,
+}
+
+impl<'a, T: Copy> Hold<'a, T> {
+    fn at(&mut self, t: f64) -> Option<T> {
+        while self.next < self.items.len() && self.items[self.next].0 <= t {
+            self.next += 1;
+        }
+        let (ti, v) = *self.items.get(self.next.checked_sub(1)?)?;
+        (t - ti <= HOLD_S).then_some(v)
+    }
+}
+
+impl Streams {
+    /// Merges the streams into records in time order: one IMU record per accelerometer sample,
+    /// with the latest gyroscope, magnetometer and orientation samples at most [`HOLD_S`] old, and
+    /// the fixes in between. Each stream is sorted by time first (stable), since some recorders
+    /// write a few samples out of order.
+    pub fn into_records(mut self) -> Vec<Record> {
+        let by_t = |a: &(f64, Vector3<f64>), b: &(f64, Vector3<f64>)| a.0.total_cmp(&b.0);
+        self.accel.sort_by(by_t);
+        self.gyro.sort_by(by_t);
+        self.mag.sort_by(by_t);
+        self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
+        self.fixes.sort_by(|a, b| a.t.total_cmp(&b.t));
+        let mut gyro = Hold {
+            items: &self.gyro,
+            next: 0,
+        };
+        let mut mag = Hold {
+            items: &self.mag,
+            next: 0,
+        };
+        let mut orientation = Hold {
+            items: &self.orientation,
+            next: 0,
+        };
+        let mut out = Vec::with_capacity(self.accel.len() + self.fixes.len());
+        let mut fixes = self.fixes.iter().peekable();
+        for &(t, a) in &self.accel {
+            while let Some(f) = fixes.next_if(|f| f.t <= t) {
+                out.push(Record::Gnss(*f));
+            }
+            out.push(Record::Imu(ImuSample {
+                t,
+                accel: a,
+                gyro: gyro.at(t),
+                mag: mag.at(t),
+                orientation: orientation.at(t),
+            }));
+        }
+        out.extend(fixes.map(|f| Record::Gnss(*f)));
+        out
+    }
+}
+
+/// Parses a number, accepting a decimal comma (`9,81`) and surrounding quotes or spaces.
+pub fn number(s: &str) -> Option<f64> {
+    let s = s.trim().trim_matches('"').trim();
+    if let Ok(v) = s.parse::<f64>() {
+        return v.is_finite().then_some(v);
+    }
+    if s.contains(',') && !s.contains('.') {
+        return number(&s.replace(',', "."));
+    }
+    None
+}
+
+/// A parse error for one field of one line.
+pub fn field_error(
+    file: &str,
+    line: u64,
+    column: usize,
+    field: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column: Some(column),
+        field: Some(field.to_string()),
+        message: message.into(),
+    }
+}
+
+/// An error about a whole file.
+pub fn file_error(file: &str, line: u64, message: impl Into<String>) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column: None,
+        field: None,
+        message: message.into(),
+    }
+}
+
+/// Reads every recognisable log in a file set. Unrecognised files are ignored; the result is
+/// empty when nothing was recognised. A log that fails to read is an `Err` in the list, and
+/// never stops the others.
+pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
+    let mut out = Vec::new();
+    let names: Vec<String> = set.names().to_vec();
+    let mut used = vec![false; names.len()];
+    // Folder formats first: each folder holding their files is one log.
+    let mut dirs: Vec<&str> = names.iter().map(|n| fileset::parent(n)).collect();
+    dirs.sort_unstable();
+    dirs.dedup();
+    for dir in dirs {
+        let in_dir = |f: &str| names.iter().any(|n| n.as_str() == format!("{dir}{f}"));
+        let read = if in_dir("accelerometer.csv") && in_dir("stepcounter.csv") {
+            Some(datasets::read_oxford(set, dir))
+        } else {
+            None
+        };
+        if let Some(r) = read {
+            for (i, n) in names.iter().enumerate() {
+                if fileset::parent(n) == dir && datasets::OXFORD_FILES.contains(&fileset::base(n)) {
+                    used[i] = true;
+                }
+            }
+            out.push(r);
+        }
+    }
+    // Then every remaining file on its own.
+    for (i, name) in names.iter().enumerate() {
+        if used[i] {
+            continue;
+        }
+        let head = match set.head(name) {
+            Ok(h) => h,
+            Err(e) => {
+                out.push(Err(file_error(&set.label(name), 0, e.to_string())));
+                continue;
+            }
+        };
+        if fileset::is_zip(head.as_bytes()) {
+            out.extend(import_zip(set, name));
+            continue;
+        }
+        let Some(format) = sniff(name, &head) else {
+            continue;
+        };
+        let label = set.label(name);
+        let r = match set.open(name) {
+            Err(e) => Err(file_error(&label, 0, e.to_string())),
+            Ok(reader) => match format {
+                Format::PdrLog => crate::io::pdrlog::read(reader, &label).map(|p| {
+                    let mut log = Log::new(&label, Format::PdrLog);
+                    log.records = p.records;
+                    for e in p.errors {
+                        log.warn(e);
+                    }
+                    log
+                }),
+                Format::MsIndoor => datasets::read_ms_indoor(reader, &label),
+                Format::XioFoot => datasets::read_xio(reader, &label),
+                _ => Err(file_error(&label, 0, "format not supported yet")),
+            },
+        };
+        out.push(r);
+    }
+    out
+}
+
+/// Reads the logs of a zip archive found inside a file set. The archive (compressed) is held in
+/// memory; its members are decompressed as they are read.
+fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>> {
+    let label = set.label(name);
+    let mut bytes = Vec::new();
+    let read = set
+        .open(name)
+        .and_then(|mut r| std::io::Read::read_to_end(&mut r, &mut bytes));
+    match read.and_then(|_| ZipSet::new(std::io::Cursor::new(bytes), &label)) {
+        Ok(mut zip) => import_all(&mut zip),
+        Err(e) => vec![Err(file_error(
+            &label,
+            0,
+            format!("unreadable zip archive: {e}"),
+        ))],
+    }
+}
+
+/// Recognises a single-file format from the file name and its first bytes.
+pub fn sniff(name: &str, head: &str) -> Option<Format> {
+    let first = head
+        .lines()
+        .next()
+        .unwrap_or("")
+        .trim_start_matches('\u{feff}');
+    if first.starts_with(crate::io::pdrlog::HEADER) {
+        return Some(Format::PdrLog);
+    }
+    if head.contains("\tTYPE_") || (first.starts_with("#\t") && head.contains("SiteID:")) {
+        return Some(Format::MsIndoor);
+    }
+    if first.starts_with("Time (s),Gyroscope X (deg/s)") {
+        return Some(Format::XioFoot);
+    }
+    let _ = name;
+    None
+}
