@@ -19,6 +19,7 @@
 
 pub mod demo;
 pub mod engine;
+pub mod eval;
 pub mod io;
 pub mod plot;
 pub mod sim;

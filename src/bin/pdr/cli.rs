@@ -150,6 +150,23 @@ enum Cmd {
         #[arg(long, default_value_t = 5)]
         repeats: usize,
     },
+    /// Run the engine on every recognisable log under the paths and score it against the truth
+    /// the logs carry (steps, waypoints, loop closure).
+    Eval {
+        /// Files, folders or zip archives.
+        #[arg(required_unless_present = "show_config")]
+        paths: Vec<PathBuf>,
+        /// Print one JSON object instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Override a configuration value, e.g. `heading.method=closed_form2021`,
+        /// `detector.kind=peak`, `motion.still_max=1.2` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        sets: Vec<String>,
+        /// Print the effective configuration as JSON and exit.
+        #[arg(long)]
+        show_config: bool,
+    },
     /// Serve the built web app: HTTP on localhost and HTTPS (self-signed) on all interfaces.
     Serve {
         /// Folder holding the built static site.
@@ -191,6 +208,12 @@ pub fn main() -> ExitCode {
             bench(minutes, repeats);
             Ok(())
         }
+        Cmd::Eval {
+            paths,
+            json,
+            sets,
+            show_config,
+        } => eval(&paths, json, &sets, show_config),
         Cmd::Serve {
             root,
             http_port,
@@ -210,6 +233,110 @@ pub fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+fn eval(paths: &[PathBuf], json: bool, sets: &[String], show_config: bool) -> Result<(), String> {
+    use pdr::eval::{evaluate, summarise, LogResult, Report};
+    use pdr::io::import::{import_all, DirSet};
+    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), sets)?;
+    if show_config {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&cfg).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    let mut logs = Vec::new();
+    for path in paths {
+        let label = path.display().to_string();
+        let mut set = match DirSet::new(path) {
+            Ok(s) => s,
+            Err(e) => {
+                logs.push(LogResult::failed(&label, "", e.to_string()));
+                continue;
+            }
+        };
+        let found = import_all(&mut set);
+        if found.is_empty() {
+            logs.push(LogResult::failed(&label, "", "no recognisable log".into()));
+        }
+        for r in found {
+            logs.push(match r {
+                Ok(log) => evaluate(&log, &cfg),
+                Err(e) => LogResult::failed(&e.file, "", e.to_string()),
+            });
+        }
+    }
+    let summary = summarise(&logs);
+    let report = Report { logs, summary };
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    print_report(&report);
+    Ok(())
+}
+
+fn print_report(report: &pdr::eval::Report) {
+    let opt = |v: Option<f64>, prec: usize| v.map_or("-".to_string(), |x| format!("{x:.prec$}"));
+    println!(
+        "{:<44} {:<15} {:>8} {:>7} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
+        "log",
+        "format",
+        "samples",
+        "dur s",
+        "steps",
+        "truth",
+        "err %",
+        "wps",
+        "p75 m",
+        "final m",
+        "loop m"
+    );
+    for l in &report.logs {
+        let mut path = l.path.clone();
+        if path.chars().count() > 44 {
+            path = format!(
+                "…{}",
+                path.chars()
+                    .rev()
+                    .take(43)
+                    .collect::<Vec<_>>()
+                    .into_iter()
+                    .rev()
+                    .collect::<String>()
+            );
+        }
+        if let Some(e) = &l.error {
+            println!("{path:<44} {:<15} error: {e}", l.format);
+            continue;
+        }
+        println!(
+            "{path:<44} {:<15} {:>8} {:>7.1} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
+            l.format,
+            l.samples,
+            l.duration_s,
+            l.steps,
+            l.truth_steps.map_or("-".into(), |t| t.to_string()),
+            opt(l.step_error_pct, 2),
+            l.waypoints,
+            opt(l.waypoint_error_m.map(|w| w.p75), 1),
+            opt(l.waypoint_error_m.map(|w| w.r#final), 1),
+            opt(l.loop_closure_m, 1),
+        );
+    }
+    let s = &report.summary;
+    println!(
+        "\n{} logs, {} failed; step MAE {} %; waypoint p75 {} m ({} % of the path walked)",
+        s.logs,
+        s.failed,
+        opt(s.step_mae_pct, 2),
+        opt(s.waypoint_p75_m, 2),
+        opt(s.waypoint_p75_pct, 1)
+    );
 }
 
 fn run(

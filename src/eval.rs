@@ -1,0 +1,433 @@
+//! The evaluation bench: a log with ground truth through the engine, scored.
+//!
+//! Used by `pdr eval`, the tests and (for uploaded logs that carry truth) the page.
+//!
+//! # Metrics
+//! - **Steps**: `step_error_pct` = 100·|steps − truth| / truth.
+//! - **Waypoints**, as inertial-odometry papers report an aligned trajectory error: the estimated
+//!   position at the first waypoint's time is pinned on the first waypoint; the estimated track
+//!   is rotated about that point by the least-squares rotation onto all the waypoints (rotation
+//!   only, no scale); then the distance to each later waypoint at its time is the error. The
+//!   percentage divides it by the true path length walked so far (the polyline through the
+//!   waypoints) and counts only waypoints at least [`MIN_PATH_FOR_PCT_M`] along.
+//! - **Loop closure**: the distance between the last and the first position of the track.
+//! - Percentiles interpolate linearly between order statistics (the common "linear" definition,
+//!   as numpy's default).
+//!
+//! The estimated position between two steps is interpolated linearly in time; before the first
+//! step it is the origin, after the last step the last position.
+
+use crate::engine::pipeline::{replay, PipelineConfig, StepRecord};
+use crate::io::import::{Log, Waypoint};
+use serde::Serialize;
+
+/// Waypoints nearer the start than this along the true path are left out of the percentages, m.
+pub const MIN_PATH_FOR_PCT_M: f64 = 20.0;
+
+/// Summary of waypoint errors in metres.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct MetresSummary {
+    /// Mean, m.
+    pub mean: f64,
+    /// 75th percentile, m.
+    pub p75: f64,
+    /// Largest, m.
+    pub max: f64,
+    /// At the last waypoint, m.
+    pub r#final: f64,
+}
+
+/// Summary of waypoint errors as a percentage of the path walked so far.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct PctSummary {
+    /// Mean, %.
+    pub mean: f64,
+    /// 75th percentile, %.
+    pub p75: f64,
+    /// At the last counted waypoint, %.
+    pub r#final: f64,
+}
+
+/// One log's result. The field names are stable: other tools read them.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LogResult {
+    /// Where the log came from.
+    pub path: String,
+    /// Its format name.
+    pub format: String,
+    /// IMU samples read.
+    pub samples: u64,
+    /// Duration, s.
+    pub duration_s: f64,
+    /// Steps counted.
+    pub steps: u64,
+    /// Distance walked, m.
+    pub distance_m: f64,
+    /// True steps, when known.
+    pub truth_steps: Option<u64>,
+    /// Step-count error, %.
+    pub step_error_pct: Option<f64>,
+    /// Number of truth waypoints.
+    pub waypoints: u64,
+    /// Aligned waypoint errors, m.
+    pub waypoint_error_m: Option<MetresSummary>,
+    /// Aligned waypoint errors, % of the path so far.
+    pub waypoint_error_pct: Option<PctSummary>,
+    /// Loop-closure error, m, for walks that end where they started.
+    pub loop_closure_m: Option<f64>,
+    /// Lines skipped while reading.
+    pub skipped_lines: u64,
+    /// Records the engine refused.
+    pub refused_records: u64,
+    /// Why the log could not be evaluated.
+    pub error: Option<String>,
+    /// Every waypoint error, m (for pooling; not serialised).
+    #[serde(skip)]
+    pub waypoint_errors_m: Vec<f64>,
+    /// Every counted waypoint error, % (for pooling; not serialised).
+    #[serde(skip)]
+    pub waypoint_errors_pct: Vec<f64>,
+}
+
+impl LogResult {
+    /// The row of a log that could not be read or run.
+    pub fn failed(path: &str, format: &str, error: String) -> Self {
+        LogResult {
+            path: path.to_string(),
+            format: format.to_string(),
+            samples: 0,
+            duration_s: 0.0,
+            steps: 0,
+            distance_m: 0.0,
+            truth_steps: None,
+            step_error_pct: None,
+            waypoints: 0,
+            waypoint_error_m: None,
+            waypoint_error_pct: None,
+            loop_closure_m: None,
+            skipped_lines: 0,
+            refused_records: 0,
+            error: Some(error),
+            waypoint_errors_m: Vec::new(),
+            waypoint_errors_pct: Vec::new(),
+        }
+    }
+}
+
+/// The summary over all logs. Field names are stable.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Summary {
+    /// Logs evaluated (including failed ones).
+    pub logs: u64,
+    /// Logs that failed.
+    pub failed: u64,
+    /// Mean step-count error over the logs with step truth, %.
+    pub step_mae_pct: Option<f64>,
+    /// 75th percentile of all waypoint errors of all logs, pooled, m.
+    pub waypoint_p75_m: Option<f64>,
+    /// 75th percentile of all counted waypoint errors of all logs, pooled, %.
+    pub waypoint_p75_pct: Option<f64>,
+}
+
+/// The whole report.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Report {
+    /// One row per log.
+    pub logs: Vec<LogResult>,
+    /// Summary.
+    pub summary: Summary,
+}
+
+/// Runs one log through a pipeline with `cfg` and scores it.
+pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
+    let mut res = LogResult::failed(&log.source, log.format.as_str(), String::new());
+    res.error = None;
+    res.skipped_lines = log.skipped;
+    let run = match replay(cfg.clone(), &log.records) {
+        Ok(r) => r,
+        Err(e) => {
+            res.error = Some(e.to_string());
+            return res;
+        }
+    };
+    let p = &run.pipeline;
+    let d = p.diagnostics();
+    let track = p.track();
+    res.samples = d.samples;
+    res.duration_s = d.time_span.map_or(0.0, |(a, b)| b - a);
+    res.steps = track.len() as u64;
+    res.distance_m = d.distance_m;
+    res.refused_records = run.errors.len() as u64;
+    if d.samples == 0 {
+        res.error = Some("no IMU sample accepted".into());
+        return res;
+    }
+    if let Some(truth) = log.truth.steps {
+        res.truth_steps = Some(truth);
+        if truth > 0 {
+            res.step_error_pct =
+                Some(100.0 * (res.steps as f64 - truth as f64).abs() / truth as f64);
+        }
+    }
+    let wps = &log.truth.waypoints;
+    res.waypoints = wps.len() as u64;
+    if let Some(errors) = waypoint_errors(track, wps) {
+        let m: Vec<f64> = errors.iter().map(|e| e.0).collect();
+        let pct: Vec<f64> = errors.iter().filter_map(|e| e.1).collect();
+        res.waypoint_error_m = Some(MetresSummary {
+            mean: mean(&m),
+            p75: percentile(&m, 75.0),
+            max: m.iter().copied().fold(0.0, f64::max),
+            r#final: *m.last().unwrap_or(&0.0),
+        });
+        if !pct.is_empty() {
+            res.waypoint_error_pct = Some(PctSummary {
+                mean: mean(&pct),
+                p75: percentile(&pct, 75.0),
+                r#final: *pct.last().unwrap_or(&0.0),
+            });
+        }
+        res.waypoint_errors_m = m;
+        res.waypoint_errors_pct = pct;
+    }
+    if log.truth.loop_closure {
+        let (e, n) = track.last().map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
+        res.loop_closure_m = Some(libm::hypot(e, n));
+    }
+    res
+}
+
+/// The estimated position (east, north) at time `t`, interpolated between steps.
+pub fn position_at(track: &[StepRecord], t: f64) -> (f64, f64) {
+    let i = track.partition_point(|s| s.t <= t);
+    let (prev_t, prev) = match i.checked_sub(1) {
+        Some(k) => (track[k].t, (track[k].east_m, track[k].north_m)),
+        None => return (0.0, 0.0),
+    };
+    match track.get(i) {
+        Some(next) if next.t > prev_t => {
+            let w = (t - prev_t) / (next.t - prev_t);
+            (
+                prev.0 + w * (next.east_m - prev.0),
+                prev.1 + w * (next.north_m - prev.1),
+            )
+        }
+        _ => prev,
+    }
+}
+
+/// For each waypoint after the first: the aligned error in metres, and the error as a
+/// percentage of the path so far when that path is at least [`MIN_PATH_FOR_PCT_M`]. `None` with
+/// fewer than two waypoints.
+pub fn waypoint_errors(track: &[StepRecord], wps: &[Waypoint]) -> Option<Vec<(f64, Option<f64>)>> {
+    let (w0, rest) = wps.split_first()?;
+    if rest.is_empty() {
+        return None;
+    }
+    let p0 = position_at(track, w0.t);
+    let pairs: Vec<((f64, f64), (f64, f64))> = rest
+        .iter()
+        .map(|w| {
+            let p = position_at(track, w.t);
+            ((p.0 - p0.0, p.1 - p0.1), (w.x_m - w0.x_m, w.y_m - w0.y_m))
+        })
+        .collect();
+    // Least-squares rotation of the estimate onto the truth (2-D Procrustes without scale).
+    let (mut dot, mut cross) = (0.0, 0.0);
+    for ((ex, ey), (rx, ry)) in &pairs {
+        dot += ex * rx + ey * ry;
+        cross += ex * ry - ey * rx;
+    }
+    let (s, c) = if dot == 0.0 && cross == 0.0 {
+        (0.0, 1.0)
+    } else {
+        libm::sincos(libm::atan2(cross, dot))
+    };
+    let mut path = 0.0;
+    let mut last = (w0.x_m, w0.y_m);
+    let mut out = Vec::with_capacity(pairs.len());
+    for (((ex, ey), (rx, ry)), w) in pairs.iter().zip(rest) {
+        path += libm::hypot(w.x_m - last.0, w.y_m - last.1);
+        last = (w.x_m, w.y_m);
+        let (ax, ay) = (c * ex - s * ey, s * ex + c * ey);
+        let err = libm::hypot(ax - rx, ay - ry);
+        let pct = (path >= MIN_PATH_FOR_PCT_M).then(|| 100.0 * err / path);
+        out.push((err, pct));
+    }
+    Some(out)
+}
+
+/// Mean of a non-empty slice (0 when empty).
+fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        0.0
+    } else {
+        v.iter().sum::<f64>() / v.len() as f64
+    }
+}
+
+/// Percentile `q` (0–100) by linear interpolation between order statistics; NaN-free input.
+pub fn percentile(v: &[f64], q: f64) -> f64 {
+    if v.is_empty() {
+        return 0.0;
+    }
+    let mut s = v.to_vec();
+    s.sort_by(f64::total_cmp);
+    let pos = q / 100.0 * (s.len() - 1) as f64;
+    let i = pos.floor() as usize;
+    let frac = pos - i as f64;
+    match s.get(i + 1) {
+        Some(&next) => s[i] + frac * (next - s[i]),
+        None => s[i],
+    }
+}
+
+/// The summary of a set of results.
+pub fn summarise(logs: &[LogResult]) -> Summary {
+    let steps: Vec<f64> = logs.iter().filter_map(|l| l.step_error_pct).collect();
+    let m: Vec<f64> = logs
+        .iter()
+        .flat_map(|l| l.waypoint_errors_m.iter().copied())
+        .collect();
+    let pct: Vec<f64> = logs
+        .iter()
+        .flat_map(|l| l.waypoint_errors_pct.iter().copied())
+        .collect();
+    Summary {
+        logs: logs.len() as u64,
+        failed: logs.iter().filter(|l| l.error.is_some()).count() as u64,
+        step_mae_pct: (!steps.is_empty()).then(|| mean(&steps)),
+        waypoint_p75_m: (!m.is_empty()).then(|| percentile(&m, 75.0)),
+        waypoint_p75_pct: (!pct.is_empty()).then(|| percentile(&pct, 75.0)),
+    }
+}
+
+/// Applies `key=value` overrides to a configuration: `key` is a dotted path into the
+/// configuration's JSON form (`heading.method`, `detector.kind`, `motion.still_max`), `value` is
+/// JSON (`0.5`, `true`, `{"kind":"peak"}`) or else taken as a string (`closed_form2021`). The
+/// result is validated. Setting a `kind` replaces the enclosing object by that variant with its
+/// default values.
+pub fn apply_overrides(cfg: &PipelineConfig, sets: &[String]) -> Result<PipelineConfig, String> {
+    let mut v = serde_json::to_value(cfg).map_err(|e| e.to_string())?;
+    for s in sets {
+        let (key, value) = s
+            .split_once('=')
+            .ok_or_else(|| format!("--set {s:?}: expected KEY=VALUE"))?;
+        let value: serde_json::Value = serde_json::from_str(value)
+            .unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+        let path: Vec<&str> = key.split('.').collect();
+        let (last, parents) = path.split_last().expect("split gives one item");
+        let mut node = &mut v;
+        for p in parents {
+            node = node.get_mut(*p).ok_or_else(|| {
+                format!("--set {key}: no setting `{p}` (see `pdr eval --show-config`)")
+            })?;
+        }
+        let obj = node.as_object_mut().ok_or_else(|| {
+            format!(
+                "--set {key}: `{}` is not a group of settings",
+                parents.join(".")
+            )
+        })?;
+        if *last == "kind" {
+            obj.clear();
+        } else if !obj.contains_key(*last) {
+            return Err(format!(
+                "--set {key}: no setting `{last}` (see `pdr eval --show-config`)"
+            ));
+        }
+        obj.insert(last.to_string(), value);
+    }
+    let out: PipelineConfig = serde_json::from_value(v).map_err(|e| format!("--set: {e}"))?;
+    out.validate().map_err(|e| format!("--set: {e}"))?;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::motion::Motion;
+
+    fn step(t: f64, e: f64, n: f64) -> StepRecord {
+        StepRecord {
+            t,
+            east_m: e,
+            north_m: n,
+            heading_rad: None,
+            step_heading_rad: None,
+            length_m: 0.7,
+            freq_hz: 1.8,
+            motion: Motion::Walking,
+        }
+    }
+
+    #[test]
+    fn rotated_track_scores_zero_and_scale_does_not() {
+        // Truth: 30 m east then 30 m north. The estimate is the same path rotated by 40°.
+        let wps = [
+            Waypoint {
+                t: 0.0,
+                x_m: 5.0,
+                y_m: 5.0,
+            },
+            Waypoint {
+                t: 30.0,
+                x_m: 35.0,
+                y_m: 5.0,
+            },
+            Waypoint {
+                t: 60.0,
+                x_m: 35.0,
+                y_m: 35.0,
+            },
+        ];
+        let (s, c) = libm::sincos(0.7);
+        let rot = |x: f64, y: f64| (c * x - s * y, s * x + c * y);
+        let mut track = Vec::new();
+        for i in 0..=60 {
+            let (x, y) = if i <= 30 {
+                (i as f64, 0.0)
+            } else {
+                (30.0, (i - 30) as f64)
+            };
+            let (e, n) = rot(x, y);
+            track.push(step(i as f64, e, n));
+        }
+        let err = waypoint_errors(&track, &wps).unwrap();
+        assert!(err.iter().all(|e| e.0 < 1e-9), "{err:?}");
+        assert_eq!(err[0].1.map(|p| p < 1e-9), Some(true));
+        // 10 % too long: the error grows with the distance.
+        let long: Vec<StepRecord> = track
+            .iter()
+            .map(|s| step(s.t, 1.1 * s.east_m, 1.1 * s.north_m))
+            .collect();
+        let err = waypoint_errors(&long, &wps).unwrap();
+        assert!(err[1].0 > 3.0 && err[1].0 < 5.0, "{err:?}");
+    }
+
+    #[test]
+    fn percentile_interpolates() {
+        assert_eq!(percentile(&[1.0, 2.0, 3.0, 4.0, 5.0], 75.0), 4.0);
+        assert_eq!(percentile(&[0.0, 10.0], 75.0), 7.5);
+        assert_eq!(percentile(&[3.0], 75.0), 3.0);
+    }
+
+    #[test]
+    fn overrides_name_bad_keys_and_switch_variants() {
+        let base = PipelineConfig::default();
+        let c = apply_overrides(&base, &["heading.method=closed_form2021".into()]).unwrap();
+        assert_eq!(
+            c.heading.method,
+            crate::engine::heading::HeadingMethod::ClosedForm2021
+        );
+        let c = apply_overrides(&base, &["detector.kind=peak".into()]).unwrap();
+        assert!(matches!(
+            c.detector,
+            crate::engine::pipeline::StepDetectorConfig::Peak(_)
+        ));
+        let e = apply_overrides(&base, &["motion.nope=1".into()]).unwrap_err();
+        assert!(e.contains("nope"), "{e}");
+        let e = apply_overrides(&base, &["motion.still_max=-1".into()]).unwrap_err();
+        assert!(e.contains("still_max"), "{e}");
+    }
+}
