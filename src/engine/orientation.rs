@@ -79,6 +79,8 @@ pub struct NavAccel {
     pub up: f64,
     /// Horizontal acceleration (east, north), m/s²; `None` when the source has no heading.
     pub horizontal: Option<(f64, f64)>,
+    /// The device → ENU attitude used, when the source has one.
+    pub attitude: Option<UnitQuaternion<f64>>,
 }
 
 /// The running orientation estimator.
@@ -210,6 +212,7 @@ impl Orientation {
                         return Ok(NavAccel {
                             up: 0.0,
                             horizontal: None,
+                            attitude: None,
                         })
                     }
                 }
@@ -225,11 +228,13 @@ impl Orientation {
                     return Ok(NavAccel {
                         up: 0.0,
                         horizontal: None,
+                        attitude: None,
                     });
                 }
                 return Ok(NavAccel {
                     up: s.accel.norm() - n,
                     horizontal: None,
+                    attitude: None,
                 });
             }
         };
@@ -237,6 +242,7 @@ impl Orientation {
         Ok(NavAccel {
             up: a.z - G0,
             horizontal: Some((a.x, a.y)),
+            attitude: Some(q),
         })
     }
 }

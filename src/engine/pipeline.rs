@@ -27,7 +27,7 @@
 
 use super::geo::LocalFrame;
 use super::heading::{self, HeadingConfig, NavSample, StepWindow};
-use super::math::circular_mean2;
+use super::math::{circular_mean2, wrap_2pi, wrap_pi};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
@@ -192,6 +192,12 @@ pub struct Pipeline {
     t_km2: Option<f64>,
     last_step_heading: Option<f64>,
     last_heading: Option<f64>,
+    attitude: Option<nalgebra::UnitQuaternion<f64>>,
+    // Device yaw integrated from the attitude increments about the vertical, compass radians,
+    // unwrapped; and its value at the previous step.
+    yaw: f64,
+    last_yaw: Option<f64>,
+    yaw_offset: heading::YawOffset,
     pos: (f64, f64),
     steps: Vec<StepRecord>,
     fixes: Vec<GnssFix>,
@@ -222,6 +228,10 @@ impl Pipeline {
             t_km2: None,
             last_step_heading: None,
             last_heading: None,
+            attitude: None,
+            yaw: 0.0,
+            last_yaw: None,
+            yaw_offset: heading::YawOffset::default(),
             pos: (0.0, 0.0),
             steps: Vec::new(),
             fixes: Vec::new(),
@@ -261,6 +271,15 @@ impl Pipeline {
             Orientation::new(src)
         });
         let nav = orientation.update(s, dt)?;
+        if self.cfg.heading.yaw_aid.is_some() {
+            if let (Some(q), Some(p)) = (&nav.attitude, &self.attitude) {
+                // World-frame increment q·p⁻¹; for a small rotation its vertical component is
+                // half the yaw change (counter-clockwise, so subtracted for a compass angle).
+                let d = q * p.inverse();
+                self.yaw -= 2.0 * d.k * d.w.signum();
+            }
+        }
+        self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
         self.buf.push_back(NavSample {
@@ -348,6 +367,7 @@ impl Pipeline {
         self.t_km1 = None;
         self.t_km2 = None;
         self.last_step_heading = None;
+        self.last_yaw = None;
     }
 
     /// Tells the engine that the input stopped between `t0` and `t1` (page hidden, sensor
@@ -391,7 +411,35 @@ impl Pipeline {
             }
             (th, _) => th,
         };
-        let heading_used = averaged.or(self.last_heading);
+        let aided = match &self.cfg.heading.yaw_aid {
+            Some(aid) if has_heading && self.attitude.is_some() => {
+                let yaw = self.yaw;
+                let prev = self.last_yaw.replace(yaw).filter(|_| cont.is_some());
+                let reading = self
+                    .attitude
+                    .as_ref()
+                    .is_some_and(|q| heading::reading_pose(q, aid));
+                if reading {
+                    // Held flat in front, screen up: the top of the phone is the way forward.
+                    self.attitude.as_ref().and_then(heading::device_twist)
+                } else if !aid.learn_offset {
+                    None
+                } else {
+                    // Two-step mean, as A-HE, so the sway of a pocket cancels.
+                    let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
+                    // Only straight steps teach the offset: in a turn θ̄ (a stride average of
+                    // the acceleration) lags the yaw.
+                    let straight =
+                        prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
+                    if let (Some(th), true) = (averaged, straight) {
+                        self.yaw_offset.update(aid, wrap_pi(th - psi));
+                    }
+                    self.yaw_offset.get().map(|d| wrap_2pi(psi + d))
+                }
+            }
+            _ => None,
+        };
+        let heading_used = aided.or(averaged).or(self.last_heading);
         let freq = 1.0 / period;
         let p2p = match self.cfg.step_length {
             StepLengthModel::Weinberg { .. } => self.peak_to_peak(t_km1, c.t),
