@@ -111,9 +111,9 @@ enum ScenarioArg {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Replay a pdr-log file: print a summary and write the per-step track.
+    /// Replay a recording: print a summary and write the per-step track.
     Run {
-        /// The log (pdr-log format, see README).
+        /// The log: a pdr-log, or any format `pdr eval` reads (file, folder or zip).
         file: PathBuf,
         /// Write the per-step track as CSV.
         #[arg(long)]
@@ -346,10 +346,25 @@ fn run(
     cfg: PipelineConfig,
 ) -> Result<(), String> {
     let name = file.display().to_string();
-    let f = std::fs::File::open(file).map_err(|e| format!("{name}: {e}"))?;
-    let parsed = pdrlog::read(std::io::BufReader::new(f), &name).map_err(|e| e.to_string())?;
-    for e in &parsed.errors {
+    let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
+    let mut logs = pdr::io::import::import_all(&mut set);
+    let parsed = match logs.len() {
+        0 => return Err(format!("{name}: no recognisable log (see README, Import)")),
+        1 => logs.pop().expect("one log").map_err(|e| e.to_string())?,
+        n => {
+            return Err(format!(
+                "{name} holds {n} logs; give one of them, or use `pdr eval`"
+            ))
+        }
+    };
+    for e in &parsed.warnings {
         eprintln!("warning: {e} (line skipped)");
+    }
+    if parsed.skipped > parsed.warnings.len() as u64 {
+        eprintln!(
+            "warning: {} more lines skipped",
+            parsed.skipped - parsed.warnings.len() as u64
+        );
     }
     let r = replay(cfg, &parsed.records).map_err(|e| e.to_string())?;
     for (i, e) in &r.errors {
@@ -360,10 +375,11 @@ fn run(
     let track = p.track();
     let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
     println!("file          {name}");
+    println!("format        {}", parsed.format.as_str());
     println!(
         "records       {} ({} lines skipped, {} records refused)",
         parsed.records.len(),
-        parsed.errors.len(),
+        parsed.skipped,
         r.errors.len()
     );
     println!("orientation   {:?}", d.orientation);
