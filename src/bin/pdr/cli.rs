@@ -623,4 +623,50 @@ fn bench(minutes: f64, repeats: usize) {
             n as f64 / best / 1e6
         );
     }
+    bench_parse(&imu, repeats);
+}
+
+/// Import throughput: a pdr-log of at least 60 MB, built from the simulated walk, read through
+/// the import layer (format detection, streaming parse, records) from memory.
+fn bench_parse(records: &[Record], repeats: usize) {
+    let mut text = pdrlog::preamble();
+    let lines: Vec<String> = records.iter().map(pdrlog::line).collect();
+    let span = match (records.first(), records.last()) {
+        (Some(Record::Imu(a)), Some(Record::Imu(b))) => b.t - a.t + 0.01,
+        _ => 0.0,
+    };
+    let mut copy = 0;
+    'fill: loop {
+        // Later copies continue the clock, so the log stays in time order.
+        for (r, l) in records.iter().zip(&lines) {
+            if text.len() >= 60_000_000 {
+                break 'fill;
+            }
+            match r {
+                Record::Imu(s) if copy > 0 => {
+                    let mut s = *s;
+                    s.t += span * copy as f64;
+                    text.push_str(&pdrlog::line(&Record::Imu(s)));
+                }
+                _ => text.push_str(l),
+            }
+        }
+        copy += 1;
+    }
+    let bytes = text.into_bytes();
+    let mb = bytes.len() as f64 / 1e6;
+    let mut set = pdr::io::import::MemSet::new(vec![("bench.pdrlog".into(), bytes)]);
+    let mut best = f64::INFINITY;
+    let mut n = 0;
+    for _ in 0..repeats.clamp(1, 3) {
+        let t = Instant::now();
+        let logs = pdr::io::import::import_all(&mut set);
+        best = best.min(t.elapsed().as_secs_f64());
+        n = logs.iter().flatten().map(|l| l.records.len()).sum();
+    }
+    println!(
+        "{:>7.2} s  to import a {mb:.1} MB pdr-log ({n} records, {:.0} MB/s)",
+        best,
+        mb / best
+    );
 }
