@@ -23,6 +23,10 @@
 
 pub mod datasets;
 pub mod fileset;
+pub mod get_sensor_data;
+pub mod gnss_logger;
+pub mod phyphox;
+pub mod sensor_logger;
 
 pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
 
@@ -347,6 +351,16 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
                 }
             }
             out.push(r);
+            continue;
+        }
+        // Sensor Logger and phyphox: each reader names the files it consumed.
+        let folder = sensor_logger::read_dir(set, &names, dir)
+            .or_else(|| phyphox::read_dir(set, &names, dir));
+        if let Some((files, r)) = folder {
+            for (i, n) in names.iter().enumerate() {
+                used[i] |= files.contains(n);
+            }
+            out.push(r);
         }
     }
     // Then every remaining file on its own.
@@ -382,6 +396,9 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
                 }),
                 Format::MsIndoor => datasets::read_ms_indoor(reader, &label),
                 Format::XioFoot => datasets::read_xio(reader, &label),
+                Format::SensorLoggerJson => sensor_logger::read_json(reader, &label),
+                Format::GnssLogger => gnss_logger::read(reader, &label),
+                Format::GetSensorData => get_sensor_data::read(reader, &label),
                 _ => Err(file_error(&label, 0, "format not supported yet")),
             },
         };
@@ -423,6 +440,15 @@ pub fn sniff(name: &str, head: &str) -> Option<Format> {
     }
     if first.starts_with("Time (s),Gyroscope X (deg/s)") {
         return Some(Format::XioFoot);
+    }
+    if sensor_logger::looks_like_json(head) {
+        return Some(Format::SensorLoggerJson);
+    }
+    if gnss_logger::looks_like(head) {
+        return Some(Format::GnssLogger);
+    }
+    if get_sensor_data::looks_like(head) {
+        return Some(Format::GetSensorData);
     }
     let _ = name;
     None

@@ -1,0 +1,344 @@
+//! GetSensorData (the Android app of the IPIN competitions) `.txt`: semicolon-separated records,
+//! comment lines starting with `%`.
+//!
+//! Read:
+//! - `ACCE;AppTs;SensorTs;Acc_X;Acc_Y;Acc_Z;Accuracy` (m/s², gravity included, Android axes),
+//!   `GYRO;…` (rad/s), `MAGN;…` (µT; the header comment shows a stray `;;`, data lines have
+//!   three values);
+//! - `AHRS;AppTs;SensorTs;PitchX(deg);RollY(deg);YawZ(deg);Quat(2);Quat(3);Quat(4);Accuracy`:
+//!   the rotation vector x, y, z of Android's `TYPE_ROTATION_VECTOR` (device → ENU, w implied)
+//!   is the orientation; the angles are not used. Lines with four quaternion values right after
+//!   the timestamps (`x;y;z;w`, an older variant) are read too;
+//! - `GNSS;AppTs;SensorTs;Latit;Long;Altitude;Bearing;Accuracy;Speed;SatInView;SatInUse`: each fix
+//!   may be written twice; repeats of the same (SensorTs, latitude, longitude) are dropped;
+//! - `POSI;Timestamp;Counter;Latitude;Longitude;floorID;buildingID`: ground-truth landmarks,
+//!   turned into [`Waypoint`]s in metres east/north of the first `POSI` (WGS84 → local ENU
+//!   tangent plane; floor and building are not kept).
+//!
+//! Everything else (`WIFI`, `BLE4`, `PRES`, `LIGH`, `SOUN`, …) is ignored.
+//!
+//! # Clock
+//! The log's clock is `AppTimestamp` (s since the app started; `POSI` and `GNSS` use it). It is
+//! stamped when the app reads a sample, so it carries delivery jitter; `SensorTimestamp` is
+//! stamped by the sensor and spaces samples accurately. Each inertial sensor (ACCE, GYRO, MAGN,
+//! AHRS) is therefore placed on the app clock by one constant offset: `t = SensorTs + offset`,
+//! with `offset` the smallest `AppTs − SensorTs` of that sensor among the samples within
+//! [`WINDOW_S`] below the median difference (the least-delayed delivery; the window keeps a
+//! sample with a corrupt SensorTs from setting it). Samples whose difference is more than
+//! [`OUTLIER_S`] from the median are skipped as corrupt. When the differences themselves spread
+//! over more than [`OUTLIER_S`] (a sensor clock that does not advance with the app clock), that
+//! sensor falls back to `AppTs`, with a warning.
+
+use super::sensor_logger::{
+    add_warnings, drop_non_finite, each_line, not_a_number, rotation_vector, warn_count,
+};
+use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
+use crate::engine::geo::LocalFrame;
+use crate::engine::types::GnssFix;
+use crate::io::ParseError;
+use nalgebra::{UnitQuaternion, Vector3};
+use std::collections::HashSet;
+use std::io::BufRead;
+
+/// Width of the window below the median `AppTs − SensorTs` searched for the offset, s.
+pub const WINDOW_S: f64 = 1.0;
+
+/// A sample whose `AppTs − SensorTs` is further than this from the median is skipped, s.
+pub const OUTLIER_S: f64 = 5.0;
+
+const RECORDS: [&str; 7] = ["ACCE", "GYRO", "MAGN", "AHRS", "GNSS", "POSI", "WIFI"];
+
+/// Whether the first bytes of a file look like a GetSensorData log: a data line of one of its
+/// records, or a `%` comment quoting one or naming the app.
+pub fn looks_like(head: &str) -> bool {
+    head.lines().any(|l| {
+        let l = l.trim_start_matches('\u{feff}');
+        if l.starts_with('%') {
+            return l.contains("GetSensorData") || l.contains("'ACCE;");
+        }
+        RECORDS
+            .iter()
+            .any(|r| l.strip_prefix(r).is_some_and(|rest| rest.starts_with(';')))
+    })
+}
+
+/// Samples of one inertial sensor on its two clocks: (AppTs, SensorTs, value).
+type Dual<T> = Vec<(f64, f64, T)>;
+
+/// What mapping one sensor onto the app clock did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Mapping {
+    /// `t = SensorTs + offset`; the count of outliers skipped.
+    Offset(f64, u64),
+    /// SensorTs unusable: AppTs used.
+    AppClock,
+}
+
+/// Places one sensor's samples on the app clock (see the module documentation).
+fn to_app_clock<T: Copy>(samples: &Dual<T>) -> (Vec<(f64, T)>, Mapping) {
+    if samples.is_empty() {
+        return (Vec::new(), Mapping::Offset(0.0, 0));
+    }
+    let mut d: Vec<f64> = samples.iter().map(|(a, s, _)| a - s).collect();
+    d.sort_by(f64::total_cmp);
+    let median = d[d.len() / 2];
+    let q = |p: f64| d[((d.len() - 1) as f64 * p) as usize];
+    if !(q(0.95) - q(0.05) <= OUTLIER_S) {
+        return (
+            samples.iter().map(|&(a, _, v)| (a, v)).collect(),
+            Mapping::AppClock,
+        );
+    }
+    let offset = d
+        .iter()
+        .copied()
+        .find(|&x| x >= median - WINDOW_S)
+        .unwrap_or(median);
+    let mut out = Vec::with_capacity(samples.len());
+    let mut outliers = 0;
+    for &(a, s, v) in samples {
+        if ((a - s) - median).abs() > OUTLIER_S {
+            outliers += 1;
+        } else {
+            out.push((s + offset, v));
+        }
+    }
+    (out, Mapping::Offset(offset, outliers))
+}
+
+/// Reads a GetSensorData log (see the module documentation).
+pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
+    let mut log = Log::new(label, Format::GetSensorData);
+    log.platform = Some(Platform::Android);
+    let mut accel: Dual<Vector3<f64>> = Vec::new();
+    let mut gyro: Dual<Vector3<f64>> = Vec::new();
+    let mut mag: Dual<Vector3<f64>> = Vec::new();
+    let mut ahrs: Dual<UnitQuaternion<f64>> = Vec::new();
+    let mut fixes = Vec::new();
+    let mut seen_fixes: HashSet<[u64; 3]> = HashSet::new();
+    let mut posi: Vec<(f64, f64, f64)> = Vec::new();
+    let mut warnings = Vec::new();
+    each_line(r, label, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) => return warnings.push(e),
+        };
+        if line.starts_with('%') || line.trim().is_empty() {
+            return;
+        }
+        let mut f: Vec<&str> = line.split(';').map(str::trim).collect();
+        while f.len() > 1 && f.last() == Some(&"") {
+            f.pop();
+        }
+        let kind = f[0];
+        if !matches!(kind, "ACCE" | "GYRO" | "MAGN" | "AHRS" | "GNSS" | "POSI") {
+            return;
+        }
+        let num = |i: usize, name: &str| -> Result<f64, ParseError> {
+            let s = f
+                .get(i)
+                .ok_or_else(|| field_error(label, n, i + 1, name, "missing"))?;
+            number(s).ok_or_else(|| field_error(label, n, i + 1, name, not_a_number(s)))
+        };
+        let res = (|| -> Result<(), ParseError> {
+            match kind {
+                "POSI" => {
+                    let t = num(1, "Timestamp")?;
+                    let (lat, lon) = (num(3, "Latitude")?, num(4, "Longitude")?);
+                    if lat.abs() > 90.0 || lon.abs() > 180.0 {
+                        return Err(field_error(label, n, 4, "Latitude", "out of range"));
+                    }
+                    posi.push((t, lat, lon));
+                }
+                "GNSS" => {
+                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
+                    let fix = GnssFix {
+                        t: app,
+                        lat_deg: num(3, "Latit")?,
+                        lon_deg: num(4, "Long")?,
+                        altitude_m: Some(num(5, "Altitude")?),
+                        bearing_deg: Some(num(6, "Bearing")?).filter(|b| *b >= 0.0),
+                        h_accuracy_m: num(7, "Accuracy")?,
+                        speed_mps: Some(num(8, "Speed")?).filter(|v| *v >= 0.0),
+                    };
+                    fix.check().map_err(|e| {
+                        field_error(label, n, 4, "Latit", format!("invalid fix: {e}"))
+                    })?;
+                    let key = [
+                        sensor.to_bits(),
+                        fix.lat_deg.to_bits(),
+                        fix.lon_deg.to_bits(),
+                    ];
+                    // The app writes most fixes twice; a repeat is expected, not a problem.
+                    if seen_fixes.insert(key) {
+                        fixes.push(fix);
+                    }
+                }
+                "AHRS" => {
+                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
+                    let (from, w) = if f.len() >= 10 {
+                        (6, None)
+                    } else if (7..=9).contains(&f.len()) {
+                        (3, Some(num(6, "w")?))
+                    } else {
+                        return Err(file_error(
+                            label,
+                            n,
+                            format!("an AHRS record has 10 fields, found {}", f.len()),
+                        ));
+                    };
+                    let (x, y, z) = (
+                        num(from, "Quat(2)")?,
+                        num(from + 1, "Quat(3)")?,
+                        num(from + 2, "Quat(4)")?,
+                    );
+                    let q = rotation_vector(x, y, z, w).ok_or_else(|| {
+                        field_error(
+                            label,
+                            n,
+                            from + 1,
+                            "Quat(2)",
+                            "not a rotation vector (norm > 1)",
+                        )
+                    })?;
+                    ahrs.push((app, sensor, q));
+                }
+                _ => {
+                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
+                    let names = match kind {
+                        "ACCE" => ["Acc_X", "Acc_Y", "Acc_Z"],
+                        "GYRO" => ["Gyr_X", "Gyr_Y", "Gyr_Z"],
+                        _ => ["Mag_X", "Mag_Y", "Mag_Z"],
+                    };
+                    let v = Vector3::new(num(3, names[0])?, num(4, names[1])?, num(5, names[2])?);
+                    match kind {
+                        "ACCE" => accel.push((app, sensor, v)),
+                        "GYRO" => gyro.push((app, sensor, v)),
+                        _ => mag.push((app, sensor, v)),
+                    }
+                }
+            }
+            Ok(())
+        })();
+        if let Err(e) = res {
+            warnings.push(e);
+        }
+    })?;
+    if accel.is_empty() {
+        return Err(file_error(
+            label,
+            0,
+            "no readable ACCE records: nothing to track",
+        ));
+    }
+    let mut s = Streams::default();
+    let mapped = |name: &str, m: Mapping, log_warnings: &mut Vec<ParseError>| match m {
+        Mapping::AppClock => log_warnings.push(file_error(
+            label,
+            0,
+            format!(
+                "{name}: SensorTimestamp does not advance with AppTimestamp; AppTimestamp used"
+            ),
+        )),
+        Mapping::Offset(_, 0) => {}
+        Mapping::Offset(_, k) => log_warnings.push(file_error(
+            label,
+            0,
+            format!(
+                "{name}: {k} sample(s) with a SensorTimestamp more than {OUTLIER_S} s off, skipped"
+            ),
+        )),
+    };
+    let (v, m) = to_app_clock(&accel);
+    s.accel = v;
+    mapped("ACCE", m, &mut warnings);
+    let (v, m) = to_app_clock(&gyro);
+    s.gyro = v;
+    mapped("GYRO", m, &mut warnings);
+    let (v, m) = to_app_clock(&mag);
+    s.mag = v;
+    mapped("MAGN", m, &mut warnings);
+    let (v, m) = to_app_clock(&ahrs);
+    s.orientation = v;
+    mapped("AHRS", m, &mut warnings);
+    s.fixes = fixes;
+    if let Some(&(_, lat0, lon0)) = posi.first() {
+        let frame = LocalFrame::new(lat0, lon0, 0.0);
+        let mut w: Vec<Waypoint> = posi
+            .iter()
+            .map(|&(t, lat, lon)| {
+                let e = frame.to_enu(lat, lon, 0.0);
+                Waypoint {
+                    t,
+                    x_m: e[0],
+                    y_m: e[1],
+                }
+            })
+            .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())
+            .collect();
+        w.sort_by(|a, b| a.t.total_cmp(&b.t));
+        log.truth.waypoints = w;
+    }
+    let dropped = drop_non_finite(&mut s);
+    if s.accel.is_empty() {
+        return Err(file_error(label, 0, "no usable ACCE samples"));
+    }
+    log.records = s.into_records();
+    add_warnings(&mut log, warnings);
+    warn_count(
+        &mut log,
+        dropped,
+        file_error(
+            label,
+            0,
+            format!("{dropped} sample(s) with a non-finite value, skipped"),
+        ),
+    );
+    Ok(log)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sensor_clock_mapped_by_least_delay() {
+        // Sensor at 100 Hz from 5000 s since boot; the app reads with 2–12 ms of jitter,
+        // starting at app time 1.0.
+        let mut samples = Vec::new();
+        for k in 0..200 {
+            let sensor = 5000.0 + k as f64 * 0.01;
+            let delay = 0.002 + ((k * 7) % 11) as f64 * 0.001;
+            samples.push((1.0 + k as f64 * 0.01 + delay, sensor, k));
+        }
+        // One corrupt SensorTimestamp.
+        samples.push((1.5, 9999.0, 999));
+        let (out, m) = to_app_clock(&samples);
+        let Mapping::Offset(offset, outliers) = m else {
+            panic!("{m:?}")
+        };
+        assert_eq!(outliers, 1);
+        assert!((offset - (1.002 - 5000.0)).abs() < 1e-9, "{offset}");
+        // Spacing comes from the sensor clock: exactly 10 ms.
+        for w in out.windows(2) {
+            assert!(((w[1].0 - w[0].0) - 0.01).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn sensor_clock_not_advancing_falls_back() {
+        let samples: Dual<u8> = (0..100).map(|k| (k as f64 * 0.1, 0.0, 0)).collect();
+        let (out, m) = to_app_clock(&samples);
+        assert_eq!(m, Mapping::AppClock);
+        assert_eq!(out[99].0, 9.9);
+    }
+
+    #[test]
+    fn sniffing() {
+        assert!(looks_like(
+            "% LogFile created by the 'GetSensorData' App for Android.\n"
+        ));
+        assert!(looks_like("ACCE;0.015;17292.410;-0.61;5.92;7.96;3\n"));
+        assert!(!looks_like("Accel,1,2,3\n"));
+    }
+}
