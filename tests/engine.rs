@@ -319,4 +319,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0xeec5_d99d_e785_9b64;
+const DEMO_DIGEST: u64 = 0x3b07_9724_e52d_d8b9;

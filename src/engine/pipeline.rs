@@ -293,7 +293,7 @@ impl Pipeline {
         }
         let (mu, sigma) = (self.motion.mean(), self.motion.sigma());
         let cand = match &mut self.detector {
-            Detector::Pll(p) => p.push(s.t, dt, nav.up, mu, sigma, state),
+            Detector::Pll(p) => p.push(s.t, dt, nav.up, mu, sigma, state, self.motion.cadence_hz()),
             Detector::Peak(p) => p.push(s.t, dt, nav.up),
         };
         if state.is_moving() && !self.prev_state.is_moving() {

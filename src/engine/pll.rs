@@ -68,8 +68,21 @@ pub struct PllConfig {
     /// Cut-off of the loop low-pass filter, Hz.
     pub loop_lpf_hz: f64,
     /// Minimum RMS of the vertical acceleration over one oscillator cycle for its peak to count
-    /// as a step, m/s². Default: 2/3 of the still threshold of the motion detector.
+    /// as a step, m/s². Default: 0.35, about 2/3 of the motion detector's
+    /// [`crate::engine::MotionConfig::periodic_sigma_min`] (it was 1.0, 2/3 of Basso's still
+    /// threshold, which gentle hand-held walks with σ ≈ 1 m/s² do not pass).
     pub cycle_rms_min: f64,
+    /// Minimum RMS of a cycle relative to the σ_z of the motion window. After a stop σ_z (2 s)
+    /// stays high while the new cycles are quiet; this gate, not the absolute one, is what keeps
+    /// steps from being counted while the window drains. 0.5: a steady gait gives ≈ 1.
+    pub cycle_rms_rel: f64,
+    /// When the motion detector has a cadence estimate f_c (autocorrelation, see
+    /// [`crate::engine::motion::Periodicity`]), the band is narrowed to [f_c/k, k·f_c] with this
+    /// k. Departure from the paper, whose bands follow the σ_z state only: a band as wide as
+    /// 1.2–2.7 Hz holds both the step frequency and its second harmonic for slow walks (Oxford
+    /// Pixel_Jamie_Carpet_InHand_1/2 at 1.3 Hz: +50 % counted at 2.6 Hz). k = 1.4, just under
+    /// √2, the geometric midpoint between f and 2f (and f/2), so the loop can never hold either.
+    pub cadence_band_ratio: f64,
 }
 
 impl Default for PllConfig {
@@ -82,7 +95,9 @@ impl Default for PllConfig {
             natural_hz: 0.3,
             damping: 0.707,
             loop_lpf_hz: 1.5,
-            cycle_rms_min: 1.0,
+            cycle_rms_min: 0.35,
+            cycle_rms_rel: 0.5,
+            cadence_band_ratio: 1.4,
         }
     }
 }
@@ -94,6 +109,10 @@ impl PllConfig {
         positive("pll.damping", self.damping)?;
         positive("pll.loop_lpf_hz", self.loop_lpf_hz)?;
         positive("pll.cycle_rms_min", self.cycle_rms_min)?;
+        positive("pll.cycle_rms_rel", self.cycle_rms_rel)?;
+        if !(self.cadence_band_ratio > 1.0) {
+            return Err(ConfigError::new("pll.cadence_band_ratio", "must exceed 1"));
+        }
         for (band, free, name) in [
             (
                 self.walk_band_hz,
@@ -172,13 +191,25 @@ impl Pll {
         }
     }
 
-    fn band(&self, m: Motion) -> (f64, f64, f64) {
+    fn band(&self, m: Motion, cadence: Option<f64>) -> (f64, f64, f64) {
         let (w, r) = (self.cfg.walk_band_hz, self.cfg.run_band_hz);
-        match m {
+        let (lo, hi, free) = match m {
             Motion::Running => (r.0, r.1, self.cfg.free_running_run_hz),
             Motion::Walking => (w.0, w.1, self.cfg.free_running_walk_hz),
             // While still (and so during the onset look-back) the loop may follow either gait.
             Motion::Still => (w.0.min(r.0), w.1.max(r.1), self.cfg.free_running_walk_hz),
+        };
+        match cadence {
+            Some(fc) => {
+                let k = self.cfg.cadence_band_ratio;
+                let (l, h) = (lo.max(fc / k), hi.min(fc * k));
+                if l < h {
+                    (l, h, free.clamp(l, h))
+                } else {
+                    (lo, hi, free)
+                }
+            }
+            None => (lo, hi, free),
         }
     }
 
@@ -214,7 +245,8 @@ impl Pll {
     }
 
     /// Feeds one vertical-acceleration sample `a` (m/s²) taken `dt` s after the previous one,
-    /// with the motion detector's window mean `mu` and deviation `sigma` and state `motion`.
+    /// with the motion detector's window mean `mu` and deviation `sigma`, state `motion` and
+    /// cadence estimate `cadence` (Hz).
     pub fn push(
         &mut self,
         t: f64,
@@ -223,8 +255,9 @@ impl Pll {
         mu: f64,
         sigma: f64,
         motion: Motion,
+        cadence: Option<f64>,
     ) -> Option<Candidate> {
-        let (lo, hi, free) = self.band(motion);
+        let (lo, hi, free) = self.band(motion, cadence);
         // A change of band (walking ↔ running) clamps the estimate into the new band, so the
         // loop keeps its lock across the transition.
         self.integ = self.integ.clamp(lo, hi);
@@ -248,7 +281,7 @@ impl Pll {
             // The part of this interval before the peak belongs to the ending cycle.
             let rms = ((self.cycle_sq + d * d * dt * frac) / (self.cycle_dt + dt * frac).max(1e-9))
                 .sqrt();
-            if rms >= self.cfg.cycle_rms_min {
+            if rms >= self.cfg.cycle_rms_min && rms >= self.cfg.cycle_rms_rel * sigma {
                 out = Some(Candidate {
                     t: t_peak,
                     period_s: 1.0 / self.integ,
@@ -328,8 +361,16 @@ mod tests {
         for i in 1..steps {
             let t = i as f64 / rate;
             let a = 3.0 * (TAU * f_in * t).cos();
-            if p.push(t, 1.0 / rate, a, 0.0, 3.0 / 2f64.sqrt(), Motion::Walking)
-                .is_some()
+            if p.push(
+                t,
+                1.0 / rate,
+                a,
+                0.0,
+                3.0 / 2f64.sqrt(),
+                Motion::Walking,
+                None,
+            )
+            .is_some()
             {
                 n += 1;
             }
