@@ -1,0 +1,650 @@
+//! Import of the phone recorders' formats: Sensor Logger (folder, zip, JSON), phyphox,
+//! GnssLogger and GetSensorData. Fixtures are small hand-made recordings under
+//! `tests/fixtures/import/`.
+
+use nalgebra::Vector3;
+use pdr::engine::pipeline::Record;
+use pdr::engine::types::ImuSample;
+use pdr::io::import::{import_all, DirSet, Format, Log, MemSet, Platform, ZipSet};
+use pdr::io::pdrlog;
+use pdr::io::ParseError;
+use std::io::{Cursor, Write};
+use std::path::{Path, PathBuf};
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/import")
+}
+
+/// The files of a fixture (a file or a folder), named `prefix` + path relative to it.
+fn load(fixture: &str, prefix: &str) -> Vec<(String, Vec<u8>)> {
+    let root = fixtures().join(fixture);
+    if root.is_file() {
+        return vec![(format!("{prefix}{fixture}"), std::fs::read(&root).unwrap())];
+    }
+    let mut out = Vec::new();
+    let mut stack = vec![root.clone()];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                let rel = p
+                    .strip_prefix(&root)
+                    .unwrap()
+                    .to_string_lossy()
+                    .replace('\\', "/");
+                out.push((format!("{prefix}{rel}"), std::fs::read(&p).unwrap()));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+fn zip_bytes(files: &[(String, Vec<u8>)]) -> Vec<u8> {
+    let mut w = zip::ZipWriter::new(Cursor::new(Vec::new()));
+    let opts =
+        zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Stored);
+    for (name, bytes) in files {
+        w.start_file(name.as_str(), opts).unwrap();
+        w.write_all(bytes).unwrap();
+    }
+    w.finish().unwrap().into_inner()
+}
+
+fn import_mem(files: Vec<(String, Vec<u8>)>) -> Vec<Result<Log, ParseError>> {
+    import_all(&mut MemSet::new(files))
+}
+
+/// The one log a set gives, checked for sanity.
+fn one(results: Vec<Result<Log, ParseError>>) -> Log {
+    assert_eq!(results.len(), 1, "expected one log: {results:#?}");
+    let log = results.into_iter().next().unwrap().unwrap();
+    assert_sane(&log);
+    log
+}
+
+fn imu(log: &Log) -> Vec<ImuSample> {
+    log.records
+        .iter()
+        .filter_map(|r| match r {
+            Record::Imu(s) => Some(*s),
+            _ => None,
+        })
+        .collect()
+}
+
+fn fixes(log: &Log) -> Vec<pdr::engine::types::GnssFix> {
+    log.records
+        .iter()
+        .filter_map(|r| match r {
+            Record::Gnss(f) => Some(*f),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Finite values everywhere, records in time order, warnings naming a file.
+fn assert_sane(log: &Log) {
+    let mut last = f64::NEG_INFINITY;
+    for r in &log.records {
+        let t = match r {
+            Record::Imu(s) => {
+                s.check_finite().unwrap();
+                if let Some(q) = s.orientation {
+                    assert!((q.norm() - 1.0).abs() < 1e-9);
+                }
+                s.t
+            }
+            Record::Gnss(f) => {
+                f.check().unwrap();
+                f.t
+            }
+            Record::Gap(a, b) => {
+                assert!(a.is_finite() && b.is_finite());
+                *a
+            }
+        };
+        assert!(t >= last, "records out of order: {t} after {last}");
+        last = t;
+    }
+    for w in &log.truth.waypoints {
+        assert!(w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite());
+    }
+    for w in &log.warnings {
+        assert!(!w.file.is_empty(), "warning without a file: {w}");
+    }
+}
+
+/// import → pdr-log text → read gives the same records.
+fn assert_round_trip(log: &Log) {
+    let text = pdrlog::to_string(&log.records);
+    let back = pdrlog::read(text.as_bytes(), "round-trip").unwrap();
+    assert!(back.errors.is_empty(), "{:?}", back.errors);
+    assert_eq!(back.records, log.records);
+}
+
+fn has_warning(log: &Log, file_ends: &str, line: u64, column: Option<usize>) -> bool {
+    log.warnings
+        .iter()
+        .any(|w| w.file.ends_with(file_ends) && w.line == line && w.column == column)
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+// ------------------------------------------------------------------------------------------
+// Sensor Logger
+// ------------------------------------------------------------------------------------------
+
+#[test]
+fn sensor_logger_android_folder() {
+    let log = one(import_mem(load("sensor_logger_android", "rec/")));
+    assert_eq!(log.format, Format::SensorLogger);
+    assert_eq!(log.platform, Some(Platform::Android));
+    assert_eq!(log.source, "rec");
+    let s = imu(&log);
+    assert_eq!(s.len(), 40, "40 good accelerometer lines, one bad");
+    // ns → s, on the `time` clock with no offset.
+    assert!(close(s[0].t, 1698745673.473, 1e-6), "{}", s[0].t);
+    assert!(close(s[1].t - s[0].t, 0.01, 1e-6));
+    // Total = Accelerometer (gravity removed) + Gravity; first sample: linear (x, y, z) =
+    // (0.35 sin 0.4, 0, 0), gravity (0.31, 1.27, 9.72).
+    let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
+    assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
+    assert!(s[0].gyro.is_none(), "the first gyroscope sample comes 2 ms later");
+    assert!(s[1..].iter().all(|x| x.gyro.is_some()));
+    assert!(s[5].mag.is_some());
+    assert!(s[0].orientation.is_some());
+    // Location: one fix of three has a negative accuracy.
+    let f = fixes(&log);
+    assert_eq!(f.len(), 2);
+    assert_eq!(f[0].h_accuracy_m, 4.7);
+    assert_eq!(f[0].bearing_deg, Some(271.5));
+    assert_eq!(f[1].bearing_deg, None, "negative bearing is unknown");
+    // The bad line: header is line 1, the bad one line 19, `abc` in column 3 (`z`).
+    assert!(
+        has_warning(&log, "rec/Accelerometer.csv", 19, Some(3)),
+        "{:#?}",
+        log.warnings
+    );
+    let w = log.warnings.iter().find(|w| w.line == 19).unwrap();
+    assert_eq!(w.field.as_deref(), Some("z"));
+    assert!(
+        has_warning(&log, "rec/Location.csv", 3, Some(6)),
+        "{:#?}",
+        log.warnings
+    );
+    assert_eq!(log.skipped, 2);
+    assert_round_trip(&log);
+}
+
+#[test]
+fn sensor_logger_columns_matched_by_name() {
+    let files = load("sensor_logger_android", "");
+    let reference = one(import_mem(files.clone()));
+    // Reorder the columns of every file (reverse them): the result must not change.
+    let shuffled: Vec<(String, Vec<u8>)> = files
+        .into_iter()
+        .map(|(n, b)| {
+            let text = String::from_utf8(b).unwrap();
+            let out: String = text
+                .lines()
+                .map(|l| {
+                    let mut f: Vec<&str> = l.split(',').collect();
+                    f.reverse();
+                    f.join(",") + "\n"
+                })
+                .collect();
+            (n, out.into_bytes())
+        })
+        .collect();
+    let log = one(import_mem(shuffled));
+    assert_eq!(log.records, reference.records);
+}
+
+#[test]
+fn sensor_logger_ios_g_units_flipped_to_android() {
+    let log = one(import_mem(load("sensor_logger_ios", "")));
+    assert_eq!(log.platform, Some(Platform::Ios));
+    let s = imu(&log);
+    assert_eq!(s.len(), 30);
+    // iOS gravity face up is −1 g on z; with user acceleration −(0.35 sin 0.4) g/9.80665 on x.
+    // After import: Android sign, m/s²: z = +9.80665.
+    assert!(close(s[0].accel.z, 9.80665, 1e-5), "{:?}", s[0].accel);
+    assert!(
+        close(s[0].accel.x, 0.35 * 0.4f64.sin(), 1e-5),
+        "{:?}",
+        s[0].accel
+    );
+    for x in &s {
+        assert!(close(x.accel.norm(), 9.8, 1.5));
+    }
+    // Face up, top north in Core Motion's (north, west, up) frame → identity in ENU.
+    let q = s[0].orientation.unwrap();
+    assert!(q.angle() < 1e-6, "{q:?}");
+    // The NaN gyroscope line is skipped with a warning naming it.
+    assert!(
+        has_warning(&log, "Gyroscope.csv", 12, Some(4)),
+        "{:#?}",
+        log.warnings
+    );
+    // Rad/s as they are.
+    assert!(close(s[1].gyro.unwrap().x, 0.01, 1e-12));
+    assert_round_trip(&log);
+}
+
+#[test]
+fn sensor_logger_ios_platform_detected_without_metadata() {
+    let files: Vec<_> = load("sensor_logger_ios", "")
+        .into_iter()
+        .filter(|(n, _)| n != "Metadata.csv")
+        .collect();
+    let log = one(import_mem(files));
+    assert_eq!(log.platform, Some(Platform::Ios), "g units mean iOS");
+    assert!(close(imu(&log)[0].accel.z, 9.80665, 1e-5));
+}
+
+#[test]
+fn sensor_logger_total_acceleration_and_old_header() {
+    // Android with TotalAcceleration.csv and the older `time,z,y,x` header; no Metadata.
+    let mut text = String::from("time,z,y,x\n");
+    for k in 0..20u64 {
+        text += &format!(
+            "{},9.81,0.5,{}\n",
+            1_600_000_000_000_000_000 + k * 20_000_000,
+            k as f64 * 0.01
+        );
+    }
+    let files = vec![
+        ("TotalAcceleration.csv".to_string(), text.into_bytes()),
+        (
+            "Accelerometer.csv".to_string(),
+            b"time,z,y,x\n1600000000000000000,5,5,5\n".to_vec(),
+        ),
+    ];
+    let log = one(import_mem(files));
+    assert_eq!(log.platform, Some(Platform::Android));
+    let s = imu(&log);
+    assert_eq!(
+        s.len(),
+        20,
+        "TotalAcceleration is used, Accelerometer ignored"
+    );
+    assert_eq!(s[3].accel, Vector3::new(0.03, 0.5, 9.81));
+    assert!(close(s[1].t, 1_600_000_000.02, 1e-9));
+}
+
+#[test]
+fn sensor_logger_without_gravity_is_an_error() {
+    let files: Vec<_> = load("sensor_logger_android", "rec/")
+        .into_iter()
+        .filter(|(n, _)| !n.ends_with("Gravity.csv"))
+        .collect();
+    let r = import_mem(files);
+    assert_eq!(r.len(), 1);
+    let e = r.into_iter().next().unwrap().unwrap_err();
+    assert!(e.file.ends_with("rec/Accelerometer.csv"), "{e}");
+    assert!(e.message.contains("gravity"), "{e}");
+}
+
+#[test]
+fn sensor_logger_zip_same_as_folder() {
+    let files = load("sensor_logger_android", "Recording 2023-10-31/");
+    let folder = one(import_mem(files.clone()));
+    let zip = zip_bytes(&files);
+    // A zip as a file set…
+    let mut set = ZipSet::new(Cursor::new(zip.clone()), "walk.zip").unwrap();
+    let from_zip = one(import_all(&mut set));
+    assert_eq!(from_zip.records, folder.records);
+    assert_eq!(from_zip.source, "walk.zip/Recording 2023-10-31");
+    assert!(from_zip.warnings[0].file.starts_with("walk.zip/"));
+    // …and a zip inside a file set (an upload).
+    let uploaded = one(import_mem(vec![("walk.zip".into(), zip)]));
+    assert_eq!(uploaded.records, folder.records);
+}
+
+#[test]
+fn sensor_logger_json() {
+    let log = one(import_mem(load("sensor_logger.json", "")));
+    assert_eq!(log.format, Format::SensorLoggerJson);
+    assert_eq!(log.platform, Some(Platform::Android));
+    let s = imu(&log);
+    assert_eq!(s.len(), 20);
+    assert!(close(s[0].t, 1698745673.473, 1e-6));
+    let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
+    assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
+    assert!(s[0].gyro.is_none(), "gyro comes 2 ms later");
+    assert!(s[1].gyro.is_some());
+    assert!(s[0].orientation.unwrap().angle() < 1e-12);
+    assert_eq!(fixes(&log).len(), 1);
+    // The `n/a` element: field `z` named, line of the element.
+    let w = &log.warnings[0];
+    assert_eq!(w.file, "sensor_logger.json");
+    assert_eq!(w.field.as_deref(), Some("z"));
+    assert_eq!(w.line, 10, "{w}");
+    assert!(w.message.contains("element 10"), "{w}");
+    assert_round_trip(&log);
+}
+
+#[test]
+fn sensor_logger_json_cut_short_keeps_what_was_read() {
+    let (name, bytes) = load("sensor_logger.json", "").remove(0);
+    let cut = bytes[..bytes.len() * 2 / 3].to_vec();
+    let log = one(import_mem(vec![(name, cut)]));
+    assert!(imu(&log).len() > 5);
+    assert!(log
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("JSON damaged")));
+}
+
+// ------------------------------------------------------------------------------------------
+// phyphox
+// ------------------------------------------------------------------------------------------
+
+#[test]
+fn phyphox_folder_and_zip() {
+    let files = load("phyphox", "phyphox 2023-10-31 09-47-53/");
+    let log = one(import_mem(files.clone()));
+    assert_eq!(log.format, Format::Phyphox);
+    let s = imu(&log);
+    assert_eq!(s.len(), 30);
+    assert!(
+        close(s[0].t, 0.0048, 1e-12),
+        "seconds from the start, as written"
+    );
+    assert!(close(s[0].accel.y, 9.62, 1e-6));
+    assert!(s[0].gyro.is_some() && s[2].mag.is_some());
+    assert!(close(s[5].gyro.unwrap().x, 0.05, 1e-12), "{:?}", s[5].gyro);
+    assert!(close(s[2].mag.unwrap().y, -38.1, 1e-12));
+    let f = fixes(&log);
+    assert_eq!(f.len(), 2);
+    assert_eq!(f[1].speed_mps, None, "NaN is a missing value");
+    assert_eq!(f[0].altitude_m, Some(52.4));
+    assert!(
+        has_warning(&log, "Accelerometer.csv", 14, Some(3)),
+        "{:#?}",
+        log.warnings
+    );
+    assert_round_trip(&log);
+    let mut zip = ZipSet::new(Cursor::new(zip_bytes(&files)), "phyphox.zip").unwrap();
+    let z = one(import_all(&mut zip));
+    assert_eq!(z.records, log.records);
+}
+
+#[test]
+fn phyphox_semicolon_and_decimal_comma() {
+    let log = one(import_mem(load("phyphox_semicolon", "")));
+    let s = imu(&log);
+    assert_eq!(s.len(), 25);
+    assert!(close(s[0].t, 0.009364549, 1e-12));
+    assert_eq!(s[0].accel, Vector3::new(0.05, 9.364549, 2.81));
+    assert!(log.warnings.is_empty(), "{:?}", log.warnings);
+}
+
+#[test]
+fn phyphox_linear_acceleration_only_is_refused() {
+    let r = import_mem(load("phyphox_linear", ""));
+    assert_eq!(r.len(), 1);
+    let e = r.into_iter().next().unwrap().unwrap_err();
+    assert_eq!(e.file, "Linear Accelerometer.csv");
+    assert!(e.message.contains("linear acceleration"), "{e}");
+}
+
+// ------------------------------------------------------------------------------------------
+// GnssLogger
+// ------------------------------------------------------------------------------------------
+
+#[test]
+fn gnss_logger() {
+    let log = one(import_mem(load("gnss_logger.txt", "")));
+    assert_eq!(log.format, Format::GnssLogger);
+    let s = imu(&log);
+    assert_eq!(s.len(), 30);
+    // utcTimeMillis → s.
+    assert!(close(s[0].t, 1698745673.473, 1e-9));
+    // Calibrated Accel preferred over UncalAccel − bias (z 9.81 vs 9.80).
+    assert!(close(s[0].accel.z, 9.81, 1e-9), "{:?}", s[0].accel);
+    // No calibrated Gyro: UncalGyro − drift.
+    let g = s[1].gyro.unwrap();
+    assert!((g - Vector3::new(0.10, -0.02, 0.0)).norm() < 1e-9, "{g:?}");
+    // Calibrated Mag.
+    assert_eq!(s[1].mag, Some(Vector3::new(-18.0, 30.0, -42.0)));
+    // OrientationDeg yaw 90°: the top of the phone points east.
+    let q = s[0].orientation.unwrap();
+    assert!((q * Vector3::y() - Vector3::x()).norm() < 1e-9);
+    // Fixes: GPS preferred over FLP; the one without accuracy skipped.
+    let f = fixes(&log);
+    assert_eq!(f.len(), 2);
+    assert_eq!(f[0].h_accuracy_m, 4.7);
+    assert!(close(f[0].t, 1698745673.573, 1e-9));
+    assert!(
+        has_warning(&log, "gnss_logger.txt", 84, Some(5)),
+        "{:#?}",
+        log.warnings
+    );
+    assert_round_trip(&log);
+}
+
+#[test]
+fn gnss_logger_old_fix_layout() {
+    let text = "# Fix,Provider,Latitude,Longitude,Altitude,Speed,Accuracy,(UTC)TimeInMs\n\
+                # Accel,utcTimeMillis,elapsedRealtimeNanos,AccelXMps2,AccelYMps2,AccelZMps2\n\
+                Accel,1500000000000,1,0,0,9.8\n\
+                Fix,gps,45.5,9.2,120.0,0.5,8.0,1500000000500\n\
+                Accel,1500000001000,2,0,0,9.8\n";
+    let log = one(import_mem(vec![(
+        "old.txt".into(),
+        text.as_bytes().to_vec(),
+    )]));
+    let f = fixes(&log);
+    assert_eq!(f.len(), 1);
+    assert_eq!(
+        (f[0].t, f[0].lat_deg, f[0].h_accuracy_m),
+        (1_500_000_000.5, 45.5, 8.0)
+    );
+    assert_eq!(f[0].altitude_m, Some(120.0));
+}
+
+// ------------------------------------------------------------------------------------------
+// GetSensorData
+// ------------------------------------------------------------------------------------------
+
+#[test]
+fn get_sensor_data() {
+    let log = one(import_mem(load("get_sensor_data.txt", "")));
+    assert_eq!(log.format, Format::GetSensorData);
+    let s = imu(&log);
+    assert_eq!(s.len(), 30);
+    // Spacing from SensorTimestamp (exactly 20 ms), placed on the app clock by the least delay
+    // (4 ms for the first sample).
+    for w in s.windows(2) {
+        assert!(close(w[1].t - w[0].t, 0.02, 1e-9), "{} {}", w[0].t, w[1].t);
+    }
+    assert!(close(s[0].t, 0.064, 1e-9), "{}", s[0].t);
+    assert!(s[0].gyro.is_none() && s[1].gyro.is_some());
+    // AHRS rotation vector (0, 0, sin 15°) → 30° about up.
+    let q = s[1].orientation.unwrap();
+    assert!(close(q.angle(), 30f64.to_radians(), 1e-4), "{}", q.angle());
+    // Each GNSS fix is written twice.
+    let f = fixes(&log);
+    assert_eq!(f.len(), 2);
+    assert_eq!(f[0].h_accuracy_m, 4.0);
+    // POSI → waypoints in metres east/north of the first.
+    let w = &log.truth.waypoints;
+    assert_eq!(w.len(), 3);
+    assert_eq!((w[0].t, w[0].x_m, w[0].y_m), (0.052, 0.0, 0.0));
+    assert!(
+        close(w[1].x_m, 0.0, 0.01) && close(w[1].y_m, 6.0, 0.1),
+        "{:?}",
+        w[1]
+    );
+    assert!(
+        close(w[2].x_m, 5.94, 0.1) && close(w[2].y_m, 6.0, 0.1),
+        "{:?}",
+        w[2]
+    );
+    // The ACCE line with an empty Acc_Y.
+    let bad = log.warnings.iter().find(|w| w.column == Some(5)).unwrap();
+    assert_eq!(bad.field.as_deref(), Some("Acc_Y"));
+    assert_eq!(bad.file, "get_sensor_data.txt");
+    assert_round_trip(&log);
+}
+
+// ------------------------------------------------------------------------------------------
+// All together, and robustness
+// ------------------------------------------------------------------------------------------
+
+#[test]
+fn whole_fixture_folder_on_disk() {
+    let mut set = DirSet::new(&fixtures()).unwrap();
+    let results = import_all(&mut set);
+    let mut formats: Vec<&str> = results
+        .iter()
+        .filter_map(|r| r.as_ref().ok())
+        .map(|l| l.format.as_str())
+        .collect();
+    formats.sort_unstable();
+    assert_eq!(
+        formats,
+        [
+            "get-sensor-data",
+            "gnss-logger",
+            "phyphox",
+            "phyphox",
+            "sensor-logger",
+            "sensor-logger",
+            "sensor-logger-json"
+        ]
+    );
+    let errors: Vec<_> = results.iter().filter_map(|r| r.as_ref().err()).collect();
+    assert_eq!(errors.len(), 1, "{errors:?}");
+    assert!(errors[0].file.contains("phyphox_linear"));
+}
+
+/// A deterministic xorshift generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n.max(1) as u64) as usize
+    }
+}
+
+/// One damaging change to a file.
+fn mutate(bytes: &[u8], rng: &mut Rng) -> Vec<u8> {
+    let mut b = bytes.to_vec();
+    match rng.below(9) {
+        // Truncated.
+        0 => b.truncate(rng.below(b.len() + 1)),
+        // Binary junk inserted.
+        1 => {
+            let at = rng.below(b.len() + 1);
+            let junk: Vec<u8> = (0..1 + rng.below(64)).map(|_| rng.next() as u8).collect();
+            b.splice(at..at, junk);
+        }
+        // Empty.
+        2 => b.clear(),
+        // Only junk.
+        3 => b = (0..rng.below(3000)).map(|_| rng.next() as u8).collect(),
+        // Text, NaN, infinities or huge values where a number belongs.
+        4 | 5 => {
+            let text = String::from_utf8_lossy(&b).into_owned();
+            let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+            for _ in 0..1 + rng.below(4) {
+                if lines.is_empty() {
+                    break;
+                }
+                let i = rng.below(lines.len());
+                let sep = [',', ';', '\t']
+                    .into_iter()
+                    .find(|c| lines[i].contains(*c))
+                    .unwrap_or(',');
+                let mut f: Vec<String> = lines[i].split(sep).map(str::to_string).collect();
+                let j = rng.below(f.len());
+                f[j] = ["NaN", "abc", "1e999", "-inf", "", "1e308", "\"", "0"][rng.below(8)]
+                    .to_string();
+                lines[i] = f.join(&sep.to_string());
+            }
+            b = (lines.join("\n") + "\n").into_bytes();
+        }
+        // Out-of-order lines.
+        6 | 7 => {
+            let text = String::from_utf8_lossy(&b).into_owned();
+            let mut lines: Vec<&str> = text.lines().collect();
+            for _ in 0..1 + rng.below(10) {
+                if lines.len() > 1 {
+                    let (i, j) = (rng.below(lines.len()), rng.below(lines.len()));
+                    lines.swap(i, j);
+                }
+            }
+            b = (lines.join("\n") + "\n").into_bytes();
+        }
+        // A random byte flipped.
+        _ => {
+            if !b.is_empty() {
+                let i = rng.below(b.len());
+                b[i] ^= 1 << rng.below(8);
+            }
+        }
+    }
+    b
+}
+
+#[test]
+fn robust_against_damaged_files() {
+    let cases = [
+        "sensor_logger_android",
+        "sensor_logger_ios",
+        "sensor_logger.json",
+        "phyphox",
+        "phyphox_semicolon",
+        "gnss_logger.txt",
+        "get_sensor_data.txt",
+    ];
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut outcomes = [0usize; 2];
+    for case in cases {
+        let original = load(case, "rec/");
+        for round in 0..120 {
+            let mut files = original.clone();
+            for _ in 0..1 + rng.below(2) {
+                let k = rng.below(files.len());
+                files[k].1 = mutate(&files[k].1, &mut rng);
+            }
+            let names: Vec<String> = files.iter().map(|f| f.0.clone()).collect();
+            let results = if round % 10 == 0 {
+                import_mem(vec![("rec.zip".into(), zip_bytes(&files))])
+            } else {
+                import_mem(files)
+            };
+            for r in results {
+                match r {
+                    Ok(log) => {
+                        outcomes[0] += 1;
+                        assert_sane(&log);
+                    }
+                    Err(e) => {
+                        outcomes[1] += 1;
+                        assert!(
+                            names.iter().any(|n| e.file.contains(n.as_str()))
+                                || e.file.contains("rec"),
+                            "{case}: the error names no file: {e}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    // Both outcomes happen: damage is survived, and fatal damage is reported.
+    assert!(outcomes[0] > 100 && outcomes[1] > 10, "{outcomes:?}");
+}
