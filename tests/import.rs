@@ -2,6 +2,9 @@
 //! GnssLogger and GetSensorData. Fixtures are small hand-made recordings under
 //! `tests/fixtures/import/`.
 
+// Expected values computed with std's `sin` are fine in tests (see clippy.toml).
+#![allow(clippy::disallowed_methods)]
+
 use nalgebra::Vector3;
 use pdr::engine::pipeline::Record;
 use pdr::engine::types::ImuSample;
@@ -154,7 +157,10 @@ fn sensor_logger_android_folder() {
     // (0.35 sin 0.4, 0, 0), gravity (0.31, 1.27, 9.72).
     let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
     assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
-    assert!(s[0].gyro.is_none(), "the first gyroscope sample comes 2 ms later");
+    assert!(
+        s[0].gyro.is_none(),
+        "the first gyroscope sample comes 2 ms later"
+    );
     assert!(s[1..].iter().all(|x| x.gyro.is_some()));
     assert!(s[5].mag.is_some());
     assert!(s[0].orientation.is_some());
@@ -288,6 +294,28 @@ fn sensor_logger_without_gravity_is_an_error() {
     let e = r.into_iter().next().unwrap().unwrap_err();
     assert!(e.file.ends_with("rec/Accelerometer.csv"), "{e}");
     assert!(e.message.contains("gravity"), "{e}");
+}
+
+#[test]
+fn sensor_logger_damaged_optional_file_is_a_warning() {
+    let files: Vec<_> = load("sensor_logger_android", "rec/")
+        .into_iter()
+        .map(|(n, b)| {
+            if n.ends_with("Magnetometer.csv") {
+                (n, b"\xff\xfe\x00junk\n1,2,3\n".to_vec())
+            } else {
+                (n, b)
+            }
+        })
+        .collect();
+    let log = one(import_mem(files));
+    assert_eq!(imu(&log).len(), 40);
+    assert!(imu(&log).iter().all(|s| s.mag.is_none()));
+    assert!(
+        has_warning(&log, "rec/Magnetometer.csv", 1, None),
+        "{:#?}",
+        log.warnings
+    );
 }
 
 #[test]

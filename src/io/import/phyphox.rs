@@ -129,6 +129,7 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
     let (mut have_gyro, mut have_mag, mut have_loc) = (false, false, false);
     let mut linear_only: Option<ParseError> = None;
     let mut rejected: Option<ParseError> = None;
+    let mut unreadable: Option<ParseError> = None;
     let mut invalid_fixes = 0u64;
     let mut invalid_file = String::new();
     for name in files {
@@ -136,8 +137,15 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
         let r = set
             .open(name)
             .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
-        let Some(mut table) = Table::open(r, &label, None)? else {
-            continue;
+        // A damaged file is a warning: the others may still make a log.
+        let mut table = match Table::open(r, &label, None) {
+            Ok(Some(t)) => t,
+            Ok(None) => continue,
+            Err(e) => {
+                unreadable.get_or_insert_with(|| e.clone());
+                warnings.push(e);
+                continue;
+            }
         };
         let Some(t_col) = table.col(is_time) else {
             continue;
@@ -298,7 +306,7 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
         have_loc |= loc.is_some();
     }
     if s.accel.is_empty() {
-        return Err(rejected.or(linear_only).unwrap_or_else(|| {
+        return Err(rejected.or(linear_only).or(unreadable).unwrap_or_else(|| {
             file_error(
                 source,
                 0,

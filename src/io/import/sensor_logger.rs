@@ -393,9 +393,10 @@ impl Kind {
         }
     }
 
-    /// Whether a missing or unreadable file of this kind makes the log unreadable.
+    /// Whether an unreadable file of this kind makes the log unreadable. (An unreadable
+    /// `Gravity.csv` is a warning here, and fatal later only when gravity is needed.)
     fn essential(self) -> bool {
-        matches!(self, Kind::Total | Kind::Accel | Kind::Gravity)
+        matches!(self, Kind::Total | Kind::Accel)
     }
 }
 
@@ -620,7 +621,15 @@ impl Raw {
         kind: Kind,
         clock: Clock,
     ) -> Result<(), ParseError> {
-        let Some(mut table) = Table::open(r, label, Some(b','))? else {
+        let table = match Table::open(r, label, Some(b',')) {
+            Ok(t) => t,
+            Err(e) if !kind.essential() => {
+                self.warnings.push(e);
+                return Ok(());
+            }
+            Err(e) => return Err(e),
+        };
+        let Some(mut table) = table else {
             if kind.essential() {
                 return Err(file_error(label, 0, "empty file"));
             }
@@ -694,6 +703,13 @@ impl Raw {
             ));
         }
         if self.total.is_empty() && self.gravity.is_empty() {
+            let gravity_problem = self
+                .warnings
+                .iter()
+                .find(|w| w.column.is_none() && w.file.to_lowercase().ends_with("gravity.csv"));
+            if let Some(e) = gravity_problem {
+                return Err(e.clone());
+            }
             return Err(file_error(
                 &accel_file,
                 0,
