@@ -87,9 +87,21 @@ impl OnePole {
 
     /// Feeds `x` after `dt` seconds; the first call initialises the output to `x`.
     pub fn update(&mut self, x: f64, dt: f64) -> f64 {
+        self.update_with_gain(x, self.gain(dt))
+    }
+
+    /// The gain dt/(τ+dt) of a step of `dt` seconds, for filters sharing one τ.
+    #[inline]
+    pub fn gain(&self, dt: f64) -> f64 {
+        dt / (self.tau + dt)
+    }
+
+    /// [`OnePole::update`] with the gain already computed by [`OnePole::gain`].
+    #[inline]
+    pub fn update_with_gain(&mut self, x: f64, k: f64) -> f64 {
         let y = match self.y {
             None => x,
-            Some(y) => y + dt / (self.tau + dt) * (x - y),
+            Some(y) => y + k * (x - y),
         };
         self.y = Some(y);
         y

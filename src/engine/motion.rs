@@ -275,7 +275,10 @@ pub struct Periodicity {
     lp: [OnePole; 2],
     prev: Option<(f64, f64)>,
     next_t: f64,
+    // History of the resampled signal, newest first, as a mirrored ring: every point is written
+    // at `pos` and `pos + M`, so `hist[pos..pos + M]` is the whole window without copying.
     hist: Vec<f64>,
+    pos: usize,
     sums: [f64; AC_L + 1],
     count: usize,
     since_resum: u32,
@@ -311,7 +314,8 @@ impl Periodicity {
             lp: [OnePole::with_cutoff_hz(5.0); 2],
             prev: None,
             next_t: 0.0,
-            hist: vec![0.0; AC_N + AC_L + 1],
+            hist: vec![0.0; 2 * (AC_N + AC_L + 1)],
+            pos: 0,
             sums: [0.0; AC_L + 1],
             count: 0,
             since_resum: 0,
@@ -330,8 +334,10 @@ impl Periodicity {
     /// Adds a vertical-acceleration sample taken `dt` s after the previous one.
     pub fn push(&mut self, t: f64, dt: f64, a: f64) {
         let slow = self.hp.update(a, dt);
-        let y = self.lp[0].update(a - slow, dt);
-        let y = self.lp[1].update(y, dt);
+        // The two low-pass stages share one τ, so one gain.
+        let k = self.lp[0].gain(dt);
+        let y = self.lp[0].update_with_gain(a - slow, k);
+        let y = self.lp[1].update_with_gain(y, k);
         let Some((t0, y0)) = self.prev else {
             self.prev = Some((t, y));
             self.next_t = t + AC_DT;
@@ -360,9 +366,11 @@ impl Periodicity {
         };
         self.ms = Some(ms);
         let x = x / libm::sqrt(ms + 1e-4);
-        let h = &mut self.hist;
-        h.copy_within(0..AC_N + AC_L, 1);
-        h[0] = x;
+        const M: usize = AC_N + AC_L + 1;
+        self.pos = if self.pos == 0 { M - 1 } else { self.pos - 1 };
+        self.hist[self.pos] = x;
+        self.hist[self.pos + M] = x;
+        let h = &self.hist[self.pos..self.pos + M];
         let (new, old) = h.split_at(AC_N);
         for ((s, a), b) in self.sums.iter_mut().zip(&new[..=AC_L]).zip(&old[..=AC_L]) {
             *s += x * a - old[0] * b;

@@ -271,7 +271,7 @@ impl Pipeline {
             Orientation::new(src)
         });
         let nav = orientation.update(s, dt)?;
-        if self.cfg.heading.yaw_aid.is_some() {
+        if self.cfg.heading.yaw_aid.is_some_and(|a| a.learn_offset) {
             if let (Some(q), Some(p)) = (&nav.attitude, &self.attitude) {
                 // World-frame increment q·p⁻¹; for a small rotation its vertical component is
                 // half the yaw change (counter-clockwise, so subtracted for a compass angle).

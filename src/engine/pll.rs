@@ -162,6 +162,9 @@ pub struct Pll {
     armed: bool,
     crossings: [f64; 4],
     n_cross: usize,
+    // The band of the last (motion, cadence), which change a few times a second at most.
+    band_key: Option<(Motion, Option<f64>)>,
+    band_val: (f64, f64, f64),
 }
 
 impl Pll {
@@ -188,6 +191,8 @@ impl Pll {
             armed: false,
             crossings: [0.0; 4],
             n_cross: 0,
+            band_key: None,
+            band_val: (0.0, 0.0, 0.0),
         }
     }
 
@@ -257,7 +262,11 @@ impl Pll {
         motion: Motion,
         cadence: Option<f64>,
     ) -> Option<Candidate> {
-        let (lo, hi, free) = self.band(motion, cadence);
+        if self.band_key != Some((motion, cadence)) {
+            self.band_key = Some((motion, cadence));
+            self.band_val = self.band(motion, cadence);
+        }
+        let (lo, hi, free) = self.band_val;
         // A change of band (walking ↔ running) clamps the estimate into the new band, so the
         // loop keeps its lock across the transition.
         self.integ = self.integ.clamp(lo, hi);
