@@ -319,4 +319,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0x3b07_9724_e52d_d8b9;
+const DEMO_DIGEST: u64 = 0x47e5_c6d7_0471_f219;

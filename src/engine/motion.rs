@@ -277,7 +277,7 @@ pub struct Periodicity {
     next_t: f64,
     // History of the resampled signal, newest first, as a mirrored ring: every point is written
     // at `pos` and `pos + M`, so `hist[pos..pos + M]` is the whole window without copying.
-    hist: Vec<f64>,
+    hist: [f64; 2 * (AC_N + AC_L + 1)],
     pos: usize,
     sums: [f64; AC_L + 1],
     count: usize,
@@ -314,7 +314,7 @@ impl Periodicity {
             lp: [OnePole::with_cutoff_hz(5.0); 2],
             prev: None,
             next_t: 0.0,
-            hist: vec![0.0; 2 * (AC_N + AC_L + 1)],
+            hist: [0.0; 2 * (AC_N + AC_L + 1)],
             pos: 0,
             sums: [0.0; AC_L + 1],
             count: 0,
