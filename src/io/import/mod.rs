@@ -106,21 +106,18 @@ impl Platform {
         }
     }
 
-    /// Guesses the platform from acceleration including gravity, when no metadata says: over a
-    /// recording the mean acceleration points against gravity on Android (the phone feels the
-    /// floor pushing up) and along it on iOS. The mean vector is compared with the mean gravity
-    /// direction we can only know from the sign convention itself, so the rule uses the axis with
-    /// the largest mean magnitude: a phone rests mostly face up/down (z), upright (y) or on its
-    /// side (x), and at rest upright or face up Android reads +9.81 on y or z. Returns `None` when
-    /// there is no sample. Document of the rule: README "Import".
+    /// Guesses the platform from the mean acceleration including gravity, when nothing better
+    /// is known (see `sensor_logger::decide_platform` for the full order of rules, and the
+    /// README, "Import"): the axis with the largest mean magnitude reads +9.81 on Android when the
+    /// phone lies face up (z) or stands upright (y), and −1 g on iOS. Phones are carried face up
+    /// or upright far more often than face down or upside down, so a positive mean is Android.
+    /// `None` when the mean is zero or not finite.
     pub fn guess(mean_accel: Vector3<f64>) -> Option<Platform> {
         let (i, _) = mean_accel.iamax_full();
         let v = mean_accel[i];
         if !v.is_finite() || v == 0.0 {
             return None;
         }
-        // Face up (z) or upright (y) is how phones are held and carried; face down or upside
-        // down happen too, but a pocket or a hand makes the common pose the positive one.
         Some(if v > 0.0 {
             Platform::Android
         } else {
