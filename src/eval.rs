@@ -67,6 +67,11 @@ pub struct LogResult {
     pub truth_steps: Option<u64>,
     /// Step-count error, %.
     pub step_error_pct: Option<f64>,
+    /// True steps without the truth device's contact bounces, when it reports feet
+    /// ([`crate::io::import::Truth::steps_debounced`]).
+    pub truth_steps_debounced: Option<u64>,
+    /// Step-count error against [`LogResult::truth_steps_debounced`], %.
+    pub step_error_debounced_pct: Option<f64>,
     /// Number of truth waypoints.
     pub waypoints: u64,
     /// Aligned waypoint errors, m.
@@ -75,6 +80,8 @@ pub struct LogResult {
     pub waypoint_error_pct: Option<PctSummary>,
     /// Loop-closure error, m, for walks that end where they started.
     pub loop_closure_m: Option<f64>,
+    /// The log's group within its data set (Oxford: the phone's placement).
+    pub group: Option<String>,
     /// Lines skipped while reading.
     pub skipped_lines: u64,
     /// Records the engine refused.
@@ -101,10 +108,13 @@ impl LogResult {
             distance_m: 0.0,
             truth_steps: None,
             step_error_pct: None,
+            truth_steps_debounced: None,
+            step_error_debounced_pct: None,
             waypoints: 0,
             waypoint_error_m: None,
             waypoint_error_pct: None,
             loop_closure_m: None,
+            group: None,
             skipped_lines: 0,
             refused_records: 0,
             error: Some(error),
@@ -123,10 +133,26 @@ pub struct Summary {
     pub failed: u64,
     /// Mean step-count error over the logs with step truth, %.
     pub step_mae_pct: Option<f64>,
+    /// Mean of [`LogResult::step_error_debounced_pct`], %.
+    pub step_mae_debounced_pct: Option<f64>,
+    /// Mean step-count error per group (Oxford: per placement), %; and against the debounced
+    /// truth.
+    pub step_mae_by_group: std::collections::BTreeMap<String, GroupSteps>,
     /// 75th percentile of all waypoint errors of all logs, pooled, m.
     pub waypoint_p75_m: Option<f64>,
     /// 75th percentile of all counted waypoint errors of all logs, pooled, %.
     pub waypoint_p75_pct: Option<f64>,
+}
+
+/// Step-count figures of one group of logs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GroupSteps {
+    /// Logs in the group with step truth.
+    pub logs: u64,
+    /// Mean step-count error, %.
+    pub mae_pct: f64,
+    /// Mean step-count error against the debounced truth, %, when every log has it.
+    pub mae_debounced_pct: Option<f64>,
 }
 
 /// The whole report.
@@ -143,6 +169,7 @@ pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
     let mut res = LogResult::failed(&log.source, log.format.as_str(), String::new());
     res.error = None;
     res.skipped_lines = log.skipped;
+    res.group = log.group.clone();
     let run = match replay(cfg.clone(), &log.records) {
         Ok(r) => r,
         Err(e) => {
@@ -162,13 +189,13 @@ pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
         res.error = Some("no IMU sample accepted".into());
         return res;
     }
-    if let Some(truth) = log.truth.steps {
-        res.truth_steps = Some(truth);
-        if truth > 0 {
-            res.step_error_pct =
-                Some(100.0 * (res.steps as f64 - truth as f64).abs() / truth as f64);
-        }
-    }
+    let error_pct = |truth: u64| {
+        (truth > 0).then(|| 100.0 * (res.steps as f64 - truth as f64).abs() / truth as f64)
+    };
+    res.truth_steps = log.truth.steps;
+    res.step_error_pct = log.truth.steps.and_then(error_pct);
+    res.truth_steps_debounced = log.truth.steps_debounced();
+    res.step_error_debounced_pct = res.truth_steps_debounced.and_then(error_pct);
     let wps = &log.truth.waypoints;
     res.waypoints = wps.len() as u64;
     if let Some(errors) = waypoint_errors(track, wps) {
@@ -285,6 +312,29 @@ pub fn percentile(v: &[f64], q: f64) -> f64 {
 /// The summary of a set of results.
 pub fn summarise(logs: &[LogResult]) -> Summary {
     let steps: Vec<f64> = logs.iter().filter_map(|l| l.step_error_pct).collect();
+    let debounced: Vec<f64> = logs
+        .iter()
+        .filter_map(|l| l.step_error_debounced_pct)
+        .collect();
+    let mut groups = std::collections::BTreeMap::<String, Vec<&LogResult>>::new();
+    for l in logs.iter().filter(|l| l.step_error_pct.is_some()) {
+        if let Some(g) = &l.group {
+            groups.entry(g.clone()).or_default().push(l);
+        }
+    }
+    let step_mae_by_group = groups
+        .into_iter()
+        .map(|(g, ls)| {
+            let e: Vec<f64> = ls.iter().filter_map(|l| l.step_error_pct).collect();
+            let d: Option<Vec<f64>> = ls.iter().map(|l| l.step_error_debounced_pct).collect();
+            let s = GroupSteps {
+                logs: ls.len() as u64,
+                mae_pct: mean(&e),
+                mae_debounced_pct: d.map(|d| mean(&d)),
+            };
+            (g, s)
+        })
+        .collect();
     let m: Vec<f64> = logs
         .iter()
         .flat_map(|l| l.waypoint_errors_m.iter().copied())
@@ -297,6 +347,8 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         logs: logs.len() as u64,
         failed: logs.iter().filter(|l| l.error.is_some()).count() as u64,
         step_mae_pct: (!steps.is_empty()).then(|| mean(&steps)),
+        step_mae_debounced_pct: (!debounced.is_empty()).then(|| mean(&debounced)),
+        step_mae_by_group,
         waypoint_p75_m: (!m.is_empty()).then(|| percentile(&m, 75.0)),
         waypoint_p75_pct: (!pct.is_empty()).then(|| percentile(&pct, 75.0)),
     }

@@ -166,6 +166,8 @@ pub struct Diagnostics {
     pub pll_freq_hz: Option<f64>,
     /// Whether the PLL is locked.
     pub pll_locked: Option<bool>,
+    /// Step frequency of the periodic gait the motion detector sees, Hz (autocorrelation).
+    pub cadence_hz: Option<f64>,
     /// First and last accepted IMU times, s.
     pub time_span: Option<(f64, f64)>,
 }
@@ -545,6 +547,7 @@ impl Pipeline {
         let mut d = self.diag.clone();
         d.motion = self.orientation.as_ref().map(|_| self.motion.state());
         d.sigma_z = self.motion.sigma();
+        d.cadence_hz = self.motion.cadence_hz();
         if let Detector::Pll(p) = &self.detector {
             d.pll_freq_hz = Some(p.frequency());
             d.pll_locked = Some(p.locked());

@@ -329,11 +329,23 @@ fn print_report(report: &pdr::eval::Report) {
         );
     }
     let s = &report.summary;
+    if !s.step_mae_by_group.is_empty() {
+        println!();
+        for (g, v) in &s.step_mae_by_group {
+            println!(
+                "{g:<16} {:>3} logs  step MAE {:>5.2} %  (debounced truth {} %)",
+                v.logs,
+                v.mae_pct,
+                opt(v.mae_debounced_pct, 2)
+            );
+        }
+    }
     println!(
-        "\n{} logs, {} failed; step MAE {} %; waypoint p75 {} m ({} % of the path walked)",
+        "\n{} logs, {} failed; step MAE {} % (debounced truth {} %); waypoint p75 {} m ({} % of the path walked)",
         s.logs,
         s.failed,
         opt(s.step_mae_pct, 2),
+        opt(s.step_mae_debounced_pct, 2),
         opt(s.waypoint_p75_m, 2),
         opt(s.waypoint_p75_pct, 1)
     );

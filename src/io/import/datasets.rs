@@ -2,7 +2,8 @@
 //! folders, Microsoft Indoor Location Competition 2.0 traces and the x-io foot-mounted CSVs.
 
 use super::{
-    field_error, file_error, number, FileSet, Format, Log, Platform, Streams, Waypoint, G0,
+    field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams, TrueStep,
+    Waypoint, G0,
 };
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -64,6 +65,11 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
     let source = set.label(dir.trim_end_matches('/'));
     let mut log = Log::new(source, Format::OxfordSteps);
     log.platform = Some(Platform::Android);
+    // `<Phone>_<Walker>_<Surface>_<Position>_<n>`.
+    log.group = fileset::base(dir.trim_end_matches('/'))
+        .split('_')
+        .nth(3)
+        .map(str::to_string);
     let name = format!("{dir}accelerometer.csv");
     let label = set.label(&name);
     let mut streams = Streams::default();
@@ -94,23 +100,34 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
         .open(&name)
         .map_err(|e| file_error(&label, 0, e.to_string()))?;
     let mut prev: Option<[f64; 2]> = None;
-    let mut steps = 0u64;
+    let mut events = Vec::new();
     for_each_line(reader, &label, |n, line| {
         if line.trim().is_empty() {
             return;
         }
         let f: Vec<&str> = line.split(',').collect();
-        match numbers(&f, 1, ["left", "right"], &label, n) {
-            Ok(c) => {
+        match numbers(&f, 0, ["time_ns", "left", "right"], &label, n) {
+            Ok([t, l, r]) => {
+                let c = [l, r];
                 if let Some(p) = prev {
-                    steps += (0..2).filter(|&k| p[k] < 0.5 && c[k] >= 0.5).count() as u64;
+                    for foot in 0..2u8 {
+                        let k = usize::from(foot);
+                        if p[k] < 0.5 && c[k] >= 0.5 {
+                            events.push(TrueStep {
+                                t: t * 1e-9,
+                                foot: Some(foot),
+                            });
+                        }
+                    }
                 }
                 prev = Some(c);
             }
             Err(e) => warnings.push(e),
         }
     })?;
-    log.truth.steps = Some(steps);
+    events.sort_by(|a, b| a.t.total_cmp(&b.t));
+    log.truth.steps = Some(events.len() as u64);
+    log.truth.step_events = events;
     log.records = streams.into_records();
     for w in warnings {
         log.warn(w);

@@ -138,16 +138,74 @@ pub struct Waypoint {
     pub y_m: f64,
 }
 
+/// One step reported by a truth device.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TrueStep {
+    /// Time of the foot contact, s, on the log's clock.
+    pub t: f64,
+    /// Which foot (0 or 1), when the device tells.
+    pub foot: Option<u8>,
+}
+
 /// Ground truth a recording carries.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct Truth {
     /// The true number of steps.
     pub steps: Option<u64>,
+    /// The true steps one by one, when the truth device reports them (Oxford: each foot
+    /// contact), in time order.
+    pub step_events: Vec<TrueStep>,
     /// Waypoints (or landmarks) in time order.
     pub waypoints: Vec<Waypoint>,
     /// The walk ends where it started.
     pub loop_closure: bool,
 }
+
+impl Truth {
+    /// The true step count without the truth device's contact bounces, when it reports feet.
+    ///
+    /// The Oxford contact sensors sometimes report one foot landing twice in a row, the second
+    /// time 0.18–0.41 s after the first, with the other foot's next contact then arriving a
+    /// normal step after the first one: a bounce of the sensor (heel, then toe), not a step.
+    /// 20 of the 284 contacts of Pixel_Jamie_Hard_SwingingArm_1 are such repeats, 14 of 280 of
+    /// Pixel_Jamie_Hard_Armband_1. A contact is dropped when the previous kept contact was the
+    /// same foot less than [`BOUNCE_STRIDE_SHARE`] of the median stride (same-foot interval)
+    /// before it. The published count (`steps`) stays the headline figure; this one is reported
+    /// beside it.
+    pub fn steps_debounced(&self) -> Option<u64> {
+        let ev = &self.step_events;
+        if ev.is_empty() || ev.iter().any(|e| e.foot.is_none()) {
+            return None;
+        }
+        let mut strides: Vec<f64> = (0..2u8)
+            .flat_map(|f| {
+                let t: Vec<f64> = ev
+                    .iter()
+                    .filter(|e| e.foot == Some(f))
+                    .map(|e| e.t)
+                    .collect();
+                t.windows(2).map(|w| w[1] - w[0]).collect::<Vec<_>>()
+            })
+            .collect();
+        strides.sort_by(f64::total_cmp);
+        let Some(&median) = strides.get(strides.len() / 2) else {
+            return Some(ev.len() as u64);
+        };
+        let mut kept: Vec<TrueStep> = Vec::with_capacity(ev.len());
+        for e in ev {
+            match kept.last() {
+                Some(p) if p.foot == e.foot && e.t - p.t < BOUNCE_STRIDE_SHARE * median => {}
+                _ => kept.push(*e),
+            }
+        }
+        Some(kept.len() as u64)
+    }
+}
+
+/// See [`Truth::steps_debounced`]: a same-foot repeat closer than this share of the median
+/// stride is a bounce. 0.6: bounces come at 0.2–0.4 of a stride, a missed contact of the other
+/// foot makes a repeat of about one stride.
+pub const BOUNCE_STRIDE_SHARE: f64 = 0.6;
 
 /// One recording, read.
 #[derive(Debug, Clone)]
@@ -166,6 +224,9 @@ pub struct Log {
     pub warnings: Vec<ParseError>,
     /// Number of lines skipped in total.
     pub skipped: u64,
+    /// The condition the recording belongs to within its data set, for per-group figures
+    /// (Oxford: where the phone was carried, e.g. `FrontPocket`).
+    pub group: Option<String>,
 }
 
 impl Log {
@@ -179,6 +240,7 @@ impl Log {
             truth: Truth::default(),
             warnings: Vec::new(),
             skipped: 0,
+            group: None,
         }
     }
 
