@@ -67,6 +67,11 @@ impl PeakDetector {
         }
     }
 
+    /// The settings.
+    pub fn config(&self) -> &PeakConfig {
+        &self.cfg
+    }
+
     /// Forgets the signal history (after a gap).
     pub fn reset(&mut self) {
         *self = PeakDetector {
