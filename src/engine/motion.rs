@@ -66,6 +66,14 @@ pub struct MotionConfig {
     /// between fast walking and slow running, inside the overlap of the two PLL bands
     /// (2.3–2.7 Hz). Without a periodicity estimate the σ rule decides.
     pub run_min_hz: f64,
+    /// Smallest σ_z of a running gait, m/s². A rhythm at a running cadence with less is not
+    /// running (Oxford Pixel_Jamie_Hard_Purse_2: a purse set down swings at 3.2–4 Hz with
+    /// σ_z ≈ 0.6–1.2 m/s²); running shakes the body far more than walking, whose σ_z starts at
+    /// about 1 m/s² for a phone held gently in the hand. 2 m/s²: twice that.
+    pub run_sigma_min: f64,
+    /// Highest step frequency of a walk, Hz (the top of the walking band, Basso 2016 §II.D
+    /// 1.5–2.2 Hz with a margin). A faster rhythm without the σ_z of running is not a gait.
+    pub walk_max_hz: f64,
     /// How long a moving state survives a lapse of periodicity while σ_z stays above
     /// [`MotionConfig::still_max`], s (walk/run then by Basso's σ rule). A gait change blurs the
     /// 3 s autocorrelation for about a second (simulated walk → run: 1 s without a verdict);
@@ -85,6 +93,8 @@ impl Default for MotionConfig {
             periodic_score_min: 0.5,
             periodic_sigma_min: 0.5,
             run_min_hz: 2.5,
+            run_sigma_min: 2.0,
+            walk_max_hz: 2.7,
             periodic_lapse_s: 2.0,
         }
     }
@@ -99,6 +109,13 @@ impl MotionConfig {
         positive("motion.periodic_score_min", self.periodic_score_min)?;
         positive("motion.periodic_sigma_min", self.periodic_sigma_min)?;
         positive("motion.run_min_hz", self.run_min_hz)?;
+        positive("motion.run_sigma_min", self.run_sigma_min)?;
+        if !(self.walk_max_hz >= self.run_min_hz) {
+            return Err(ConfigError::new(
+                "motion.walk_max_hz",
+                "must be at least motion.run_min_hz",
+            ));
+        }
         positive("motion.periodic_lapse_s", self.periodic_lapse_s)?;
         if !(self.walk_max > self.still_max) {
             return Err(ConfigError::new(
@@ -178,9 +195,12 @@ impl MotionDetector {
         self.last_t = Some(t);
         self.periodicity.push(t, dt, a);
         if span >= self.cfg.min_span_s {
-            let cadence = self
-                .cadence_hz()
-                .filter(|_| self.sigma >= self.cfg.periodic_sigma_min);
+            // A rhythm faster than walking without the σ_z of running is not a gait (see
+            // [`MotionConfig::run_sigma_min`]).
+            let cadence = self.cadence_hz().filter(|&f| {
+                self.sigma >= self.cfg.periodic_sigma_min
+                    && (f <= self.cfg.walk_max_hz || self.sigma >= self.cfg.run_sigma_min)
+            });
             if cadence.is_some() {
                 self.last_periodic_t = Some(t);
             }
@@ -192,11 +212,18 @@ impl MotionDetector {
                     .last_periodic_t
                     .is_some_and(|l| t - l <= self.cfg.periodic_lapse_s);
             self.state = match cadence {
-                Some(f) if f >= self.cfg.run_min_hz => Motion::Running,
+                Some(f) if f >= self.cfg.run_min_hz && self.sigma >= self.cfg.run_sigma_min => {
+                    Motion::Running
+                }
                 Some(_) => Motion::Walking,
                 None if !lapse => Motion::Still,
-                None if self.sigma < self.cfg.walk_max => Motion::Walking,
-                None => Motion::Running,
+                // Across a lapse Basso's σ_z rule may end a run, but never starts one: a
+                // swinging purse gives σ_z ≈ 6 m/s² while walking (Oxford
+                // Pixel_Jamie_Hard_Purse_2).
+                None if self.state == Motion::Running && self.sigma >= self.cfg.walk_max => {
+                    Motion::Running
+                }
+                None => Motion::Walking,
             };
         }
         self.state
