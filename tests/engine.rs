@@ -319,4 +319,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0x8f80_70f5_5e81_3de4;
+const DEMO_DIGEST: u64 = 0x017e_d396_cf84_80bd;

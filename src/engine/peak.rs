@@ -100,6 +100,7 @@ impl PeakDetector {
                     out = Some(Candidate {
                         t: tp,
                         period_s: self.period,
+                        coherence: 1.0,
                     });
                     self.trough = f64::INFINITY;
                 }

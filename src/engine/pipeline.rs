@@ -8,13 +8,14 @@
 //! (Basso 2021 eq. 24 with x north and y east: north += SL cos θ, east += SL sin θ).
 //!
 //! # Decisions beyond the papers (measured in the tests and the closing notes)
-//! - **Onset look-back.** σ_z over 2 s crosses 1.5 m/s² only ~0.5–1 s after a person starts
-//!   walking, so gating steps by the motion state alone misses one or two steps at every start.
-//!   The detector therefore runs while still; its candidates are held, and when the state turns to
-//!   moving the held candidates from the last window that carried motion (cycle RMS gate) are
-//!   emitted. Basso 2016 keeps "the restart instant" for the same reason: the first step period
-//!   after a stop must not include the stop. Here the first step of a bout takes the detector's
-//!   own period.
+//! - **Onset look-back.** The motion detector confirms a gait (σ_z and the periodicity of the
+//!   vertical acceleration) one to three seconds after a person starts walking, so gating steps by
+//!   the motion state alone misses the first steps of every walk. When it does, the step detector
+//!   is started afresh on the cadence found and replays the last
+//!   [`PipelineConfig::onset_lookback_s`] of samples; the steps it finds after the last cycle
+//!   that is out of phase with the gait are emitted. Basso 2016 keeps "the restart instant" for
+//!   the same reason: the first step period after a stop must not include the stop. Here the
+//!   first step of a bout takes the detector's own period.
 //! - **Cycle gate.** After a stop σ_z stays above the threshold for up to 2 s; a step additionally
 //!   needs its own cycle to carry motion (see [`crate::engine::pll`]), so no phantom steps are
 //!   counted while the window drains.
@@ -67,9 +68,17 @@ pub struct PipelineConfig {
     /// Step-length model.
     pub step_length: StepLengthModel,
     /// How far back the step detector looks when a gait is confirmed, s (see
-    /// [`Pipeline::push_imu`]). Default 2 s, the σ_z window: the motion detector confirms a
-    /// start within about that time.
+    /// [`Pipeline::push_imu`]). Default 3 s, the span of the autocorrelation that confirms a
+    /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it. Oxford
+    /// (34 traces, with `onset_coherence_min` 0): 1.48 % mean count error with 2.5 s, 1.37 %
+    /// with 3 s, 1.47 % with 3.5 s.
     pub onset_lookback_s: f64,
+    /// In the onset look-back, the gait began after the last step whose cycle is
+    /// anti-correlated with the oscillator ([`Candidate::coherence`] below this): handling the
+    /// phone or a bag before walking is not in phase with the walk. Default 0, the sign of the
+    /// correlation. Oxford: 1.63 % without this test, 1.37 % with 0, 1.48 % with 0.1, 2.27 %
+    /// with 0.5 (the first cycles of a walk follow the oscillator loosely).
+    pub onset_coherence_min: f64,
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
@@ -83,7 +92,8 @@ impl Default for PipelineConfig {
             detector: StepDetectorConfig::default(),
             heading: HeadingConfig::default(),
             step_length: StepLengthModel::default(),
-            onset_lookback_s: 2.0,
+            onset_lookback_s: 3.0,
+            onset_coherence_min: 0.0,
             gap_s: 0.5,
         }
     }
@@ -178,6 +188,8 @@ pub struct Diagnostics {
     pub time_span: Option<(f64, f64)>,
 }
 
+// One per pipeline, used on every sample: kept inline rather than boxed.
+#[allow(clippy::large_enum_variant)]
 enum Detector {
     Pll(Pll),
     Peak(PeakDetector),
@@ -361,7 +373,12 @@ impl Pipeline {
             };
             out.extend(c);
         }
-        out
+        // The gait began after the last step that does not follow its rhythm.
+        let first = out
+            .iter()
+            .rposition(|c| c.coherence < self.cfg.onset_coherence_min)
+            .map_or(0, |i| i + 1);
+        out.split_off(first)
     }
 
     fn check(&self, s: &ImuSample) -> Result<(), InputError> {

@@ -15,6 +15,14 @@
 //! A step is counted at each peak of the oscillator output cos φ (φ crossing a multiple of 2π),
 //! at a time interpolated inside the sample interval, and f_k = 1/T_k (Basso 2016 §II.C).
 //!
+//! # Which peaks count (our additions, measured on the Oxford set)
+//! A peak counts only if its cycle carries motion, judged over the cycle centred on it (φ from
+//! −π to π, so the verdict comes half a period after the peak): its RMS must reach
+//! [`PllConfig::cycle_rms_min`], and either [`PllConfig::cycle_rms_rel`]·σ_z or
+//! [`PllConfig::same_leg_rel`] of the same leg's previous counted step (two cycles back). Centring
+//! the cycle on the peak means the half cycle of deceleration after the last step of a walk is
+//! not taken for one more step.
+//!
 //! # Loop design
 //! Linearised, the closed loop is s² + 2π K_d K_p s + 2π K_d K_i = 0, so with natural frequency
 //! ω_n = 2π·[`PllConfig::natural_hz`] and damping ζ: K_p = 2ζω_n / (2π K_d), K_i = ω_n² / (2π K_d).
@@ -40,14 +48,15 @@
 //! reported for diagnostics. When the input stops being periodic the oscillator keeps running near
 //! its last frequency; such cycles are not counted because each cycle must itself carry motion:
 //! the RMS of the input over the cycle must reach [`PllConfig::cycle_rms_min`]. While the person is
-//! still the loop keeps running over the union of both bands (so that it is already locked when
-//! the motion detector catches up with a start), and when there is nothing to follow its
-//! integrator relaxes to the free-running frequency.
+//! still the loop idles in the walking band, and when there is nothing to follow its integrator
+//! relaxes to the free-running frequency. When the motion detector confirms a gait, the pipeline
+//! starts a fresh loop on the cadence found ([`Pll::start_on`]) and replays the last seconds
+//! through it (the onset look-back, see [`crate::engine::pipeline`]).
 
 use super::math::OnePole;
 use super::motion::Motion;
 use super::types::{positive, ConfigError};
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 /// Settings of the PLL step detector.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -151,6 +160,10 @@ pub struct Candidate {
     pub t: f64,
     /// The detector's current period estimate, seconds.
     pub period_s: f64,
+    /// How well the step's cycle of vertical acceleration follows the detector's rhythm: for
+    /// the PLL the correlation of the input with the oscillator output cos φ over the cycle
+    /// (1 for a sinusoid in phase, ≈ 0 for noise); 1 for the peak detector.
+    pub coherence: f64,
 }
 
 /// The PLL's running state.
@@ -166,6 +179,11 @@ pub struct Pll {
     lock: OnePole,
     cycle_sq: f64,
     cycle_dt: f64,
+    // Σ d·cos φ·dt and Σ cos² φ·dt over the cycle.
+    cycle_xc: f64,
+    cycle_cc: f64,
+    // The last oscillator peak (time, period) whose cycle is not judged yet.
+    pending: Option<(f64, f64)>,
     // RMS of the last two cycles, newest first, and whether they counted.
     prev_cycles: [(f64, bool); 2],
     output: f64,
@@ -198,7 +216,10 @@ impl Pll {
             lock: OnePole::new(1.0),
             cycle_sq: 0.0,
             cycle_dt: 0.0,
+            cycle_xc: 0.0,
+            cycle_cc: 0.0,
             prev_cycles: [(0.0, false); 2],
+            pending: None,
             output: 1.0,
             phasor: (0.0, 1.0),
             armed: false,
@@ -266,7 +287,10 @@ impl Pll {
         self.phasor = (0.0, 1.0);
         self.cycle_sq = 0.0;
         self.cycle_dt = 0.0;
+        self.cycle_xc = 0.0;
+        self.cycle_cc = 0.0;
         self.prev_cycles = [(0.0, false); 2];
+        self.pending = None;
         self.loop_lpf.reset();
         self.n_cross = 0;
     }
@@ -322,6 +346,8 @@ impl Pll {
         self.phase += TAU * self.freq * dt;
         let mut out = None;
         let d = a - mu;
+        // A peak of the oscillator (φ crossing 2π) is a step candidate at the time interpolated
+        // inside the sample interval.
         let wrapped = self.phase >= TAU;
         if wrapped {
             let frac = if self.phase > prev {
@@ -329,22 +355,37 @@ impl Pll {
             } else {
                 1.0
             };
-            let t_peak = t - dt + frac * dt;
-            // The part of this interval before the peak belongs to the ending cycle.
-            let rms = ((self.cycle_sq + d * d * dt * frac) / (self.cycle_dt + dt * frac).max(1e-9))
-                .sqrt();
-            let (same_leg, same_leg_counted) = self.prev_cycles[1];
-            let counts = rms >= self.cfg.cycle_rms_min
-                && (rms >= self.cfg.cycle_rms_rel * sigma
-                    || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
-            self.prev_cycles = [(rms, counts), self.prev_cycles[0]];
-            if counts {
-                out = Some(Candidate {
-                    t: t_peak,
-                    period_s: 1.0 / self.integ,
-                });
-            }
+            self.pending = Some((t - dt + frac * dt, 1.0 / self.integ));
             self.phase -= TAU * (self.phase / TAU).floor();
+        }
+        // The step's cycle runs from the trough before its peak to the trough after it (φ from
+        // −π to π), so it is judged half a period after the peak, when φ crosses π.
+        let from = if wrapped { prev - TAU } else { prev };
+        if from < PI && self.phase >= PI {
+            let frac = (PI - from) / (self.phase - from);
+            let sq = self.cycle_sq + d * d * dt * frac;
+            let rms = libm::sqrt(sq / (self.cycle_dt + dt * frac).max(1e-9));
+            if let Some((t_peak, period_s)) = self.pending.take() {
+                let (same_leg, same_leg_counted) = self.prev_cycles[1];
+                let counts = rms >= self.cfg.cycle_rms_min
+                    && (rms >= self.cfg.cycle_rms_rel * sigma
+                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
+                self.prev_cycles = [(rms, counts), self.prev_cycles[0]];
+                if counts {
+                    let den = self.cycle_cc * sq;
+                    out = Some(Candidate {
+                        t: t_peak,
+                        period_s,
+                        coherence: if den > 0.0 {
+                            self.cycle_xc / libm::sqrt(den)
+                        } else {
+                            0.0
+                        },
+                    });
+                }
+            }
+            self.cycle_xc = 0.0;
+            self.cycle_cc = 0.0;
             self.cycle_sq = d * d * dt * (1.0 - frac);
             self.cycle_dt = dt * (1.0 - frac);
         } else {
@@ -372,6 +413,8 @@ impl Pll {
         }
         let (s, c) = self.phasor;
         self.output = c;
+        self.cycle_xc += d * c * dt;
+        self.cycle_cc += c * c * dt;
         let e = self.loop_lpf.update(-x * s, dt);
         self.lock.update(x * c, dt);
         self.integ = (self.integ + self.ki * e * dt).clamp(lo, hi);
