@@ -27,9 +27,11 @@
 use super::ParseError;
 use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
+use crate::io::import::common::try_each_line;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::fmt::Write as _;
 use std::io::BufRead;
+use std::ops::ControlFlow;
 
 /// The version tag line.
 pub const HEADER: &str = "# pdr-log 1";
@@ -115,17 +117,21 @@ pub fn to_string(records: &[Record]) -> String {
     s
 }
 
-/// What reading a log produced: every good record, and one error per bad line.
+/// What reading a log produced: every good record, and the bad lines.
 #[derive(Debug, Default)]
 pub struct Parsed {
     /// Records in file order.
     pub records: Vec<Record>,
-    /// Lines that were skipped.
+    /// The first [`crate::io::import::MAX_WARNINGS`] lines that were skipped.
     pub errors: Vec<ParseError>,
+    /// How many lines were skipped in all.
+    pub skipped: u64,
 }
 
-/// Reads a pdr-log stream. `file` names the source in errors.
-pub fn read(mut input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
+/// Reads a pdr-log stream. `file` names the source in errors. Lines are bounded
+/// ([`crate::io::import::MAX_LINE`]), so a file of any size is read in memory proportional to
+/// its records.
+pub fn read(input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
     let err = |line: u64, column: Option<usize>, field: Option<&str>, message: String| ParseError {
         file: file.to_string(),
         line,
@@ -133,58 +139,86 @@ pub fn read(mut input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
         field: field.map(str::to_string),
         message,
     };
-    let mut first = String::new();
-    input
-        .read_line(&mut first)
-        .map_err(|e| err(1, None, None, format!("cannot read: {e}")))?;
-    let tag = first
-        .trim_end_matches(['\r', '\n'])
-        .trim_start_matches('\u{feff}');
-    if tag != HEADER {
-        return Err(err(
+    let mut out = Parsed::default();
+    let mut fatal = None;
+    let mut saw_header = false;
+    let skip = |out: &mut Parsed, e: ParseError| {
+        out.skipped += 1;
+        if out.errors.len() < crate::io::import::MAX_WARNINGS {
+            out.errors.push(e);
+        }
+    };
+    try_each_line(input, file, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) if n == 1 => {
+                fatal = Some(e);
+                return ControlFlow::Break(());
+            }
+            Err(e) => {
+                skip(&mut out, e);
+                return ControlFlow::Continue(());
+            }
+        };
+        if n == 1 {
+            if line != HEADER {
+                fatal = Some(err(
+                    1,
+                    None,
+                    None,
+                    format!(
+                        "not a pdr-log version 1 file: the first line must be `{HEADER}`, found `{}`",
+                        line.chars().take(60).collect::<String>()
+                    ),
+                ));
+                return ControlFlow::Break(());
+            }
+            saw_header = true;
+            return ControlFlow::Continue(());
+        }
+        if line.trim().is_empty() || line.starts_with('#') {
+            return ControlFlow::Continue(());
+        }
+        // At most 15 fields are meaningful (imu); more is an error that names the count.
+        let mut fields = [""; 16];
+        let mut len = 0;
+        for (i, x) in line.split(',').enumerate() {
+            if let Some(slot) = fields.get_mut(i) {
+                *slot = x;
+            }
+            len = i + 1;
+        }
+        let parsed = if len > fields.len() {
+            Err((
+                None,
+                None,
+                format!("{len} fields: no record has more than 15"),
+            ))
+        } else {
+            parse_record(&fields[..len])
+        };
+        match parsed {
+            Ok(r) => out.records.push(r),
+            Err((col, field, msg)) => skip(&mut out, err(n, col, field, msg)),
+        }
+        ControlFlow::Continue(())
+    })?;
+    match fatal {
+        Some(e) => Err(e),
+        None if !saw_header => Err(err(
             1,
             None,
             None,
-            format!(
-                "not a pdr-log version 1 file: the first line must be `{HEADER}`, found `{}`",
-                tag.chars().take(60).collect::<String>()
-            ),
-        ));
+            format!("empty file: a pdr-log starts with `{HEADER}`"),
+        )),
+        None => Ok(out),
     }
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .comment(Some(b'#'))
-        .from_reader(input);
-    let mut out = Parsed::default();
-    let mut rec = csv::StringRecord::new();
-    loop {
-        let line_no = rdr.position().line() + 1;
-        match rdr.read_record(&mut rec) {
-            Ok(false) => break,
-            Ok(true) => {
-                let line_no = rec.position().map_or(line_no, |p| p.line() + 1);
-                match parse_record(&rec) {
-                    Ok(r) => out.records.push(r),
-                    Err((col, field, msg)) => out.errors.push(err(line_no, col, field, msg)),
-                }
-            }
-            Err(e) => {
-                let line_no = e.position().map_or(line_no, |p| p.line() + 1);
-                if matches!(e.kind(), csv::ErrorKind::Io(_)) {
-                    return Err(err(line_no, None, None, format!("cannot read: {e}")));
-                }
-                out.errors.push(err(line_no, None, None, e.to_string()));
-            }
-        }
-    }
-    Ok(out)
 }
 
 type FieldErr = (Option<usize>, Option<&'static str>, String);
 
-fn parse_record(rec: &csv::StringRecord) -> Result<Record, FieldErr> {
-    let kind = rec.get(0).unwrap_or("").trim();
+fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
+    let kind = rec.first().copied().unwrap_or("").trim();
     let names: &[&'static str] = match kind {
         "imu" => &IMU_FIELDS,
         "gnss" => &GNSS_FIELDS,

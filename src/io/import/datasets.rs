@@ -1,6 +1,7 @@
 //! The evaluation data sets of `../shared/data`, read directly: Oxford Step Counter trace
 //! folders, Microsoft Indoor Location Competition 2.0 traces and the x-io foot-mounted CSVs.
 
+use super::common::{add_warnings, each_line, Warnings};
 use super::{
     field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams, TrueStep,
     Waypoint, G0,
@@ -11,31 +12,6 @@ use std::io::BufRead;
 
 /// The files of an Oxford trace folder that the reader consumes.
 pub const OXFORD_FILES: [&str; 3] = ["accelerometer.csv", "stepcounter.csv", "stats.csv"];
-
-/// Calls `f(line_number, line)` for every line, reusing one buffer. Invalid UTF-8 is an error
-/// naming the line.
-pub fn for_each_line(
-    mut r: impl BufRead,
-    file: &str,
-    mut f: impl FnMut(u64, &str),
-) -> Result<(), ParseError> {
-    let mut buf = Vec::with_capacity(256);
-    let mut n = 0u64;
-    loop {
-        buf.clear();
-        let read = r
-            .read_until(b'\n', &mut buf)
-            .map_err(|e| file_error(file, n + 1, e.to_string()))?;
-        if read == 0 {
-            return Ok(());
-        }
-        n += 1;
-        let line = std::str::from_utf8(&buf)
-            .map_err(|_| file_error(file, n, "not UTF-8 text"))?
-            .trim_end_matches(['\n', '\r']);
-        f(n, line);
-    }
-}
 
 /// Parses fields `[from, from + N)` of a split line as numbers, naming the first bad one.
 fn numbers<const N: usize>(
@@ -76,8 +52,12 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
     let reader = set
         .open(&name)
         .map_err(|e| file_error(&label, 0, e.to_string()))?;
-    let mut warnings = Vec::new();
-    for_each_line(reader, &label, |n, line| {
+    let mut warnings = Warnings::default();
+    each_line(reader, &label, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) => return warnings.push(e),
+        };
         if line.trim().is_empty() {
             return;
         }
@@ -101,7 +81,11 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
         .map_err(|e| file_error(&label, 0, e.to_string()))?;
     let mut prev: Option<[f64; 2]> = None;
     let mut events = Vec::new();
-    for_each_line(reader, &label, |n, line| {
+    each_line(reader, &label, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) => return warnings.push(e),
+        };
         if line.trim().is_empty() {
             return;
         }
@@ -129,9 +113,7 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
     log.truth.steps = Some(events.len() as u64);
     log.truth.step_events = events;
     log.records = streams.into_records();
-    for w in warnings {
-        log.warn(w);
-    }
+    add_warnings(&mut log, warnings);
     Ok(log)
 }
 
@@ -143,9 +125,13 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     let mut log = Log::new(label, Format::MsIndoor);
     log.platform = Some(Platform::Android);
     let mut s = Streams::default();
-    let mut warnings = Vec::new();
+    let mut warnings = Warnings::default();
     let mut waypoints = Vec::new();
-    for_each_line(r, label, |n, line| {
+    each_line(r, label, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) => return warnings.push(e),
+        };
         if line.starts_with('#') || line.trim().is_empty() {
             return;
         }
@@ -220,9 +206,7 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     waypoints.sort_by(|a, b| a.t.total_cmp(&b.t));
     log.truth.waypoints = waypoints;
     log.records = s.into_records();
-    for w in warnings {
-        log.warn(w);
-    }
+    add_warnings(&mut log, warnings);
     Ok(log)
 }
 
@@ -232,7 +216,7 @@ pub fn read_xio(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     let mut log = Log::new(label, Format::XioFoot);
     log.truth.loop_closure = true;
     let mut s = Streams::default();
-    let mut warnings = Vec::new();
+    let mut warnings = Warnings::default();
     const NAMES: [&str; 7] = [
         "Time (s)",
         "Gyroscope X (deg/s)",
@@ -244,7 +228,11 @@ pub fn read_xio(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     ];
     let mut cols: Option<[usize; 7]> = None;
     let mut fatal = None;
-    for_each_line(r, label, |n, line| {
+    each_line(r, label, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) => return warnings.push(e),
+        };
         if line.trim().is_empty() || fatal.is_some() {
             return;
         }
@@ -282,13 +270,11 @@ pub fn read_xio(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     }
     if s.accel.is_empty() {
         return Err(warnings
-            .into_iter()
-            .next()
+            .first()
+            .cloned()
             .unwrap_or_else(|| file_error(label, 0, "no samples")));
     }
     log.records = s.into_records();
-    for w in warnings {
-        log.warn(w);
-    }
+    add_warnings(&mut log, warnings);
     Ok(log)
 }

@@ -29,8 +29,8 @@
 //! over more than [`OUTLIER_S`] (a sensor clock that does not advance with the app clock), that
 //! sensor falls back to `AppTs`, with a warning.
 
-use super::sensor_logger::{
-    add_warnings, drop_non_finite, each_line, not_a_number, rotation_vector, warn_count,
+use super::common::{
+    add_warnings, drop_non_finite, each_line, not_a_number, rotation_vector, warn_count, Warnings,
 };
 use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
 use crate::engine::geo::LocalFrame;
@@ -117,7 +117,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     let mut fixes = Vec::new();
     let mut seen_fixes: HashSet<[u64; 3]> = HashSet::new();
     let mut posi: Vec<(f64, f64, f64)> = Vec::new();
-    let mut warnings = Vec::new();
+    let mut warnings = Warnings::default();
     each_line(r, label, |n, line| {
         let line = match line {
             Ok(l) => l,
@@ -232,7 +232,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         ));
     }
     let mut s = Streams::default();
-    let mapped = |name: &str, m: Mapping, log_warnings: &mut Vec<ParseError>| match m {
+    let mapped = |name: &str, m: Mapping, log_warnings: &mut Warnings| match m {
         Mapping::AppClock => log_warnings.push(file_error(
             label,
             0,

@@ -17,7 +17,7 @@
 //! `OrientationDeg` holds `SensorManager.getOrientation` angles in degrees: yaw (azimuth,
 //! clockwise from magnetic north), pitch and roll. See [`orientation_quaternion`].
 
-use super::sensor_logger::{add_warnings, drop_non_finite, each_line, not_a_number, warn_count};
+use super::common::{add_warnings, drop_non_finite, each_line, not_a_number, warn_count, Warnings};
 use super::{field_error, file_error, number, Format, Log, Platform, Streams};
 use crate::engine::types::GnssFix;
 use crate::io::ParseError;
@@ -295,7 +295,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     log.platform = Some(Platform::Android);
     let mut layouts: HashMap<&'static str, Result<Layout, String>> = HashMap::new();
     let mut c = Collected::default();
-    let mut warnings = Vec::new();
+    let mut warnings = Warnings::default();
     let mut invalid_fixes = 0u64;
     each_line(r, label, |n, line| {
         let line = match line {
@@ -442,7 +442,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             .collect();
     }
     if s.accel.is_empty() {
-        return Err(warnings.into_iter().find(|e| e.line > 0 && e.column.is_some()).map_or_else(
+        return Err(warnings.find(|e| e.line > 0 && e.column.is_some()).cloned().map_or_else(
             || file_error(label, 0, "no Accel or UncalAccel records: nothing to track (was the accelerometer logged?)"),
             |e| ParseError {
                 message: format!("no readable accelerometer record; first problem: {}", e.message),

@@ -21,6 +21,7 @@
 //! A log that cannot be read at all gives a [`ParseError`] naming the file, line and column. A bad
 //! line inside a readable log is skipped and kept in [`Log::warnings`]; every good line is kept.
 
+pub(crate) mod common;
 pub mod datasets;
 pub mod fileset;
 pub mod get_sensor_data;
@@ -28,6 +29,7 @@ pub mod gnss_logger;
 pub mod phyphox;
 pub mod sensor_logger;
 
+pub use common::MAX_LINE;
 pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
 
 use super::ParseError;
@@ -448,9 +450,11 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
                 Format::PdrLog => crate::io::pdrlog::read(reader, &label).map(|p| {
                     let mut log = Log::new(&label, Format::PdrLog);
                     log.records = p.records;
+                    let extra = p.skipped - p.errors.len() as u64;
                     for e in p.errors {
                         log.warn(e);
                     }
+                    log.skipped += extra;
                     log
                 }),
                 Format::MsIndoor => datasets::read_ms_indoor(reader, &label),

@@ -18,8 +18,8 @@
 //! the Android sign on both platforms (its iOS version converts Core Motion's g to m/s² with the
 //! sign flipped), so no platform conversion is applied and the platform is left unknown.
 
-use super::sensor_logger::{
-    add_warnings, cell, drop_non_finite, not_a_number, split_line, warn_count, Table,
+use super::common::{
+    add_warnings, cell, drop_non_finite, not_a_number, split_line, warn_count, Table, Warnings,
 };
 use super::{field_error, file_error, fileset, number, FileSet, Format, Log, Streams};
 use crate::engine::types::GnssFix;
@@ -47,7 +47,7 @@ const QUANTITIES: [&str; 5] = [
 /// `Gyroscope X (deg/s)`).
 fn is_phyphox_header(first: &str) -> bool {
     let first = first.trim_start_matches('\u{feff}');
-    let d = super::sensor_logger::detect_delimiter(first);
+    let d = super::common::detect_delimiter(first);
     let fields = split_line(first, d);
     fields.first().is_some_and(|f| is_time(f))
         && fields.iter().any(|f| {
@@ -125,7 +125,7 @@ fn empty(rec: &csv::StringRecord, cols: &[usize]) -> bool {
 fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<Log, ParseError> {
     let mut log = Log::new(source, Format::Phyphox);
     let mut s = Streams::default();
-    let mut warnings = Vec::new();
+    let mut warnings = Warnings::default();
     let (mut have_gyro, mut have_mag, mut have_loc) = (false, false, false);
     let mut linear_only: Option<ParseError> = None;
     let mut rejected: Option<ParseError> = None;
@@ -198,7 +198,7 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
         }
         let header = table.header.clone();
         let mut file_accel = Vec::new();
-        let mut csv_warnings = Vec::new();
+        let mut csv_warnings = Warnings::default();
         table.rows(&label, &mut csv_warnings, |line, rec| {
             let t = match cell(rec, t_col, &header[t_col], &label, line) {
                 Ok(t) => t,

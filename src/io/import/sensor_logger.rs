@@ -1,5 +1,5 @@
 //! Sensor Logger (Android and iOS app by Kelvin Choi): a folder or zip of per-sensor CSVs, or
-//! the app's JSON export. Also the small text helpers the other per-sensor readers share.
+//! the app's JSON export.
 //!
 //! # Files
 //! `Accelerometer.csv` (gravity removed), `Gravity.csv`, `TotalAcceleration.csv` (Android only,
@@ -38,6 +38,10 @@
 //! whose values are strings (numbers are accepted too). It is read element by element with a
 //! streaming deserializer; a file cut short keeps the elements before the cut (with a warning).
 
+use super::common::{
+    add_warnings, drop_non_finite, not_a_number, split_line, unit_quaternion, warn_count, Table,
+    Warnings,
+};
 use super::{field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams};
 use super::{G0, HOLD_S};
 use crate::engine::types::GnssFix;
@@ -45,305 +49,6 @@ use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::cell::Cell;
 use std::io::{self, BufRead, Read};
-
-// ---------------------------------------------------------------------------------------------
-// Shared text helpers (also used by the phyphox, GnssLogger and GetSensorData readers).
-// ---------------------------------------------------------------------------------------------
-
-/// Longest line kept, bytes. A longer line (binary junk, a file without line ends) is skipped
-/// with a warning instead of being held in memory.
-pub(crate) const MAX_LINE: usize = 1 << 16;
-
-/// Reads one line without its `\n` into `buf`. `Ok(None)` at the end of input; `Ok(Some(true))`
-/// when the line was longer than [`MAX_LINE`] (then `buf` is empty).
-fn read_line_capped(r: &mut dyn BufRead, buf: &mut Vec<u8>) -> io::Result<Option<bool>> {
-    buf.clear();
-    let mut any = false;
-    let mut long = false;
-    loop {
-        let (used, done) = {
-            let avail = match r.fill_buf() {
-                Ok(a) => a,
-                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(e),
-            };
-            if avail.is_empty() {
-                return Ok(any.then_some(long));
-            }
-            any = true;
-            let (chunk, used, done) = match avail.iter().position(|&b| b == b'\n') {
-                Some(i) => (&avail[..i], i + 1, true),
-                None => (avail, avail.len(), false),
-            };
-            if !long {
-                if buf.len() + chunk.len() > MAX_LINE {
-                    long = true;
-                    buf.clear();
-                } else {
-                    buf.extend_from_slice(chunk);
-                }
-            }
-            (used, done)
-        };
-        r.consume(used);
-        if done {
-            return Ok(Some(long));
-        }
-    }
-}
-
-/// Calls `f(line_number, line)` for every line, leniently: a line that is not UTF-8 text or is
-/// longer than [`MAX_LINE`] is passed as an error naming the file and line, and reading goes on.
-/// `\r` line ends and a byte-order mark on the first line are removed. Only a read failure of
-/// the input itself is fatal.
-pub(crate) fn each_line(
-    mut r: impl BufRead,
-    file: &str,
-    mut f: impl FnMut(u64, Result<&str, ParseError>),
-) -> Result<(), ParseError> {
-    let mut buf = Vec::with_capacity(256);
-    let mut n = 0u64;
-    loop {
-        let long = read_line_capped(&mut r, &mut buf)
-            .map_err(|e| file_error(file, n + 1, format!("cannot read: {e}")))?;
-        let Some(long) = long else {
-            return Ok(());
-        };
-        n += 1;
-        if long {
-            f(n, Err(file_error(file, n, "line too long: not a text log")));
-            continue;
-        }
-        match std::str::from_utf8(&buf) {
-            Ok(s) => {
-                let s = s.trim_end_matches('\r');
-                let s = if n == 1 {
-                    s.trim_start_matches('\u{feff}')
-                } else {
-                    s
-                };
-                f(n, Ok(s));
-            }
-            Err(_) => f(n, Err(file_error(file, n, "not UTF-8 text"))),
-        }
-    }
-}
-
-/// Picks the field separator of a header line: the most frequent of tab, semicolon and comma
-/// outside double quotes (comma when none occurs).
-pub(crate) fn detect_delimiter(header: &str) -> u8 {
-    let mut counts = [0usize; 3];
-    let mut quoted = false;
-    for b in header.bytes() {
-        match b {
-            b'"' => quoted = !quoted,
-            b'\t' if !quoted => counts[0] += 1,
-            b';' if !quoted => counts[1] += 1,
-            b',' if !quoted => counts[2] += 1,
-            _ => {}
-        }
-    }
-    if counts[0] > 0 && counts[0] >= counts[1] && counts[0] >= counts[2] {
-        b'\t'
-    } else if counts[1] > counts[2] {
-        b';'
-    } else {
-        b','
-    }
-}
-
-/// Splits one line into fields with the `csv` rules (quotes, the given separator), trimmed.
-pub(crate) fn split_line(line: &str, delimiter: u8) -> Vec<String> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .delimiter(delimiter)
-        .from_reader(line.as_bytes());
-    let mut rec = csv::StringRecord::new();
-    match rdr.read_record(&mut rec) {
-        Ok(true) => rec.iter().map(|s| s.trim().to_string()).collect(),
-        _ => Vec::new(),
-    }
-}
-
-/// A CSV file with a header line, read record by record.
-pub(crate) struct Table<R: BufRead> {
-    /// The header fields, trimmed, quotes removed.
-    pub header: Vec<String>,
-    /// The header fields in lower case, for matching by name.
-    pub lower: Vec<String>,
-    /// 1-based line number of the header.
-    pub header_line: u64,
-    rdr: csv::Reader<R>,
-}
-
-impl<R: BufRead> Table<R> {
-    /// Reads the header (the first non-empty line) and prepares the records after it. The
-    /// separator is detected from the header when `delimiter` is `None`. `Ok(None)` for a file
-    /// without any non-empty line.
-    pub fn open(mut r: R, file: &str, delimiter: Option<u8>) -> Result<Option<Self>, ParseError> {
-        let mut buf = Vec::new();
-        let mut n = 0u64;
-        let header = loop {
-            let long = read_line_capped(&mut r, &mut buf)
-                .map_err(|e| file_error(file, n + 1, format!("cannot read: {e}")))?;
-            let Some(long) = long else {
-                return Ok(None);
-            };
-            n += 1;
-            if long {
-                return Err(file_error(file, n, "header line too long: not a CSV file"));
-            }
-            let line = std::str::from_utf8(&buf)
-                .map_err(|_| file_error(file, n, "header line is not UTF-8 text"))?;
-            let line = line.trim_start_matches('\u{feff}').trim();
-            if !line.is_empty() {
-                break line.to_string();
-            }
-        };
-        let d = delimiter.unwrap_or_else(|| detect_delimiter(&header));
-        let header = split_line(&header, d);
-        let lower = header.iter().map(|h| h.to_lowercase()).collect();
-        let rdr = csv::ReaderBuilder::new()
-            .has_headers(false)
-            .flexible(true)
-            .delimiter(d)
-            .from_reader(r);
-        Ok(Some(Table {
-            header,
-            lower,
-            header_line: n,
-            rdr,
-        }))
-    }
-
-    /// The index of the first column whose lower-case name satisfies `pred`.
-    pub fn col(&self, pred: impl Fn(&str) -> bool) -> Option<usize> {
-        self.lower.iter().position(|h| pred(h))
-    }
-
-    /// The index of the column named `name` (any case).
-    pub fn named(&self, name: &str) -> Option<usize> {
-        let name = name.to_lowercase();
-        self.col(|h| h == name)
-    }
-
-    /// Calls `f(line, record)` for every non-empty record. Records the `csv` reader rejects (text
-    /// that is not UTF-8) become warnings; a read failure of the input is fatal.
-    pub fn rows(
-        &mut self,
-        file: &str,
-        warnings: &mut Vec<ParseError>,
-        mut f: impl FnMut(u64, &csv::StringRecord),
-    ) -> Result<(), ParseError> {
-        let mut rec = csv::StringRecord::new();
-        loop {
-            let before = self.header_line + self.rdr.position().line();
-            match self.rdr.read_record(&mut rec) {
-                Ok(false) => return Ok(()),
-                Ok(true) => {
-                    let line = self.header_line + rec.position().map_or(0, |p| p.line());
-                    if rec.iter().all(|s| s.trim().is_empty()) {
-                        continue;
-                    }
-                    f(line, &rec);
-                }
-                Err(e) => {
-                    let line = self.header_line + e.position().map_or(0, |p| p.line());
-                    let line = line.max(before);
-                    if e.is_io_error() {
-                        return Err(file_error(file, line, format!("cannot read: {e}")));
-                    }
-                    warnings.push(file_error(file, line, "not UTF-8 text"));
-                }
-            }
-        }
-    }
-}
-
-/// Parses field `col` of a record as a number, naming the column on failure.
-pub(crate) fn cell(
-    rec: &csv::StringRecord,
-    col: usize,
-    name: &str,
-    file: &str,
-    line: u64,
-) -> Result<f64, ParseError> {
-    let s = rec
-        .get(col)
-        .ok_or_else(|| field_error(file, line, col + 1, name, "missing"))?;
-    number(s).ok_or_else(|| field_error(file, line, col + 1, name, not_a_number(s)))
-}
-
-/// "not a number: …" with the text cut to a readable length.
-pub(crate) fn not_a_number(s: &str) -> String {
-    let s: String = s.trim().chars().take(40).collect();
-    if s.is_empty() {
-        "empty".to_string()
-    } else {
-        format!("not a number: {s:?}")
-    }
-}
-
-/// A unit quaternion from components, when their norm is within 10 % of 1 (a rotation written
-/// with limited precision); `None` for anything else (zero, huge, non-finite).
-pub(crate) fn unit_quaternion(w: f64, x: f64, y: f64, z: f64) -> Option<UnitQuaternion<f64>> {
-    let q = Quaternion::new(w, x, y, z);
-    let n = q.norm();
-    (n.is_finite() && (n - 1.0).abs() <= 0.1).then(|| UnitQuaternion::from_quaternion(q))
-}
-
-/// An Android rotation vector (x, y, z, and w when given) as the device → ENU quaternion. With
-/// w absent it is `sqrt(1 − |xyz|²)` (the rotation angle is at most π). `None` when the vector
-/// is longer than 1 (beyond rounding) or not finite.
-pub(crate) fn rotation_vector(
-    x: f64,
-    y: f64,
-    z: f64,
-    w: Option<f64>,
-) -> Option<UnitQuaternion<f64>> {
-    let w = match w {
-        Some(w) => w,
-        None => {
-            let w2 = 1.0 - (x * x + y * y + z * z);
-            if !(w2 >= -1e-3) {
-                return None;
-            }
-            w2.max(0.0).sqrt()
-        }
-    };
-    unit_quaternion(w, x, y, z)
-}
-
-/// Drops samples with a non-finite value (sums and unit conversions of huge numbers can
-/// overflow) and returns how many were dropped.
-pub(crate) fn drop_non_finite(s: &mut Streams) -> u64 {
-    let before = s.accel.len() + s.gyro.len() + s.mag.len() + s.orientation.len() + s.fixes.len();
-    let ok = |t: f64, v: &Vector3<f64>| t.is_finite() && v.iter().all(|x| x.is_finite());
-    s.accel.retain(|(t, v)| ok(*t, v));
-    s.gyro.retain(|(t, v)| ok(*t, v));
-    s.mag.retain(|(t, v)| ok(*t, v));
-    s.orientation
-        .retain(|(t, q)| t.is_finite() && q.coords.iter().all(|x| x.is_finite()));
-    s.fixes.retain(|f| f.check().is_ok());
-    let after = s.accel.len() + s.gyro.len() + s.mag.len() + s.orientation.len() + s.fixes.len();
-    (before - after) as u64
-}
-
-/// Adds warnings (one per skipped line) to a log.
-pub(crate) fn add_warnings(log: &mut Log, warnings: Vec<ParseError>) {
-    for w in warnings {
-        log.warn(w);
-    }
-}
-
-/// Records `count` items skipped for one reason as a single warning that counts them all.
-pub(crate) fn warn_count(log: &mut Log, count: u64, e: ParseError) {
-    if count > 0 {
-        log.warn(e);
-        log.skipped += count - 1;
-    }
-}
 
 // ---------------------------------------------------------------------------------------------
 // Sensor Logger.
@@ -505,7 +210,7 @@ struct Raw {
     fixes: Vec<GnssFix>,
     platform: Option<Platform>,
     standardised: bool,
-    warnings: Vec<ParseError>,
+    warnings: Warnings,
     /// Where the acceleration came from, for messages.
     accel_file: String,
 }
@@ -661,7 +366,7 @@ impl Raw {
             return Ok(());
         }
         let (header, lower) = (table.header.clone(), table.lower.clone());
-        let mut warnings = Vec::new();
+        let mut warnings = Warnings::default();
         table.rows(label, &mut warnings, |line, rec| {
             let row = CsvRow {
                 rec,
@@ -705,7 +410,6 @@ impl Raw {
         if self.total.is_empty() && self.gravity.is_empty() {
             let gravity_problem = self
                 .warnings
-                .iter()
                 .find(|w| w.column.is_none() && w.file.to_lowercase().ends_with("gravity.csv"));
             if let Some(e) = gravity_problem {
                 return Err(e.clone());
@@ -1119,27 +823,6 @@ mod tests {
         assert_eq!(ns_to_s("-1500000000"), Some(-1.5));
         assert_eq!(ns_to_s("1.5e9"), Some(1.5));
         assert_eq!(ns_to_s("x"), None);
-    }
-
-    #[test]
-    fn delimiter_from_header() {
-        assert_eq!(
-            detect_delimiter("\"Time (s)\";\"Acceleration x (m/s^2)\""),
-            b';'
-        );
-        assert_eq!(detect_delimiter("Time (s)\tAcceleration x (m/s^2)"), b'\t');
-        assert_eq!(detect_delimiter("\"a;b\",c,d"), b',');
-        assert_eq!(detect_delimiter("time"), b',');
-    }
-
-    #[test]
-    fn lines_are_lenient() {
-        let text = b"a\r\n\xff\xfe\nb\n";
-        let mut got = Vec::new();
-        each_line(&text[..], "f", |n, l| got.push((n, l.map(str::to_string)))).unwrap();
-        assert_eq!(got[0], (1, Ok("a".to_string())));
-        assert!(got[1].1.is_err());
-        assert_eq!(got[2], (3, Ok("b".to_string())));
     }
 
     #[test]

@@ -1,0 +1,435 @@
+//! Text helpers shared by the readers: bounded lines, CSV fields, numbers, capped warnings.
+//!
+//! Every reader goes through [`each_line`] or [`Table`], which never hold more than
+//! [`MAX_LINE`] bytes of one line, and through [`Warnings`], which keeps the first
+//! [`MAX_WARNINGS`] skipped lines and only counts the rest. So a file of any size, even binary
+//! junk without a line end, is read in bounded memory (besides the samples it yields).
+
+use super::{field_error, file_error, number, Log, Streams, MAX_WARNINGS};
+use crate::io::ParseError;
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use std::io::{self, BufRead};
+use std::ops::ControlFlow;
+
+/// Skipped lines of one file or log: the first [`MAX_WARNINGS`] kept, all counted.
+#[derive(Debug, Default)]
+pub(crate) struct Warnings {
+    kept: Vec<ParseError>,
+    count: u64,
+}
+
+impl Warnings {
+    /// Records one skipped line.
+    pub fn push(&mut self, e: ParseError) {
+        self.count += 1;
+        if self.kept.len() < MAX_WARNINGS {
+            self.kept.push(e);
+        }
+    }
+
+    /// Takes over another set.
+    pub fn extend(&mut self, other: Warnings) {
+        let extra = other.count - other.kept.len() as u64;
+        for e in other.kept {
+            self.push(e);
+        }
+        self.count += extra;
+    }
+
+    /// The first warning kept that satisfies `pred`.
+    pub fn find(&self, pred: impl Fn(&ParseError) -> bool) -> Option<&ParseError> {
+        self.kept.iter().find(|e| pred(e))
+    }
+
+    /// The first warning kept.
+    pub fn first(&self) -> Option<&ParseError> {
+        self.kept.first()
+    }
+}
+
+/// Longest line kept, bytes. A longer line (binary junk, a file without line ends) is skipped
+/// with a warning instead of being held in memory.
+pub const MAX_LINE: usize = 1 << 16;
+
+/// Reads one line without its `\n` into `buf`. `Ok(None)` at the end of input; `Ok(Some(true))`
+/// when the line was longer than [`MAX_LINE`] (then `buf` is empty).
+fn read_line_capped(r: &mut impl BufRead, buf: &mut Vec<u8>) -> io::Result<Option<bool>> {
+    buf.clear();
+    let mut any = false;
+    let mut long = false;
+    loop {
+        let (used, done) = {
+            let avail = match r.fill_buf() {
+                Ok(a) => a,
+                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
+                Err(e) => return Err(e),
+            };
+            if avail.is_empty() {
+                return Ok(any.then_some(long));
+            }
+            any = true;
+            let (chunk, used, done) = match avail.iter().position(|&b| b == b'\n') {
+                Some(i) => (&avail[..i], i + 1, true),
+                None => (avail, avail.len(), false),
+            };
+            if !long {
+                if buf.len() + chunk.len() > MAX_LINE {
+                    long = true;
+                    buf.clear();
+                } else {
+                    buf.extend_from_slice(chunk);
+                }
+            }
+            (used, done)
+        };
+        r.consume(used);
+        if done {
+            return Ok(Some(long));
+        }
+    }
+}
+
+/// Calls `f(line_number, line)` for every line, leniently: a line that is not UTF-8 text or is
+/// longer than [`MAX_LINE`] is passed as an error naming the file and line, and reading goes on.
+/// `\r` line ends and a byte-order mark on the first line are removed. Only a read failure of
+/// the input itself is fatal.
+pub(crate) fn each_line(
+    r: impl BufRead,
+    file: &str,
+    mut f: impl FnMut(u64, Result<&str, ParseError>),
+) -> Result<(), ParseError> {
+    try_each_line(r, file, |n, l| {
+        f(n, l);
+        ControlFlow::Continue(())
+    })
+}
+
+/// [`each_line`] that stops when `f` says so.
+pub(crate) fn try_each_line(
+    mut r: impl BufRead,
+    file: &str,
+    mut f: impl FnMut(u64, Result<&str, ParseError>) -> ControlFlow<()>,
+) -> Result<(), ParseError> {
+    let mut buf = Vec::with_capacity(256);
+    let mut n = 0u64;
+    loop {
+        let long = read_line_capped(&mut r, &mut buf)
+            .map_err(|e| file_error(file, n + 1, format!("cannot read: {e}")))?;
+        let Some(long) = long else {
+            return Ok(());
+        };
+        n += 1;
+        let flow = if long {
+            f(n, Err(file_error(file, n, "line too long: not a text log")))
+        } else {
+            match std::str::from_utf8(&buf) {
+                Ok(s) => {
+                    let s = s.trim_end_matches('\r');
+                    let s = if n == 1 {
+                        s.trim_start_matches('\u{feff}')
+                    } else {
+                        s
+                    };
+                    f(n, Ok(s))
+                }
+                Err(_) => f(n, Err(file_error(file, n, "not UTF-8 text"))),
+            }
+        };
+        if flow.is_break() {
+            return Ok(());
+        }
+    }
+}
+
+/// Picks the field separator of a header line: the most frequent of tab, semicolon and comma
+/// outside double quotes (comma when none occurs).
+pub(crate) fn detect_delimiter(header: &str) -> u8 {
+    let mut counts = [0usize; 3];
+    let mut quoted = false;
+    for b in header.bytes() {
+        match b {
+            b'"' => quoted = !quoted,
+            b'\t' if !quoted => counts[0] += 1,
+            b';' if !quoted => counts[1] += 1,
+            b',' if !quoted => counts[2] += 1,
+            _ => {}
+        }
+    }
+    if counts[0] > 0 && counts[0] >= counts[1] && counts[0] >= counts[2] {
+        b'\t'
+    } else if counts[1] > counts[2] {
+        b';'
+    } else {
+        b','
+    }
+}
+
+/// Splits one line into fields with the CSV rules for one line (fields separated by
+/// `delimiter`; a field in double quotes may hold the delimiter, `""` is a quote), trimmed.
+/// Records never span lines here: no format we read needs it, and a stray quote in a damaged
+/// file must not swallow the rest of it.
+pub(crate) fn split_line(line: &str, delimiter: u8) -> Vec<String> {
+    let mut rec = csv::StringRecord::new();
+    split_into(line, delimiter, &mut rec);
+    rec.iter().map(|s| s.trim().to_string()).collect()
+}
+
+/// [`split_line`] into a reused record (fields not trimmed).
+pub(crate) fn split_into(line: &str, delimiter: u8, rec: &mut csv::StringRecord) {
+    rec.clear();
+    let d = delimiter as char;
+    let mut field = String::new();
+    let mut chars = line.chars().peekable();
+    loop {
+        field.clear();
+        let quoted = chars.peek() == Some(&'"');
+        if quoted {
+            chars.next();
+            while let Some(c) = chars.next() {
+                if c == '"' {
+                    if chars.peek() == Some(&'"') {
+                        chars.next();
+                        field.push('"');
+                    } else {
+                        break;
+                    }
+                } else {
+                    field.push(c);
+                }
+            }
+        }
+        // Up to the next delimiter (after a closing quote, whatever follows it).
+        let mut ended = true;
+        for c in chars.by_ref() {
+            if c == d {
+                ended = false;
+                break;
+            }
+            field.push(c);
+        }
+        rec.push_field(&field);
+        if ended {
+            return;
+        }
+    }
+}
+
+/// A CSV file with a header line, read record by record (one record per line, lines bounded
+/// by [`MAX_LINE`]).
+pub(crate) struct Table<R: BufRead> {
+    /// The header fields, trimmed, quotes removed.
+    pub header: Vec<String>,
+    /// The header fields in lower case, for matching by name.
+    pub lower: Vec<String>,
+    /// 1-based line number of the header.
+    pub header_line: u64,
+    delimiter: u8,
+    r: R,
+}
+
+impl<R: BufRead> Table<R> {
+    /// Reads the header (the first non-empty line) and prepares the records after it. The
+    /// separator is detected from the header when `delimiter` is `None`. `Ok(None)` for a file
+    /// without any non-empty line.
+    pub fn open(mut r: R, file: &str, delimiter: Option<u8>) -> Result<Option<Self>, ParseError> {
+        let mut buf = Vec::new();
+        let mut n = 0u64;
+        let header = loop {
+            let long = read_line_capped(&mut r, &mut buf)
+                .map_err(|e| file_error(file, n + 1, format!("cannot read: {e}")))?;
+            let Some(long) = long else {
+                return Ok(None);
+            };
+            n += 1;
+            if long {
+                return Err(file_error(file, n, "header line too long: not a CSV file"));
+            }
+            let line = std::str::from_utf8(&buf)
+                .map_err(|_| file_error(file, n, "header line is not UTF-8 text"))?;
+            let line = line.trim_start_matches('\u{feff}').trim();
+            if !line.is_empty() {
+                break line.to_string();
+            }
+        };
+        let delimiter = delimiter.unwrap_or_else(|| detect_delimiter(&header));
+        let header = split_line(&header, delimiter);
+        let lower = header.iter().map(|h| h.to_lowercase()).collect();
+        Ok(Some(Table {
+            header,
+            lower,
+            header_line: n,
+            delimiter,
+            r,
+        }))
+    }
+
+    /// The index of the first column whose lower-case name satisfies `pred`.
+    pub fn col(&self, pred: impl Fn(&str) -> bool) -> Option<usize> {
+        self.lower.iter().position(|h| pred(h))
+    }
+
+    /// The index of the column named `name` (any case).
+    pub fn named(&self, name: &str) -> Option<usize> {
+        let name = name.to_lowercase();
+        self.col(|h| h == name)
+    }
+
+    /// Calls `f(line, record)` for every non-empty record. Lines that are not UTF-8 text or are
+    /// too long become warnings; a read failure of the input is fatal.
+    pub fn rows(
+        &mut self,
+        file: &str,
+        warnings: &mut Warnings,
+        mut f: impl FnMut(u64, &csv::StringRecord),
+    ) -> Result<(), ParseError> {
+        let mut rec = csv::StringRecord::new();
+        let (offset, delimiter) = (self.header_line, self.delimiter);
+        each_line(&mut self.r, file, |n, line| match line {
+            Ok(line) if !line.trim().is_empty() => {
+                split_into(line, delimiter, &mut rec);
+                f(offset + n, &rec);
+            }
+            Ok(_) => {}
+            Err(mut e) => {
+                e.line += offset;
+                warnings.push(e);
+            }
+        })
+    }
+}
+
+/// Parses field `col` of a record as a number, naming the column on failure.
+pub(crate) fn cell(
+    rec: &csv::StringRecord,
+    col: usize,
+    name: &str,
+    file: &str,
+    line: u64,
+) -> Result<f64, ParseError> {
+    let s = rec
+        .get(col)
+        .ok_or_else(|| field_error(file, line, col + 1, name, "missing"))?;
+    number(s).ok_or_else(|| field_error(file, line, col + 1, name, not_a_number(s)))
+}
+
+/// "not a number: …" with the text cut to a readable length.
+pub(crate) fn not_a_number(s: &str) -> String {
+    let s: String = s.trim().chars().take(40).collect();
+    if s.is_empty() {
+        "empty".to_string()
+    } else {
+        format!("not a number: {s:?}")
+    }
+}
+
+/// A unit quaternion from components, when their norm is within 10 % of 1 (a rotation written
+/// with limited precision); `None` for anything else (zero, huge, non-finite).
+pub(crate) fn unit_quaternion(w: f64, x: f64, y: f64, z: f64) -> Option<UnitQuaternion<f64>> {
+    let q = Quaternion::new(w, x, y, z);
+    let n = q.norm();
+    (n.is_finite() && (n - 1.0).abs() <= 0.1).then(|| UnitQuaternion::from_quaternion(q))
+}
+
+/// An Android rotation vector (x, y, z, and w when given) as the device → ENU quaternion. With
+/// w absent it is `sqrt(1 − |xyz|²)` (the rotation angle is at most π). `None` when the vector
+/// is longer than 1 (beyond rounding) or not finite.
+pub(crate) fn rotation_vector(
+    x: f64,
+    y: f64,
+    z: f64,
+    w: Option<f64>,
+) -> Option<UnitQuaternion<f64>> {
+    let w = match w {
+        Some(w) => w,
+        None => {
+            let w2 = 1.0 - (x * x + y * y + z * z);
+            if !(w2 >= -1e-3) {
+                return None;
+            }
+            w2.max(0.0).sqrt()
+        }
+    };
+    unit_quaternion(w, x, y, z)
+}
+
+/// Drops samples with a non-finite value (sums and unit conversions of huge numbers can
+/// overflow) and returns how many were dropped.
+pub(crate) fn drop_non_finite(s: &mut Streams) -> u64 {
+    let before = s.accel.len() + s.gyro.len() + s.mag.len() + s.orientation.len() + s.fixes.len();
+    let ok = |t: f64, v: &Vector3<f64>| t.is_finite() && v.iter().all(|x| x.is_finite());
+    s.accel.retain(|(t, v)| ok(*t, v));
+    s.gyro.retain(|(t, v)| ok(*t, v));
+    s.mag.retain(|(t, v)| ok(*t, v));
+    s.orientation
+        .retain(|(t, q)| t.is_finite() && q.coords.iter().all(|x| x.is_finite()));
+    s.fixes.retain(|f| f.check().is_ok());
+    let after = s.accel.len() + s.gyro.len() + s.mag.len() + s.orientation.len() + s.fixes.len();
+    (before - after) as u64
+}
+
+/// Adds warnings (one per skipped line) to a log.
+pub(crate) fn add_warnings(log: &mut Log, warnings: Warnings) {
+    let extra = warnings.count - warnings.kept.len() as u64;
+    for w in warnings.kept {
+        log.warn(w);
+    }
+    log.skipped += extra;
+}
+
+/// Records `count` items skipped for one reason as a single warning that counts them all.
+pub(crate) fn warn_count(log: &mut Log, count: u64, e: ParseError) {
+    if count > 0 {
+        log.warn(e);
+        log.skipped += count - 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn delimiter_from_header() {
+        assert_eq!(
+            detect_delimiter("\"Time (s)\";\"Acceleration x (m/s^2)\""),
+            b';'
+        );
+        assert_eq!(detect_delimiter("Time (s)\tAcceleration x (m/s^2)"), b'\t');
+        assert_eq!(detect_delimiter("\"a;b\",c,d"), b',');
+        assert_eq!(detect_delimiter("time"), b',');
+    }
+
+    #[test]
+    fn lines_are_lenient() {
+        let text = b"a\r\n\xff\xfe\nb\n";
+        let mut got = Vec::new();
+        each_line(&text[..], "f", |n, l| got.push((n, l.map(str::to_string)))).unwrap();
+        assert_eq!(got[0], (1, Ok("a".to_string())));
+        assert!(got[1].1.is_err());
+        assert_eq!(got[2], (3, Ok("b".to_string())));
+    }
+
+    #[test]
+    fn fields_split_on_one_line_only() {
+        let f = |l: &str| split_line(l, b',');
+        assert_eq!(f("a, b ,c"), ["a", "b", "c"]);
+        assert_eq!(f("\"x,y\",2"), ["x,y", "2"]);
+        assert_eq!(f("\"say \"\"hi\"\"\",1"), ["say \"hi\"", "1"]);
+        assert_eq!(f("\"open,2,3"), ["open,2,3"]);
+        assert_eq!(f(""), [""]);
+        assert_eq!(f("1,,3,"), ["1", "", "3", ""]);
+    }
+
+    #[test]
+    fn warnings_keep_the_first_and_count_all() {
+        let mut w = Warnings::default();
+        for i in 0..(MAX_WARNINGS as u64 + 50) {
+            w.push(file_error("f", i + 1, "bad"));
+        }
+        let mut log = Log::new("f", super::super::Format::PdrLog);
+        add_warnings(&mut log, w);
+        assert_eq!(log.warnings.len(), MAX_WARNINGS);
+        assert_eq!(log.skipped, MAX_WARNINGS as u64 + 50);
+        assert_eq!(log.warnings[0].line, 1);
+    }
+}
