@@ -184,7 +184,7 @@ pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
     res.duration_s = d.time_span.map_or(0.0, |(a, b)| b - a);
     res.steps = track.len() as u64;
     res.distance_m = d.distance_m;
-    res.refused_records = run.errors.len() as u64;
+    res.refused_records = run.refused;
     if d.samples == 0 {
         res.error = Some("no IMU sample accepted".into());
         return res;

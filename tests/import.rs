@@ -1,6 +1,7 @@
-//! Import of the phone recorders' formats: Sensor Logger (folder, zip, JSON), phyphox,
-//! GnssLogger and GetSensorData. Fixtures are small hand-made recordings under
-//! `tests/fixtures/import/`.
+//! Import of every format: the project's pdr-log, the phone recorders' formats (Sensor Logger
+//! folder, zip and JSON, phyphox, GnssLogger, GetSensorData) and the evaluation data sets' own
+//! layouts (Oxford step-counter trace folders, Microsoft indoor traces, x-io foot CSVs).
+//! Fixtures are small hand-made recordings under `tests/fixtures/import/`.
 
 // Expected values computed with std's `sin` are fine in tests (see clippy.toml).
 #![allow(clippy::disallowed_methods)]
@@ -523,6 +524,114 @@ fn get_sensor_data() {
 }
 
 // ------------------------------------------------------------------------------------------
+// The project's own format and the evaluation data sets' layouts
+// ------------------------------------------------------------------------------------------
+
+#[test]
+fn pdr_log_every_record_kind() {
+    let log = one(import_mem(load("walk.pdrlog", "")));
+    assert_eq!(log.format, Format::PdrLog);
+    assert_sane(&log);
+    assert_eq!(log.skipped, 0);
+    let s = imu(&log);
+    assert_eq!(s.len(), 300);
+    // Optional groups: every third sample carries gyroscope, magnetometer and attitude.
+    assert!(s[0].gyro.is_some() && s[0].mag.is_some() && s[0].orientation.is_some());
+    assert!(s[1].gyro.is_none() && s[1].mag.is_none() && s[1].orientation.is_none());
+    assert_eq!(s[0].mag.unwrap(), Vector3::new(20.5, -3.25, -40.0));
+    let f = fixes(&log);
+    assert_eq!(f.len(), 2);
+    assert_eq!((f[0].altitude_m, f[1].altitude_m), (Some(12.0), None));
+    assert_eq!(
+        log.records
+            .iter()
+            .filter(|r| matches!(r, Record::Gap(..)))
+            .count(),
+        1
+    );
+    assert_round_trip(&log);
+}
+
+#[test]
+fn pdr_log_bad_lines_name_line_and_field() {
+    let text = "# pdr-log 1\nimu,1,0,0,9.8,,,,,,,,,,\nimu,2,0,abc,9.8,,,,,,,,,,\nimu,3,0,0,9.8,1,2,,,,,,,,\nweird,4\nimu,5,0,0,9.8,,,,,,,,,,\n";
+    let log = one(import_mem(vec![(
+        "x.pdrlog".into(),
+        text.as_bytes().to_vec(),
+    )]));
+    assert_eq!(
+        imu(&log).len(),
+        2,
+        "the good lines before and after are kept"
+    );
+    assert_eq!(log.skipped, 3);
+    assert!(has_warning(&log, "x.pdrlog", 3, Some(4)));
+    assert_eq!(log.warnings[0].field.as_deref(), Some("ay"));
+    assert!(has_warning(&log, "x.pdrlog", 4, Some(6)));
+    assert!(has_warning(&log, "x.pdrlog", 5, Some(1)));
+    // Not a pdr-log at all: the version tag is checked.
+    let e = pdrlog::read(&b"# pdr-log 9\nimu,1\n"[..], "y.pdrlog").unwrap_err();
+    assert_eq!((e.file.as_str(), e.line), ("y.pdrlog", 1));
+    assert!(pdrlog::read(&b""[..], "empty.pdrlog").is_err());
+}
+
+#[test]
+fn oxford_trace_folder() {
+    let log = one(import_mem(load("oxford", "")));
+    assert_eq!(log.format, Format::OxfordSteps);
+    assert_eq!(log.platform, Some(Platform::Android));
+    assert_eq!(log.group.as_deref(), Some("FrontPocket"));
+    assert_sane(&log);
+    let s = imu(&log);
+    // Nanoseconds since boot become seconds on the same clock; gravity on +y stays.
+    assert!(close(s[0].t, 263239.144953734, 1e-6), "{}", s[0].t);
+    assert!(close(s[0].accel.y, 9.81, 1e-6));
+    // 12 contacts, one of them a bounce of the same foot 0.4 s after its landing.
+    assert_eq!(log.truth.steps, Some(12));
+    assert_eq!(log.truth.step_events.len(), 12);
+    assert_eq!(log.truth.steps_debounced(), Some(11));
+    assert_round_trip(&log);
+}
+
+#[test]
+fn ms_indoor_trace() {
+    let log = one(import_mem(load("ms_indoor.txt", "")));
+    assert_eq!(log.format, Format::MsIndoor);
+    assert_sane(&log);
+    let s = imu(&log);
+    assert_eq!(
+        s.len(),
+        400,
+        "uncalibrated, Wi-Fi and waypoint lines are not samples"
+    );
+    assert!(close(s[0].t, 1574594529.04, 1e-6));
+    assert_eq!(log.truth.waypoints.len(), 3);
+    assert!(close(log.truth.waypoints[2].x_m, 5.4, 1e-9));
+    // The rotation vector (w implied) of a phone flat, screen up, top to the north-east.
+    let q = s[10].orientation.unwrap();
+    let top = q * Vector3::y();
+    assert!(close(top.x, top.y, 1e-6) && top.x > 0.7, "{top:?}");
+    assert!(s[10].gyro.is_some() && s[10].mag.is_some());
+    assert_round_trip(&log);
+}
+
+#[test]
+fn xio_foot_units() {
+    let log = one(import_mem(load("xio_foot.csv", "")));
+    assert_eq!(log.format, Format::XioFoot);
+    assert!(log.truth.loop_closure);
+    assert_sane(&log);
+    let s = imu(&log);
+    assert_eq!(s.len(), 500);
+    // g become m/s², deg/s become rad/s.
+    assert!(close(s[0].accel.z, 9.80665, 1e-9));
+    let k = s.iter().position(|x| x.t >= 1.5).unwrap();
+    let want = 90f64.to_radians() * (2.0 * std::f64::consts::PI * 0.9 * s[k].t).sin();
+    assert!(close(s[k].gyro.unwrap().x, want, 1e-4));
+    assert_round_trip(&log);
+}
+
+// ------------------------------------------------------------------------------------------
 // All together, and robustness
 // ------------------------------------------------------------------------------------------
 
@@ -541,11 +650,15 @@ fn whole_fixture_folder_on_disk() {
         [
             "get-sensor-data",
             "gnss-logger",
+            "ms-indoor",
+            "oxford-steps",
+            "pdr-log",
             "phyphox",
             "phyphox",
             "sensor-logger",
             "sensor-logger",
-            "sensor-logger-json"
+            "sensor-logger-json",
+            "xio-foot"
         ]
     );
     let errors: Vec<_> = results.iter().filter_map(|r| r.as_ref().err()).collect();
@@ -638,6 +751,10 @@ fn robust_against_damaged_files() {
         "phyphox_semicolon",
         "gnss_logger.txt",
         "get_sensor_data.txt",
+        "walk.pdrlog",
+        "oxford",
+        "ms_indoor.txt",
+        "xio_foot.csv",
     ];
     let mut rng = Rng(0x2545_f491_4f6c_dd1d);
     let mut outcomes = [0usize; 2];
@@ -675,4 +792,148 @@ fn robust_against_damaged_files() {
     }
     // Both outcomes happen: damage is survived, and fatal damage is reported.
     assert!(outcomes[0] > 100 && outcomes[1] > 10, "{outcomes:?}");
+}
+
+/// A file set whose files are a real header followed by a huge generated tail, never held in
+/// memory: how a 2 GB recording (or 2 GB of junk behind a plausible first line) reaches a
+/// reader.
+struct Huge {
+    names: Vec<String>,
+    heads: Vec<&'static str>,
+    tail: u64,
+    newlines: bool,
+}
+
+/// The generated stream: `head`, then `len` bytes of a fixed pseudo-random pattern (with or
+/// without line ends).
+struct Junk {
+    head: std::io::Cursor<&'static [u8]>,
+    left: u64,
+    pattern: Vec<u8>,
+    at: usize,
+}
+
+impl std::io::Read for Junk {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.head.read(buf)?;
+        if n > 0 {
+            return Ok(n);
+        }
+        let n = (buf.len() as u64)
+            .min(self.left)
+            .min((self.pattern.len() - self.at) as u64) as usize;
+        buf[..n].copy_from_slice(&self.pattern[self.at..self.at + n]);
+        self.at = (self.at + n) % self.pattern.len();
+        self.left -= n as u64;
+        Ok(n)
+    }
+}
+
+impl pdr::io::import::FileSet for Huge {
+    fn names(&self) -> &[String] {
+        &self.names
+    }
+    fn open(&mut self, name: &str) -> std::io::Result<Box<dyn std::io::BufRead + '_>> {
+        let i = self.names.iter().position(|n| n == name).unwrap();
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15 ^ i as u64);
+        let pattern = (0..65_521)
+            .map(|_| {
+                let b = rng.next() as u8;
+                if !self.newlines && b == b'\n' {
+                    b'x'
+                } else {
+                    b
+                }
+            })
+            .collect();
+        Ok(Box::new(std::io::BufReader::with_capacity(
+            1 << 16,
+            Junk {
+                head: std::io::Cursor::new(self.heads[i].as_bytes()),
+                left: self.tail,
+                pattern,
+                at: 0,
+            },
+        )))
+    }
+    fn label(&self, name: &str) -> String {
+        format!("huge/{name}")
+    }
+}
+
+/// Peak resident memory of this process, bytes (Linux only).
+fn peak_rss() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb: u64 = s
+        .lines()
+        .find(|l| l.starts_with("VmHWM:"))?
+        .split_whitespace()
+        .nth(1)?
+        .parse()
+        .ok()?;
+    Some(kb * 1024)
+}
+
+/// Every reader gets a plausible first line and then 2 GiB of binary junk (release builds;
+/// 64 MiB in debug builds, where reading 20 GB would take minutes): each finishes with an error
+/// or warnings naming the file, never panics, and memory stays bounded.
+#[test]
+fn two_gigabytes_of_junk_behind_a_real_header() {
+    let tail: u64 = if cfg!(debug_assertions) {
+        64 << 20
+    } else {
+        2 << 30
+    };
+    let files: [(&str, &'static str); 9] = [
+        ("a.pdrlog", "# pdr-log 1\nimu,0,0,0,9.8,,,,,,,,,,\n"),
+        ("ms.txt", "#\tSiteID:x\n1000\tTYPE_ACCELEROMETER\t0\t0\t9.8\t3\n"),
+        ("x.csv", "Time (s),Gyroscope X (deg/s),Gyroscope Y (deg/s),Gyroscope Z (deg/s),Accelerometer X (g),Accelerometer Y (g),Accelerometer Z (g)\n"),
+        ("g.txt", "# Accel,utcTimeMillis,elapsedRealtimeNanos,AccelXMps2,AccelYMps2,AccelZMps2\n"),
+        ("s.txt", "% GetSensorData\nACCE;1.0;1.0;0;0;9.8;3\n"),
+        ("j.json", "[{\"sensor\":\"Accelerometer\",\"time\":\"1000000000\",\"x\":\"0\",\"y\":\"0\",\"z\":\"0\"},"),
+        ("sl/Accelerometer.csv", "time,seconds_elapsed,z,y,x\n"),
+        ("ph/Accelerometer.csv", "\"Time (s)\",\"Acceleration x (m/s^2)\",\"Acceleration y (m/s^2)\",\"Acceleration z (m/s^2)\"\n"),
+        ("ox/accelerometer.csv", "1000000000,3,0,0,9.8\n"),
+    ];
+    let mut names: Vec<String> = files.iter().map(|f| f.0.to_string()).collect();
+    let mut heads: Vec<&'static str> = files.iter().map(|f| f.1).collect();
+    // The folder formats need their companions (small and valid).
+    names.push("sl/Gravity.csv".into());
+    heads.push("time,seconds_elapsed,z,y,x\n1000000000,0,9.8,0,0\n");
+    names.push("ox/stepcounter.csv".into());
+    heads.push("1000000000,1,1\n");
+    let mut order: Vec<usize> = (0..names.len()).collect();
+    order.sort_by(|&a, &b| names[a].cmp(&names[b]));
+    let before = peak_rss();
+    for newlines in [false, true] {
+        let mut set = Huge {
+            names: order.iter().map(|&i| names[i].clone()).collect(),
+            heads: order.iter().map(|&i| heads[i]).collect(),
+            tail: if newlines { tail / 8 } else { tail },
+            newlines,
+        };
+        let results = import_all(&mut set);
+        assert_eq!(results.len(), 9, "one result per log");
+        for r in &results {
+            match r {
+                Ok(log) => {
+                    assert!(
+                        log.skipped > 0 && !log.warnings.is_empty(),
+                        "{}",
+                        log.source
+                    );
+                    assert!(log.warnings.len() <= pdr::io::import::MAX_WARNINGS);
+                    assert!(log.warnings.iter().all(|w| w.file.starts_with("huge/")));
+                }
+                Err(e) => assert!(e.file.starts_with("huge/"), "{e}"),
+            }
+        }
+    }
+    if let (Some(a), Some(b)) = (before, peak_rss()) {
+        assert!(
+            b.saturating_sub(a) < 256 << 20,
+            "peak memory grew by {} MB",
+            (b - a) >> 20
+        );
+    }
 }

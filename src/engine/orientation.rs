@@ -23,6 +23,12 @@ use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 /// Standard gravity, m/s².
 pub const G0: f64 = 9.806_65;
 
+/// How long the last OS attitude stands in for a sample that carries none, s. Phones deliver
+/// the attitude on its own event stream, often slower than the accelerometer (a browser's
+/// `deviceorientation` at 30–60 Hz beside `devicemotion` at 60–100 Hz; a recorder that writes
+/// each sensor as it arrives); within 0.2 s a pocketed phone turns by a few degrees at most.
+pub const HOLD_S: f64 = 0.2;
+
 /// Which orientation source to use.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -89,7 +95,9 @@ pub struct Orientation {
 }
 
 enum Kind {
-    Os,
+    Os {
+        last: Option<(f64, UnitQuaternion<f64>)>,
+    },
     Madgwick {
         filter: Option<ahrs::Madgwick<f64>>,
         beta: f64,
@@ -144,9 +152,15 @@ impl Orientation {
             OrientationSource::GravityLowPass { tau_s } => Kind::Gravity {
                 lp: [OnePole::new(tau_s); 3],
             },
-            _ => Kind::Os,
+            _ => Kind::Os { last: None },
         };
         Orientation { kind }
+    }
+
+    /// Whether a sample at time `t` without an attitude of its own can use the last OS
+    /// attitude (at most [`HOLD_S`] old).
+    pub fn holds_attitude_at(&self, t: f64) -> bool {
+        matches!(self.kind, Kind::Os { last: Some((tl, _)) } if t - tl <= HOLD_S)
     }
 
     /// Whether this source provides horizontal axes (and so heading).
@@ -157,7 +171,7 @@ impl Orientation {
     /// Forgets the state (after a gap in the data).
     pub fn reset(&mut self) {
         match &mut self.kind {
-            Kind::Os => {}
+            Kind::Os { last } => *last = None,
             Kind::Madgwick { filter, .. } => *filter = None,
             Kind::Gravity { lp } => lp.iter_mut().for_each(OnePole::reset),
         }
@@ -177,10 +191,19 @@ impl Orientation {
     /// the navigation frame.
     pub fn update(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
         let q = match &mut self.kind {
-            Kind::Os => s.orientation.ok_or(InputError::MissingField {
-                t: s.t,
-                field: "orientation",
-            })?,
+            Kind::Os { last } => match (s.orientation, *last) {
+                (Some(q), _) => {
+                    *last = Some((s.t, q));
+                    q
+                }
+                (None, Some((t, q))) if s.t - t <= HOLD_S => q,
+                (None, _) => {
+                    return Err(InputError::MissingField {
+                        t: s.t,
+                        field: "orientation",
+                    })
+                }
+            },
             Kind::Madgwick { filter, beta } => {
                 let gyro = s.gyro.ok_or(InputError::MissingField {
                     t: s.t,

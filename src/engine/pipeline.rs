@@ -393,10 +393,18 @@ impl Pipeline {
             None => self.cfg.orientation.resolve(s),
         };
         match src {
-            OrientationSource::Os if s.orientation.is_none() => Err(InputError::MissingField {
-                t: s.t,
-                field: "orientation",
-            }),
+            OrientationSource::Os
+                if s.orientation.is_none()
+                    && !self
+                        .orientation
+                        .as_ref()
+                        .is_some_and(|o| o.holds_attitude_at(s.t)) =>
+            {
+                Err(InputError::MissingField {
+                    t: s.t,
+                    field: "orientation",
+                })
+            }
             OrientationSource::Madgwick { .. } if s.gyro.is_none() => {
                 Err(InputError::MissingField {
                     t: s.t,
@@ -633,9 +641,14 @@ pub enum Record {
 pub struct Replay {
     /// The pipeline after the last record, holding the track and the diagnostics.
     pub pipeline: Pipeline,
-    /// Records refused, with their index in the input.
+    /// The first [`REPLAY_ERRORS_KEPT`] records refused, with their index in the input.
     pub errors: Vec<(usize, InputError)>,
+    /// How many records were refused in all.
+    pub refused: u64,
 }
+
+/// How many refused records [`replay`] keeps for reporting (all are counted).
+pub const REPLAY_ERRORS_KEPT: usize = 100;
 
 /// Replays records through a new pipeline: a loop over the same calls live input uses.
 pub fn replay<'a>(
@@ -644,6 +657,7 @@ pub fn replay<'a>(
 ) -> Result<Replay, ConfigError> {
     let mut pipeline = Pipeline::new(cfg)?;
     let mut errors = Vec::new();
+    let mut refused = 0;
     for (i, r) in records.into_iter().enumerate() {
         let res = match r {
             Record::Imu(s) => pipeline.push_imu(s).map(|_| ()),
@@ -654,8 +668,15 @@ pub fn replay<'a>(
             }
         };
         if let Err(e) = res {
-            errors.push((i, e));
+            refused += 1;
+            if errors.len() < REPLAY_ERRORS_KEPT {
+                errors.push((i, e));
+            }
         }
     }
-    Ok(Replay { pipeline, errors })
+    Ok(Replay {
+        pipeline,
+        errors,
+        refused,
+    })
 }

@@ -124,7 +124,8 @@ pub struct Parsed {
     pub records: Vec<Record>,
     /// The first [`crate::io::import::MAX_WARNINGS`] lines that were skipped.
     pub errors: Vec<ParseError>,
-    /// How many lines were skipped in all.
+    /// How many lines were skipped in all (`errors` may hold one more entry: the notice that
+    /// records were put back in time order).
     pub skipped: u64,
 }
 
@@ -203,6 +204,31 @@ pub fn read(input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
         }
         ControlFlow::Continue(())
     })?;
+    // Records are put in time order (a damaged or hand-edited file); the engine needs it.
+    let time = |r: &Record| match r {
+        Record::Imu(s) => s.t,
+        Record::Gnss(f) => f.t,
+        Record::Gap(t0, _) => *t0,
+    };
+    let mut latest = f64::NEG_INFINITY;
+    let mut late = 0u64;
+    for r in &out.records {
+        let t = time(r);
+        if t < latest {
+            late += 1;
+        }
+        latest = latest.max(t);
+    }
+    if late > 0 {
+        out.records.sort_by(|a, b| time(a).total_cmp(&time(b)));
+        // A notice, not a skipped line: nothing is lost.
+        out.errors.push(err(
+            0,
+            None,
+            Some("t_s"),
+            format!("{late} record(s) earlier than a record before them, put back in time order"),
+        ));
+    }
     match fatal {
         Some(e) => Err(e),
         None if !saw_header => Err(err(
@@ -341,16 +367,27 @@ mod tests {
     #[test]
     fn round_trip_is_exact() {
         let mut sim = scenarios::straight_walk(1.8, 3.0).generate();
-        sim.records.push(Record::Gnss(GnssFix {
-            t: 5.0,
-            lat_deg: 43.77,
-            lon_deg: 11.25,
-            h_accuracy_m: 4.5,
-            altitude_m: None,
-            speed_mps: Some(1.3),
-            bearing_deg: None,
-        }));
-        sim.records.push(Record::Gap(6.0, 9.5));
+        // A fix and a gap where they belong in time (the reader keeps records in time order).
+        let at = |t: f64, rs: &[Record]| {
+            rs.iter()
+                .position(|r| matches!(r, Record::Imu(s) if s.t > t))
+                .unwrap_or(rs.len())
+        };
+        let i = at(5.0, &sim.records);
+        sim.records.insert(
+            i,
+            Record::Gnss(GnssFix {
+                t: 5.0,
+                lat_deg: 43.77,
+                lon_deg: 11.25,
+                h_accuracy_m: 4.5,
+                altitude_m: None,
+                speed_mps: Some(1.3),
+                bearing_deg: None,
+            }),
+        );
+        let i = at(6.0, &sim.records);
+        sim.records.insert(i, Record::Gap(6.0, 6.6));
         let text = to_string(&sim.records);
         let back = read(text.as_bytes(), "mem").unwrap();
         assert!(back.errors.is_empty(), "{:?}", back.errors);

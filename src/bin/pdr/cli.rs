@@ -369,18 +369,22 @@ fn run(
             ))
         }
     };
-    for e in &parsed.warnings {
+    let shown = parsed.warnings.len().min(10);
+    for e in &parsed.warnings[..shown] {
         eprintln!("warning: {e} (line skipped)");
     }
-    if parsed.skipped > parsed.warnings.len() as u64 {
+    if parsed.skipped > shown as u64 {
         eprintln!(
             "warning: {} more lines skipped",
-            parsed.skipped - parsed.warnings.len() as u64
+            parsed.skipped - shown as u64
         );
     }
     let r = replay(cfg, &parsed.records).map_err(|e| e.to_string())?;
-    for (i, e) in &r.errors {
+    for (i, e) in r.errors.iter().take(10) {
         eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
+    }
+    if r.refused > 10 {
+        eprintln!("warning: {name}: {} more records refused", r.refused - 10);
     }
     let p = &r.pipeline;
     let d = p.diagnostics();
@@ -392,7 +396,7 @@ fn run(
         "records       {} ({} lines skipped, {} records refused)",
         parsed.records.len(),
         parsed.skipped,
-        r.errors.len()
+        r.refused
     );
     println!("orientation   {:?}", d.orientation);
     println!("duration      {:.1} s", t1 - t0);

@@ -68,7 +68,7 @@ fn read_line_capped(r: &mut impl BufRead, buf: &mut Vec<u8>) -> io::Result<Optio
                 return Ok(any.then_some(long));
             }
             any = true;
-            let (chunk, used, done) = match avail.iter().position(|&b| b == b'\n') {
+            let (chunk, used, done) = match memchr::memchr(b'\n', avail) {
                 Some(i) => (&avail[..i], i + 1, true),
                 None => (avail, avail.len(), false),
             };
@@ -374,6 +374,22 @@ pub(crate) fn add_warnings(log: &mut Log, warnings: Warnings) {
         log.warn(w);
     }
     log.skipped += extra;
+}
+
+/// Sets the log's records from the streams, dropping samples that unit conversions made
+/// non-finite (with one counted warning naming `file`).
+pub(crate) fn set_records(log: &mut Log, mut s: Streams, file: &str) {
+    let dropped = drop_non_finite(&mut s);
+    log.records = s.into_records();
+    warn_count(
+        log,
+        dropped,
+        file_error(
+            file,
+            0,
+            format!("{dropped} sample(s) with a non-finite value, skipped"),
+        ),
+    );
 }
 
 /// Records `count` items skipped for one reason as a single warning that counts them all.

@@ -1,7 +1,7 @@
 //! The evaluation data sets of `../shared/data`, read directly: Oxford Step Counter trace
 //! folders, Microsoft Indoor Location Competition 2.0 traces and the x-io foot-mounted CSVs.
 
-use super::common::{add_warnings, each_line, Warnings};
+use super::common::{add_warnings, each_line, set_records, Warnings};
 use super::{
     field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams, TrueStep,
     Waypoint, G0,
@@ -112,7 +112,7 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
     events.sort_by(|a, b| a.t.total_cmp(&b.t));
     log.truth.steps = Some(events.len() as u64);
     log.truth.step_events = events;
-    log.records = streams.into_records();
+    set_records(&mut log, streams, &label);
     add_warnings(&mut log, warnings);
     Ok(log)
 }
@@ -205,7 +205,7 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     }
     waypoints.sort_by(|a, b| a.t.total_cmp(&b.t));
     log.truth.waypoints = waypoints;
-    log.records = s.into_records();
+    set_records(&mut log, s, label);
     add_warnings(&mut log, warnings);
     Ok(log)
 }
@@ -274,7 +274,7 @@ pub fn read_xio(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             .cloned()
             .unwrap_or_else(|| file_error(label, 0, "no samples")));
     }
-    log.records = s.into_records();
+    set_records(&mut log, s, label);
     add_warnings(&mut log, warnings);
     Ok(log)
 }

@@ -14,6 +14,13 @@ pub trait FileSet {
     fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>>;
     /// The name to show in messages (the full path, or `archive.zip/inner/name`).
     fn label(&self, name: &str) -> String;
+    /// A file of the set as a seekable stream, for reading it as a zip archive. By default the
+    /// file is read into memory; a set on disk opens it in place.
+    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
+        let mut bytes = Vec::new();
+        self.open(name)?.read_to_end(&mut bytes)?;
+        Ok(Box::new(Cursor::new(bytes)))
+    }
     /// The first [`HEAD_BYTES`] bytes of a file, as text (invalid UTF-8 replaced).
     fn head(&mut self, name: &str) -> io::Result<String> {
         let mut buf = Vec::with_capacity(HEAD_BYTES);
@@ -23,6 +30,10 @@ pub trait FileSet {
         Ok(String::from_utf8_lossy(&buf).into_owned())
     }
 }
+
+/// A byte stream that can seek (a zip archive's source).
+pub trait ReadSeek: Read + Seek {}
+impl<T: Read + Seek> ReadSeek for T {}
 
 /// The folder part of a name, with its trailing `/` (empty at the top).
 pub fn parent(name: &str) -> &str {
@@ -102,6 +113,10 @@ impl FileSet for DirSet {
     fn label(&self, name: &str) -> String {
         self.path(name).display().to_string()
     }
+
+    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
+        Ok(Box::new(std::fs::File::open(self.path(name))?))
+    }
 }
 
 /// The files of a zip archive, decompressed as they are read.
@@ -158,6 +173,14 @@ impl MemSet {
         let names = files.iter().map(|f| f.0.clone()).collect();
         MemSet { files, names }
     }
+
+    fn bytes(&self, name: &str) -> io::Result<&[u8]> {
+        self.files
+            .iter()
+            .find(|f| f.0 == name)
+            .map(|f| f.1.as_slice())
+            .ok_or_else(|| io::Error::new(io::ErrorKind::NotFound, name.to_string()))
+    }
 }
 
 impl FileSet for MemSet {
@@ -166,12 +189,11 @@ impl FileSet for MemSet {
     }
 
     fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {
-        let (_, bytes) = self
-            .files
-            .iter()
-            .find(|f| f.0 == name)
-            .ok_or_else(|| io::Error::new(io::ErrorKind::NotFound, name.to_string()))?;
-        Ok(Box::new(Cursor::new(bytes.as_slice())))
+        Ok(Box::new(Cursor::new(self.bytes(name)?)))
+    }
+
+    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
+        Ok(Box::new(Cursor::new(self.bytes(name)?)))
     }
 
     fn label(&self, name: &str) -> String {

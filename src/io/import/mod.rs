@@ -450,7 +450,7 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
                 Format::PdrLog => crate::io::pdrlog::read(reader, &label).map(|p| {
                     let mut log = Log::new(&label, Format::PdrLog);
                     log.records = p.records;
-                    let extra = p.skipped - p.errors.len() as u64;
+                    let extra = p.skipped.saturating_sub(p.errors.len() as u64);
                     for e in p.errors {
                         log.warn(e);
                     }
@@ -470,15 +470,11 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
     out
 }
 
-/// Reads the logs of a zip archive found inside a file set. The archive (compressed) is held in
-/// memory; its members are decompressed as they are read.
+/// Reads the logs of a zip archive found inside a file set. An archive on disk is read in
+/// place, one in memory (an upload) from memory; its members are decompressed as they are read.
 fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>> {
     let label = set.label(name);
-    let mut bytes = Vec::new();
-    let read = set
-        .open(name)
-        .and_then(|mut r| std::io::Read::read_to_end(&mut r, &mut bytes));
-    match read.and_then(|_| ZipSet::new(std::io::Cursor::new(bytes), &label)) {
+    match set.open_seekable(name).and_then(|r| ZipSet::new(r, &label)) {
         Ok(mut zip) => import_all(&mut zip),
         Err(e) => vec![Err(file_error(
             &label,

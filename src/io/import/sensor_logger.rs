@@ -678,15 +678,34 @@ pub fn looks_like_json(head: &str) -> bool {
     h.starts_with('[') && h.contains("\"sensor\"")
 }
 
-/// A reader that counts lines and columns of the bytes it passes on.
+/// Largest JSON element read, bytes (a reading is about 200 bytes). A larger one (a file
+/// that is one huge string, junk) stops the reading instead of being held in memory.
+const MAX_ELEMENT: u64 = super::MAX_LINE as u64;
+
+/// A reader that counts lines and columns of the bytes it passes on, and refuses to pass on
+/// more than [`MAX_ELEMENT`] bytes after the start of the current element (`element`, a byte
+/// offset the visitor moves forward after each element).
 struct Counting<'a, R> {
     inner: R,
     pos: &'a Cell<(u64, usize)>,
+    read: &'a Cell<u64>,
+    element: &'a Cell<u64>,
+    too_long: &'a Cell<bool>,
 }
 
 impl<R: Read> Read for Counting<'_, R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
-        let n = self.inner.read(buf)?;
+        let room = (self.element.get() + MAX_ELEMENT).saturating_sub(self.read.get());
+        if room == 0 {
+            self.too_long.set(true);
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidData,
+                format!("an element longer than {MAX_ELEMENT} bytes"),
+            ));
+        }
+        let cap = buf.len().min(usize::try_from(room).unwrap_or(usize::MAX));
+        let n = self.inner.read(&mut buf[..cap])?;
+        self.read.set(self.read.get() + n as u64);
         let (mut line, mut col) = self.pos.get();
         for &b in &buf[..n] {
             if b == b'\n' {
@@ -707,6 +726,8 @@ struct Elements<'a> {
     label: &'a str,
     pos: &'a Cell<(u64, usize)>,
     count: &'a Cell<u64>,
+    element: &'a Cell<u64>,
+    read: &'a Cell<u64>,
 }
 
 impl<'de> serde::de::Visitor<'de> for Elements<'_> {
@@ -718,6 +739,9 @@ impl<'de> serde::de::Visitor<'de> for Elements<'_> {
 
     fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<(), A::Error> {
         while let Some(v) = seq.next_element::<serde_json::Value>()? {
+            // The next element may take MAX_ELEMENT bytes from here (the reader runs ahead by
+            // at most its buffer).
+            self.element.set(self.read.get());
             let index = self.count.get() + 1;
             self.count.set(index);
             let (line, column) = self.pos.get();
@@ -769,9 +793,13 @@ pub fn read_json(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         accel_file: label.to_string(),
         ..Raw::default()
     };
+    let (read, element, too_long) = (Cell::new(0u64), Cell::new(0u64), Cell::new(false));
     let counting = Counting {
         inner: r,
         pos: &pos,
+        read: &read,
+        element: &element,
+        too_long: &too_long,
     };
     let mut de = serde_json::Deserializer::from_reader(counting);
     let parsed = serde::Deserializer::deserialize_seq(
@@ -781,6 +809,8 @@ pub fn read_json(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             label,
             pos: &pos,
             count: &count,
+            element: &element,
+            read: &read,
         },
     )
     .and_then(|()| de.end());
@@ -792,7 +822,7 @@ pub fn read_json(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             field: None,
             message: format!("JSON: {e}"),
         };
-        if e.is_io() {
+        if e.is_io() && !too_long.get() {
             return Err(err);
         }
         if count.get() == 0 {
