@@ -240,7 +240,7 @@ fn eval(paths: &[PathBuf], json: bool, sets: &[String], show_config: bool) -> Re
     use pdr::io::import::{import_all, DirSet};
     let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), sets)?;
     if show_config {
-        println!(
+        out!(
             "{}",
             serde_json::to_string_pretty(&cfg).map_err(|e| e.to_string())?
         );
@@ -270,7 +270,7 @@ fn eval(paths: &[PathBuf], json: bool, sets: &[String], show_config: bool) -> Re
     let summary = summarise(&logs);
     let report = Report { logs, summary };
     if json {
-        println!(
+        out!(
             "{}",
             serde_json::to_string(&report).map_err(|e| e.to_string())?
         );
@@ -282,7 +282,7 @@ fn eval(paths: &[PathBuf], json: bool, sets: &[String], show_config: bool) -> Re
 
 fn print_report(report: &pdr::eval::Report) {
     let opt = |v: Option<f64>, prec: usize| v.map_or("-".to_string(), |x| format!("{x:.prec$}"));
-    println!(
+    out!(
         "{:<44} {:<15} {:>8} {:>7} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
         "log",
         "format",
@@ -311,10 +311,10 @@ fn print_report(report: &pdr::eval::Report) {
             );
         }
         if let Some(e) = &l.error {
-            println!("{path:<44} {:<15} error: {e}", l.format);
+            out!("{path:<44} {:<15} error: {e}", l.format);
             continue;
         }
-        println!(
+        out!(
             "{path:<44} {:<15} {:>8} {:>7.1} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
             l.format,
             l.samples,
@@ -330,9 +330,9 @@ fn print_report(report: &pdr::eval::Report) {
     }
     let s = &report.summary;
     if !s.step_mae_by_group.is_empty() {
-        println!();
+        out!();
         for (g, v) in &s.step_mae_by_group {
-            println!(
+            out!(
                 "{g:<16} {:>3} logs  step MAE {:>5.2} %  (debounced truth {} %)",
                 v.logs,
                 v.mae_pct,
@@ -340,7 +340,7 @@ fn print_report(report: &pdr::eval::Report) {
             );
         }
     }
-    println!(
+    out!(
         "\n{} logs, {} failed; step MAE {} % (debounced truth {} %); waypoint p75 {} m ({} % of the path walked)",
         s.logs,
         s.failed,
@@ -390,45 +390,46 @@ fn run(
     let d = p.diagnostics();
     let track = p.track();
     let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
-    println!("file          {name}");
-    println!("format        {}", parsed.format.as_str());
-    println!(
+    out!("file          {name}");
+    out!("format        {}", parsed.format.as_str());
+    out!(
         "records       {} ({} lines skipped, {} records refused)",
         parsed.records.len(),
         parsed.skipped,
         r.refused
     );
-    println!("orientation   {:?}", d.orientation);
-    println!("duration      {:.1} s", t1 - t0);
-    println!("steps         {}", track.len());
-    println!("distance      {:.1} m", d.distance_m);
+    out!("orientation   {:?}", d.orientation);
+    out!("duration      {:.1} s", t1 - t0);
+    out!("steps         {}", track.len());
+    out!("distance      {:.1} m", d.distance_m);
     if let Some(last) = track.last() {
-        println!("final east    {:.1} m", last.east_m);
-        println!("final north   {:.1} m", last.north_m);
+        out!("final east    {:.1} m", last.east_m);
+        out!("final north   {:.1} m", last.north_m);
     }
-    println!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
+    out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
     if d.steps_without_heading > 0 {
-        println!(
+        out!(
             "no heading    {} steps (orientation source gives no heading)",
             d.steps_without_heading
         );
     }
     if let Some(fr) = p.frame() {
-        println!(
+        out!(
             "origin        {:.7}, {:.7} (first GNSS fix)",
-            fr.lat0_deg, fr.lon0_deg
+            fr.lat0_deg,
+            fr.lon0_deg
         );
     }
     if let Some(out) = track_out {
         std::fs::write(out, export::track_csv(track, p.frame()))
             .map_err(|e| format!("{}: {e}", out.display()))?;
-        println!("track         {}", out.display());
+        out!("track         {}", out.display());
     }
     if let Some(out) = geojson_out {
         let text = serde_json::to_string_pretty(&export::track_geojson(track, p.frame()))
             .map_err(|e| e.to_string())?;
         std::fs::write(out, text).map_err(|e| format!("{}: {e}", out.display()))?;
-        println!("geojson       {}", out.display());
+        out!("geojson       {}", out.display());
     }
     Ok(())
 }
@@ -436,11 +437,15 @@ fn run(
 fn demo(json: bool) -> Result<(), String> {
     let s = pdr::demo::run_demo();
     if json {
-        println!("{}", serde_json::to_string(&s).map_err(|e| e.to_string())?);
+        out!("{}", serde_json::to_string(&s).map_err(|e| e.to_string())?);
     } else {
-        println!(
+        out!(
             "steps {} (truth {}), distance {:.1} m (truth {:.1} m), end error {:.2} m",
-            s.steps, s.truth_steps, s.distance_m, s.truth_distance_m, s.end_error_m
+            s.steps,
+            s.truth_steps,
+            s.distance_m,
+            s.truth_distance_m,
+            s.end_error_m
         );
     }
     Ok(())
@@ -455,7 +460,7 @@ fn simulate(which: ScenarioArg, out: &Path) -> Result<(), String> {
     let sim = sc.generate();
     std::fs::write(out, pdrlog::to_string(&sim.records))
         .map_err(|e| format!("{}: {e}", out.display()))?;
-    println!(
+    out!(
         "wrote {} records, {} true steps, {:.1} m, to {}",
         sim.records.len(),
         sim.truth.steps.len(),
@@ -492,7 +497,7 @@ fn simcheck() {
         ("closed form 2021", HeadingMethod::ClosedForm2021),
         ("PCA 2 s", HeadingMethod::Pca),
     ];
-    println!("Step counts (PLL vs peak detector), count error against truth:");
+    out!("Step counts (PLL vs peak detector), count error against truth:");
     let mut cases: Vec<(String, Simulation)> = Vec::new();
     for f in [1.5, 1.8, 2.2] {
         cases.push((
@@ -523,13 +528,13 @@ fn simcheck() {
             .track()
             .len();
         let truth = sim.truth.observed_steps();
-        println!(
+        out!(
             "  {label:<20} truth {truth:>4}  PLL {pll:>4} ({:+})  peak {peak:>4} ({:+})",
             pll as i64 - truth as i64,
             peak as i64 - truth as i64
         );
     }
-    println!("Heading, mean absolute error of the used (averaged) heading, straight 1.8 Hz walks:");
+    out!("Heading, mean absolute error of the used (averaged) heading, straight 1.8 Hz walks:");
     for (name, m) in methods {
         let mut row = Vec::new();
         for yaw in [0.0, 90.0, 180.0, 270.0] {
@@ -543,9 +548,9 @@ fn simcheck() {
                 heading_err(&sim, r.pipeline.track())
             ));
         }
-        println!("  {name:<18} {}", row.join("  "));
+        out!("  {name:<18} {}", row.join("  "));
     }
-    println!("Square 4 × 25 m, loop-closure error:");
+    out!("Square 4 × 25 m, loop-closure error:");
     let sim = scenarios::square(25.0).generate();
     for (name, m) in methods {
         for (oname, o) in [
@@ -559,7 +564,7 @@ fn simcheck() {
             let r = replay(cfg, &sim.records).unwrap();
             let last = r.pipeline.track().last().copied();
             let c = last.map_or(f64::NAN, |l| libm::hypot(l.east_m, l.north_m));
-            println!(
+            out!(
                 "  {name:<18} {oname:<9} {c:.2} m ({:.2} % of {:.0} m)",
                 100.0 * c / sim.truth.distance_m,
                 sim.truth.distance_m
@@ -585,7 +590,7 @@ fn bench(minutes: f64, repeats: usize) {
     let t = Instant::now();
     let sim = pdr::sim::Scenario::new(segs).generate();
     let n = sim.records.len();
-    println!(
+    out!(
         "simulated {n} IMU samples ({minutes} min at 100 Hz) in {:.2} s",
         t.elapsed().as_secs_f64()
     );
@@ -634,7 +639,7 @@ fn bench(minutes: f64, repeats: usize) {
             best = best.min(t.elapsed().as_secs_f64());
             steps = r.pipeline.track().len();
         }
-        println!(
+        out!(
             "{:>7.2} M samples/s  {name}  ({steps} steps)",
             n as f64 / best / 1e6
         );
@@ -680,7 +685,7 @@ fn bench_parse(records: &[Record], repeats: usize) {
         best = best.min(t.elapsed().as_secs_f64());
         n = logs.iter().flatten().map(|l| l.records.len()).sum();
     }
-    println!(
+    out!(
         "{:>7.2} s  to import a {mb:.1} MB pdr-log ({n} records, {:.0} MB/s)",
         best,
         mb / best

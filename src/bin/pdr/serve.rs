@@ -179,19 +179,19 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
         .server_addr()
         .to_ip()
         .map_or(opts.https_port, |a| a.port());
-    println!("Serving {}", opts.root.display());
-    println!("  this machine:  http://localhost:{http_port}/");
-    println!("                 https://localhost:{https_port}/");
+    out!("Serving {}", opts.root.display());
+    out!("  this machine:  http://localhost:{http_port}/");
+    out!("                 https://localhost:{https_port}/");
     match ips.first() {
         Some(ip) => {
             let url = format!("https://{ip}:{https_port}/");
             for other in &ips[1..] {
-                println!("  also:          https://{other}:{https_port}/");
+                out!("  also:          https://{other}:{https_port}/");
             }
-            println!("  phone (LAN):   {url}");
-            println!("The certificate is self-signed: on the phone, accept the warning once.");
+            out!("  phone (LAN):   {url}");
+            out!("The certificate is self-signed: on the phone, accept the warning once.");
             if let Ok(code) = qrcode::QrCode::new(url.as_bytes()) {
-                println!(
+                out!(
                     "{}",
                     code.render::<qrcode::render::unicode::Dense1x2>()
                         .quiet_zone(true)
@@ -199,9 +199,9 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
                 );
             }
         }
-        None => println!("  no LAN address found: a phone cannot reach this machine"),
+        None => out!("  no LAN address found: a phone cannot reach this machine"),
     }
-    println!("Certificate: {}   Stop with Ctrl-C.", cert_dir.display());
+    out!("Certificate: {}   Stop with Ctrl-C.", cert_dir.display());
     let a = spawn(http, root.clone());
     let b = spawn(https, root);
     a.join()
