@@ -1,5 +1,6 @@
 //! Per Microsoft indoor trace: walked distance between the first and last waypoint, estimated
 //! against the waypoint polyline (scale), steps and mean step length, waypoint p75 error.
+#![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 use pdr::engine::pipeline::{replay, PipelineConfig};
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;
@@ -18,9 +19,17 @@ fn main() {
             continue;
         }
         let (t0, t1) = (w[0].t, w[w.len() - 1].t);
-        let truth: f64 = w.windows(2).map(|p| (p[1].x_m - p[0].x_m).hypot(p[1].y_m - p[0].y_m)).sum();
+        let truth: f64 = w
+            .windows(2)
+            .map(|p| (p[1].x_m - p[0].x_m).hypot(p[1].y_m - p[0].y_m))
+            .sum();
         let r = replay(cfg.clone(), &log.records).unwrap();
-        let steps: Vec<_> = r.pipeline.track().iter().filter(|s| s.t > t0 && s.t <= t1).collect();
+        let steps: Vec<_> = r
+            .pipeline
+            .track()
+            .iter()
+            .filter(|s| s.t > t0 && s.t <= t1)
+            .collect();
         let est: f64 = steps.iter().map(|s| s.length_m).sum();
         let f: f64 = steps.iter().map(|s| s.freq_hz).sum::<f64>() / steps.len().max(1) as f64;
         let res = pdr::eval::evaluate(&log, &cfg);

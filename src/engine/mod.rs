@@ -10,6 +10,7 @@
 //! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24).
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
 
+pub mod fusion;
 pub mod geo;
 pub mod heading;
 pub mod math;

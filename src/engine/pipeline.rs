@@ -26,6 +26,7 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
+use super::fusion::{declination_for, FixCounts, FusedStep, Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, HeadingConfig, NavSample, StepWindow};
 use super::math::{circular_mean2, wrap_2pi, wrap_pi};
@@ -79,6 +80,8 @@ pub struct PipelineConfig {
     /// correlation. Oxford: 1.63 % without this test, 1.37 % with 0, 1.48 % with 0.1, 2.27 %
     /// with 0.5 (the first cycles of a walk follow the oscillator loosely).
     pub onset_coherence_min: f64,
+    /// GNSS/PDR fusion ([`crate::engine::fusion`]); `None` keeps the fixes for display only.
+    pub fusion: Option<FusionConfig>,
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
@@ -94,6 +97,7 @@ impl Default for PipelineConfig {
             step_length: StepLengthModel::default(),
             onset_lookback_s: 3.0,
             onset_coherence_min: 0.0,
+            fusion: Some(FusionConfig::default()),
             gap_s: 0.5,
         }
     }
@@ -121,6 +125,9 @@ impl PipelineConfig {
         }
         self.heading.validate()?;
         self.step_length.validate()?;
+        if let Some(f) = &self.fusion {
+            f.validate()?;
+        }
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -186,6 +193,15 @@ pub struct Diagnostics {
     pub cadence_hz: Option<f64>,
     /// First and last accepted IMU times, s.
     pub time_span: Option<(f64, f64)>,
+    /// Magnetic declination applied by the fusion, degrees.
+    pub declination_deg: Option<f64>,
+    /// Why the declination may be off (no date, no model).
+    pub declination_note: Option<String>,
+    /// What happened to the fixes in the fusion.
+    pub fix_counts: Option<FixCounts>,
+    /// Time the GNSS receiver was (or would have been) on, from the first fix to the last
+    /// sample, s; and that whole span, s. Energy saving leaves it on for its windows only.
+    pub gnss_on_s: Option<(f64, f64)>,
 }
 
 // One per pipeline, used on every sample: kept inline rather than boxed.
@@ -221,6 +237,7 @@ pub struct Pipeline {
     steps: Vec<StepRecord>,
     fixes: Vec<GnssFix>,
     frame: Option<LocalFrame>,
+    fusion: Option<Fusion>,
     diag: Diagnostics,
 }
 
@@ -258,6 +275,7 @@ impl Pipeline {
             steps: Vec::new(),
             fixes: Vec::new(),
             frame: None,
+            fusion: None,
             diag: Diagnostics::default(),
         })
     }
@@ -428,6 +446,9 @@ impl Pipeline {
     }
 
     fn end_bout(&mut self) {
+        if let Some(f) = &mut self.fusion {
+            f.end_bout();
+        }
         self.t_km1 = None;
         self.t_km2 = None;
         self.last_step_heading = None;
@@ -533,6 +554,9 @@ impl Pipeline {
                 Motion::Walking
             },
         });
+        if let Some(f) = &mut self.fusion {
+            f.step(c.t, length, heading_used);
+        }
         self.diag.steps += 1;
         self.t_km2 = cont;
         self.t_km1 = Some(c.t);
@@ -576,15 +600,28 @@ impl Pipeline {
             }
         }
         self.last_gnss_t = Some(f.t);
-        if self.frame.is_none() {
-            self.frame = Some(LocalFrame::new(
-                f.lat_deg,
-                f.lon_deg,
-                f.altitude_m.unwrap_or(0.0),
-            ));
-        }
         self.fixes.push(*f);
         self.diag.gnss_fixes += 1;
+        // The origin is the first fix good enough for the filter (any fix without fusion).
+        let usable = self
+            .cfg
+            .fusion
+            .as_ref()
+            .map_or(true, |c| f.h_accuracy_m <= c.max_accuracy_m);
+        if self.frame.is_none() && usable {
+            let frame = LocalFrame::new(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(0.0));
+            if let Some(cfg) = self.cfg.fusion {
+                let (d, note) = declination_for(&cfg, &frame, f.t);
+                self.diag.declination_deg = Some(d.to_degrees());
+                self.diag.declination_note = note;
+                self.fusion = Some(Fusion::new(cfg, d));
+            }
+            self.frame = Some(frame);
+        }
+        if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
+            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(frame.h0_m));
+            fusion.offer_fix(f.t, e, n, f.h_accuracy_m);
+        }
         Ok(())
     }
 
@@ -596,6 +633,28 @@ impl Pipeline {
     /// Accepted GNSS fixes.
     pub fn fixes(&self) -> &[GnssFix] {
         &self.fixes
+    }
+
+    /// The fused track: one record per step from the first usable fix on (empty without
+    /// fusion or fixes).
+    pub fn fused(&self) -> &[FusedStep] {
+        self.fusion.as_ref().map_or(&[], |f| f.steps())
+    }
+
+    /// The fused track smoothed backwards over the whole log (Rauch–Tung–Striebel).
+    pub fn smoothed(&self) -> Vec<FusedStep> {
+        self.fusion.as_ref().map_or_else(Vec::new, Fusion::smoothed)
+    }
+
+    /// The fusion filter, once it exists.
+    pub fn fusion(&self) -> Option<&Fusion> {
+        self.fusion.as_ref()
+    }
+
+    /// Whether the GNSS receiver should be on at time `t` (energy-saving mode switches it off
+    /// between windows; live mode stops the geolocation watch then).
+    pub fn gnss_wanted(&self, t: f64) -> bool {
+        self.fusion.as_ref().map_or(true, |f| f.gnss_wanted(t))
     }
 
     /// The geodetic origin of the track, once a fix has been accepted. The walk is assumed to
@@ -610,6 +669,10 @@ impl Pipeline {
         d.motion = self.orientation.as_ref().map(|_| self.motion.state());
         d.sigma_z = self.motion.sigma();
         d.cadence_hz = self.motion.cadence_hz();
+        if let Some(f) = &self.fusion {
+            d.fix_counts = Some(f.counts());
+            d.gnss_on_s = f.gnss_on_s();
+        }
         if let Detector::Pll(p) = &self.detector {
             d.pll_freq_hz = Some(p.frequency());
             d.pll_locked = Some(p.locked());

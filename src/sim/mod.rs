@@ -182,6 +182,9 @@ pub struct Sensors {
     pub os_orientation: bool,
     /// Yaw error of the OS orientation, degrees (1σ, slowly varying).
     pub os_yaw_error_deg: f64,
+    /// Constant yaw error of the OS orientation, degrees: the OS heading reads this much
+    /// clockwise (east) of the truth.
+    pub os_yaw_bias_deg: f64,
 }
 
 impl Default for Sensors {
@@ -199,6 +202,45 @@ impl Default for Sensors {
             mag: true,
             os_orientation: true,
             os_yaw_error_deg: 0.0,
+            os_yaw_bias_deg: 0.0,
+        }
+    }
+}
+
+/// The GNSS receiver: fixes of the true path with the noise their reported accuracy promises,
+/// outliers that do not, and outages.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GnssSim {
+    /// Where the walk starts, WGS84 degrees, and the height, m.
+    pub origin: (f64, f64, f64),
+    /// Fixes per second.
+    pub rate_hz: f64,
+    /// Reported accuracy (68 % radius), m: it wanders between these two values (as a receiver's
+    /// does under changing sky view), and each fix's error is drawn from the circular normal
+    /// distribution that accuracy describes.
+    pub accuracy_m: (f64, f64),
+    /// Share of fixes that are outliers: displaced by a distance drawn uniformly from
+    /// `outlier_m` in a random direction, with an ordinary reported accuracy.
+    pub outlier_share: f64,
+    /// Outlier displacement range, m.
+    pub outlier_m: (f64, f64),
+    /// Intervals without any fix, (start, end) s.
+    pub outages: Vec<(f64, f64)>,
+    /// Model magnetic north: the OS attitude and the magnetometer point to magnetic north,
+    /// turned by the World Magnetic Model's declination at the origin.
+    pub magnetic_north: bool,
+}
+
+impl Default for GnssSim {
+    fn default() -> Self {
+        GnssSim {
+            origin: (43.7696, 11.2558, 50.0),
+            rate_hz: 1.0,
+            accuracy_m: (3.0, 12.0),
+            outlier_share: 0.0,
+            outlier_m: (30.0, 80.0),
+            outages: Vec::new(),
+            magnetic_north: true,
         }
     }
 }
@@ -218,6 +260,11 @@ pub struct Scenario {
     pub start_heading_deg: f64,
     /// Noise seed.
     pub seed: u64,
+    /// The GNSS receiver, if the phone has one on.
+    pub gnss: Option<GnssSim>,
+    /// Added to every time written out (samples, fixes, truth), s: a Unix time puts the walk on
+    /// a date (for the magnetic declination).
+    pub clock_offset_s: f64,
 }
 
 impl Scenario {
@@ -230,6 +277,8 @@ impl Scenario {
             pocket_yaw_deg: 30.0,
             start_heading_deg: 0.0,
             seed: 1,
+            gnss: None,
+            clock_offset_s: 0.0,
         }
     }
 
@@ -269,9 +318,27 @@ pub struct Truth {
     pub end: (f64, f64),
     /// (start, end, gait) of each segment.
     pub segments: Vec<(f64, f64, Gait)>,
+    /// The path every 0.1 s: (time, east, north), s and m.
+    pub path: Vec<(f64, f64, f64)>,
+    /// The geodetic frame of `path` and `steps` (origin at the start), when there is GNSS.
+    pub frame: Option<crate::engine::geo::LocalFrame>,
 }
 
 impl Truth {
+    /// The true position at time `t` (east, north), interpolated along the path.
+    pub fn position_at(&self, t: f64) -> (f64, f64) {
+        let i = self.path.partition_point(|p| p.0 <= t);
+        match (i.checked_sub(1).map(|k| self.path[k]), self.path.get(i)) {
+            (Some(a), Some(b)) if b.0 > a.0 => {
+                let w = (t - a.0) / (b.0 - a.0);
+                (a.1 + w * (b.1 - a.1), a.2 + w * (b.2 - a.2))
+            }
+            (Some(a), _) => (a.1, a.2),
+            (None, Some(b)) => (b.1, b.2),
+            (None, None) => (0.0, 0.0),
+        }
+    }
+
     /// Steps that fall outside sampling gaps.
     pub fn observed_steps(&self) -> usize {
         self.steps.iter().filter(|s| s.observed).count()
@@ -518,7 +585,20 @@ impl Scenario {
         let mount = self.mount();
         let dur = self.duration_s();
         let in_gap = |t: f64| self.sensors.gaps.iter().any(|&(a, b)| t > a && t < b);
-        let mag_world = Vector3::new(0.0, 20.0, -43.0);
+        // Magnetic north lies `declination` east of true north; the OS attitude and the
+        // magnetometer refer to it, and the OS heading carries its constant bias.
+        let declination = self
+            .gnss
+            .as_ref()
+            .filter(|g| g.magnetic_north)
+            .and_then(|g| {
+                let date = (self.clock_offset_s > 1.5e9).then_some(self.clock_offset_s);
+                crate::engine::fusion::wmm_declination_deg(g.origin.0, g.origin.1, g.origin.2, date)
+            })
+            .map_or(0.0, |d| d.0.to_radians());
+        let north_turn = declination - self.sensors.os_yaw_bias_deg.to_radians();
+        let (sd, cd) = libm::sincos(declination);
+        let mag_world = Vector3::new(20.0 * sd, 20.0 * cd, -43.0);
         let bias = Vector3::from(self.sensors.gyro_bias);
         let nominal = 1.0 / self.sensors.rate_hz;
         let mut records = Vec::with_capacity((dur * self.sensors.rate_hz) as usize + 1);
@@ -546,11 +626,11 @@ impl Scenario {
                 yaw_err = 0.999 * yaw_err
                     + 0.045 * self.sensors.os_yaw_error_deg.to_radians() * rng.normal();
                 let orientation = self.sensors.os_orientation.then(|| {
-                    let rot = Rotation3::from_matrix_unchecked(rz(yaw_err) * r);
+                    let rot = Rotation3::from_matrix_unchecked(rz(yaw_err + north_turn) * r);
                     UnitQuaternion::from_rotation_matrix(&rot)
                 });
                 records.push(Record::Imu(ImuSample {
-                    t,
+                    t: t + self.clock_offset_s,
                     accel,
                     gyro,
                     mag,
@@ -564,10 +644,53 @@ impl Scenario {
             };
             t += nominal * (1.0 + j);
         }
-        Simulation {
-            records,
-            truth: self.truth(&tl),
+        let mut truth = self.truth(&tl);
+        if let Some(g) = &self.gnss {
+            let fixes = self.fixes(g, &truth);
+            records = merge_in_time(records, fixes);
+            truth.frame = Some(crate::engine::geo::LocalFrame::new(
+                g.origin.0, g.origin.1, g.origin.2,
+            ));
         }
+        Simulation { records, truth }
+    }
+
+    /// The receiver's fixes along the true path (times already offset).
+    fn fixes(&self, g: &GnssSim, truth: &Truth) -> Vec<Record> {
+        let mut rng = Rng(self.seed ^ 0x6E55_F1E5);
+        let frame = crate::engine::geo::LocalFrame::new(g.origin.0, g.origin.1, g.origin.2);
+        let mut out = Vec::new();
+        let dur = self.duration_s();
+        let mut t = 0.5 / g.rate_hz;
+        while t <= dur {
+            let tt = t + self.clock_offset_s;
+            if !g.outages.iter().any(|&(a, b)| tt >= a && tt < b) {
+                let (e, n) = truth.position_at(tt);
+                // The reported accuracy wanders slowly between its bounds.
+                let w = 0.5 + 0.5 * libm::sin(TAU * t / 97.0) * libm::cos(TAU * t / 31.0);
+                let acc = g.accuracy_m.0 + (g.accuracy_m.1 - g.accuracy_m.0) * w;
+                let sigma = acc / crate::engine::fusion::ACCURACY_PER_SIGMA;
+                let (mut de, mut dn) = (sigma * rng.normal(), sigma * rng.normal());
+                if rng.uniform() < g.outlier_share {
+                    let d = g.outlier_m.0 + (g.outlier_m.1 - g.outlier_m.0) * rng.uniform();
+                    let (s, c) = libm::sincos(TAU * rng.uniform());
+                    de += d * s;
+                    dn += d * c;
+                }
+                let (lat, lon, h) = frame.to_geodetic([e + de, n + dn, 0.0]);
+                out.push(Record::Gnss(crate::engine::types::GnssFix {
+                    t: tt,
+                    lat_deg: lat,
+                    lon_deg: lon,
+                    h_accuracy_m: acc,
+                    altitude_m: Some(h),
+                    speed_mps: None,
+                    bearing_deg: None,
+                }));
+            }
+            t += 1.0 / g.rate_hz;
+        }
+        out
     }
 
     fn truth(&self, tl: &Timeline) -> Truth {
@@ -579,8 +702,11 @@ impl Scenario {
         let mut last_step_dist = 0.0;
         let mut prev = tl.state(0.0, &mut hint);
         let mut t = 0.0;
+        let mut ticks = 0u64;
+        tr.path.push((0.0, 0.0, 0.0));
         while t < dur {
             let t1 = (t + dt).min(dur);
+            ticks += 1;
             let st = tl.state(t1, &mut hint);
             if st.gait.moving() {
                 let mid = tl.state(0.5 * (t + t1), &mut hint.clone());
@@ -609,14 +735,43 @@ impl Scenario {
             }
             prev = st;
             t = t1;
+            if ticks % 100 == 0 || t >= dur {
+                tr.path.push((t, e, n));
+            }
+        }
+        let off = self.clock_offset_s;
+        for s in &mut tr.steps {
+            s.t += off;
+        }
+        for p in &mut tr.path {
+            p.0 += off;
         }
         tr.distance_m = dist;
         tr.end = (e, n);
-        let mut t0 = 0.0;
+        let mut t0 = self.clock_offset_s;
         for s in &self.segments {
             tr.segments.push((t0, t0 + s.duration_s, s.gait));
             t0 += s.duration_s;
         }
         tr
     }
+}
+
+/// Merges two time-ordered record lists (a stable merge: at equal times `a` comes first).
+fn merge_in_time(a: Vec<Record>, b: Vec<Record>) -> Vec<Record> {
+    let time = |r: &Record| match r {
+        Record::Imu(s) => s.t,
+        Record::Gnss(f) => f.t,
+        Record::Gap(t, _) => *t,
+    };
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let mut b = b.into_iter().peekable();
+    for r in a {
+        while let Some(x) = b.next_if(|x| time(x) < time(&r)) {
+            out.push(x);
+        }
+        out.push(r);
+    }
+    out.extend(b);
+    out
 }
