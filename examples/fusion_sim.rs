@@ -90,7 +90,32 @@ fn main() {
             }
         }
     }
+    if std::env::var("START").is_ok() {
+        for ((f, sm), (ef, es)) in fused
+            .iter()
+            .zip(&smoothed)
+            .zip(err(fused).into_iter().zip(err(&smoothed)))
+            .take(25)
+        {
+            println!(
+                "  {:.1} fused {:.1} smoothed {:.1} fix {:?} sd {:.1}/{:.1}",
+                f.t - fused[0].t,
+                ef,
+                es,
+                f.fix,
+                f.cov[0].sqrt(),
+                sm.cov[0].sqrt()
+            );
+        }
+    }
     let over = nees.iter().filter(|&&v| v > 5.991).count();
+    let lo = nees.iter().filter(|&&v| v < 0.0506).count();
+    let hi = nees.iter().filter(|&&v| v > 7.378).count();
+    println!(
+        "NEES two-sided 95 % interval [0.0506, 7.378]: {:.1} % below, {:.1} % above",
+        100.0 * lo as f64 / nees.len() as f64,
+        100.0 * hi as f64 / nees.len() as f64
+    );
     let d = p.diagnostics();
     println!(
         "steps {} (truth {}), fixes {}; counts {:?}; declination {:?}° {:?}; GNSS on {:?}",

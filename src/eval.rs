@@ -17,7 +17,8 @@
 //! The estimated position between two steps is interpolated linearly in time; before the first
 //! step it is the origin, after the last step the last position.
 
-use crate::engine::pipeline::{replay, PipelineConfig, StepRecord};
+use crate::engine::fusion::FusedStep;
+use crate::engine::pipeline::{replay, Pipeline, PipelineConfig, StepRecord};
 use crate::io::import::{Log, Waypoint};
 use serde::Serialize;
 
@@ -46,6 +47,27 @@ pub struct PctSummary {
     pub p75: f64,
     /// At the last counted waypoint, %.
     pub r#final: f64,
+}
+
+/// Summary of absolute errors in metres.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ErrorSummary {
+    /// Mean, m.
+    pub mean: f64,
+    /// 75th percentile, m.
+    pub p75: f64,
+    /// Largest, m.
+    pub max: f64,
+}
+
+impl ErrorSummary {
+    fn of(v: &[f64]) -> Option<Self> {
+        (!v.is_empty()).then(|| ErrorSummary {
+            mean: mean(v),
+            p75: percentile(v, 75.0),
+            max: v.iter().copied().fold(0.0, f64::max),
+        })
+    }
 }
 
 /// One log's result. The field names are stable: other tools read them.
@@ -82,6 +104,13 @@ pub struct LogResult {
     pub loop_closure_m: Option<f64>,
     /// The log's group within its data set (Oxford: the phone's placement).
     pub group: Option<String>,
+    /// Absolute error of the GNSS fixes alone at the geodetic truth's times (fixes interpolated
+    /// in time), m.
+    pub gnss_error_m: Option<ErrorSummary>,
+    /// Absolute error of the fused track at those times, m.
+    pub fused_error_m: Option<ErrorSummary>,
+    /// Absolute error of the smoothed track at those times, m.
+    pub smoothed_error_m: Option<ErrorSummary>,
     /// Lines skipped while reading.
     pub skipped_lines: u64,
     /// Records the engine refused.
@@ -94,6 +123,9 @@ pub struct LogResult {
     /// Every counted waypoint error, % (for pooling; not serialised).
     #[serde(skip)]
     pub waypoint_errors_pct: Vec<f64>,
+    /// Every absolute error of GNSS alone, fused and smoothed, m (for pooling; not serialised).
+    #[serde(skip)]
+    pub absolute_errors_m: [Vec<f64>; 3],
 }
 
 impl LogResult {
@@ -115,11 +147,15 @@ impl LogResult {
             waypoint_error_pct: None,
             loop_closure_m: None,
             group: None,
+            gnss_error_m: None,
+            fused_error_m: None,
+            smoothed_error_m: None,
             skipped_lines: 0,
             refused_records: 0,
             error: Some(error),
             waypoint_errors_m: Vec::new(),
             waypoint_errors_pct: Vec::new(),
+            absolute_errors_m: Default::default(),
         }
     }
 }
@@ -142,6 +178,12 @@ pub struct Summary {
     pub waypoint_p75_m: Option<f64>,
     /// 75th percentile of all counted waypoint errors of all logs, pooled, %.
     pub waypoint_p75_pct: Option<f64>,
+    /// Pooled 75th percentiles of the absolute errors of GNSS alone, fused and smoothed, m.
+    pub gnss_p75_m: Option<f64>,
+    /// See `gnss_p75_m`.
+    pub fused_p75_m: Option<f64>,
+    /// See `gnss_p75_m`.
+    pub smoothed_p75_m: Option<f64>,
 }
 
 /// Step-count figures of one group of logs.
@@ -217,11 +259,71 @@ pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
         res.waypoint_errors_m = m;
         res.waypoint_errors_pct = pct;
     }
+    absolute_errors(p, &log.truth.waypoints, &mut res);
     if log.truth.loop_closure {
         let (e, n) = track.last().map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
         res.loop_closure_m = Some(libm::hypot(e, n));
     }
     res
+}
+
+/// Errors of GNSS alone, the fused and the smoothed track at the times of geodetic truth
+/// waypoints, in the pipeline's local frame (absolute: nothing is aligned).
+fn absolute_errors(p: &Pipeline, wps: &[Waypoint], res: &mut LogResult) {
+    let Some(frame) = p.frame() else {
+        return;
+    };
+    let fixes: Vec<(f64, f64, f64)> = p
+        .fixes()
+        .iter()
+        .map(|f| {
+            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(frame.h0_m));
+            (f.t, e, n)
+        })
+        .collect();
+    let as_points = |s: &[FusedStep]| -> Vec<(f64, f64, f64)> {
+        s.iter().map(|x| (x.t, x.east_m, x.north_m)).collect()
+    };
+    let tracks = [fixes, as_points(p.fused()), as_points(&p.smoothed())];
+    // A fix is only good for the truth within a few seconds of it; a step track holds between
+    // steps and until the next one.
+    let reach = [2.0, f64::INFINITY, f64::INFINITY];
+    for w in wps {
+        let Some((lat, lon)) = w.geo else {
+            continue;
+        };
+        let [te, tn, _] = frame.to_enu(lat, lon, frame.h0_m);
+        for (k, track) in tracks.iter().enumerate() {
+            if let Some((e, n)) = interpolate(track, w.t, reach[k]) {
+                res.absolute_errors_m[k].push(libm::hypot(e - te, n - tn));
+            }
+        }
+    }
+    let [g, f, sm] = &res.absolute_errors_m;
+    res.gnss_error_m = ErrorSummary::of(g);
+    res.fused_error_m = ErrorSummary::of(f);
+    res.smoothed_error_m = ErrorSummary::of(sm);
+}
+
+/// Position at `t` on a time-ordered list of (t, east, north): linear between the points around
+/// it, or the nearest point when it lies within `reach` s of `t` (before the first point: none).
+fn interpolate(points: &[(f64, f64, f64)], t: f64, reach: f64) -> Option<(f64, f64)> {
+    let i = points.partition_point(|p| p.0 <= t);
+    let prev = i.checked_sub(1).map(|k| points[k]);
+    let next = points.get(i).copied();
+    match (prev, next) {
+        (Some(a), Some(b)) if b.0 - a.0 <= 2.0 * reach.min(5.0) || reach.is_infinite() => {
+            let w = if b.0 > a.0 {
+                (t - a.0) / (b.0 - a.0)
+            } else {
+                0.0
+            };
+            Some((a.1 + w * (b.1 - a.1), a.2 + w * (b.2 - a.2)))
+        }
+        (Some(a), _) if t - a.0 <= reach => Some((a.1, a.2)),
+        (_, Some(b)) if b.0 - t <= reach && prev.is_some() => Some((b.1, b.2)),
+        _ => None,
+    }
 }
 
 /// The estimated position (east, north) at time `t`, interpolated between steps.
@@ -322,6 +424,13 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
             groups.entry(g.clone()).or_default().push(l);
         }
     }
+    let pooled = |k: usize| {
+        let v: Vec<f64> = logs
+            .iter()
+            .flat_map(|l| l.absolute_errors_m[k].iter().copied())
+            .collect();
+        (!v.is_empty()).then(|| percentile(&v, 75.0))
+    };
     let step_mae_by_group = groups
         .into_iter()
         .map(|(g, ls)| {
@@ -351,6 +460,9 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         step_mae_by_group,
         waypoint_p75_m: (!m.is_empty()).then(|| percentile(&m, 75.0)),
         waypoint_p75_pct: (!pct.is_empty()).then(|| percentile(&pct, 75.0)),
+        gnss_p75_m: pooled(0),
+        fused_p75_m: pooled(1),
+        smoothed_p75_m: pooled(2),
     }
 }
 
@@ -421,16 +533,19 @@ mod tests {
                 t: 0.0,
                 x_m: 5.0,
                 y_m: 5.0,
+                geo: None,
             },
             Waypoint {
                 t: 30.0,
                 x_m: 35.0,
                 y_m: 5.0,
+                geo: None,
             },
             Waypoint {
                 t: 60.0,
                 x_m: 35.0,
                 y_m: 35.0,
+                geo: None,
             },
         ];
         let (s, c) = libm::sincos(0.7);

@@ -4,13 +4,21 @@
 //! motion`, then `lat,lon` when the track has a geodetic origin (the first GNSS fix). `t_s` is the
 //! log's own time base in seconds. `heading_deg` is empty for steps without a heading.
 //!
+//! Fused-track CSV (`pdr run --fused`), one row per fused step: `t_s,east_m,north_m,sd_east_m,
+//! sd_north_m,scale,heading_correction_deg,fix,innovation_east_m,innovation_north_m,
+//! smoothed_east_m,smoothed_north_m,lat,lon,smoothed_lat,smoothed_lon`. Positions are in the
+//! local tangent plane of the first usable fix; `fix` is what happened to the fix offered at the
+//! step (empty when none).
+//!
 //! GeoJSON: one `LineString` feature starting at the origin. With a geodetic origin the
 //! coordinates are WGS84 `[lon, lat]` as RFC 7946 requires; without one they are local
 //! `[east_m, north_m]` metres, and the feature's `properties.coordinates` says
 //! `"local_enu_metres"` so that no reader mistakes them for degrees.
 
+use crate::engine::fusion::FusedStep;
 use crate::engine::geo::LocalFrame;
 use crate::engine::pipeline::StepRecord;
+use crate::engine::types::GnssFix;
 use std::fmt::Write as _;
 
 /// The CSV header without and with geodetic columns.
@@ -49,6 +57,76 @@ pub fn track_csv(track: &[StepRecord], frame: Option<&LocalFrame>) -> String {
         s.push('\n');
     }
     s
+}
+
+/// The fused and smoothed tracks as CSV text (see the module documentation).
+pub fn fused_csv(fused: &[FusedStep], smoothed: &[FusedStep], frame: &LocalFrame) -> String {
+    let mut s = String::with_capacity(160 * (fused.len() + 1));
+    s.push_str("t_s,east_m,north_m,sd_east_m,sd_north_m,scale,heading_correction_deg,fix,innovation_east_m,innovation_north_m,smoothed_east_m,smoothed_north_m,lat,lon,smoothed_lat,smoothed_lon\n");
+    for (f, m) in fused.iter().zip(smoothed) {
+        let fix = f.fix.map_or(String::new(), |o| {
+            serde_json::to_value(o)
+                .ok()
+                .and_then(|v| v.as_str().map(str::to_string))
+                .unwrap_or_default()
+        });
+        let (ie, inn) = f
+            .innovation
+            .map_or((String::new(), String::new()), |[e, n]| {
+                (format!("{e:.3}"), format!("{n:.3}"))
+            });
+        let (lat, lon, _) = frame.to_geodetic([f.east_m, f.north_m, 0.0]);
+        let (slat, slon, _) = frame.to_geodetic([m.east_m, m.north_m, 0.0]);
+        let _ = writeln!(
+            s,
+            "{:.3},{:.3},{:.3},{:.3},{:.3},{:.5},{:.3},{fix},{ie},{inn},{:.3},{:.3},{lat:.8},{lon:.8},{slat:.8},{slon:.8}",
+            f.t,
+            f.east_m,
+            f.north_m,
+            f.cov[0].max(0.0).sqrt(),
+            f.cov[2].max(0.0).sqrt(),
+            f.scale,
+            f.bias_rad.to_degrees(),
+            m.east_m,
+            m.north_m,
+        );
+    }
+    s
+}
+
+/// The GNSS fixes, the fused and the smoothed tracks as GeoJSON features (WGS84), to go beside
+/// the PDR track: a `MultiPoint` of fixes (with their accuracies) and two `LineString`s.
+pub fn fusion_features(
+    fixes: &[GnssFix],
+    fused: &[FusedStep],
+    smoothed: &[FusedStep],
+    frame: &LocalFrame,
+) -> Vec<serde_json::Value> {
+    let line = |s: &[FusedStep]| -> Vec<[f64; 2]> {
+        s.iter()
+            .map(|x| {
+                let (lat, lon, _) = frame.to_geodetic([x.east_m, x.north_m, 0.0]);
+                [lon, lat]
+            })
+            .collect()
+    };
+    vec![
+        serde_json::json!({
+            "type": "Feature",
+            "geometry": { "type": "MultiPoint", "coordinates": fixes.iter().map(|f| [f.lon_deg, f.lat_deg]).collect::<Vec<_>>() },
+            "properties": { "name": "GNSS fixes", "accuracy_m": fixes.iter().map(|f| f.h_accuracy_m).collect::<Vec<_>>() }
+        }),
+        serde_json::json!({
+            "type": "Feature",
+            "geometry": { "type": "LineString", "coordinates": line(fused) },
+            "properties": { "name": "fused track", "steps": fused.len() }
+        }),
+        serde_json::json!({
+            "type": "Feature",
+            "geometry": { "type": "LineString", "coordinates": line(smoothed) },
+            "properties": { "name": "smoothed track", "steps": smoothed.len() }
+        }),
+    ]
 }
 
 /// The track as a GeoJSON FeatureCollection.

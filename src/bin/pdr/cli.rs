@@ -74,6 +74,19 @@ struct Methods {
     /// Step-length model.
     #[arg(long, value_enum, default_value = "frequency")]
     step_length: LengthArg,
+    /// GNSS/PDR fusion: every fix, energy saving (10 s every 60 s), or none.
+    #[arg(long, value_enum, default_value = "best")]
+    gnss: GnssArg,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum GnssArg {
+    /// Best performance: every fix is used.
+    Best,
+    /// Energy saving: the receiver on 10 s every 60 s once calibrated.
+    EnergySaving,
+    /// No fusion: fixes only set the geodetic origin.
+    Off,
 }
 
 impl Methods {
@@ -95,6 +108,15 @@ impl Methods {
         if let LengthArg::Weinberg = self.step_length {
             c.step_length = StepLengthModel::Weinberg { k: 0.47 };
         }
+        match self.gnss {
+            GnssArg::Best => {}
+            GnssArg::EnergySaving => {
+                if let Some(f) = &mut c.fusion {
+                    f.mode = pdr::engine::fusion::GnssMode::ENERGY_SAVING;
+                }
+            }
+            GnssArg::Off => c.fusion = None,
+        }
         c
     }
 }
@@ -107,6 +129,9 @@ enum ScenarioArg {
     Square,
     /// 70 s straight walk at 1.8 Hz.
     Straight,
+    /// Eleven minutes through city blocks with GNSS (outliers, an outage), a step length 10 %
+    /// off and an 8° heading bias: the fusion's test walk.
+    GnssCity,
 }
 
 #[derive(Subcommand)]
@@ -118,9 +143,13 @@ enum Cmd {
         /// Write the per-step track as CSV.
         #[arg(long)]
         track: Option<PathBuf>,
-        /// Write the track as GeoJSON.
+        /// Write the track as GeoJSON (with the GNSS fixes, fused and smoothed tracks when
+        /// there are fixes).
         #[arg(long)]
         geojson: Option<PathBuf>,
+        /// Write the fused and smoothed tracks as CSV.
+        #[arg(long)]
+        fused: Option<PathBuf>,
         #[command(flatten)]
         methods: Methods,
     },
@@ -191,11 +220,15 @@ pub fn main() -> ExitCode {
             file,
             track,
             geojson,
+            fused,
             methods,
         } => run(
             &file,
-            track.as_deref(),
-            geojson.as_deref(),
+            Outputs {
+                track: track.as_deref(),
+                geojson: geojson.as_deref(),
+                fused: fused.as_deref(),
+            },
             methods.config(),
         ),
         Cmd::Demo { json } => demo(json),
@@ -328,6 +361,15 @@ fn print_report(report: &pdr::eval::Report) {
             opt(l.loop_closure_m, 1),
         );
     }
+    for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
+        out!(
+            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m",
+            l.path.rsplit('/').next().unwrap_or(&l.path),
+            opt(l.gnss_error_m.map(|e| e.p75), 2),
+            opt(l.fused_error_m.map(|e| e.p75), 2),
+            opt(l.smoothed_error_m.map(|e| e.p75), 2)
+        );
+    }
     let s = &report.summary;
     if !s.step_mae_by_group.is_empty() {
         out!();
@@ -351,12 +393,7 @@ fn print_report(report: &pdr::eval::Report) {
     );
 }
 
-fn run(
-    file: &Path,
-    track_out: Option<&Path>,
-    geojson_out: Option<&Path>,
-    cfg: PipelineConfig,
-) -> Result<(), String> {
+fn run(file: &Path, outputs: Outputs, cfg: PipelineConfig) -> Result<(), String> {
     let name = file.display().to_string();
     let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
     let mut logs = pdr::io::import::import_all(&mut set);
@@ -415,23 +452,67 @@ fn run(
     }
     if let Some(fr) = p.frame() {
         out!(
-            "origin        {:.7}, {:.7} (first GNSS fix)",
+            "origin        {:.7}, {:.7} (first usable GNSS fix)",
             fr.lat0_deg,
             fr.lon0_deg
         );
     }
-    if let Some(out) = track_out {
+    let fused = p.fused();
+    let smoothed = p.smoothed();
+    if let (Some(c), Some(last)) = (d.fix_counts, fused.last()) {
+        out!(
+            "fused         {} steps; fixes used {}, gated {}, too inaccurate {}, stale {}, receiver off {}, resets {}",
+            fused.len(),
+            c.used,
+            c.gated,
+            c.too_inaccurate,
+            c.stale,
+            c.receiver_off,
+            c.resets
+        );
+        out!(
+            "corrections   step length × {:.3}, heading {:+.1}° (declination {:+.2}°{})",
+            last.scale,
+            last.bias_rad.to_degrees(),
+            d.declination_deg.unwrap_or(0.0),
+            d.declination_note
+                .as_deref()
+                .map_or(String::new(), |n| format!("; {n}"))
+        );
+        if let Some((on, span)) = d.gnss_on_s {
+            out!("gnss on       {on:.0} s of {span:.0} s");
+        }
+    }
+    if let Some(out) = outputs.track {
         std::fs::write(out, export::track_csv(track, p.frame()))
             .map_err(|e| format!("{}: {e}", out.display()))?;
         out!("track         {}", out.display());
     }
-    if let Some(out) = geojson_out {
-        let text = serde_json::to_string_pretty(&export::track_geojson(track, p.frame()))
-            .map_err(|e| e.to_string())?;
+    if let Some(out) = outputs.geojson {
+        let mut doc = export::track_geojson(track, p.frame());
+        if let (Some(fr), Some(features)) = (p.frame(), doc["features"].as_array_mut()) {
+            features.extend(export::fusion_features(p.fixes(), fused, &smoothed, fr));
+        }
+        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
         std::fs::write(out, text).map_err(|e| format!("{}: {e}", out.display()))?;
         out!("geojson       {}", out.display());
     }
+    if let Some(out) = outputs.fused {
+        let fr = p
+            .frame()
+            .ok_or_else(|| format!("{name}: no usable GNSS fix, so no fused track to write"))?;
+        std::fs::write(out, export::fused_csv(fused, &smoothed, fr))
+            .map_err(|e| format!("{}: {e}", out.display()))?;
+        out!("fused track   {}", out.display());
+    }
     Ok(())
+}
+
+/// Where `pdr run` writes its files.
+struct Outputs<'a> {
+    track: Option<&'a Path>,
+    geojson: Option<&'a Path>,
+    fused: Option<&'a Path>,
 }
 
 fn demo(json: bool) -> Result<(), String> {
@@ -456,6 +537,7 @@ fn simulate(which: ScenarioArg, out: &Path) -> Result<(), String> {
         ScenarioArg::Demo => scenarios::demo_walk(),
         ScenarioArg::Square => scenarios::square(25.0),
         ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
+        ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
     };
     let sim = sc.generate();
     std::fs::write(out, pdrlog::to_string(&sim.records))

@@ -165,7 +165,12 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         let f: Vec<&str> = it.collect();
         let res = if kind == "TYPE_WAYPOINT" {
             numbers(&f, 0, ["x", "y"], label, n).map(|[x, y]| {
-                waypoints.push(Waypoint { t, x_m: x, y_m: y });
+                waypoints.push(Waypoint {
+                    t,
+                    x_m: x,
+                    y_m: y,
+                    geo: None,
+                });
             })
         } else {
             numbers(&f, 0, ["x", "y", "z"], label, n).and_then(|v| {

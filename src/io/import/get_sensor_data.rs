@@ -272,6 +272,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
                     t,
                     x_m: e[0],
                     y_m: e[1],
+                    geo: Some((lat, lon)),
                 }
             })
             .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())

@@ -138,6 +138,9 @@ pub struct Waypoint {
     pub x_m: f64,
     /// y, m.
     pub y_m: f64,
+    /// Latitude and longitude, WGS84 degrees, when the truth is geodetic (then `x_m`, `y_m`
+    /// are east and north of the first waypoint).
+    pub geo: Option<(f64, f64)>,
 }
 
 /// One step reported by a truth device.

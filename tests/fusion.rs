@@ -1,0 +1,194 @@
+//! GNSS/PDR fusion on the simulated city walk (`sim::scenarios::gnss_city_walk`): fixes at 1 Hz
+//! whose noise follows their reported accuracy (3–12 m), 20 % outliers of 30–80 m, a two-minute
+//! outage, a step length 10 % too long and an 8° heading bias. Every test runs natively under
+//! `cargo test` and in headless Chromium under wasm-bindgen-test.
+
+use pdr::engine::fusion::{FusedStep, GnssMode};
+use pdr::engine::pipeline::{replay, Pipeline, PipelineConfig};
+use pdr::sim::{scenarios, Simulation};
+use wasm_bindgen_test::wasm_bindgen_test;
+
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
+
+fn run(sim: &Simulation, cfg: PipelineConfig) -> Pipeline {
+    let r = replay(cfg, &sim.records).expect("valid config");
+    assert_eq!(r.refused, 0, "clean input refused: {:?}", r.errors.first());
+    r.pipeline
+}
+
+fn energy_saving() -> PipelineConfig {
+    let mut cfg = PipelineConfig::default();
+    cfg.fusion.as_mut().unwrap().mode = GnssMode::ENERGY_SAVING;
+    cfg
+}
+
+/// The true position at time `t` in the pipeline's local frame (its origin is the first
+/// usable fix, not the start of the walk).
+fn truth_at(sim: &Simulation, p: &Pipeline, t: f64) -> (f64, f64) {
+    let (e, n) = sim.truth.position_at(t);
+    let (lat, lon, h) = sim.truth.frame.unwrap().to_geodetic([e, n, 0.0]);
+    let [e, n, _] = p.frame().unwrap().to_enu(lat, lon, h);
+    (e, n)
+}
+
+fn errors(sim: &Simulation, p: &Pipeline, track: &[FusedStep]) -> Vec<f64> {
+    track
+        .iter()
+        .map(|s| {
+            let (e, n) = truth_at(sim, p, s.t);
+            libm::hypot(s.east_m - e, s.north_m - n)
+        })
+        .collect()
+}
+
+fn gnss_errors(sim: &Simulation, p: &Pipeline) -> Vec<f64> {
+    let frame = p.frame().unwrap();
+    p.fixes()
+        .iter()
+        .map(|f| {
+            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap());
+            let (te, tn) = truth_at(sim, p, f.t);
+            libm::hypot(e - te, n - tn)
+        })
+        .collect()
+}
+
+fn p75(v: &[f64]) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    pdr::eval::percentile(&v, 75.0)
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn fused_error_is_at_most_half_of_gnss_alone_and_the_errors_are_recovered() {
+    let sim = scenarios::gnss_city_walk().generate();
+    let p = run(&sim, PipelineConfig::default());
+    let gnss = p75(&gnss_errors(&sim, &p));
+    let fused = p75(&errors(&sim, &p, p.fused()));
+    assert!(
+        fused <= 0.5 * gnss,
+        "fused p75 {fused:.2} m against GNSS alone {gnss:.2} m"
+    );
+    assert_eq!(p.fused().len(), p.track().len(), "every step fused");
+    // The engine's step length is 10 % too long and its heading reads 8° east of the truth.
+    let last = p.fused().last().unwrap();
+    let scale = 1.0 / 1.1;
+    assert!(
+        (last.scale - scale).abs() <= 0.02 * scale,
+        "scale {:.4} against {scale:.4}",
+        last.scale
+    );
+    assert!(
+        (last.bias_rad.to_degrees() + 8.0).abs() <= 2.0,
+        "heading correction {:.2}° against -8°",
+        last.bias_rad.to_degrees()
+    );
+    // The outliers were refused, the outage coasted through, and the declination applied.
+    let c = p.diagnostics().fix_counts.unwrap();
+    assert!(c.gated > 50 && c.used > 400, "{c:?}");
+    let d = p.diagnostics().declination_deg.unwrap();
+    assert!((d - 3.9).abs() < 0.5, "declination {d}");
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn smoother_is_better_than_the_filter() {
+    let sim = scenarios::gnss_city_walk().generate();
+    for cfg in [PipelineConfig::default(), energy_saving()] {
+        let p = run(&sim, cfg);
+        let filter = p75(&errors(&sim, &p, p.fused()));
+        let smoothed = p75(&errors(&sim, &p, &p.smoothed()));
+        assert!(
+            smoothed < filter,
+            "smoothed p75 {smoothed:.2} m, filter {filter:.2} m"
+        );
+    }
+}
+
+/// Normalised estimation error squared of the position, e·P⁻¹·e with 2 degrees of freedom: the
+/// filter must not be more confident than it is right. At most 5 % of the steps may lie above
+/// the 95 % point of χ²₂ (5.99), and the mean must not exceed the 2 expected.
+#[wasm_bindgen_test(unsupported = test)]
+fn position_nees_within_its_95_percent_bound() {
+    let sim = scenarios::gnss_city_walk().generate();
+    for cfg in [PipelineConfig::default(), energy_saving()] {
+        let p = run(&sim, cfg);
+        let nees: Vec<f64> = p
+            .fused()
+            .iter()
+            .map(|s| {
+                let (e, n) = truth_at(&sim, &p, s.t);
+                let (de, dn) = (s.east_m - e, s.north_m - n);
+                let [a, b, c] = s.cov;
+                let det = a * c - b * b;
+                assert!(
+                    a > 0.0 && c > 0.0 && det > 0.0,
+                    "covariance not positive definite"
+                );
+                (c * de * de - 2.0 * b * de * dn + a * dn * dn) / det
+            })
+            .collect();
+        let over = nees.iter().filter(|&&v| v > 5.991).count() as f64 / nees.len() as f64;
+        let mean = nees.iter().sum::<f64>() / nees.len() as f64;
+        assert!(
+            over <= 0.05,
+            "{:.1} % of steps above the bound",
+            100.0 * over
+        );
+        assert!(mean <= 2.0, "mean NEES {mean:.2}");
+    }
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn energy_saving_switches_the_receiver_off_and_keeps_the_corrections() {
+    let sim = scenarios::gnss_city_walk().generate();
+    let best = run(&sim, PipelineConfig::default());
+    let saving = run(&sim, energy_saving());
+    let d = saving.diagnostics();
+    let (on, span) = d.gnss_on_s.unwrap();
+    assert!(on < 0.35 * span, "receiver on {on:.0} s of {span:.0} s");
+    assert!(d.fix_counts.unwrap().receiver_off > 300);
+    // Between windows the scale and heading correction keep correcting the steps.
+    let last = saving.fused().last().unwrap();
+    assert!(
+        (last.scale - 1.0 / 1.1).abs() <= 0.02 / 1.1,
+        "{}",
+        last.scale
+    );
+    assert!((last.bias_rad.to_degrees() + 8.0).abs() <= 2.0);
+    let gnss = p75(&gnss_errors(&sim, &best));
+    let saving_p75 = p75(&errors(&sim, &saving, saving.fused()));
+    assert!(
+        saving_p75 <= 0.5 * gnss,
+        "energy saving p75 {saving_p75:.2} m against GNSS alone {gnss:.2} m"
+    );
+}
+
+/// FNV-1a over the bits of the fused and smoothed positions and corrections.
+fn digest(tracks: [&[FusedStep]; 2]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for s in tracks.into_iter().flatten() {
+        for v in [s.t, s.east_m, s.north_m, s.scale, s.bias_rad, s.cov[0]] {
+            for b in v.to_bits().to_le_bytes() {
+                h ^= b as u64;
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+    }
+    h
+}
+
+/// The fused and smoothed tracks, bit for bit: the same constant natively and in Chromium (the
+/// World Magnetic Model included). When an intended change alters them, update the constant
+/// from the native failure message and check that the wasm run agrees.
+#[wasm_bindgen_test(unsupported = test)]
+fn fusion_is_bit_identical_natively_and_in_wasm() {
+    let sim = scenarios::gnss_city_walk().generate();
+    let a = run(&sim, PipelineConfig::default());
+    let b = run(&sim, PipelineConfig::default());
+    let (sa, sb) = (a.smoothed(), b.smoothed());
+    assert_eq!(digest([a.fused(), &sa]), digest([b.fused(), &sb]));
+    let d = digest([a.fused(), &sa]);
+    assert_eq!(d, FUSION_DIGEST, "fusion digest changed: {d:#x}");
+}
+
+const FUSION_DIGEST: u64 = 0x8d04_704d_c976_604e;
