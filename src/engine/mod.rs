@@ -8,6 +8,8 @@
 //!   eqs. 6–22; [`heading::pca`]: the PCA baseline.
 //! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg.
 //! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24).
+//! - [`fusion`]: the per-step GNSS/PDR Kalman filter (Basso 2021 §2.2.5–2.2.6, §3), energy
+//!   saving, the magnetic declination, and a Rauch–Tung–Striebel smoother.
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
 
 pub mod fusion;

@@ -21,6 +21,13 @@
 //! attitude plus bias and noise; accelerometer readings are the specific force R^T(a + g ẑ) plus
 //! noise; the magnetometer sees a fixed field (20 µT north, 43 µT down).
 //!
+//! GNSS, on request ([`GnssSim`]): fixes of the true path at a fixed rate whose error is drawn
+//! from the circular normal distribution their reported accuracy describes (a 68 % radius), a
+//! share of outliers that their accuracy does not announce, and outages. With GNSS the phone's
+//! attitude and magnetometer refer to magnetic north (declination from the World Magnetic
+//! Model at the origin, for the date [`Scenario::clock_offset_s`] puts the walk on), and the OS
+//! heading may carry a constant bias ([`Sensors::os_yaw_bias_deg`]).
+//!
 //! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,
 //! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
 //! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
