@@ -1,7 +1,7 @@
 //! WebAssembly entry points (wasm-bindgen). Errors become `JsError` here and only here.
 
-use crate::demo::{run_demo, DemoSummary};
-use crate::plot::{draw_track, Theme};
+use crate::demo::{run_demo, run_fusion_demo, DemoSummary, FusionDemoSummary};
+use crate::plot::{draw_fusion, draw_track, FusionView, Theme};
 use plotters::prelude::IntoDrawingArea;
 use plotters_canvas::CanvasBackend;
 use wasm_bindgen::prelude::*;
@@ -44,6 +44,53 @@ impl Demo {
         )
         .map_err(|e| JsError::new(&e.to_string()))?;
         area.present().map_err(|e| JsError::new(&e.to_string()))
+    }
+}
+
+/// The GNSS demo walk (fusion filter and smoother), processed once and drawn on demand.
+#[wasm_bindgen]
+pub struct FusionDemo {
+    summary: FusionDemoSummary,
+}
+
+#[wasm_bindgen]
+impl FusionDemo {
+    /// Simulates the GNSS demo walk and runs it through the engine.
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> FusionDemo {
+        FusionDemo {
+            summary: run_fusion_demo(),
+        }
+    }
+
+    /// The figures (see `FusionDemoSummary`).
+    pub fn summary(&self) -> Result<JsValue, JsError> {
+        serde_wasm_bindgen::to_value(&self.summary).map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Draws fixes, PDR-only, fused and smoothed tracks and the truth on `canvas`.
+    pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
+        let backend = CanvasBackend::with_canvas_object(canvas.clone())
+            .ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
+        let area = backend.into_drawing_area();
+        let theme = if dark { Theme::DARK } else { Theme::LIGHT };
+        let s = &self.summary;
+        let view = FusionView {
+            truth: Some(&s.truth),
+            fixes: &s.fix_points,
+            pdr: &s.pdr,
+            fused: &s.fused,
+            smoothed: &s.smoothed,
+        };
+        draw_fusion(&area, &view, &theme, dpr.clamp(1.0, 4.0))
+            .map_err(|e| JsError::new(&e.to_string()))?;
+        area.present().map_err(|e| JsError::new(&e.to_string()))
+    }
+}
+
+impl Default for FusionDemo {
+    fn default() -> Self {
+        Self::new()
     }
 }
 

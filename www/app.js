@@ -1,5 +1,5 @@
-// Thin glue: load the WebAssembly engine, show the demo walk's figures, draw its track.
-import init, { Demo } from './pkg/pdr.js';
+// Thin glue: load the WebAssembly engine, show the demo walks' figures, draw their tracks.
+import init, { Demo, FusionDemo } from './pkg/pdr.js';
 
 const $ = (id) => document.getElementById(id);
 const dark = window.matchMedia('(prefers-color-scheme: dark)');
@@ -22,7 +22,28 @@ async function main() {
   $('distance-truth').textContent = `true: ${s.truth_distance_m.toFixed(1)} m`;
   $('end-error').textContent = s.end_error_m.toFixed(1);
 
-  const canvas = $('track');
+  keepDrawn($('track'), demo);
+  window.__pdr = { steps: s.steps, distance_m: s.distance_m, ready_ms: performance.now() };
+  document.documentElement.dataset.state = 'ready';
+
+  // The GNSS walk takes a moment to simulate: after the first paint.
+  await new Promise((resolve) => setTimeout(resolve, 0));
+  const fusion = new FusionDemo();
+  const f = fusion.summary();
+  $('gnss-p75').textContent = f.gnss_p75_m.toFixed(1);
+  $('fused-p75').textContent = f.fused_p75_m.toFixed(1);
+  $('smoothed-p75').textContent = f.smoothed_p75_m.toFixed(1);
+  $('fused-note').textContent = `PDR only: ${f.pdr_p75_m.toFixed(1)} m`;
+  $('fusion-caption').textContent = `${f.fixes} fixes, ${f.fixes_gated} refused as outliers. ` +
+    `Learnt: step length × ${f.scale.toFixed(3)} (true 0.909), heading ${f.heading_correction_deg.toFixed(1)}° (true −8°), ` +
+    `declination ${f.declination_deg.toFixed(1)}° from the World Magnetic Model. Grey: the true path.`;
+  keepDrawn($('fusion'), fusion);
+  window.__pdr.fusion = f;
+  document.documentElement.dataset.fusion = 'ready';
+}
+
+/** Draws `what` on `canvas` at the device pixel ratio, again on resize and scheme change. */
+function keepDrawn(canvas, what) {
   const draw = () => {
     const dpr = window.devicePixelRatio || 1;
     const rect = canvas.getBoundingClientRect();
@@ -31,14 +52,11 @@ async function main() {
     if (w === 0 || h === 0) return;
     canvas.width = w;
     canvas.height = h;
-    demo.draw(canvas, dark.matches, dpr);
+    what.draw(canvas, dark.matches, dpr);
   };
   draw();
   new ResizeObserver(draw).observe(canvas);
   dark.addEventListener('change', draw);
-
-  window.__pdr = { steps: s.steps, distance_m: s.distance_m, ready_ms: performance.now() };
-  document.documentElement.dataset.state = 'ready';
 }
 
 main().catch(fail);

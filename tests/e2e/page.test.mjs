@@ -46,10 +46,10 @@ async function open(url, contextOptions = {}) {
   return { context, page, errors, requests, failures };
 }
 
-/** Pixel statistics of the track canvas. */
-async function canvasStats(page) {
-  return page.evaluate(() => {
-    const c = document.getElementById('track');
+/** Pixel statistics of a canvas (the demo track by default). */
+async function canvasStats(page, id = 'track') {
+  return page.evaluate((id) => {
+    const c = document.getElementById(id);
     const ctx = c.getContext('2d');
     const { data } = ctx.getImageData(0, 0, c.width, c.height);
     const bg = [data[0], data[1], data[2]];
@@ -62,7 +62,7 @@ async function canvasStats(page) {
     }
     const rect = c.getBoundingClientRect();
     return { width: c.width, height: c.height, cssWidth: rect.width, cssHeight: rect.height, differing, blue, total: data.length / 4 };
-  });
+  }, id);
 }
 
 test('page loads without errors, WASM initialises and the track is drawn', async () => {
@@ -75,6 +75,23 @@ test('page loads without errors, WASM initialises and the track is drawn', async
   console.log(`screenshot: ${shot}`);
   const ready = await page.evaluate(() => window.__pdr.ready_ms);
   console.log(`load to first drawn track: ${ready.toFixed(0)} ms`);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('the GNSS demo draws fixes and tracks, and its figures match the native engine', async () => {
+  const native = JSON.parse(execFileSync(BIN, ['demo', '--json'], { encoding: 'utf8' })).fusion;
+  const { context, page, errors } = await open(URL_HTTP, { viewport: { width: 1100, height: 900 } });
+  await page.waitForFunction(() => document.documentElement.dataset.fusion === 'ready', null, { timeout: 30_000 });
+  const s = await canvasStats(page, 'fusion');
+  assert.ok(s.differing > 0.02 * s.total, `fusion canvas looks blank: ${s.differing} of ${s.total}`);
+  assert.ok(s.blue > 500, `too few fused-track pixels: ${s.blue}`);
+  const wasm = await page.evaluate(() => window.__pdr.fusion);
+  assert.equal(wasm.fused_p75_m, native.fused_p75_m, 'wasm and native fused errors differ');
+  assert.equal(wasm.smoothed_p75_m, native.smoothed_p75_m);
+  assert.equal(await page.textContent('#fused-p75'), native.fused_p75_m.toFixed(1));
+  assert.ok(native.fused_p75_m <= 0.5 * native.gnss_p75_m);
+  await page.locator('#fusion').screenshot({ path: path.join(ARTIFACTS, 'fusion.png') });
   assert.deepEqual(errors, []);
   await context.close();
 });
