@@ -7,6 +7,24 @@ use plotters_canvas::CanvasBackend;
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
+type CanvasArea = plotters::drawing::DrawingArea<CanvasBackend, plotters::coord::Shift>;
+
+/// Runs `draw` on `canvas` (backing store sized by the caller to CSS size × `dpr`) with the
+/// scheme's theme and the pixel ratio as the drawing scale, then presents it.
+fn on_canvas<E: std::fmt::Display>(
+    canvas: &HtmlCanvasElement,
+    dark: bool,
+    dpr: f64,
+    draw: impl FnOnce(&CanvasArea, &Theme, f64) -> Result<(), E>,
+) -> Result<(), JsError> {
+    let backend = CanvasBackend::with_canvas_object(canvas.clone())
+        .ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
+    let area = backend.into_drawing_area();
+    let theme = if dark { Theme::DARK } else { Theme::LIGHT };
+    draw(&area, &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
+    area.present().map_err(|e| JsError::new(&e.to_string()))
+}
+
 /// The embedded demo walk, processed once and drawn on demand.
 #[wasm_bindgen]
 pub struct Demo {
@@ -31,19 +49,15 @@ impl Demo {
 
     /// Draws the track on `canvas`, whose backing store the caller has sized to CSS size × `dpr`.
     pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
-        let backend = CanvasBackend::with_canvas_object(canvas.clone())
-            .ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
-        let area = backend.into_drawing_area();
-        let theme = if dark { Theme::DARK } else { Theme::LIGHT };
-        draw_track(
-            &area,
-            &self.summary.track,
-            Some(&self.summary.truth_path),
-            &theme,
-            dpr.clamp(1.0, 4.0),
-        )
-        .map_err(|e| JsError::new(&e.to_string()))?;
-        area.present().map_err(|e| JsError::new(&e.to_string()))
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            draw_track(
+                area,
+                &self.summary.track,
+                Some(&self.summary.truth_path),
+                theme,
+                scale,
+            )
+        })
     }
 }
 
@@ -70,10 +84,6 @@ impl FusionDemo {
 
     /// Draws fixes, PDR-only, fused and smoothed tracks and the truth on `canvas`.
     pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
-        let backend = CanvasBackend::with_canvas_object(canvas.clone())
-            .ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
-        let area = backend.into_drawing_area();
-        let theme = if dark { Theme::DARK } else { Theme::LIGHT };
         let s = &self.summary;
         let view = FusionView {
             truth: Some(&s.truth),
@@ -82,9 +92,9 @@ impl FusionDemo {
             fused: &s.fused,
             smoothed: &s.smoothed,
         };
-        draw_fusion(&area, &view, &theme, dpr.clamp(1.0, 4.0))
-            .map_err(|e| JsError::new(&e.to_string()))?;
-        area.present().map_err(|e| JsError::new(&e.to_string()))
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            draw_fusion(area, &view, theme, scale)
+        })
     }
 }
 
