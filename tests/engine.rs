@@ -354,4 +354,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0x017e_d396_cf84_80bd;
+const DEMO_DIGEST: u64 = 0xfa2c_c8db_65dd_ad97;

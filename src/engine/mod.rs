@@ -7,11 +7,13 @@
 //! - [`heading::tip_to_tail`]: Basso 2016 Algorithm 1; [`heading::closed_form`]: Basso 2021
 //!   eqs. 6–22; [`heading::pca`]: the PCA baseline.
 //! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg.
+//! - [`calibration`]: fitting a user's profile (Basso 2016 §II.D), quick mode, profile files.
 //! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24).
 //! - [`fusion`]: the per-step GNSS/PDR Kalman filter (Basso 2021 §2.2.5–2.2.6, §3), energy
 //!   saving, the magnetic declination, and a Rauch–Tung–Striebel smoother.
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
 
+pub mod calibration;
 pub mod fusion;
 pub mod geo;
 pub mod heading;

@@ -93,6 +93,11 @@ pub struct PllConfig {
     /// σ-relative gate dropped 28 of 335 steps). A stop still ends the count: the first quiet
     /// cycle is compared with a real step of the same leg and fails.
     pub same_leg_rel: f64,
+    /// The input must rise to at least this share of the cycle's RMS within a quarter period
+    /// of the oscillator's peak for the peak to count: a step has a peak where the oscillator
+    /// puts it. The cycle after the last step of a walk (the body settling) carries some motion
+    /// but no peak.
+    pub peak_share_min: f64,
     /// When the motion detector has a cadence estimate f_c (autocorrelation, see
     /// [`crate::engine::motion::Periodicity`]), the band is narrowed to [f_c/k, k·f_c] with this
     /// k. Departure from the paper, whose bands follow the σ_z state only: a band as wide as
@@ -115,6 +120,7 @@ impl Default for PllConfig {
             cycle_rms_min: 0.35,
             cycle_rms_rel: 0.5,
             same_leg_rel: 0.6,
+            peak_share_min: 0.5,
             cadence_band_ratio: 1.4,
         }
     }
@@ -129,6 +135,7 @@ impl PllConfig {
         positive("pll.cycle_rms_min", self.cycle_rms_min)?;
         positive("pll.cycle_rms_rel", self.cycle_rms_rel)?;
         positive("pll.same_leg_rel", self.same_leg_rel)?;
+        positive("pll.peak_share_min", self.peak_share_min)?;
         if !(self.cadence_band_ratio > 1.0) {
             return Err(ConfigError::new("pll.cadence_band_ratio", "must exceed 1"));
         }
@@ -182,6 +189,8 @@ pub struct Pll {
     // Σ d·cos φ·dt and Σ cos² φ·dt over the cycle.
     cycle_xc: f64,
     cycle_cc: f64,
+    // Largest input within a quarter period of the oscillator's peak.
+    peak_max: f64,
     // The last oscillator peak (time, period) whose cycle is not judged yet.
     pending: Option<(f64, f64)>,
     // RMS of the last two cycles, newest first, and whether they counted.
@@ -218,6 +227,7 @@ impl Pll {
             cycle_dt: 0.0,
             cycle_xc: 0.0,
             cycle_cc: 0.0,
+            peak_max: f64::NEG_INFINITY,
             prev_cycles: [(0.0, false); 2],
             pending: None,
             output: 1.0,
@@ -289,6 +299,7 @@ impl Pll {
         self.cycle_dt = 0.0;
         self.cycle_xc = 0.0;
         self.cycle_cc = 0.0;
+        self.peak_max = f64::NEG_INFINITY;
         self.prev_cycles = [(0.0, false); 2];
         self.pending = None;
         self.loop_lpf.reset();
@@ -369,7 +380,8 @@ impl Pll {
                 let (same_leg, same_leg_counted) = self.prev_cycles[1];
                 let counts = rms >= self.cfg.cycle_rms_min
                     && (rms >= self.cfg.cycle_rms_rel * sigma
-                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
+                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg))
+                    && self.peak_max >= self.cfg.peak_share_min * rms;
                 self.prev_cycles = [(rms, counts), self.prev_cycles[0]];
                 if counts {
                     let den = self.cycle_cc * sq;
@@ -386,6 +398,7 @@ impl Pll {
             }
             self.cycle_xc = 0.0;
             self.cycle_cc = 0.0;
+            self.peak_max = f64::NEG_INFINITY;
             self.cycle_sq = d * d * dt * (1.0 - frac);
             self.cycle_dt = dt * (1.0 - frac);
         } else {
@@ -415,6 +428,10 @@ impl Pll {
         self.output = c;
         self.cycle_xc += d * c * dt;
         self.cycle_cc += c * c * dt;
+        if c > 0.0 {
+            // Within a quarter period of the oscillator's peak.
+            self.peak_max = self.peak_max.max(d);
+        }
         let e = self.loop_lpf.update(-x * s, dt);
         self.lock.update(x * c, dt);
         self.integ = (self.integ + self.ki * e * dt).clamp(lo, hi);

@@ -291,7 +291,33 @@ impl Scenario {
 
     /// Total duration, s.
     pub fn duration_s(&self) -> f64 {
-        self.segments.iter().map(|s| s.duration_s).sum()
+        self.timed_segments().iter().map(|s| s.duration_s).sum()
+    }
+
+    /// The segments as walked: the last moving segment of each bout (before a stop, or at the
+    /// end) lasts so that the bout holds a whole number of steps. A bout starts half a cycle
+    /// before its first step ends and so ends half a cycle after its last one: the walker comes
+    /// to rest after a completed step, not part-way into the next.
+    pub fn timed_segments(&self) -> Vec<Segment> {
+        let mut out = self.segments.clone();
+        let mut cycles = 0.0;
+        for i in 0..out.len() {
+            let s = out[i];
+            if !s.gait.moving() {
+                cycles = 0.0;
+                continue;
+            }
+            let f = 0.5 * (s.cadence_hz.0 + s.cadence_hz.1);
+            let ends_bout = out.get(i + 1).map_or(true, |n| !n.gait.moving());
+            if ends_bout && f > 0.0 {
+                let whole = (cycles + s.duration_s * f)
+                    .round()
+                    .max(cycles.floor() + 1.0);
+                out[i].duration_s = (whole - cycles) / f;
+            }
+            cycles += out[i].duration_s * f;
+        }
+        out
     }
 }
 
@@ -413,7 +439,7 @@ impl Timeline {
         let mut psi = sc.start_heading_deg.to_radians();
         let mut segs = Vec::new();
         let mut prev_moving = false;
-        for s in &sc.segments {
+        for s in &sc.timed_segments() {
             if s.gait.moving() && !prev_moving {
                 // Start each bout half a cycle before a step ends.
                 phi = PI + TAU * (phi / TAU).floor();
@@ -756,7 +782,7 @@ impl Scenario {
         tr.distance_m = dist;
         tr.end = (e, n);
         let mut t0 = self.clock_offset_s;
-        for s in &self.segments {
+        for s in &self.timed_segments() {
             tr.segments.push((t0, t0 + s.duration_s, s.gait));
             t0 += s.duration_s;
         }

@@ -1,0 +1,326 @@
+//! Step-length calibration (Basso 2016 §II.D; the engine side of the calibration wizard).
+//!
+//! The user walks known distances at several paces. Each walk gives one point
+//! P = (f̄, SL̄): the harmonic mean of its step frequencies (eq. 1, [`harmonic_mean_frequency`])
+//! and the distance over the number of steps (eq. 2, [`mean_step_length`]). A least-squares
+//! line SL = a·f + b per band (walking, running) makes the piecewise-linear
+//! [`StepLengthProfile`]. [`fit_band`] gives the line with its standard errors and R², and says
+//! what is wrong with it ([`FitWarning`]).
+//!
+//! **Quick mode** ([`quick_line`]): one comfortable walk, with the slope fixed at the
+//! population value and only the offset b fitted. Munoz Diaz et al. 2015 (§5, Fig. 8) found the
+//! slope of the step-length line nearly the same for all 18 of their walkers (their line is in
+//! the leg's pitch amplitude: people choose their step length at a speed by the same energy
+//! optimum), while the offset is personal. We take that finding over to the frequency line
+//! with the engine's default slope, 0.25 m/Hz: the speed–cadence law of human walking
+//! (cadence ∝ v^0.58, Bertram & Ruina 2001) gives dSL/df ≈ 0.72·SL/f ≈ 0.25 m/Hz near 1.9 Hz
+//! for a 0.65 m step (see [`crate::engine::step_length`]).
+//!
+//! **Refinement from GNSS** ([`refined_offset`]): Basso 2021 §2.2.5 corrects the model's
+//! offset from the mean step length between fixes; the fusion filter's step-length scale k
+//! ([`crate::engine::fusion`]) is that ratio, learnt over many fixes.
+
+use super::step_length::{fit_line, harmonic_mean_frequency, mean_step_length, Line};
+use super::step_length::{LineFit, StepLengthProfile};
+use super::types::ConfigError;
+
+/// Frequencies of one band must span at least this, Hz, for a slope to mean anything.
+pub const MIN_SPAN_HZ: f64 = 0.3;
+
+/// A point is an outlier when its residual is more than this many standard deviations of the
+/// other points' residuals from the line fitted without it…
+pub const OUTLIER_SIGMAS: f64 = 3.0;
+
+/// …and more than this, m (a few centimetres are within what a count of ±1 step does).
+pub const OUTLIER_MIN_M: f64 = 0.03;
+
+/// The population slope of quick mode, m/Hz (see the module documentation).
+pub const UNIVERSAL_SLOPE: f64 = 0.25;
+
+/// One calibration walk: a known distance, and the step frequencies the engine counted.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct CalibrationWalk {
+    /// Distance walked, m (typed by the user or measured from the fixes).
+    pub distance_m: f64,
+    /// f_k = 1/T_k of every step counted, Hz.
+    pub step_freqs_hz: Vec<f64>,
+}
+
+impl CalibrationWalk {
+    /// Its point (f̄ by eq. 1, SL̄ by eq. 2), or `None` without steps or distance.
+    pub fn point(&self) -> Option<(f64, f64)> {
+        Some((
+            harmonic_mean_frequency(&self.step_freqs_hz)?,
+            mean_step_length(self.distance_m, self.step_freqs_hz.len())?,
+        ))
+    }
+}
+
+/// What is wrong with a band's fit, each with the explanation the wizard shows.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum FitWarning {
+    /// Fewer than three points: a line through two points has no check.
+    TooFewPoints {
+        /// Points given.
+        n: usize,
+    },
+    /// The paces are too alike for a slope.
+    NarrowSpan {
+        /// Span of the frequencies, Hz.
+        span_hz: f64,
+    },
+    /// Step length falling with cadence: a walk was mismeasured or miscounted.
+    NegativeSlope {
+        /// The slope, m/Hz.
+        a: f64,
+    },
+    /// A point far off the line the others make; the wizard offers to drop it.
+    Outlier {
+        /// Its index in the points.
+        index: usize,
+        /// Its residual from the line fitted without it, m.
+        residual_m: f64,
+    },
+}
+
+impl FitWarning {
+    /// The explanation, for people.
+    pub fn message(&self) -> String {
+        match self {
+            FitWarning::TooFewPoints { n } => format!(
+                "{n} walk(s) in this band: walk at least three different paces so that the line can be checked"
+            ),
+            FitWarning::NarrowSpan { span_hz } => format!(
+                "the paces differ by {span_hz:.2} Hz only: walk one pace clearly slower and one clearly faster (at least {MIN_SPAN_HZ} Hz apart)"
+            ),
+            FitWarning::NegativeSlope { a } => format!(
+                "the steps come out shorter at faster paces ({a:.2} m/Hz): a distance or a walk is probably wrong; redo the odd one"
+            ),
+            FitWarning::Outlier { index, residual_m } => format!(
+                "walk {} is {:.0} cm off the line the others make: was the distance right? Drop it or walk it again",
+                index + 1,
+                residual_m * 100.0
+            ),
+        }
+    }
+}
+
+/// A band's fit: the line, its quality and its warnings.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct BandFit {
+    /// The points (f̄, SL̄).
+    pub points: Vec<(f64, f64)>,
+    /// The least-squares line, when two distinct frequencies exist.
+    pub fit: Option<LineFit>,
+    /// Standard errors of the slope and the offset (m/Hz, m), with three points or more.
+    pub se: Option<(f64, f64)>,
+    /// What is wrong.
+    pub warnings: Vec<FitWarning>,
+}
+
+/// Fits SL = a·f + b through a band's points by least squares, with the standard errors of a
+/// and b (σ̂² = Σr²/(n−2); se(a) = σ̂/√Sff, se(b) = σ̂·√(1/n + f̄²/Sff)), and checks it.
+pub fn fit_band(points: &[(f64, f64)]) -> BandFit {
+    let n = points.len();
+    let fit = fit_line(points);
+    let mut warnings = Vec::new();
+    if n < 3 {
+        warnings.push(FitWarning::TooFewPoints { n });
+    }
+    let (lo, hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.0), hi.max(p.0))
+        });
+    if n >= 2 && hi - lo < MIN_SPAN_HZ {
+        warnings.push(FitWarning::NarrowSpan { span_hz: hi - lo });
+    }
+    if let Some(f) = &fit {
+        if f.a < 0.0 {
+            warnings.push(FitWarning::NegativeSlope { a: f.a });
+        }
+    }
+    let se = fit.as_ref().filter(|_| n >= 3).map(|f| {
+        let nf = n as f64;
+        let mf = points.iter().map(|p| p.0).sum::<f64>() / nf;
+        let sff: f64 = points.iter().map(|p| (p.0 - mf) * (p.0 - mf)).sum();
+        let s2 = f.residuals.iter().map(|r| r * r).sum::<f64>() / (nf - 2.0);
+        (
+            libm::sqrt(s2 / sff),
+            libm::sqrt(s2 * (1.0 / nf + mf * mf / sff)),
+        )
+    });
+    if let Some(w) = outlier(points) {
+        warnings.push(w);
+    }
+    BandFit {
+        points: points.to_vec(),
+        fit,
+        se,
+        warnings,
+    }
+}
+
+/// The worst point by its residual from the line through the others, when it stands out (needs
+/// four points: three left to fit and judge).
+fn outlier(points: &[(f64, f64)]) -> Option<FitWarning> {
+    if points.len() < 4 {
+        return None;
+    }
+    (0..points.len())
+        .filter_map(|i| {
+            let others: Vec<(f64, f64)> = points
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| *j != i)
+                .map(|(_, p)| *p)
+                .collect();
+            let f = fit_line(&others)?;
+            let dof = (others.len() - 2).max(1) as f64;
+            let s = libm::sqrt(f.residuals.iter().map(|r| r * r).sum::<f64>() / dof);
+            let r = points[i].1 - (f.a * points[i].0 + f.b);
+            (r.abs() > OUTLIER_MIN_M && r.abs() > OUTLIER_SIGMAS * s).then_some((i, r))
+        })
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+        .map(|(index, residual_m)| FitWarning::Outlier { index, residual_m })
+}
+
+/// Quick mode: the line with the population slope [`UNIVERSAL_SLOPE`] through one walk's point.
+pub fn quick_line(point: (f64, f64), band: (f64, f64)) -> Line {
+    Line {
+        a: UNIVERSAL_SLOPE,
+        b: point.1 - UNIVERSAL_SLOPE * point.0,
+        f_lo: band.0,
+        f_hi: band.1,
+    }
+}
+
+/// The walking offset corrected by the fusion filter's step-length scale `k` at the user's usual
+/// cadence `f` (Basso 2021 §2.2.5): the line is moved so that SL(f) becomes k·SL(f); the slope
+/// stays. `rate` in (0, 1] moves only part of the way (slow refinement over repeated walks).
+pub fn refined_offset(line: &Line, k: f64, f: f64, rate: f64) -> f64 {
+    let sl = line.eval(f);
+    line.b + rate.clamp(0.0, 1.0) * (k - 1.0) * sl
+}
+
+/// A saved profile: a name, the profile, and the points it was fitted from. The `version` field
+/// lets later versions read older files.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ProfileFile {
+    /// Format version, [`PROFILE_VERSION`].
+    pub version: u32,
+    /// The user's name for it.
+    pub name: String,
+    /// The profile.
+    pub profile: StepLengthProfile,
+    /// Calibration points (f̄ Hz, SL̄ m) of the walking band.
+    #[serde(default)]
+    pub walking_points: Vec<(f64, f64)>,
+    /// Calibration points of the running band.
+    #[serde(default)]
+    pub running_points: Vec<(f64, f64)>,
+}
+
+/// The current profile file version.
+pub const PROFILE_VERSION: u32 = 1;
+
+impl ProfileFile {
+    /// Reads a profile from JSON, checking the version and the values; the error names the
+    /// field.
+    pub fn from_json(text: &str) -> Result<Self, ConfigError> {
+        let p: ProfileFile = serde_json::from_str(text)
+            .map_err(|e| ConfigError::new("profile", format!("not a profile file: {e}")))?;
+        if p.version != PROFILE_VERSION {
+            return Err(ConfigError::new(
+                "profile.version",
+                format!(
+                    "version {} is not one this app reads ({PROFILE_VERSION})",
+                    p.version
+                ),
+            ));
+        }
+        p.profile.validate()?;
+        Ok(p)
+    }
+
+    /// The profile as JSON.
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).unwrap_or_default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn standard_errors_and_warnings() {
+        // A noisy line: the standard errors are positive and the true values within 3 of them.
+        let pts = [(1.5, 0.67), (1.7, 0.695), (1.9, 0.745), (2.1, 0.79)];
+        let f = fit_band(&pts);
+        let (a, b) = (f.fit.as_ref().unwrap().a, f.fit.as_ref().unwrap().b);
+        let (sa, sb) = f.se.unwrap();
+        assert!(sa > 0.0 && sb > 0.0);
+        assert!((a - 0.2).abs() < 3.0 * sa + 0.01 && (b - 0.37).abs() < 3.0 * sb + 0.02);
+        assert!(f.warnings.is_empty(), "{:?}", f.warnings);
+        // The bad cases.
+        let two = fit_band(&[(1.5, 0.6), (2.0, 0.7)]);
+        assert!(matches!(two.warnings[0], FitWarning::TooFewPoints { n: 2 }));
+        let narrow = fit_band(&[(1.8, 0.6), (1.85, 0.61), (1.9, 0.62)]);
+        assert!(narrow
+            .warnings
+            .iter()
+            .any(|w| matches!(w, FitWarning::NarrowSpan { .. })));
+        let down = fit_band(&[(1.5, 0.8), (1.8, 0.7), (2.1, 0.6)]);
+        assert!(down
+            .warnings
+            .iter()
+            .any(|w| matches!(w, FitWarning::NegativeSlope { .. })));
+        let odd = fit_band(&[
+            (1.5, 0.6),
+            (1.7, 0.65),
+            (1.9, 0.80),
+            (2.1, 0.75),
+            (2.2, 0.775),
+        ]);
+        assert!(
+            odd.warnings
+                .iter()
+                .any(|w| matches!(w, FitWarning::Outlier { index: 2, .. })),
+            "{:?}",
+            odd.warnings
+        );
+        for w in odd.warnings.iter().chain(&narrow.warnings) {
+            assert!(!w.message().is_empty());
+        }
+    }
+
+    #[test]
+    fn quick_mode_and_refinement() {
+        let l = quick_line((1.9, 0.7), (1.5, 2.2));
+        assert!((l.eval(1.9) - 0.7).abs() < 1e-12 && l.a == UNIVERSAL_SLOPE);
+        // The filter says steps are 5 % shorter at 1.9 Hz: the whole correction moves SL(1.9)
+        // to 0.665 m.
+        let b = refined_offset(&l, 0.95, 1.9, 1.0);
+        assert!(((Line { b, ..l }).eval(1.9) - 0.665).abs() < 1e-12);
+    }
+
+    #[test]
+    fn profile_file_round_trip_and_errors() {
+        let p = ProfileFile {
+            version: PROFILE_VERSION,
+            name: "me".into(),
+            profile: StepLengthProfile::default(),
+            walking_points: vec![(1.6, 0.6), (1.9, 0.68)],
+            running_points: vec![],
+        };
+        assert_eq!(ProfileFile::from_json(&p.to_json()).unwrap(), p);
+        let old = p.to_json().replace("\"version\": 1", "\"version\": 7");
+        assert_eq!(
+            ProfileFile::from_json(&old).unwrap_err().field,
+            "profile.version"
+        );
+        assert!(ProfileFile::from_json("{").is_err());
+    }
+}
