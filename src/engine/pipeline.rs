@@ -71,14 +71,14 @@ pub struct PipelineConfig {
     /// How far back the step detector looks when a gait is confirmed, s (see
     /// [`Pipeline::push_imu`]). Default 3 s, the span of the autocorrelation that confirms a
     /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it. Oxford
-    /// (34 traces, with `onset_coherence_min` 0): 1.48 % mean count error with 2.5 s, 1.37 %
-    /// with 3 s, 1.47 % with 3.5 s.
+    /// (34 traces, with `onset_coherence_min` 0, when chosen): 1.48 % mean count error with
+    /// 2.5 s, 1.37 % with 3 s, 1.47 % with 3.5 s.
     pub onset_lookback_s: f64,
     /// In the onset look-back, the gait began after the last step whose cycle is
     /// anti-correlated with the oscillator ([`Candidate::coherence`] below this): handling the
     /// phone or a bag before walking is not in phase with the walk. Default 0, the sign of the
-    /// correlation. Oxford: 1.63 % without this test, 1.37 % with 0, 1.48 % with 0.1, 2.27 %
-    /// with 0.5 (the first cycles of a walk follow the oscillator loosely).
+    /// correlation. Oxford, when chosen: 1.63 % without this test, 1.37 % with 0, 1.48 % with
+    /// 0.1, 2.27 % with 0.5 (the first cycles of a walk follow the oscillator loosely).
     pub onset_coherence_min: f64,
     /// GNSS/PDR fusion ([`crate::engine::fusion`]); `None` keeps the fixes for display only.
     pub fusion: Option<FusionConfig>,
@@ -339,10 +339,9 @@ impl Pipeline {
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
-            // on the cadence now found, and its steps are emitted. (While still the loop roams
-            // a band holding both gaits and may follow a harmonic or the handling before the
-            // walk: Oxford Pixel_Jamie_Hard_InHand_1 gave 8 steps at 4.4 Hz at the start of a
-            // 2 Hz walk when the steps it found while still were released instead.)
+            // on the cadence now found, and its steps are emitted. (Releasing the steps the
+            // loop found while still instead gave 8 steps at 4.4 Hz at the start of a 2 Hz walk
+            // on Oxford Pixel_Jamie_Hard_InHand_1: still, the loop follows whatever moves.)
             for c in self.look_back(s.t, state) {
                 if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
                     self.diag.onset_steps += 1;

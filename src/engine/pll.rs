@@ -19,9 +19,10 @@
 //! A peak counts only if its cycle carries motion, judged over the cycle centred on it (φ from
 //! −π to π, so the verdict comes half a period after the peak): its RMS must reach
 //! [`PllConfig::cycle_rms_min`], and either [`PllConfig::cycle_rms_rel`]·σ_z or
-//! [`PllConfig::same_leg_rel`] of the same leg's previous counted step (two cycles back). Centring
-//! the cycle on the peak means the half cycle of deceleration after the last step of a walk is
-//! not taken for one more step.
+//! [`PllConfig::same_leg_rel`] of the same leg's previous counted step (two cycles back); and the
+//! input must rise to [`PllConfig::peak_share_min`] of that RMS within a quarter period of the
+//! oscillator's peak. Centring the cycle on the peak means the half cycle of deceleration after
+//! the last step of a walk is not taken for one more step.
 //!
 //! # Loop design
 //! Linearised, the closed loop is s² + 2π K_d K_p s + 2π K_d K_i = 0, so with natural frequency
