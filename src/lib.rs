@@ -3,7 +3,8 @@
 //! Layers point down only:
 //! - [`engine`]: pure maths and state (no files, no browsers). Basso 2016 and 2021.
 //! - [`sim`]: a gait simulator producing phone-in-pocket IMU streams with known truth.
-//! - [`io`]: the project's own log format and track exports.
+//! - [`io`]: the project's own log format, the import of other formats, track exports.
+//! - [`live`]: browser sensor events into engine records (the platforms' quirks, in one place).
 //! - [`plot`]: drawing, generic over the plotters backend.
 //! - `web` (wasm32 only): wasm-bindgen glue.
 //!
@@ -21,6 +22,7 @@ pub mod demo;
 pub mod engine;
 pub mod eval;
 pub mod io;
+pub mod live;
 pub mod plot;
 pub mod sim;
 

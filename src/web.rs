@@ -104,6 +104,115 @@ impl Default for FusionDemo {
     }
 }
 
+/// A live session for the live page: browser events in, readouts, drawing and the recording
+/// out. Numbers cross the boundary as they come from the events; the conversions are in
+/// [`crate::live`].
+#[wasm_bindgen]
+pub struct Live {
+    session: crate::live::LiveSession,
+}
+
+#[wasm_bindgen]
+impl Live {
+    /// A session with the default configuration; `ios` selects Safari's conventions.
+    #[wasm_bindgen(constructor)]
+    pub fn new(ios: bool) -> Result<Live, JsError> {
+        let platform = if ios {
+            crate::live::Platform::Ios
+        } else {
+            crate::live::Platform::Android
+        };
+        crate::live::LiveSession::new(crate::engine::PipelineConfig::default(), platform)
+            .map(|session| Live { session })
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// A `devicemotion` event: `event.timeStamp` (ms), `accelerationIncludingGravity`,
+    /// `rotationRate` (deg/s; all three or none) and `interval`. Returns the steps it completed.
+    pub fn push_motion(
+        &mut self,
+        time_stamp_ms: f64,
+        ax: Option<f64>,
+        ay: Option<f64>,
+        az: Option<f64>,
+        alpha: Option<f64>,
+        beta: Option<f64>,
+        gamma: Option<f64>,
+        interval: Option<f64>,
+    ) -> Result<usize, JsError> {
+        let ev = crate::live::MotionEvent {
+            time_stamp_ms,
+            accel: ax.zip(ay).zip(az).map(|((x, y), z)| [x, y, z]),
+            rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
+            interval,
+        };
+        self.session
+            .push_motion(&ev)
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// A `deviceorientation(absolute)` event, degrees.
+    pub fn push_orientation(
+        &mut self,
+        time_stamp_ms: f64,
+        alpha: f64,
+        beta: f64,
+        gamma: f64,
+        absolute: bool,
+    ) {
+        self.session
+            .push_orientation(time_stamp_ms, alpha, beta, gamma, absolute);
+    }
+
+    /// A geolocation fix; `time_ms` on the page's clock (`performance.now()` at arrival).
+    pub fn push_fix(
+        &mut self,
+        time_ms: f64,
+        lat: f64,
+        lon: f64,
+        accuracy_m: f64,
+        altitude_m: Option<f64>,
+        speed_mps: Option<f64>,
+        heading_deg: Option<f64>,
+    ) -> Result<(), JsError> {
+        let f = crate::engine::GnssFix {
+            t: time_ms * 1e-3,
+            lat_deg: lat,
+            lon_deg: lon,
+            h_accuracy_m: accuracy_m,
+            altitude_m,
+            speed_mps,
+            bearing_deg: heading_deg,
+        };
+        self.session
+            .push_fix(&f)
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// The page was hidden between two times (ms).
+    pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
+        self.session.mark_gap(t0_ms, t1_ms);
+    }
+
+    /// The recording since the last call, as pdr-log lines.
+    pub fn take_log(&mut self) -> String {
+        self.session.take_log()
+    }
+
+    /// The readouts (see `live::Readouts`).
+    pub fn readouts(&self) -> Result<JsValue, JsError> {
+        serde_wasm_bindgen::to_value(&self.session.readouts())
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Draws the track so far on `canvas`.
+    pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            draw_track(area, self.session.pipeline().track(), None, theme, scale)
+        })
+    }
+}
+
 impl Default for Demo {
     fn default() -> Self {
         Self::new()

@@ -96,6 +96,51 @@ test('the GNSS demo draws fixes and tracks, and its figures match the native eng
   await context.close();
 });
 
+test('Chromium motion events reach the engine with the right axes, units and sign (virtual sensors)', async () => {
+  const { context, page } = await open(URL_HTTP, { permissions: ['accelerometer', 'gyroscope', 'magnetometer'] });
+  const cdp = await context.newCDPSession(page);
+  for (const type of ['accelerometer', 'linear-acceleration', 'gravity', 'gyroscope']) {
+    await cdp.send('Emulation.setSensorOverrideEnabled', { enabled: true, type });
+  }
+  const set = (type, x, y, z) => cdp.send('Emulation.setSensorOverrideReadings', { type, reading: { xyz: { x, y, z } } });
+  // Face up, turning about the device's x axis at 1 rad/s, y 0.5, z 0.25.
+  await set('accelerometer', 0.3, -0.2, 9.81);
+  await set('linear-acceleration', 0.3, -0.2, 0);
+  await set('gravity', 0, 0, 9.81);
+  await set('gyroscope', 1.0, 0.5, 0.25);
+  // Then the live session in the page, fed by the browser's own devicemotion events (a listener
+  // added before the sensors exist gets none in headless Chromium).
+  await page.evaluate(async () => {
+    const { Live } = await import('./www/pkg/pdr.js');
+    window.__live = new Live(false);
+    window.__events = 0;
+    window.__errors = [];
+    window.addEventListener('devicemotion', (e) => {
+      const a = e.accelerationIncludingGravity;
+      const r = e.rotationRate;
+      try {
+        window.__live.push_motion(e.timeStamp, a?.x ?? undefined, a?.y ?? undefined, a?.z ?? undefined,
+          r?.alpha ?? undefined, r?.beta ?? undefined, r?.gamma ?? undefined, e.interval);
+      } catch (err) {
+        window.__errors.push(String(err));
+      }
+      window.__events++;
+    });
+  });
+  await page.waitForFunction(() => window.__events >= 5, null, { timeout: 10_000 });
+  assert.deepEqual(await page.evaluate(() => window.__errors), [], 'the engine refused motion events');
+  const log = await page.evaluate(() => window.__live.take_log());
+  const imu = log.split('\n').filter((l) => l.startsWith('imu,')).map((l) => l.split(',').map(Number));
+  assert.ok(imu.length >= 5, `only ${imu.length} samples recorded`);
+  const [, , ax, ay, az, gx, gy, gz] = imu.at(-1);
+  // Chromium rounds acceleration to 0.1 m/s² and rotation rate to 0.1 °/s.
+  assert.ok(Math.abs(ax - 0.3) < 0.06 && Math.abs(ay + 0.2) < 0.06 && Math.abs(az - 9.81) < 0.06, `accel ${ax} ${ay} ${az}`);
+  assert.ok(Math.abs(gx - 1.0) < 0.003 && Math.abs(gy - 0.5) < 0.003 && Math.abs(gz - 0.25) < 0.003, `gyro ${gx} ${gy} ${gz} rad/s`);
+  const r = await page.evaluate(() => window.__live.readouts());
+  assert.ok(r.sample_rate_hz > 20, `sample rate ${r.sample_rate_hz}`);
+  await context.close();
+});
+
 test('the step count shown matches the engine run natively on the same demo walk', async () => {
   const native = JSON.parse(execFileSync(BIN, ['demo', '--json'], { encoding: 'utf8' }));
   const { context, page } = await open(URL_HTTP);
