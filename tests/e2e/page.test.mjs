@@ -141,6 +141,28 @@ test('Chromium motion events reach the engine with the right axes, units and sig
   await context.close();
 });
 
+test('benchmark: motion events handled per second by the live session in wasm (printed, not asserted)', async () => {
+  const { context, page } = await open(URL_HTTP);
+  const r = await page.evaluate(async () => {
+    const { Live } = await import('./www/pkg/pdr.js');
+    const live = new Live(false);
+    const n = 100_000;
+    const t0 = performance.now();
+    for (let i = 0; i < n; i++) {
+      const t = i * 10; // 100 Hz, a 1.8 Hz walk
+      const ph = (2 * Math.PI * 1.8 * t) / 1000;
+      live.push_motion(t, 0.5 * Math.sin(ph / 2), 9.81 + 3 * Math.cos(ph), 0.3, 10 * Math.sin(ph), 5, 2, 10);
+      if (i % 10 === 0) live.push_orientation(t, 30, 80, 5, true);
+      if (i % 1000 === 0) live.take_log();
+    }
+    const ms = performance.now() - t0;
+    return { rate: n / (ms / 1000), steps: live.readouts().steps };
+  });
+  console.log(`live session in wasm: ${Math.round(r.rate)} motion events/s (${(r.rate / 100).toFixed(0)} x a 100 Hz sensor)`);
+  assert.ok(r.steps > 1700, `the synthetic walk was not counted: ${r.steps} steps`);
+  await context.close();
+});
+
 test('the step count shown matches the engine run natively on the same demo walk', async () => {
   const native = JSON.parse(execFileSync(BIN, ['demo', '--json'], { encoding: 'utf8' }));
   const { context, page } = await open(URL_HTTP);
