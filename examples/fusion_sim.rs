@@ -44,7 +44,7 @@ fn main() {
         .fixes()
         .iter()
         .map(|f| {
-            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(0.0));
+            let (e, n) = frame.en_of_fix(f);
             let (te, tn) = truth_at(f.t);
             (e - te).hypot(n - tn)
         })

@@ -142,7 +142,7 @@ pub fn run_fusion_demo() -> FusionDemoSummary {
         .fixes()
         .iter()
         .map(|f| {
-            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(frame.h0_m));
+            let (e, n) = frame.en_of_fix(f);
             (f.t, e, n, f.h_accuracy_m)
         })
         .collect();

@@ -277,7 +277,7 @@ fn absolute_errors(p: &Pipeline, wps: &[Waypoint], res: &mut LogResult) {
         .fixes()
         .iter()
         .map(|f| {
-            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(frame.h0_m));
+            let (e, n) = frame.en_of_fix(f);
             (f.t, e, n)
         })
         .collect();

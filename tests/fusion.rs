@@ -46,7 +46,7 @@ fn gnss_errors(sim: &Simulation, p: &Pipeline) -> Vec<f64> {
     p.fixes()
         .iter()
         .map(|f| {
-            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap());
+            let (e, n) = frame.en_of_fix(f);
             let (te, tn) = truth_at(sim, p, f.t);
             libm::hypot(e - te, n - tn)
         })

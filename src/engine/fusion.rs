@@ -239,8 +239,6 @@ pub enum FixOutcome {
     ReceiverOff,
     /// Held for a consensus of fixes (the prior was too wide to gate one fix alone).
     Held,
-    /// A newer fix arrived before the next step.
-    Superseded,
 }
 
 /// Counters of the fixes by outcome.

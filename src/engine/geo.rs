@@ -61,6 +61,12 @@ impl LocalFrame {
         ]
     }
 
+    /// A fix's east and north, m (its altitude, or the origin's when it has none).
+    pub fn en_of_fix(&self, f: &crate::engine::types::GnssFix) -> (f64, f64) {
+        let [e, n, _] = self.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(self.h0_m));
+        (e, n)
+    }
+
     /// (east, north, up), m → geodetic (lat°, lon°, h m), by Bowring's iteration (converges to
     /// sub-millimetre in three rounds anywhere on Earth).
     pub fn to_geodetic(&self, enu: [f64; 3]) -> (f64, f64, f64) {

@@ -211,6 +211,25 @@ enum Detector {
     Peak(PeakDetector),
 }
 
+impl Detector {
+    /// Feeds one vertical-acceleration sample with the motion detector's window mean and
+    /// deviation, state and cadence (the peak detector uses the sample alone).
+    fn push(
+        &mut self,
+        t: f64,
+        dt: f64,
+        up: f64,
+        (mu, sigma): (f64, f64),
+        state: Motion,
+        cadence: Option<f64>,
+    ) -> Option<Candidate> {
+        match self {
+            Detector::Pll(p) => p.push(t, dt, up, mu, sigma, state, cadence),
+            Detector::Peak(p) => p.push(t, dt, up),
+        }
+    }
+}
+
 /// The streaming engine.
 pub struct Pipeline {
     cfg: PipelineConfig,
@@ -332,10 +351,14 @@ impl Pipeline {
             self.buf.pop_front();
         }
         let (mu, sigma) = (self.motion.mean(), self.motion.sigma());
-        let cand = match &mut self.detector {
-            Detector::Pll(p) => p.push(s.t, dt, nav.up, mu, sigma, state, self.motion.cadence_hz()),
-            Detector::Peak(p) => p.push(s.t, dt, nav.up),
-        };
+        let cand = self.detector.push(
+            s.t,
+            dt,
+            nav.up,
+            (mu, sigma),
+            state,
+            self.motion.cadence_hz(),
+        );
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
@@ -384,11 +407,7 @@ impl Pipeline {
         for &(ts, up) in &samples {
             let dt = last.map_or(0.0, |l| ts - l);
             last = Some(ts);
-            let c = match &mut self.detector {
-                Detector::Pll(p) => p.push(ts, dt, up, mu, sigma, state, cadence),
-                Detector::Peak(p) => p.push(ts, dt, up),
-            };
-            out.extend(c);
+            out.extend(self.detector.push(ts, dt, up, (mu, sigma), state, cadence));
         }
         // The gait began after the last step that does not follow its rhythm.
         let first = out
@@ -618,7 +637,7 @@ impl Pipeline {
             self.frame = Some(frame);
         }
         if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
-            let [e, n, _] = frame.to_enu(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(frame.h0_m));
+            let (e, n) = frame.en_of_fix(f);
             fusion.offer_fix(f.t, e, n, f.h_accuracy_m);
         }
         Ok(())

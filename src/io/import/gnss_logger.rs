@@ -17,7 +17,7 @@
 //! `OrientationDeg` holds `SensorManager.getOrientation` angles in degrees: yaw (azimuth,
 //! clockwise from magnetic north), pitch and roll. See [`orientation_quaternion`].
 
-use super::common::{add_warnings, drop_non_finite, each_line, not_a_number, warn_count, Warnings};
+use super::common::{add_warnings, each_line, not_a_number, set_records, warn_count, Warnings};
 use super::{field_error, file_error, number, Format, Log, Platform, Streams};
 use crate::engine::types::GnssFix;
 use crate::io::ParseError;
@@ -450,8 +450,6 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             },
         ));
     }
-    let dropped = drop_non_finite(&mut s);
-    log.records = s.into_records();
     add_warnings(&mut log, warnings);
     warn_count(
         &mut log,
@@ -462,15 +460,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             format!("{invalid_fixes} fix(es) without a positive accuracy, skipped"),
         ),
     );
-    warn_count(
-        &mut log,
-        dropped,
-        file_error(
-            label,
-            0,
-            format!("{dropped} sample(s) with a non-finite value, skipped"),
-        ),
-    );
+    set_records(&mut log, s, label);
     Ok(log)
 }
 

@@ -19,7 +19,7 @@
 //! sign flipped), so no platform conversion is applied and the platform is left unknown.
 
 use super::common::{
-    add_warnings, cell, drop_non_finite, not_a_number, split_line, warn_count, Table, Warnings,
+    add_warnings, cell, not_a_number, set_records, split_line, warn_count, Table, Warnings,
 };
 use super::{field_error, file_error, fileset, number, FileSet, Format, Log, Streams};
 use crate::engine::types::GnssFix;
@@ -315,8 +315,6 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
             )
         }));
     }
-    let dropped = drop_non_finite(&mut s);
-    log.records = s.into_records();
     add_warnings(&mut log, warnings);
     warn_count(
         &mut log,
@@ -327,15 +325,7 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
             format!("{invalid_fixes} location fix(es) with a negative accuracy, skipped"),
         ),
     );
-    warn_count(
-        &mut log,
-        dropped,
-        file_error(
-            source,
-            0,
-            format!("{dropped} sample(s) with a non-finite value, skipped"),
-        ),
-    );
+    set_records(&mut log, s, source);
     Ok(log)
 }
 
