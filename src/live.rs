@@ -22,10 +22,12 @@
 //! East-North-Up when the event is absolute (alpha = 0 with the top of the device to the north;
 //! alpha grows counter-clockwise, so the compass heading of the top is 360° − α).
 
+use crate::engine::orientation::OrientationSource;
 use crate::engine::pipeline::{Pipeline, PipelineConfig, Record};
 use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError};
 pub use crate::io::import::Platform;
 use nalgebra::{UnitQuaternion, Vector3};
+use std::collections::VecDeque;
 
 /// One `devicemotion` event, fields as the browser gives them.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -130,6 +132,48 @@ pub fn orientation_angles(q: &UnitQuaternion<f64>) -> (f64, f64, f64) {
     (alpha * d, beta * d, gamma * d)
 }
 
+/// The `alpha` (degrees, W3C convention) of an iOS `deviceorientation` event from its
+/// `webkitCompassHeading`. Safari's `alpha` is relative to an arbitrary start; the compass
+/// heading is degrees clockwise from magnetic north of the top of the *interface*, so the
+/// heading of the device's top adds the screen orientation angle (`screen.orientation.angle`,
+/// 90 when the interface is turned a quarter counter-clockwise from portrait). The W3C `alpha`
+/// grows counter-clockwise: α = 360° − heading. Not verified on a real iPhone here.
+pub fn ios_compass_alpha(compass_heading_deg: f64, screen_angle_deg: f64) -> f64 {
+    (360.0 - (compass_heading_deg + screen_angle_deg)).rem_euclid(360.0)
+}
+
+/// How long motion waits, from the first event, for an attitude before the session goes on
+/// without one (and the engine on the gyroscope alone): Chromium and Safari start both
+/// streams together, so a wait is short, and the first sample decides the orientation source.
+pub const ATTITUDE_WAIT_S: f64 = 1.0;
+
+/// The span of the scrolling vertical-acceleration view, s.
+pub const SCOPE_S: f64 = 10.0;
+
+/// One sample of the scrolling view.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScopeSample {
+    /// Time, s.
+    pub t: f64,
+    /// Vertical linear acceleration, m/s².
+    pub up: f64,
+    /// PLL output cos φ.
+    pub pll: Option<f64>,
+}
+
+/// Where the input stopped and resumed.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct GapMark {
+    /// Last sample before the gap, s.
+    pub t0: f64,
+    /// First time after it, s.
+    pub t1: f64,
+    /// Position of the track during the gap (PDR frame), m.
+    pub east_m: f64,
+    /// See `east_m`.
+    pub north_m: f64,
+}
+
 /// What the live page shows.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Readouts {
@@ -145,10 +189,22 @@ pub struct Readouts {
     pub motion: Option<&'static str>,
     /// Accuracy of the latest fix, m.
     pub gnss_accuracy_m: Option<f64>,
+    /// Fixes received.
+    pub fixes: usize,
     /// Motion events received per second over the last two seconds.
     pub sample_rate_hz: f64,
+    /// Motion samples used.
+    pub samples: u64,
+    /// Seconds since the first sample used.
+    pub duration_s: f64,
     /// Gaps in the input (page hidden, sensor paused).
     pub gaps: u64,
+    /// The orientation source the engine settled on (`os`, `madgwick`, …), once it has.
+    pub orientation: Option<&'static str>,
+    /// Whether headings are referenced to north (an absolute attitude has arrived).
+    pub absolute_heading: bool,
+    /// Motion events set aside while waiting for the first attitude.
+    pub waited: u64,
     /// Events refused (with the reason of the last one).
     pub refused: u64,
     /// The last refusal.
@@ -157,36 +213,105 @@ pub struct Readouts {
     pub gnss_wanted: bool,
 }
 
-/// A live session: the pipeline, the latest attitude, and the recording in pdr-log lines.
+/// A live session: the pipeline, the latest attitude, the recent signal for the scrolling view,
+/// and the recording in pdr-log lines.
+///
+/// Times: the page passes `event.timeStamp` (ms since the page's time origin) and the session
+/// adds the origin it was made with (`performance.timeOrigin`), so the recording is on Unix time.
+/// A recording resumed after a reload therefore continues on the same clock, with the reload
+/// as a gap, and the World Magnetic Model gets the date of the walk.
 pub struct LiveSession {
     pipeline: Pipeline,
     platform: Platform,
+    origin_ms: f64,
     attitude: Option<(f64, UnitQuaternion<f64>, bool)>,
     attitude_written: bool,
+    absolute: bool,
+    first_event: Option<f64>,
+    waited: u64,
+    last_t: Option<f64>,
+    gaps_seen: u64,
+    gap_marks: Vec<GapMark>,
+    scope: VecDeque<ScopeSample>,
     log: String,
-    recent: std::collections::VecDeque<f64>,
+    recent: VecDeque<f64>,
     refused: u64,
     last_error: Option<String>,
 }
 
 impl LiveSession {
-    /// A session with the given configuration, for a platform's conventions.
-    pub fn new(cfg: PipelineConfig, platform: Platform) -> Result<Self, ConfigError> {
+    /// A session with the given configuration, for a platform's conventions, with event times
+    /// counted from `origin_ms` (ms, Unix time; 0 keeps the page's clock).
+    pub fn new(
+        cfg: PipelineConfig,
+        platform: Platform,
+        origin_ms: f64,
+    ) -> Result<Self, ConfigError> {
         Ok(LiveSession {
             pipeline: Pipeline::new(cfg)?,
             platform,
+            origin_ms: if origin_ms.is_finite() {
+                origin_ms
+            } else {
+                0.0
+            },
             attitude: None,
             attitude_written: true,
+            absolute: false,
+            first_event: None,
+            waited: 0,
+            last_t: None,
+            gaps_seen: 0,
+            gap_marks: Vec::new(),
+            scope: VecDeque::new(),
             log: crate::io::pdrlog::preamble(),
-            recent: std::collections::VecDeque::new(),
+            recent: VecDeque::new(),
             refused: 0,
             last_error: None,
         })
     }
 
+    /// A session that continues a recording (pdr-log text, e.g. recovered after a reload): its
+    /// records go through the engine again, and [`take_log`](Self::take_log) then returns only
+    /// what comes after them.
+    pub fn resume(
+        cfg: PipelineConfig,
+        platform: Platform,
+        origin_ms: f64,
+        recorded: &str,
+    ) -> Result<Self, String> {
+        let parsed = crate::io::pdrlog::read(recorded.as_bytes(), "the recovered recording")
+            .map_err(|e| e.to_string())?;
+        let mut s = Self::new(cfg, platform, origin_ms).map_err(|e| e.to_string())?;
+        s.log.clear();
+        for r in &parsed.records {
+            match r {
+                Record::Imu(i) => {
+                    s.absolute |= i.orientation.is_some();
+                    let _ = s.use_sample(i, false);
+                }
+                Record::Gnss(f) => {
+                    let _ = s.pipeline.push_gnss(f);
+                }
+                Record::Gap(t0, t1) => s.gap_at(*t0, *t1, false),
+            }
+        }
+        Ok(s)
+    }
+
     /// The pipeline (track, fixes, diagnostics).
     pub fn pipeline(&self) -> &Pipeline {
         &self.pipeline
+    }
+
+    /// The vertical acceleration and PLL output of the last [`SCOPE_S`] seconds.
+    pub fn scope(&self) -> &VecDeque<ScopeSample> {
+        &self.scope
+    }
+
+    /// Where the input stopped.
+    pub fn gap_marks(&self) -> &[GapMark] {
+        &self.gap_marks
     }
 
     fn refuse(&mut self, e: LiveError) -> LiveError {
@@ -195,9 +320,54 @@ impl LiveSession {
         e
     }
 
+    fn seconds(&self, ms: f64) -> f64 {
+        (self.origin_ms + ms) * 1e-3
+    }
+
     /// Feeds a `devicemotion` event; returns how many steps it completed.
     pub fn push_motion(&mut self, ev: &MotionEvent) -> Result<usize, LiveError> {
         let m = normalise_motion(ev, self.platform).map_err(|e| self.refuse(e))?;
+        self.push_normalised(Motion {
+            t: m.t + self.origin_ms * 1e-3,
+            ..m
+        })
+    }
+
+    /// Feeds a Generic Sensor API reading: `Accelerometer` (m/s², gravity included, the
+    /// specification's sign on every platform) with the latest `Gyroscope` reading (rad/s), at
+    /// the sensor's `timestamp` (ms on the page's clock).
+    pub fn push_sensor(
+        &mut self,
+        timestamp_ms: f64,
+        accel: [f64; 3],
+        gyro_rad_s: Option<[f64; 3]>,
+    ) -> Result<usize, LiveError> {
+        let all = [timestamp_ms, accel[0], accel[1], accel[2]];
+        if !all.iter().all(|x| x.is_finite()) {
+            return Err(self.refuse(LiveError::NonFinite("Accelerometer")));
+        }
+        if gyro_rad_s.is_some_and(|g| !g.iter().all(|x| x.is_finite())) {
+            return Err(self.refuse(LiveError::NonFinite("Gyroscope")));
+        }
+        self.push_normalised(Motion {
+            t: self.seconds(timestamp_ms),
+            accel: Vector3::from(accel),
+            gyro: gyro_rad_s.map(Vector3::from),
+            interval_s: None,
+        })
+    }
+
+    fn push_normalised(&mut self, m: Motion) -> Result<usize, LiveError> {
+        // The first sample decides the engine's orientation source: wait a moment for an
+        // attitude (these samples are not used, and not recorded, so that the recording
+        // replays the same).
+        if self.attitude.is_none() && self.pipeline.diagnostics().samples == 0 {
+            let t0 = *self.first_event.get_or_insert(m.t);
+            if m.t - t0 < ATTITUDE_WAIT_S {
+                self.waited += 1;
+                return Ok(0);
+            }
+        }
         // The attitude rides on the first sample after it arrives (the engine holds it for
         // the samples after that); an absolute attitude wins over a relative one.
         let orientation = match self.attitude {
@@ -211,17 +381,57 @@ impl LiveSession {
             mag: None,
             orientation,
         };
-        let n = match self.pipeline.push_imu(&s) {
-            Ok(steps) => steps.len(),
-            Err(e) => return Err(self.refuse(LiveError::Engine(e))),
-        };
+        let n = self
+            .use_sample(&s, true)
+            .map_err(|e| self.refuse(LiveError::Engine(e)))?;
         self.attitude_written = true;
-        self.log.push_str(&crate::io::pdrlog::line(&Record::Imu(s)));
         self.recent.push_back(m.t);
         while self.recent.front().is_some_and(|&t0| t0 < m.t - 2.0) {
             self.recent.pop_front();
         }
         Ok(n)
+    }
+
+    /// One sample through the engine, the scrolling view, the gap marks and (if `record`) the
+    /// recording.
+    fn use_sample(&mut self, s: &ImuSample, record: bool) -> Result<usize, InputError> {
+        let n = self.pipeline.push_imu(s)?.len();
+        if record {
+            self.log
+                .push_str(&crate::io::pdrlog::line(&Record::Imu(*s)));
+        }
+        let gaps = self.pipeline.diagnostics().gaps;
+        if gaps > self.gaps_seen {
+            // The engine found a pause in the samples themselves.
+            self.note_gap(self.last_t.unwrap_or(s.t), s.t);
+        }
+        self.last_t = Some(s.t);
+        if let Some(up) = self.pipeline.vertical_accel() {
+            self.scope.push_back(ScopeSample {
+                t: s.t,
+                up,
+                pll: self.pipeline.pll_output(),
+            });
+        }
+        while self.scope.front().is_some_and(|x| x.t < s.t - SCOPE_S) {
+            self.scope.pop_front();
+        }
+        Ok(n)
+    }
+
+    fn note_gap(&mut self, t0: f64, t1: f64) {
+        self.gaps_seen = self.pipeline.diagnostics().gaps;
+        let (east_m, north_m) = self
+            .pipeline
+            .track()
+            .last()
+            .map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
+        self.gap_marks.push(GapMark {
+            t0,
+            t1,
+            east_m,
+            north_m,
+        });
     }
 
     /// Feeds a `deviceorientation` or `deviceorientationabsolute` event (degrees). Relative
@@ -241,32 +451,60 @@ impl LiveSession {
             let _ = self.refuse(LiveError::NonFinite("deviceorientation"));
             return;
         }
-        if !absolute && self.attitude.is_some_and(|a| a.2) {
-            return;
-        }
-        self.attitude = Some((
-            time_stamp_ms * 1e-3,
+        self.set_attitude(
+            time_stamp_ms,
             orientation_quaternion(alpha, beta, gamma),
             absolute,
-        ));
+        );
+    }
+
+    /// Feeds an `AbsoluteOrientationSensor` quaternion `[x, y, z, w]` (device → East-North-Up).
+    pub fn push_quaternion(&mut self, timestamp_ms: f64, q: [f64; 4]) {
+        let norm = libm::sqrt(q.iter().map(|v| v * v).sum());
+        if !(timestamp_ms.is_finite() && norm.is_finite() && norm > 0.5) {
+            let _ = self.refuse(LiveError::NonFinite("AbsoluteOrientationSensor.quaternion"));
+            return;
+        }
+        let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[3], q[0], q[1], q[2]));
+        self.set_attitude(timestamp_ms, q, true);
+    }
+
+    fn set_attitude(&mut self, time_stamp_ms: f64, q: UnitQuaternion<f64>, absolute: bool) {
+        if !absolute && self.absolute {
+            return;
+        }
+        self.absolute |= absolute;
+        self.attitude = Some((self.seconds(time_stamp_ms), q, absolute));
         self.attitude_written = false;
     }
 
-    /// Feeds a geolocation fix (time in ms on the page's clock).
+    /// Feeds a geolocation fix (`t` in ms on the page's clock).
     pub fn push_fix(&mut self, f: &GnssFix) -> Result<(), LiveError> {
+        let f = GnssFix {
+            t: self.seconds(f.t * 1e3),
+            ..*f
+        };
         self.pipeline
-            .push_gnss(f)
+            .push_gnss(&f)
             .map_err(|e| self.refuse(LiveError::Engine(e)))?;
         self.log
-            .push_str(&crate::io::pdrlog::line(&Record::Gnss(*f)));
+            .push_str(&crate::io::pdrlog::line(&Record::Gnss(f)));
         Ok(())
     }
 
-    /// The page was hidden (or the sensors paused) between two times, ms.
+    /// The page was hidden (or the sensors paused) between two times, ms on the page's clock.
     pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
-        let (t0, t1) = (t0_ms * 1e-3, t1_ms * 1e-3);
+        let (t0, t1) = (self.seconds(t0_ms), self.seconds(t1_ms));
+        self.gap_at(t0, t1, true);
+    }
+
+    fn gap_at(&mut self, t0: f64, t1: f64, record: bool) {
+        if !(t1 > t0 && t0.is_finite() && t1.is_finite()) {
+            return;
+        }
         self.pipeline.mark_gap(t0, t1);
-        if t1 > t0 {
+        self.note_gap(t0, t1);
+        if record {
             self.log
                 .push_str(&crate::io::pdrlog::line(&Record::Gap(t0, t1)));
         }
@@ -294,17 +532,179 @@ impl LiveSession {
             heading_deg: last.and_then(|s| s.heading_rad).map(f64::to_degrees),
             motion: d.motion.map(|m| m.as_str()),
             gnss_accuracy_m: self.pipeline.fixes().last().map(|f| f.h_accuracy_m),
+            fixes: self.pipeline.fixes().len(),
             sample_rate_hz: if span > 0.0 {
                 (self.recent.len() - 1) as f64 / span
             } else {
                 0.0
             },
+            samples: d.samples,
+            duration_s: d.time_span.map_or(0.0, |(a, b)| b - a),
             gaps: d.gaps,
+            orientation: d.orientation.map(|o| match o {
+                OrientationSource::Os => "os",
+                OrientationSource::Madgwick { .. } => "madgwick",
+                OrientationSource::GravityLowPass { .. } => "gravity",
+                OrientationSource::Auto => "auto",
+            }),
+            absolute_heading: self.absolute,
+            waited: self.waited,
             refused: self.refused,
             last_error: self.last_error.clone(),
             gnss_wanted: self.pipeline.gnss_wanted(now),
         }
     }
+}
+
+/// What the live map shows, in one frame: the first fix's local tangent plane once there are
+/// fixes (the PDR track then drawn from the fused estimate of its first step), else metres from
+/// the start.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MapData {
+    /// The PDR track, from the start.
+    pub pdr: Vec<(f64, f64)>,
+    /// The fused track.
+    pub fused: Vec<(f64, f64)>,
+    /// The smoothed track (when asked for: after the walk).
+    pub smoothed: Vec<(f64, f64)>,
+    /// Fixes: east, north, accuracy, m.
+    pub fixes: Vec<(f64, f64, f64)>,
+    /// Where the input stopped.
+    pub gaps: Vec<(f64, f64)>,
+    /// Heading of the last step, rad from north.
+    pub heading_rad: Option<f64>,
+}
+
+impl LiveSession {
+    /// The map's data; `smoothed` runs the backward pass over the walk (for after it).
+    pub fn map_data(&self, smoothed: bool) -> MapData {
+        let p = &self.pipeline;
+        let track = p.track();
+        let fused: Vec<(f64, f64)> = p.fused().iter().map(|f| (f.east_m, f.north_m)).collect();
+        let offset = p.fused().first().map_or((0.0, 0.0), |f| {
+            let at = crate::eval::position_at(track, f.t);
+            (f.east_m - at.0, f.north_m - at.1)
+        });
+        let shift = |e: f64, n: f64| (e + offset.0, n + offset.1);
+        MapData {
+            pdr: std::iter::once((0.0, 0.0))
+                .chain(track.iter().map(|s| (s.east_m, s.north_m)))
+                .map(|(e, n)| shift(e, n))
+                .collect(),
+            fused,
+            smoothed: if smoothed {
+                p.smoothed().iter().map(|f| (f.east_m, f.north_m)).collect()
+            } else {
+                Vec::new()
+            },
+            fixes: p.frame().map_or_else(Vec::new, |frame| {
+                p.fixes()
+                    .iter()
+                    .map(|f| {
+                        let (e, n) = frame.en_of_fix(f);
+                        (e, n, f.h_accuracy_m)
+                    })
+                    .collect()
+            }),
+            gaps: self
+                .gap_marks
+                .iter()
+                .map(|g| shift(g.east_m, g.north_m))
+                .collect(),
+            heading_rad: track.last().and_then(|s| s.heading_rad),
+        }
+    }
+
+    /// The scrolling view's data: (t, vertical acceleration, PLL output) of the last
+    /// [`SCOPE_S`], the step times among them, and the newest time.
+    pub fn scope_data(&self) -> (Vec<(f64, f64, Option<f64>)>, Vec<f64>, f64) {
+        let samples: Vec<_> = self.scope.iter().map(|s| (s.t, s.up, s.pll)).collect();
+        let now = samples.last().map_or(0.0, |s| s.0);
+        let steps = self
+            .pipeline
+            .track()
+            .iter()
+            .rev()
+            .map(|s| s.t)
+            .take_while(|&t| t >= now - SCOPE_S)
+            .collect();
+        (samples, steps, now)
+    }
+}
+
+/// One browser event of a simulated walk, as the page receives it (see [`browser_events`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum BrowserEvent {
+    /// A `devicemotion` event.
+    Motion {
+        /// `timeStamp`, ms.
+        t: f64,
+        /// `accelerationIncludingGravity`, the platform's sign.
+        x: f64,
+        /// See `x`.
+        y: f64,
+        /// See `x`.
+        z: f64,
+        /// `rotationRate`, deg/s.
+        alpha: Option<f64>,
+        /// See `alpha`.
+        beta: Option<f64>,
+        /// See `alpha`.
+        gamma: Option<f64>,
+        /// `interval` in the platform's unit.
+        interval: f64,
+    },
+    /// A `deviceorientationabsolute` event (absolute `deviceorientation` on iOS).
+    Orientation {
+        /// `timeStamp`, ms.
+        t: f64,
+        /// Degrees.
+        alpha: f64,
+        /// Degrees.
+        beta: f64,
+        /// Degrees.
+        gamma: f64,
+    },
+}
+
+/// The samples of a log (a simulated walk) as the browser events a phone of `platform` would
+/// fire: the inverse of [`normalise_motion`] and [`orientation_quaternion`]. The end-to-end
+/// tests dispatch these on the live page.
+pub fn browser_events(records: &[Record], platform: Platform) -> Vec<BrowserEvent> {
+    let deg = 180.0 / std::f64::consts::PI;
+    let mut out = Vec::new();
+    let mut last = None;
+    for r in records {
+        let Record::Imu(s) = r else { continue };
+        let t = s.t * 1e3;
+        if let Some(q) = s.orientation {
+            let (alpha, beta, gamma) = orientation_angles(&q);
+            out.push(BrowserEvent::Orientation {
+                t,
+                alpha: alpha.rem_euclid(360.0),
+                beta,
+                gamma,
+            });
+        }
+        let a = platform.to_android(s.accel);
+        let interval_ms = last.map_or(10.0, |l| t - l);
+        last = Some(t);
+        out.push(BrowserEvent::Motion {
+            t,
+            x: a.x,
+            y: a.y,
+            z: a.z,
+            alpha: s.gyro.map(|g| g.x * deg),
+            beta: s.gyro.map(|g| g.y * deg),
+            gamma: s.gyro.map(|g| g.z * deg),
+            interval: match platform {
+                Platform::Ios => interval_ms * 1e-3,
+                Platform::Android => interval_ms,
+            },
+        });
+    }
+    out
 }
 
 #[cfg(test)]

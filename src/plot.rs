@@ -318,54 +318,296 @@ pub fn draw_fusion<DB: DrawingBackend>(
         ))?;
     }
     start_end(&mut chart, view.fused, theme, scale)?;
-    // Legend, top left.
+    let mut entries = vec![
+        ("fused", Mark::Line(theme.track)),
+        ("smoothed", Mark::Line(theme.smoothed)),
+        ("PDR only", Mark::Line(theme.pdr)),
+        ("GNSS fixes", Mark::Dot(theme.gnss)),
+    ];
+    if view.truth.is_some() {
+        entries.push(("true path", Mark::Line(theme.reference)));
+    }
+    legend(area, &chart, &entries, theme, scale)?;
+    north_and_scale(area, &chart, theme, scale)
+}
+
+/// How a legend entry is drawn.
+#[derive(Debug, Clone, Copy)]
+enum Mark {
+    Line(RGBColor),
+    Dot(RGBColor),
+    Ring(RGBColor),
+}
+
+/// A legend in the top-left corner of the chart's plotting area.
+fn legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    chart: &MapChart<'_, DB>,
+    entries: &[(&str, Mark)],
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as i32;
     let font = ("sans-serif", 13.0 * scale)
         .into_font()
         .color(&theme.foreground);
     let (rx, ry) = chart.plotting_area().get_pixel_range();
-    let (x, mut y) = (rx.start + px(10.0) as i32, ry.start + px(8.0) as i32);
-    let mut entries = vec![
-        ("fused", theme.track),
-        ("smoothed", theme.smoothed),
-        ("PDR only", theme.pdr),
-        ("GNSS fixes", theme.gnss),
-    ];
-    if view.truth.is_some() {
-        entries.push(("true path", theme.reference));
-    }
-    let row = px(18.0) as i32;
+    let (x, mut y) = (rx.start + px(10.0), ry.start + px(8.0));
+    let row = px(18.0);
     area.draw(&Rectangle::new(
         [
-            (x - px(6.0) as i32, y - px(4.0) as i32),
-            (
-                x + px(112.0) as i32,
-                y + row * entries.len() as i32 + px(2.0) as i32,
-            ),
+            (x - px(6.0), y - px(4.0)),
+            (x + px(112.0), y + row * entries.len() as i32 + px(2.0)),
         ],
         theme.background.mix(0.85).filled(),
     ))?;
-    for (label, colour) in entries {
+    for &(label, mark) in entries {
         let mid = y + row / 2;
-        if label == "GNSS fixes" {
-            area.draw(&Circle::new(
-                (x + px(10.0) as i32, mid),
-                px(3.0),
-                colour.filled(),
-            ))?;
-        } else {
-            area.draw(&PathElement::new(
-                vec![(x, mid), (x + px(22.0) as i32, mid)],
-                ShapeStyle::from(&colour).stroke_width(px(3.0)),
-            ))?;
+        let at = (x + px(10.0), mid);
+        match mark {
+            Mark::Dot(c) => area.draw(&Circle::new(at, px(3.0) as u32, c.filled()))?,
+            Mark::Ring(c) => area.draw(&Circle::new(
+                at,
+                px(5.0) as u32,
+                ShapeStyle::from(&c).stroke_width(px(2.0) as u32),
+            ))?,
+            Mark::Line(c) => area.draw(&PathElement::new(
+                vec![(x, mid), (x + px(22.0), mid)],
+                ShapeStyle::from(&c).stroke_width(px(3.0) as u32),
+            ))?,
         }
         area.draw(&Text::new(
             label,
-            (x + px(30.0) as i32, mid - px(7.0) as i32),
+            (x + px(30.0), mid - px(7.0)),
             font.clone(),
         ))?;
         y += row;
     }
+    Ok(())
+}
+
+/// What [`draw_live`] draws: positions in metres in one local frame (the first fix's when
+/// there are fixes, else the walk's start).
+pub struct LiveView<'a> {
+    /// The PDR track, from the start.
+    pub pdr: &'a [(f64, f64)],
+    /// The fused track (empty without fixes).
+    pub fused: &'a [(f64, f64)],
+    /// The smoothed track, once the walk has ended.
+    pub smoothed: &'a [(f64, f64)],
+    /// GNSS fixes as received: east, north, reported accuracy, m.
+    pub fixes: &'a [(f64, f64, f64)],
+    /// Where the input stopped (page hidden, sensors paused).
+    pub gaps: &'a [(f64, f64)],
+    /// The current heading, rad from north, drawn as an arrow at the current position.
+    pub heading_rad: Option<f64>,
+}
+
+/// The live map: the track so far with its start, the current position and heading, every fix
+/// with its accuracy circle, the fused (and, after the walk, smoothed) track, gaps, a legend, a
+/// north arrow and a scale bar.
+pub fn draw_live<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    view: &LiveView<'_>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let fused = !view.fused.is_empty();
+    // The main line: the fused track when there is one.
+    let main = if fused { view.fused } else { view.pdr };
+    let pts = view
+        .pdr
+        .iter()
+        .chain(view.fused)
+        .chain(view.smoothed)
+        .copied()
+        .chain(view.fixes.iter().map(|&(e, n, _)| (e, n)));
+    let mut chart = map_chart(area, pts, theme, scale)?;
+    let ring = ShapeStyle::from(&theme.gnss.mix(0.45)).stroke_width(px(1.0));
+    // The newest fixes' circles (a long walk has thousands).
+    let circles: Vec<Circle<(f64, f64), u32>> = view
+        .fixes
+        .iter()
+        .rev()
+        .take(300)
+        .map(|&(e, n, acc)| {
+            let a = chart.backend_coord(&(e, n));
+            let b = chart.backend_coord(&(e + acc, n));
+            Circle::new((e, n), (b.0 - a.0).unsigned_abs().max(1), ring)
+        })
+        .collect();
+    chart.draw_series(circles)?;
+    chart.draw_series(
+        view.fixes
+            .iter()
+            .map(|&(e, n, _)| Circle::new((e, n), px(2.5), theme.gnss.filled())),
+    )?;
+    if fused {
+        chart.draw_series(LineSeries::new(
+            view.pdr.iter().copied(),
+            ShapeStyle::from(&theme.pdr).stroke_width(px(2.0)),
+        ))?;
+    }
+    if !view.smoothed.is_empty() {
+        chart.draw_series(LineSeries::new(
+            view.smoothed.iter().copied(),
+            ShapeStyle::from(&theme.smoothed).stroke_width(px(2.5)),
+        ))?;
+    }
+    chart.draw_series(LineSeries::new(
+        main.iter().copied(),
+        ShapeStyle::from(&theme.track).stroke_width(px(3.0)),
+    ))?;
+    let gap_style = ShapeStyle::from(&theme.end).stroke_width(px(2.0));
+    chart.draw_series(
+        view.gaps
+            .iter()
+            .map(|&p| Circle::new(p, px(7.0), gap_style)),
+    )?;
+    if let Some(&a) = main.first() {
+        chart.draw_series([Circle::new(a, px(6.0), theme.start.filled())])?;
+    }
+    if let Some(&b) = main.last() {
+        let at = chart.backend_coord(&b);
+        if let Some(h) = view.heading_rad {
+            let len = f64::from(px(22.0));
+            let tip = (
+                at.0 + (len * libm::sin(h)).round() as i32,
+                at.1 - (len * libm::cos(h)).round() as i32,
+            );
+            area.draw(&PathElement::new(
+                vec![at, tip],
+                ShapeStyle::from(&theme.end).stroke_width(px(3.0)),
+            ))?;
+        }
+        area.draw(&Circle::new(at, px(7.0), theme.end.filled()))?;
+        area.draw(&Circle::new(
+            at,
+            px(7.0),
+            ShapeStyle::from(&theme.background).stroke_width(px(2.0)),
+        ))?;
+    }
+    let mut entries = Vec::new();
+    if fused {
+        entries.push(("fused", Mark::Line(theme.track)));
+        if !view.smoothed.is_empty() {
+            entries.push(("smoothed", Mark::Line(theme.smoothed)));
+        }
+        entries.push(("PDR only", Mark::Line(theme.pdr)));
+    }
+    if !view.fixes.is_empty() {
+        entries.push(("GNSS fixes", Mark::Dot(theme.gnss)));
+    }
+    if !view.gaps.is_empty() {
+        entries.push(("gap in input", Mark::Ring(theme.end)));
+    }
+    if !entries.is_empty() {
+        legend(area, &chart, &entries, theme, scale)?;
+    }
     north_and_scale(area, &chart, theme, scale)
+}
+
+/// The scrolling view of the last `span_s` seconds up to `now`: vertical acceleration (left
+/// axis, m/s²), the PLL output cos φ (right axis) and the detected steps (vertical marks).
+/// Samples further apart than 0.5 s (a gap) are not joined.
+pub fn draw_scope<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    samples: &[(f64, f64, Option<f64>)],
+    steps: &[f64],
+    now: f64,
+    span_s: f64,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    area.fill(&theme.background)?;
+    let font = ("sans-serif", 12.0 * scale)
+        .into_font()
+        .color(&theme.foreground);
+    let amp = samples
+        .iter()
+        .map(|s| s.1.abs())
+        .fold(2.0_f64, f64::max)
+        .min(40.0)
+        * 1.1;
+    let mut chart = ChartBuilder::on(area)
+        .margin(px(8.0))
+        .margin_top(px(22.0))
+        .x_label_area_size(px(24.0))
+        .y_label_area_size(px(34.0))
+        .right_y_label_area_size(px(30.0))
+        .build_cartesian_2d(-span_s..0.0, -amp..amp)?
+        .set_secondary_coord(-span_s..0.0, -1.25..1.25);
+    chart
+        .configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(theme.grid)
+        .axis_style(theme.foreground)
+        .label_style(font.clone())
+        .x_labels(6)
+        .y_labels(5)
+        .x_label_formatter(&|v| format!("{v:.0} s"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    chart
+        .configure_secondary_axes()
+        .axis_style(theme.foreground)
+        .label_style(font.clone())
+        .y_labels(3)
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    let rel = |t: f64| t - now;
+    let visible = |t: f64| rel(t) >= -span_s && rel(t) <= 0.0;
+    let step_style = ShapeStyle::from(&theme.end).stroke_width(px(1.5));
+    chart.draw_series(
+        steps
+            .iter()
+            .filter(|&&t| visible(t))
+            .map(|&t| PathElement::new(vec![(rel(t), -amp), (rel(t), amp)], step_style)),
+    )?;
+    // Runs of samples without a gap.
+    let mut runs: Vec<&[(f64, f64, Option<f64>)]> = Vec::new();
+    let mut from = 0;
+    for i in 1..=samples.len() {
+        if i == samples.len() || samples[i].0 - samples[i - 1].0 > 0.5 {
+            runs.push(&samples[from..i]);
+            from = i;
+        }
+    }
+    let pll_style = ShapeStyle::from(&theme.gnss).stroke_width(px(1.5));
+    let acc_style = ShapeStyle::from(&theme.track).stroke_width(px(2.0));
+    for run in runs {
+        let pll: Vec<(f64, f64)> = run
+            .iter()
+            .filter(|s| visible(s.0))
+            .filter_map(|s| s.2.map(|p| (rel(s.0), p)))
+            .collect();
+        chart.draw_secondary_series(LineSeries::new(pll, pll_style))?;
+        chart.draw_series(LineSeries::new(
+            run.iter().filter(|s| visible(s.0)).map(|s| (rel(s.0), s.1)),
+            acc_style,
+        ))?;
+    }
+    // Key, above the plot.
+    let (x0, y0) = (px(40.0) as i32, px(4.0) as i32);
+    let mut x = x0;
+    for (label, colour) in [
+        ("vertical acceleration, m/s²", theme.track),
+        ("PLL cos φ (right)", theme.gnss),
+        ("steps", theme.end),
+    ] {
+        area.draw(&PathElement::new(
+            vec![
+                (x, y0 + px(8.0) as i32),
+                (x + px(16.0) as i32, y0 + px(8.0) as i32),
+            ],
+            ShapeStyle::from(&colour).stroke_width(px(3.0)),
+        ))?;
+        area.draw(&Text::new(label, (x + px(20.0) as i32, y0), font.clone()))?;
+        x += px(28.0) as i32 + (label.chars().count() as f64 * 6.6 * scale) as i32;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -491,5 +733,99 @@ mod tests {
         );
         assert!(count(Theme::LIGHT.start) > 20 && count(Theme::LIGHT.end) > 20);
         assert!(count(Theme::LIGHT.reference) > 100);
+    }
+
+    #[test]
+    fn draws_the_live_map_and_scope() {
+        use crate::engine::pipeline::Record;
+        use crate::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
+        let sim = crate::sim::scenarios::straight_walk(1.8, 30.0).generate();
+        let mut live = LiveSession::new(
+            crate::engine::PipelineConfig::default(),
+            Platform::Android,
+            0.0,
+        )
+        .unwrap();
+        for ev in browser_events(&sim.records, Platform::Android) {
+            match ev {
+                BrowserEvent::Orientation {
+                    t,
+                    alpha,
+                    beta,
+                    gamma,
+                } => live.push_orientation(t, alpha, beta, gamma, true),
+                BrowserEvent::Motion { t, x, y, z, .. } if !(12e3..16e3).contains(&t) => {
+                    live.push_motion(&MotionEvent {
+                        time_stamp_ms: t,
+                        accel: Some([x, y, z]),
+                        rotation_rate_deg_s: None,
+                        interval: None,
+                    })
+                    .unwrap();
+                }
+                _ => {}
+            }
+        }
+        assert!(sim.records.iter().any(|r| matches!(r, Record::Imu(_))));
+        let d = live.map_data(false);
+        assert_eq!(d.gaps.len(), 1, "the 4 s without events is a gap");
+        let (w, h) = (400u32, 400u32);
+        let px = std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); (w * h) as usize]));
+        let area = Raster {
+            w,
+            h,
+            px: px.clone(),
+        }
+        .into_drawing_area();
+        let view = LiveView {
+            pdr: &d.pdr,
+            fused: &d.fused,
+            smoothed: &d.smoothed,
+            fixes: &d.fixes,
+            gaps: &d.gaps,
+            heading_rad: d.heading_rad,
+        };
+        draw_live(&area, &view, &Theme::LIGHT, 1.0).unwrap();
+        let t = Theme::LIGHT;
+        let count = |c: RGBColor| {
+            px.borrow()
+                .iter()
+                .filter(|p| **p == (c.0, c.1, c.2))
+                .count()
+        };
+        assert!(count(t.track) > 200, "track {}", count(t.track));
+        assert!(count(t.start) > 20 && count(t.end) > 40);
+        let (samples, steps, now) = live.scope_data();
+        assert!(steps.len() >= 10 && steps.iter().all(|&s| s > now - 10.0));
+        let area = Raster {
+            w: 600,
+            h: 200,
+            px: std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); 600 * 200])),
+        };
+        let shared = area.px.clone();
+        draw_scope(
+            &area.into_drawing_area(),
+            &samples,
+            &steps,
+            now,
+            10.0,
+            &t,
+            1.0,
+        )
+        .unwrap();
+        let n = |c: RGBColor| {
+            shared
+                .borrow()
+                .iter()
+                .filter(|p| **p == (c.0, c.1, c.2))
+                .count()
+        };
+        assert!(
+            n(t.track) > 500 && n(t.gnss) > 300 && n(t.end) > 10 * 100,
+            "{} {} {}",
+            n(t.track),
+            n(t.gnss),
+            n(t.end)
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! WebAssembly entry points (wasm-bindgen). Errors become `JsError` here and only here.
 
 use crate::demo::{run_demo, run_fusion_demo, DemoSummary, FusionDemoSummary};
-use crate::plot::{draw_fusion, draw_track, FusionView, Theme};
+use crate::plot::{draw_fusion, draw_live, draw_scope, draw_track, FusionView, LiveView, Theme};
 use plotters::prelude::IntoDrawingArea;
 use plotters_canvas::CanvasBackend;
 use wasm_bindgen::prelude::*;
@@ -112,19 +112,39 @@ pub struct Live {
     session: crate::live::LiveSession,
 }
 
+fn platform(ios: bool) -> crate::live::Platform {
+    if ios {
+        crate::live::Platform::Ios
+    } else {
+        crate::live::Platform::Android
+    }
+}
+
 #[wasm_bindgen]
 impl Live {
-    /// A session with the default configuration; `ios` selects Safari's conventions.
+    /// A session with the default configuration; `ios` selects Safari's conventions;
+    /// `time_origin_ms` is `performance.timeOrigin` (event times are counted from it).
     #[wasm_bindgen(constructor)]
-    pub fn new(ios: bool) -> Result<Live, JsError> {
-        let platform = if ios {
-            crate::live::Platform::Ios
-        } else {
-            crate::live::Platform::Android
-        };
-        crate::live::LiveSession::new(crate::engine::PipelineConfig::default(), platform)
-            .map(|session| Live { session })
-            .map_err(|e| JsError::new(&e.to_string()))
+    pub fn new(ios: bool, time_origin_ms: f64) -> Result<Live, JsError> {
+        crate::live::LiveSession::new(
+            crate::engine::PipelineConfig::default(),
+            platform(ios),
+            time_origin_ms,
+        )
+        .map(|session| Live { session })
+        .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// A session continuing a recording (pdr-log text) after a reload.
+    pub fn resume(ios: bool, time_origin_ms: f64, recorded: &str) -> Result<Live, JsError> {
+        crate::live::LiveSession::resume(
+            crate::engine::PipelineConfig::default(),
+            platform(ios),
+            time_origin_ms,
+            recorded,
+        )
+        .map(|session| Live { session })
+        .map_err(|e| JsError::new(&e))
     }
 
     /// A `devicemotion` event: `event.timeStamp` (ms), `accelerationIncludingGravity`,
@@ -151,6 +171,24 @@ impl Live {
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
+    /// A Generic Sensor API `Accelerometer` reading (m/s²) with the latest `Gyroscope` one
+    /// (rad/s, all three or none), at the accelerometer's `timestamp` (ms).
+    pub fn push_sensor(
+        &mut self,
+        timestamp_ms: f64,
+        ax: f64,
+        ay: f64,
+        az: f64,
+        gx: Option<f64>,
+        gy: Option<f64>,
+        gz: Option<f64>,
+    ) -> Result<usize, JsError> {
+        let gyro = gx.zip(gy).zip(gz).map(|((x, y), z)| [x, y, z]);
+        self.session
+            .push_sensor(timestamp_ms, [ax, ay, az], gyro)
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
     /// A `deviceorientation(absolute)` event, degrees.
     pub fn push_orientation(
         &mut self,
@@ -162,6 +200,26 @@ impl Live {
     ) {
         self.session
             .push_orientation(time_stamp_ms, alpha, beta, gamma, absolute);
+    }
+
+    /// An iOS `deviceorientation` event with `webkitCompassHeading` (degrees), and
+    /// `screen.orientation.angle`.
+    pub fn push_compass(
+        &mut self,
+        time_stamp_ms: f64,
+        compass_heading_deg: f64,
+        beta: f64,
+        gamma: f64,
+        screen_angle_deg: f64,
+    ) {
+        let alpha = crate::live::ios_compass_alpha(compass_heading_deg, screen_angle_deg);
+        self.session
+            .push_orientation(time_stamp_ms, alpha, beta, gamma, true);
+    }
+
+    /// An `AbsoluteOrientationSensor` quaternion `[x, y, z, w]`.
+    pub fn push_quaternion(&mut self, timestamp_ms: f64, x: f64, y: f64, z: f64, w: f64) {
+        self.session.push_quaternion(timestamp_ms, [x, y, z, w]);
     }
 
     /// A geolocation fix; `time_ms` on the page's clock (`performance.now()` at arrival).
@@ -189,7 +247,7 @@ impl Live {
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
-    /// The page was hidden between two times (ms).
+    /// The page was hidden between two times (ms, page clock).
     pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
         self.session.mark_gap(t0_ms, t1_ms);
     }
@@ -205,12 +263,74 @@ impl Live {
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
-    /// Draws the track so far on `canvas`.
-    pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
+    /// Draws the map; `ended` adds the smoothed track (after Stop).
+    pub fn draw(
+        &self,
+        canvas: &HtmlCanvasElement,
+        dark: bool,
+        dpr: f64,
+        ended: bool,
+    ) -> Result<(), JsError> {
+        let d = self.session.map_data(ended);
+        let view = LiveView {
+            pdr: &d.pdr,
+            fused: &d.fused,
+            smoothed: &d.smoothed,
+            fixes: &d.fixes,
+            gaps: &d.gaps,
+            heading_rad: d.heading_rad,
+        };
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
-            draw_track(area, self.session.pipeline().track(), None, theme, scale)
+            draw_live(area, &view, theme, scale)
         })
     }
+
+    /// Draws the last ten seconds of vertical acceleration, PLL output and steps.
+    pub fn draw_scope(
+        &self,
+        canvas: &HtmlCanvasElement,
+        dark: bool,
+        dpr: f64,
+    ) -> Result<(), JsError> {
+        let (samples, steps, now) = self.session.scope_data();
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            draw_scope(
+                area,
+                &samples,
+                &steps,
+                now,
+                crate::live::SCOPE_S,
+                theme,
+                scale,
+            )
+        })
+    }
+}
+
+/// Replays a pdr-log (a live recording) through the default engine: `{steps, distance_m,
+/// samples, errors}`.
+#[wasm_bindgen]
+pub fn replay_log(text: &str) -> Result<JsValue, JsError> {
+    let parsed = crate::io::pdrlog::read(text.as_bytes(), "recording")
+        .map_err(|e| JsError::new(&e.to_string()))?;
+    let r =
+        crate::engine::pipeline::replay(crate::engine::PipelineConfig::default(), &parsed.records)
+            .map_err(|e| JsError::new(&e.to_string()))?;
+    let d = r.pipeline.diagnostics();
+    #[derive(serde::Serialize)]
+    struct Summary {
+        steps: usize,
+        distance_m: f64,
+        samples: u64,
+        skipped_lines: u64,
+    }
+    serde_wasm_bindgen::to_value(&Summary {
+        steps: r.pipeline.track().len(),
+        distance_m: d.distance_m,
+        samples: d.samples,
+        skipped_lines: parsed.skipped,
+    })
+    .map_err(|e| JsError::new(&e.to_string()))
 }
 
 impl Default for Demo {

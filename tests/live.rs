@@ -4,36 +4,50 @@
 
 use pdr::engine::pipeline::{replay, PipelineConfig, Record};
 use pdr::io::pdrlog;
-use pdr::live::{orientation_angles, LiveSession, MotionEvent, Platform};
+use pdr::live::{
+    browser_events, orientation_angles, BrowserEvent, LiveSession, MotionEvent, Platform,
+};
 use pdr::sim::scenarios;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
-/// Feeds a simulation's samples as browser events of `platform`'s conventions.
-fn feed(records: &[Record], platform: Platform) -> LiveSession {
-    let mut live = LiveSession::new(PipelineConfig::default(), platform).unwrap();
-    let flip = if platform == Platform::Ios { -1.0 } else { 1.0 };
-    for r in records {
-        let Record::Imu(s) = r else { continue };
-        let ms = s.t * 1e3;
-        if let Some(q) = s.orientation {
-            let (a, b, g) = orientation_angles(&q);
-            live.push_orientation(ms, a, b, g, true);
+/// Feeds the events a phone of `platform` would fire for `records` to a session.
+fn feed_into(live: &mut LiveSession, records: &[Record], platform: Platform) {
+    for ev in browser_events(records, platform) {
+        match ev {
+            BrowserEvent::Orientation {
+                t,
+                alpha,
+                beta,
+                gamma,
+            } => live.push_orientation(t, alpha, beta, gamma, true),
+            BrowserEvent::Motion {
+                t,
+                x,
+                y,
+                z,
+                alpha,
+                beta,
+                gamma,
+                interval,
+            } => {
+                live.push_motion(&MotionEvent {
+                    time_stamp_ms: t,
+                    accel: Some([x, y, z]),
+                    rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
+                    interval: Some(interval),
+                })
+                .unwrap();
+            }
         }
-        let deg = 180.0 / std::f64::consts::PI;
-        live.push_motion(&MotionEvent {
-            time_stamp_ms: ms,
-            accel: Some([flip * s.accel.x, flip * s.accel.y, flip * s.accel.z]),
-            rotation_rate_deg_s: s.gyro.map(|g| [g.x * deg, g.y * deg, g.z * deg]),
-            interval: Some(if platform == Platform::Ios {
-                0.01
-            } else {
-                10.0
-            }),
-        })
-        .unwrap();
     }
+}
+
+/// A session fed with `records` as `platform`'s events.
+fn feed(records: &[Record], platform: Platform) -> LiveSession {
+    let mut live = LiveSession::new(PipelineConfig::default(), platform, 0.0).unwrap();
+    feed_into(&mut live, records, platform);
     live
 }
 
@@ -79,7 +93,7 @@ fn the_recording_replays_to_the_same_track() {
 #[wasm_bindgen_test(unsupported = test)]
 fn a_hidden_page_is_a_gap_not_steps() {
     let sim = scenarios::straight_walk(1.8, 40.0).generate();
-    let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android).unwrap();
+    let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
     let mut hidden = false;
     for r in &sim.records {
         let Record::Imu(s) = r else { continue };
@@ -107,6 +121,10 @@ fn a_hidden_page_is_a_gap_not_steps() {
     }
     let r = live.readouts();
     assert_eq!(r.gaps, 1);
+    let marks = live.gap_marks();
+    assert_eq!(marks.len(), 1);
+    assert_eq!((marks[0].t0, marks[0].t1), (15.0, marks[0].t1));
+    assert!(marks[0].t1 >= 25.0 && marks[0].east_m.abs() + marks[0].north_m.abs() > 5.0);
     let in_gap = live
         .pipeline()
         .track()
@@ -122,4 +140,163 @@ fn a_hidden_page_is_a_gap_not_steps() {
         .filter(|s| !(15.0..25.0).contains(&s.t))
         .count();
     assert!(r.steps.abs_diff(truth) <= 3, "{} against {truth}", r.steps);
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn a_recording_resumed_after_a_reload_continues_the_same_track() {
+    let sim = scenarios::demo_walk().generate();
+    let whole = feed(&sim.records, Platform::Android);
+    let cut = sim.records.len() / 2;
+    // The first page: events on its clock, origin 0.
+    let mut first = feed(&sim.records[..cut], Platform::Android);
+    let recorded = first.take_log();
+    // The reloaded page has a later time origin: its timeStamps are 40 s smaller.
+    let origin = 40_000.0;
+    let mut second = LiveSession::resume(
+        PipelineConfig::default(),
+        Platform::Android,
+        origin,
+        &recorded,
+    )
+    .unwrap();
+    assert_eq!(second.pipeline().track(), first.pipeline().track());
+    let shifted: Vec<Record> = sim.records[cut..]
+        .iter()
+        .map(|r| match r {
+            Record::Imu(s) => Record::Imu(pdr::engine::ImuSample {
+                t: s.t - origin * 1e-3,
+                ..*s
+            }),
+            other => *other,
+        })
+        .collect();
+    feed_into(&mut second, &shifted, Platform::Android);
+    // The same walk, but for the last bits of the times (ms since another origin).
+    let (a, b) = (second.pipeline().track(), whole.pipeline().track());
+    assert_eq!(a.len(), b.len());
+    let (ea, eb) = (a.last().unwrap(), b.last().unwrap());
+    assert!(libm::hypot(ea.east_m - eb.east_m, ea.north_m - eb.north_m) < 1e-3);
+    // Only the new records are taken, and both parts replay as one log.
+    let rest = second.take_log();
+    assert!(!rest.starts_with("#"), "the version tag came twice");
+    let parsed = pdrlog::read(format!("{recorded}{rest}").as_bytes(), "resumed.pdrlog").unwrap();
+    let again = replay(PipelineConfig::default(), &parsed.records).unwrap();
+    assert_eq!(again.pipeline.track(), second.pipeline().track());
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn motion_waits_briefly_for_the_attitude_and_the_scope_keeps_ten_seconds() {
+    let sim = scenarios::straight_walk(1.8, 20.0).generate();
+    let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
+    // Orientation starts 0.5 s after motion: the first 0.5 s is set aside, not recorded.
+    let events = browser_events(&sim.records, Platform::Android);
+    for ev in events {
+        match ev {
+            BrowserEvent::Orientation {
+                t,
+                alpha,
+                beta,
+                gamma,
+            } if t >= 500.0 => live.push_orientation(t, alpha, beta, gamma, true),
+            BrowserEvent::Motion {
+                t, x, y, z, alpha, ..
+            } => {
+                live.push_motion(&MotionEvent {
+                    time_stamp_ms: t,
+                    accel: Some([x, y, z]),
+                    rotation_rate_deg_s: alpha.map(|a| [a, 0.0, 0.0]),
+                    interval: None,
+                })
+                .unwrap();
+            }
+            _ => {}
+        }
+    }
+    let r = live.readouts();
+    assert_eq!(r.orientation, Some("os"));
+    assert!(r.absolute_heading);
+    assert!((49..=51).contains(&r.waited), "{}", r.waited);
+    let motion_events = sim
+        .records
+        .iter()
+        .filter(|r| matches!(r, Record::Imu(_)))
+        .count();
+    assert_eq!(r.samples as usize + r.waited as usize, motion_events);
+    let first = live.take_log();
+    let first_imu = first.lines().find(|l| l.starts_with("imu,")).unwrap();
+    assert!(first_imu.starts_with("imu,0.5"), "{first_imu}");
+    let scope = live.scope();
+    let span = scope.back().unwrap().t - scope.front().unwrap().t;
+    assert!((9.9..=10.0).contains(&span), "{span}");
+    assert!(scope.iter().all(|s| s.pll.is_some() && s.up.is_finite()));
+
+    // No attitude at all: after a second the engine goes on with the gyroscope (Madgwick).
+    let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
+    for ev in browser_events(&sim.records, Platform::Android) {
+        if let BrowserEvent::Motion {
+            t,
+            x,
+            y,
+            z,
+            alpha,
+            beta,
+            gamma,
+            ..
+        } = ev
+        {
+            live.push_motion(&MotionEvent {
+                time_stamp_ms: t,
+                accel: Some([x, y, z]),
+                rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
+                interval: None,
+            })
+            .unwrap();
+        }
+    }
+    let r = live.readouts();
+    assert_eq!(r.orientation, Some("madgwick"));
+    assert!(!r.absolute_heading);
+    assert!(r.steps > 30, "{}", r.steps);
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn generic_sensor_readings_and_motion_events_agree() {
+    let sim = scenarios::straight_walk(1.8, 15.0).generate();
+    let events = feed(&sim.records, Platform::Android);
+    let mut sensors = LiveSession::new(PipelineConfig::default(), Platform::Ios, 0.0).unwrap();
+    for r in &sim.records {
+        let Record::Imu(s) = r else { continue };
+        if let Some(q) = s.orientation {
+            let q = q.into_inner();
+            sensors.push_quaternion(s.t * 1e3, [q.i, q.j, q.k, q.w]);
+        }
+        // The Generic Sensor API has the specification's sign on every platform.
+        sensors
+            .push_sensor(s.t * 1e3, s.accel.into(), s.gyro.map(Into::into))
+            .unwrap();
+    }
+    assert_eq!(sensors.readouts().steps, events.readouts().steps);
+    let (a, b) = (
+        sensors.pipeline().track().last().unwrap(),
+        events.pipeline().track().last().unwrap(),
+    );
+    assert!(libm::hypot(a.east_m - b.east_m, a.north_m - b.north_m) < 0.05);
+    assert!(sensors
+        .push_sensor(2e4, [f64::NAN, 0.0, 9.8], None)
+        .is_err());
+    assert_eq!(sensors.readouts().refused, 1);
+}
+
+#[test]
+fn the_ios_compass_heading_gives_the_absolute_alpha() {
+    use pdr::live::{ios_compass_alpha, orientation_quaternion};
+    // Flat, top to the east: compass 90°.
+    let alpha = ios_compass_alpha(90.0, 0.0);
+    assert!((alpha - 270.0).abs() < 1e-9);
+    let top = orientation_quaternion(alpha, 0.0, 0.0) * nalgebra::Vector3::y();
+    assert!((top - nalgebra::Vector3::new(1.0, 0.0, 0.0)).norm() < 1e-9);
+    // Interface turned a quarter: the interface's top (the device's left side) points to 0°,
+    // so the device's top points east.
+    assert!((ios_compass_alpha(0.0, 90.0) - 270.0).abs() < 1e-9);
+    assert!((ios_compass_alpha(350.0, 90.0) - 280.0).abs() < 1e-9);
 }

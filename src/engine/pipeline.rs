@@ -698,6 +698,16 @@ impl Pipeline {
         d
     }
 
+    /// Vertical linear acceleration of the latest sample, m/s², up positive.
+    pub fn vertical_accel(&self) -> Option<f64> {
+        self.buf.back().map(|x| x.up)
+    }
+
+    /// Mean and σ of the vertical acceleration over the motion detector's window, m/s².
+    pub fn vertical_stats(&self) -> (f64, f64) {
+        (self.motion.mean(), self.motion.sigma())
+    }
+
     /// PLL oscillator output cos φ, if the detector is a PLL.
     pub fn pll_output(&self) -> Option<f64> {
         match &self.detector {
