@@ -617,7 +617,7 @@ impl LiveSession {
 
     /// The scrolling view's data: (t, vertical acceleration, PLL output) of the last
     /// [`SCOPE_S`], the step times among them, and the newest time.
-    pub fn scope_data(&self) -> (Vec<(f64, f64, Option<f64>)>, Vec<f64>, f64) {
+    pub fn scope_data(&self) -> (Vec<crate::plot::ScopePoint>, Vec<f64>, f64) {
         let samples: Vec<_> = self.scope.iter().map(|s| (s.t, s.up, s.pll)).collect();
         let now = samples.last().map_or(0.0, |s| s.0);
         let steps = self

@@ -508,12 +508,15 @@ pub fn draw_live<DB: DrawingBackend>(
     north_and_scale(area, &chart, theme, scale)
 }
 
+/// A sample of the scrolling view: time (s), vertical acceleration (m/s²), PLL output.
+pub type ScopePoint = (f64, f64, Option<f64>);
+
 /// The scrolling view of the last `span_s` seconds up to `now`: vertical acceleration (left
 /// axis, m/s²), the PLL output cos φ (right axis) and the detected steps (vertical marks).
 /// Samples further apart than 0.5 s (a gap) are not joined.
 pub fn draw_scope<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    samples: &[(f64, f64, Option<f64>)],
+    samples: &[ScopePoint],
     steps: &[f64],
     now: f64,
     span_s: f64,
@@ -567,7 +570,7 @@ pub fn draw_scope<DB: DrawingBackend>(
             .map(|&t| PathElement::new(vec![(rel(t), -amp), (rel(t), amp)], step_style)),
     )?;
     // Runs of samples without a gap.
-    let mut runs: Vec<&[(f64, f64, Option<f64>)]> = Vec::new();
+    let mut runs: Vec<&[ScopePoint]> = Vec::new();
     let mut from = 0;
     for i in 1..=samples.len() {
         if i == samples.len() || samples[i].0 - samples[i - 1].0 > 0.5 {
