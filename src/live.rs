@@ -22,7 +22,7 @@
 //! East-North-Up when the event is absolute (alpha = 0 with the top of the device to the north;
 //! alpha grows counter-clockwise, so the compass heading of the top is 360° − α).
 
-use crate::engine::orientation::OrientationSource;
+use crate::engine::orientation::{OrientationSource, HOLD_S};
 use crate::engine::pipeline::{Pipeline, PipelineConfig, Record};
 use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError};
 pub use crate::io::import::Platform;
@@ -225,7 +225,11 @@ pub struct LiveSession {
     platform: Platform,
     origin_ms: f64,
     attitude: Option<(f64, UnitQuaternion<f64>, bool)>,
-    attitude_written: bool,
+    // The time of the sample that last carried the attitude; `None` while the newest has not
+    // been carried yet.
+    attitude_written_at: Option<f64>,
+    // A Generic Sensor attitude holds until the next reading: the API reports changes only.
+    attitude_sticky: bool,
     absolute: bool,
     first_event: Option<f64>,
     waited: u64,
@@ -256,7 +260,8 @@ impl LiveSession {
                 0.0
             },
             attitude: None,
-            attitude_written: true,
+            attitude_written_at: Some(f64::NEG_INFINITY),
+            attitude_sticky: false,
             absolute: false,
             first_event: None,
             waited: 0,
@@ -370,8 +375,10 @@ impl LiveSession {
         }
         // The attitude rides on the first sample after it arrives (the engine holds it for
         // the samples after that); an absolute attitude wins over a relative one.
-        let orientation = match self.attitude {
-            Some((_, q, _)) if !self.attitude_written => Some(q),
+        let stale = |at: f64| self.attitude_sticky && m.t - at >= 0.5 * HOLD_S;
+        let orientation = match (self.attitude, self.attitude_written_at) {
+            (Some((_, q, _)), None) => Some(q),
+            (Some((_, q, _)), Some(at)) if stale(at) => Some(q),
             _ => None,
         };
         let s = ImuSample {
@@ -384,7 +391,9 @@ impl LiveSession {
         let n = self
             .use_sample(&s, true)
             .map_err(|e| self.refuse(LiveError::Engine(e)))?;
-        self.attitude_written = true;
+        if orientation.is_some() {
+            self.attitude_written_at = Some(m.t);
+        }
         self.recent.push_back(m.t);
         while self.recent.front().is_some_and(|&t0| t0 < m.t - 2.0) {
             self.recent.pop_front();
@@ -467,6 +476,7 @@ impl LiveSession {
         }
         let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[3], q[0], q[1], q[2]));
         self.set_attitude(timestamp_ms, q, true);
+        self.attitude_sticky = true;
     }
 
     fn set_attitude(&mut self, time_stamp_ms: f64, q: UnitQuaternion<f64>, absolute: bool) {
@@ -475,7 +485,8 @@ impl LiveSession {
         }
         self.absolute |= absolute;
         self.attitude = Some((self.seconds(time_stamp_ms), q, absolute));
-        self.attitude_written = false;
+        self.attitude_written_at = None;
+        self.attitude_sticky = false;
     }
 
     /// Feeds a geolocation fix (`t` in ms on the page's clock).
@@ -493,9 +504,10 @@ impl LiveSession {
     }
 
     /// The page was hidden (or the sensors paused) between two times, ms on the page's clock.
+    /// The gap starts no earlier than the last sample received.
     pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
-        let (t0, t1) = (self.seconds(t0_ms), self.seconds(t1_ms));
-        self.gap_at(t0, t1, true);
+        let t0 = self.seconds(t0_ms).max(self.last_t.unwrap_or(f64::NEG_INFINITY));
+        self.gap_at(t0, self.seconds(t1_ms), true);
     }
 
     fn gap_at(&mut self, t0: f64, t1: f64, record: bool) {

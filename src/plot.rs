@@ -596,8 +596,8 @@ pub fn draw_scope<DB: DrawingBackend>(
     let (x0, y0) = (px(40.0) as i32, px(4.0) as i32);
     let mut x = x0;
     for (label, colour) in [
-        ("vertical acceleration, m/s²", theme.track),
-        ("PLL cos φ (right)", theme.gnss),
+        ("vertical acc., m/s²", theme.track),
+        ("PLL cos φ, right", theme.gnss),
         ("steps", theme.end),
     ] {
         area.draw(&PathElement::new(

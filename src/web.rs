@@ -112,6 +112,23 @@ pub struct Live {
     session: crate::live::LiveSession,
 }
 
+/// The default configuration with the page's GNSS choice: `best` (every fix),
+/// `energy-saving` (10 s every 60 s) or `off`.
+fn live_config(gnss: &str) -> Result<crate::engine::PipelineConfig, JsError> {
+    let mut c = crate::engine::PipelineConfig::default();
+    match gnss {
+        "best" => {}
+        "energy-saving" => {
+            if let Some(f) = &mut c.fusion {
+                f.mode = crate::engine::fusion::GnssMode::ENERGY_SAVING;
+            }
+        }
+        "off" => c.fusion = None,
+        other => return Err(JsError::new(&format!("unknown GNSS mode `{other}`"))),
+    }
+    Ok(c)
+}
+
 fn platform(ios: bool) -> crate::live::Platform {
     if ios {
         crate::live::Platform::Ios
@@ -122,12 +139,13 @@ fn platform(ios: bool) -> crate::live::Platform {
 
 #[wasm_bindgen]
 impl Live {
-    /// A session with the default configuration; `ios` selects Safari's conventions;
-    /// `time_origin_ms` is `performance.timeOrigin` (event times are counted from it).
+    /// A session with the default configuration and GNSS mode `gnss` (`best`,
+    /// `energy-saving`, `off`); `ios` selects Safari's conventions; `time_origin_ms` is
+    /// `performance.timeOrigin` (event times are counted from it).
     #[wasm_bindgen(constructor)]
-    pub fn new(ios: bool, time_origin_ms: f64) -> Result<Live, JsError> {
+    pub fn new(ios: bool, time_origin_ms: f64, gnss: &str) -> Result<Live, JsError> {
         crate::live::LiveSession::new(
-            crate::engine::PipelineConfig::default(),
+            live_config(gnss)?,
             platform(ios),
             time_origin_ms,
         )
@@ -136,9 +154,14 @@ impl Live {
     }
 
     /// A session continuing a recording (pdr-log text) after a reload.
-    pub fn resume(ios: bool, time_origin_ms: f64, recorded: &str) -> Result<Live, JsError> {
+    pub fn resume(
+        ios: bool,
+        time_origin_ms: f64,
+        gnss: &str,
+        recorded: &str,
+    ) -> Result<Live, JsError> {
         crate::live::LiveSession::resume(
-            crate::engine::PipelineConfig::default(),
+            live_config(gnss)?,
             platform(ios),
             time_origin_ms,
             recorded,

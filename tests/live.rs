@@ -285,6 +285,18 @@ fn generic_sensor_readings_and_motion_events_agree() {
         .push_sensor(2e4, [f64::NAN, 0.0, 9.8], None)
         .is_err());
     assert_eq!(sensors.readouts().refused, 1);
+
+    // A still phone: the orientation sensor reports once (it fires on change only), the
+    // accelerometer goes on; the attitude holds.
+    let mut still = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
+    still.push_quaternion(0.0, [0.0, 0.0, 0.382_683_4, 0.923_879_5]);
+    for i in 0..500 {
+        still
+            .push_sensor(f64::from(i) * 10.0, [0.0, 0.0, 9.81], Some([0.0; 3]))
+            .unwrap();
+    }
+    let r = still.readouts();
+    assert_eq!((r.samples, r.refused, r.orientation), (500, 0, Some("os")));
 }
 
 #[test]

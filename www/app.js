@@ -1,5 +1,6 @@
 // Thin glue: load the WebAssembly engine, show the demo walks' figures, draw their tracks.
 import init, { Demo, FusionDemo } from './pkg/pdr.js';
+import { setupLive } from './live.js';
 
 const $ = (id) => document.getElementById(id);
 const dark = window.matchMedia('(prefers-color-scheme: dark)');
@@ -14,6 +15,7 @@ function fail(err) {
 
 async function main() {
   await init();
+  setupLive();
   const demo = new Demo();
   const s = demo.summary();
   $('steps').textContent = String(s.steps);
@@ -60,3 +62,8 @@ function keepDrawn(canvas, what) {
 }
 
 main().catch(fail);
+
+// Offline once visited (the worker sits at the site's root; see www/sw.js).
+if ('serviceWorker' in navigator && window.isSecureContext) {
+  navigator.serviceWorker.register('sw.js').catch((err) => console.warn('no offline support:', err));
+}

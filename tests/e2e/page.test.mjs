@@ -70,12 +70,13 @@ test('page loads without errors, WASM initialises and the track is drawn', async
   const s = await canvasStats(page);
   assert.ok(s.differing > 0.01 * s.total, `canvas looks blank: ${s.differing} of ${s.total} pixels differ from the background`);
   assert.ok(s.blue > 500, `too few track-coloured pixels: ${s.blue}`);
+  // Before the screenshot: Playwright's screenshot injects a style the page's CSP refuses.
+  assert.deepEqual(errors, []);
   const shot = path.join(ARTIFACTS, 'desktop.png');
   await page.screenshot({ path: shot, fullPage: true });
   console.log(`screenshot: ${shot}`);
   const ready = await page.evaluate(() => window.__pdr.ready_ms);
   console.log(`load to first drawn track: ${ready.toFixed(0)} ms`);
-  assert.deepEqual(errors, []);
   await context.close();
 });
 
@@ -91,8 +92,8 @@ test('the GNSS demo draws fixes and tracks, and its figures match the native eng
   assert.equal(wasm.smoothed_p75_m, native.smoothed_p75_m);
   assert.equal(await page.textContent('#fused-p75'), native.fused_p75_m.toFixed(1));
   assert.ok(native.fused_p75_m <= 0.5 * native.gnss_p75_m);
-  await page.locator('#fusion').screenshot({ path: path.join(ARTIFACTS, 'fusion.png') });
   assert.deepEqual(errors, []);
+  await page.locator('#fusion').screenshot({ path: path.join(ARTIFACTS, 'fusion.png') });
   await context.close();
 });
 
@@ -112,7 +113,7 @@ test('Chromium motion events reach the engine with the right axes, units and sig
   // added before the sensors exist gets none in headless Chromium).
   await page.evaluate(async () => {
     const { Live } = await import('./www/pkg/pdr.js');
-    window.__live = new Live(false);
+    window.__live = new Live(false, 0, 'best');
     window.__events = 0;
     window.__errors = [];
     window.addEventListener('devicemotion', (e) => {
@@ -127,7 +128,8 @@ test('Chromium motion events reach the engine with the right axes, units and sig
       window.__events++;
     });
   });
-  await page.waitForFunction(() => window.__events >= 5, null, { timeout: 10_000 });
+  // Without orientation events the session waits a second for an attitude, then goes on.
+  await page.waitForFunction(() => window.__live.readouts().samples >= 5, null, { timeout: 10_000 });
   assert.deepEqual(await page.evaluate(() => window.__errors), [], 'the engine refused motion events');
   const log = await page.evaluate(() => window.__live.take_log());
   const imu = log.split('\n').filter((l) => l.startsWith('imu,')).map((l) => l.split(',').map(Number));
@@ -145,7 +147,7 @@ test('benchmark: motion events handled per second by the live session in wasm (p
   const { context, page } = await open(URL_HTTP);
   const r = await page.evaluate(async () => {
     const { Live } = await import('./www/pkg/pdr.js');
-    const live = new Live(false);
+    const live = new Live(false, 0, 'best');
     const n = 100_000;
     const t0 = performance.now();
     for (let i = 0; i < n; i++) {
@@ -206,7 +208,10 @@ test('dark scheme draws on a dark background', async () => {
 test('HTTPS with the self-signed certificate serves the same working page', async () => {
   const { context, page, errors } = await open(URL_HTTPS, { ignoreHTTPSErrors: true });
   assert.ok(await page.evaluate(() => window.isSecureContext));
-  assert.deepEqual(errors, []);
+  // Chromium refuses a service worker from a certificate it does not trust, and says so: on
+  // a phone over the LAN with the self-signed certificate the page works but not offline.
+  await page.waitForTimeout(500);
+  assert.deepEqual(errors.filter((e) => !/SSL certificate error occurred when fetching the script/.test(e)), []);
   await context.close();
 });
 

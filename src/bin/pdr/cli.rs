@@ -134,6 +134,14 @@ enum ScenarioArg {
     GnssCity,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum PlatformArg {
+    /// Chromium's conventions (specification sign, `interval` in ms).
+    Android,
+    /// Safari's (acceleration negated, `interval` in s).
+    Ios,
+}
+
 #[derive(Subcommand)]
 enum Cmd {
     /// Replay a recording: print a summary and write the per-step track.
@@ -164,9 +172,17 @@ enum Cmd {
         /// Which walk.
         #[arg(long, value_enum, default_value = "demo")]
         scenario: ScenarioArg,
-        /// Output file.
+        /// Output file (pdr-log).
+        #[arg(long, required_unless_present = "events")]
+        out: Option<PathBuf>,
+        /// Also (or instead) write the walk as the browser events a phone would fire, JSON:
+        /// `{truth_steps, distance_m, events: [{type: "motion"|"orientation", t, …}]}`. The
+        /// end-to-end tests dispatch these on the live page.
         #[arg(long)]
-        out: PathBuf,
+        events: Option<PathBuf>,
+        /// The platform whose event conventions `--events` follows.
+        #[arg(long, value_enum, default_value = "android")]
+        platform: PlatformArg,
     },
     /// Accuracy of every method on simulated walks with known truth.
     Simcheck,
@@ -232,7 +248,12 @@ pub fn main() -> ExitCode {
             methods.config(),
         ),
         Cmd::Demo { json } => demo(json),
-        Cmd::Simulate { scenario, out } => simulate(scenario, &out),
+        Cmd::Simulate {
+            scenario,
+            out,
+            events,
+            platform,
+        } => simulate(scenario, out.as_deref(), events.as_deref(), platform),
         Cmd::Simcheck => {
             simcheck();
             Ok(())
@@ -544,7 +565,12 @@ fn demo(json: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn simulate(which: ScenarioArg, out: &Path) -> Result<(), String> {
+fn simulate(
+    which: ScenarioArg,
+    out: Option<&Path>,
+    events: Option<&Path>,
+    platform: PlatformArg,
+) -> Result<(), String> {
     let sc = match which {
         ScenarioArg::Demo => scenarios::demo_walk(),
         ScenarioArg::Square => scenarios::square(25.0),
@@ -552,15 +578,34 @@ fn simulate(which: ScenarioArg, out: &Path) -> Result<(), String> {
         ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
     };
     let sim = sc.generate();
-    std::fs::write(out, pdrlog::to_string(&sim.records))
-        .map_err(|e| format!("{}: {e}", out.display()))?;
-    out!(
-        "wrote {} records, {} true steps, {:.1} m, to {}",
-        sim.records.len(),
-        sim.truth.steps.len(),
-        sim.truth.distance_m,
-        out.display()
-    );
+    let write = |path: &Path, text: String| {
+        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+    };
+    if let Some(out) = out {
+        write(out, pdrlog::to_string(&sim.records))?;
+        out!(
+            "wrote {} records, {} true steps, {:.1} m, to {}",
+            sim.records.len(),
+            sim.truth.steps.len(),
+            sim.truth.distance_m,
+            out.display()
+        );
+    }
+    if let Some(path) = events {
+        let platform = match platform {
+            PlatformArg::Android => pdr::live::Platform::Android,
+            PlatformArg::Ios => pdr::live::Platform::Ios,
+        };
+        let events = pdr::live::browser_events(&sim.records, platform);
+        let doc = serde_json::json!({
+            "truth_steps": sim.truth.steps.len(),
+            "distance_m": sim.truth.distance_m,
+            "platform": format!("{platform:?}").to_lowercase(),
+            "events": events,
+        });
+        write(path, doc.to_string())?;
+        out!("wrote {} browser events to {}", events.len(), path.display());
+    }
     Ok(())
 }
 

@@ -1,0 +1,350 @@
+// End-to-end tests of live mode in a real headless Chromium, against `pdr serve`.
+// A simulated walk (`pdr simulate --events`) is dispatched on the page as real DeviceMotionEvent
+// and DeviceOrientationEvent objects at the walk's timestamps, faster than real time.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync } from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
+const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
+const ARTIFACTS = path.join(here, 'artifacts');
+const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-live-'));
+const PHONE = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true };
+const GEO = { latitude: 46.0037, longitude: 8.9511, accuracy: 12 }; // Lugano
+
+/** A simulated walk as browser events of a platform: {truth_steps, distance_m, events}. */
+function walk(scenario, platform) {
+  const file = path.join(tmp, `${scenario}-${platform}.json`);
+  execFileSync(BIN, ['simulate', '--scenario', scenario, '--platform', platform, '--events', file]);
+  return JSON.parse(readFileSync(file, 'utf8'));
+}
+
+let browser;
+before(async () => {
+  browser = await chromium.launch({
+    executablePath: '/usr/bin/chromium',
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync',
+      // A name that is not localhost: the page is then an insecure context, as on a LAN.
+      '--host-resolver-rules=MAP pdr-lan.test 127.0.0.1'],
+  });
+});
+after(async () => { await browser?.close(); });
+
+/** Opens the page; `ios` makes it look like Safari (its user agent, and a motion permission prompt answering `permission`). */
+const IPHONE_UA = 'Mozilla/5.0 (iPhone; CPU iPhone OS 18_1 like Mac OS X) AppleWebKit/605.1.15 (KHTML, like Gecko) Version/18.1 Mobile/15E148 Safari/604.1';
+
+async function open({ ios = false, permission = 'granted', context: options = {}, url = URL_HTTP } = {}) {
+  const context = await browser.newContext({ ...PHONE, acceptDownloads: true, ...(ios ? { userAgent: IPHONE_UA } : {}), ...options });
+  if (ios) {
+    await context.addInitScript((answer) => {
+      DeviceMotionEvent.requestPermission = async () => answer;
+      DeviceOrientationEvent.requestPermission = async () => answer;
+    }, permission);
+  }
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(url);
+  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
+  return { context, page, errors };
+}
+
+/** Taps Start and waits until the page listens to motion events. */
+async function start(page) {
+  await page.click('#start');
+  await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
+}
+
+/**
+ * Dispatches events `from`..`to` of a walk on the page, in chunks, with
+ * timeStamp = base + t (the walk's own times, on the page's clock from `base`).
+ * iOS orientation events carry `webkitCompassHeading` and a relative alpha, as Safari's do.
+ */
+async function dispatch(page, events, { base, ios = false, from = 0, to = events.length }) {
+  const CHUNK = 400;
+  for (let i = from; i < to; i += CHUNK) {
+    await page.evaluate(({ chunk, base, ios }) => {
+      for (const e of chunk) {
+        let ev;
+        if (e.type === 'motion') {
+          ev = new DeviceMotionEvent('devicemotion', {
+            accelerationIncludingGravity: { x: e.x, y: e.y, z: e.z },
+            rotationRate: e.alpha == null ? null : { alpha: e.alpha, beta: e.beta, gamma: e.gamma },
+            interval: e.interval,
+          });
+        } else if (ios) {
+          // Safari: alpha from an arbitrary start, the compass heading beside it.
+          ev = new DeviceOrientationEvent('deviceorientation', { alpha: (e.alpha + 123) % 360, beta: e.beta, gamma: e.gamma, absolute: false });
+          Object.defineProperty(ev, 'webkitCompassHeading', { value: (360 - e.alpha) % 360 });
+        } else {
+          ev = new DeviceOrientationEvent('deviceorientationabsolute', { alpha: e.alpha, beta: e.beta, gamma: e.gamma, absolute: true });
+        }
+        Object.defineProperty(ev, 'timeStamp', { value: base + e.t });
+        window.dispatchEvent(ev);
+      }
+    }, { chunk: events.slice(i, Math.min(i + CHUNK, to)), base, ios });
+  }
+}
+
+const readouts = (page) => page.evaluate(() => window.__pdrLive?.readouts);
+const messages = (page) => page.$$eval('#live-messages li', (els) => els.map((e) => `${e.dataset.key}: ${e.textContent}`));
+
+async function holdToUnlock(page, ms) {
+  const box = await page.locator('#unlock').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.waitForTimeout(ms);
+  await page.mouse.up();
+}
+
+/** Pixels of a canvas differing from its corner, and the canvas's backing size. */
+async function nonBlank(page, id) {
+  return page.evaluate((id) => {
+    const c = document.getElementById(id);
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - d[0]) + Math.abs(d[i + 1] - d[1]) + Math.abs(d[i + 2] - d[2]) > 30) n++;
+    return { n, total: d.length / 4, width: c.width, cssWidth: c.getBoundingClientRect().width };
+  }, id);
+}
+
+/** Runs a whole walk through live mode; returns the page, the readouts and the walk. */
+async function liveWalk({ ios }) {
+  const w = walk('square', ios ? 'ios' : 'android');
+  const session = await open({ ios, context: { geolocation: GEO, permissions: ['geolocation', 'accelerometer', 'gyroscope', 'magnetometer'] } });
+  const { page } = session;
+  await start(page);
+  const base = await page.evaluate(() => performance.now());
+  await dispatch(page, w.events, { base, ios });
+  await page.waitForTimeout(300); // one more redraw
+  return { ...session, w, r: await readouts(page) };
+}
+
+test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown, pocket guard looks deliberate', async () => {
+  const { context, page, w, r, errors } = await liveWalk({ ios: false });
+  const err = Math.abs(r.steps - w.truth_steps) / w.truth_steps;
+  console.log(`live walk (Android events): ${r.steps} steps of ${w.truth_steps} (${(100 * err).toFixed(1)} %), `
+    + `${r.distance_m.toFixed(1)} m of ${w.distance_m.toFixed(1)} m, source ${await page.evaluate(() => window.__pdrLive.source)}`);
+  assert.ok(err <= 0.02, `step count ${r.steps} against ${w.truth_steps}`);
+  assert.equal(r.refused, 0, `refused events: ${r.last_error}`);
+  assert.equal(r.orientation, 'os');
+  assert.ok(r.absolute_heading);
+  assert.ok(r.fixes >= 1 && Math.abs(r.gnss_accuracy_m - GEO.accuracy) < 1e-9, `fixes ${r.fixes}`);
+  assert.deepEqual(errors, []);
+  // The pocket guard is up: the readouts on it update, the page below cannot be touched.
+  assert.equal(await page.isVisible('#guard'), true);
+  assert.equal(await page.textContent('#g-steps'), String(r.steps));
+  await page.screenshot({ path: path.join(ARTIFACTS, 'live-guard-phone.png') });
+  await page.mouse.click(195, 400); // a stray touch
+  await holdToUnlock(page, 600); // too short
+  assert.equal(await page.isVisible('#guard'), true, 'a short press unlocked the guard');
+  await holdToUnlock(page, 2300);
+  await page.waitForFunction(() => document.documentElement.dataset.guard === 'off');
+  await page.waitForTimeout(250);
+  assert.equal(await page.textContent('#r-steps'), String(r.steps));
+  assert.equal(await page.textContent('#r-gnss'), '±12 m');
+  assert.match(await page.textContent('#r-heading'), /^\d+° [NESW]{1,2}$/);
+  assert.match(await page.textContent('#r-spm'), /^1\d\d steps\/min$/);
+  const map = await nonBlank(page, 'live-map');
+  const scope = await nonBlank(page, 'live-scope');
+  assert.ok(map.n > 0.02 * map.total, `map looks blank: ${map.n} of ${map.total}`);
+  assert.ok(scope.n > 0.02 * scope.total, `scope looks blank: ${scope.n} of ${scope.total}`);
+  assert.equal(map.width, Math.round(map.cssWidth * 3), 'the map is not drawn at the device pixel ratio');
+  await page.locator('#live').screenshot({ path: path.join(ARTIFACTS, 'live-phone.png') });
+  await context.close();
+});
+
+test('iOS-style events (sign flipped, interval in s, compass heading) give the Android result', async () => {
+  const a = await liveWalk({ ios: false });
+  const i = await liveWalk({ ios: true });
+  console.log(`Android ${a.r.steps} steps ${a.r.distance_m.toFixed(3)} m; iOS ${i.r.steps} steps ${i.r.distance_m.toFixed(3)} m`);
+  assert.equal(await i.page.evaluate(() => window.__pdrLive.source), 'devicemotion events');
+  assert.equal(i.r.steps, a.r.steps);
+  assert.ok(Math.abs(i.r.distance_m - a.r.distance_m) < 0.01);
+  assert.ok(i.r.absolute_heading, 'the compass heading was not used');
+  assert.ok(Math.abs(((i.r.heading_deg - a.r.heading_deg + 540) % 360) - 180) < 0.5, `${i.r.heading_deg} vs ${a.r.heading_deg}`);
+  await a.context.close();
+  await i.context.close();
+});
+
+test('Stop, download: the recording replays through `pdr run` to the same step count', async () => {
+  const { context, page, r } = await liveWalk({ ios: false });
+  await holdToUnlock(page, 2300);
+  await page.click('#stop');
+  await page.waitForFunction(() => document.documentElement.dataset.live === 'stopped');
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#download')]);
+  const file = path.join(tmp, dl.suggestedFilename());
+  await dl.saveAs(file);
+  assert.match(dl.suggestedFilename(), /^pdr-.*\.pdrlog$/);
+  const out = execFileSync(BIN, ['run', file], { encoding: 'utf8' });
+  const steps = Number(out.match(/^steps\s+(\d+)/m)[1]);
+  console.log(`downloaded ${dl.suggestedFilename()}: pdr run counts ${steps}, the page showed ${r.steps}`);
+  assert.equal(steps, r.steps);
+  // And through the engine in the page (the upload path's replay).
+  const inPage = await page.evaluate(async (text) => {
+    const { replay_log } = await import('./www/pkg/pdr.js');
+    return replay_log(text);
+  }, readFileSync(file, 'utf8'));
+  assert.equal(inPage.steps, r.steps);
+  assert.equal(inPage.skipped_lines, 0);
+  await page.screenshot({ path: path.join(ARTIFACTS, 'live-stopped-phone.png'), fullPage: true });
+  await context.close();
+});
+
+test('reload while recording: the recovery offer holds every sample, and resuming continues the walk', async () => {
+  const w = walk('square', 'android');
+  const { context, page } = await open();
+  await start(page);
+  const half = Math.floor(w.events.length / 2);
+  // The first half's timestamps end now, so that the reloaded page's clock comes after them.
+  const base = await page.evaluate((d) => performance.now() - d, w.events[half - 1].t + 20);
+  await dispatch(page, w.events, { base, to: half });
+  const before = (await readouts(page)).samples;
+  await page.reload(); // at once: the last batch is written on pagehide
+  await page.waitForFunction(() => document.documentElement.dataset.recovery === 'offered', null, { timeout: 10_000 });
+  const offered = await page.evaluate(() => window.__pdrRecovery);
+  console.log(`recovery after reload: ${offered.samples} samples recorded of ${before} sent`);
+  assert.equal(offered.samples, before);
+  assert.match(await page.textContent('#recovery-text'), new RegExp(`\\(${before} samples\\)`));
+  await page.click('#recover-resume');
+  await page.waitForFunction(() => document.documentElement.dataset.source);
+  const resumed = await readouts(page);
+  assert.equal(resumed.samples, before);
+  // The second half, on the new page's clock, after a pause.
+  const base2 = await page.evaluate(() => performance.now());
+  await dispatch(page, w.events, { base: base2 - w.events[half].t, from: half });
+  await page.waitForTimeout(250);
+  const r = await readouts(page);
+  assert.ok(r.gaps >= 1, 'the reload is not a gap');
+  assert.ok(Math.abs(r.steps - w.truth_steps) <= 0.04 * w.truth_steps, `${r.steps} of ${w.truth_steps}`);
+  await context.close();
+});
+
+test('a hidden page is a gap on the track, not phantom steps', async () => {
+  const w = walk('straight', 'android');
+  const { context, page } = await open();
+  await start(page);
+  const third = Math.floor(w.events.length / 3);
+  // The first third's timestamps end now.
+  const base = await page.evaluate((d) => performance.now() - d, w.events[third - 1].t + 20);
+  await dispatch(page, w.events, { base, to: third });
+  await page.evaluate(() => {
+    Object.defineProperty(document, 'visibilityState', { value: 'hidden', configurable: true });
+    document.dispatchEvent(new Event('visibilitychange'));
+  });
+  await page.waitForTimeout(500); // hidden: no events
+  await page.evaluate(() => {
+    Object.defineProperty(document, 'visibilityState', { value: 'visible', configurable: true });
+    document.dispatchEvent(new Event('visibilitychange'));
+  });
+  const back = await page.evaluate(() => performance.now());
+  // The walk goes on, skipping the second third (walked while hidden).
+  await dispatch(page, w.events, { base: back + 100 - w.events[2 * third].t, from: 2 * third });
+  await page.waitForTimeout(250);
+  const r = await readouts(page);
+  assert.equal(r.gaps, 1);
+  assert.ok(r.steps < 0.75 * w.truth_steps, `${r.steps} steps: the hidden third was bridged`);
+  assert.match(await page.textContent('#r-time'), /1 gap/);
+  await context.close();
+});
+
+test('permission denied, no sensors, no location, insecure page: each says what to do', async () => {
+  // iOS, motion refused.
+  {
+    const { context, page } = await open({ ios: true, permission: 'denied' });
+    await page.click('#start');
+    await page.waitForSelector('#live-messages li[data-key="motionDenied"]');
+    assert.match((await messages(page)).join('\n'), /Motion access was refused.*tap Start again/);
+    assert.equal(await page.isVisible('#guard'), false);
+    await page.screenshot({ path: path.join(ARTIFACTS, 'live-denied-phone.png') });
+    await context.close();
+  }
+  // No motion events at all, and location refused.
+  {
+    const { context, page } = await open();
+    await start(page);
+    await page.waitForSelector('#live-messages li[data-key="noSensor"]', { timeout: 10_000 });
+    await page.waitForSelector('#live-messages li[data-key="locationDenied"]', { timeout: 10_000 });
+    const m = (await messages(page)).join('\n');
+    assert.match(m, /No motion data has arrived/);
+    assert.match(m, /Location was refused.*allow location/);
+    await context.close();
+  }
+  // HTTP on a LAN name: not a secure context.
+  {
+    const lan = URL_HTTP.replace('127.0.0.1', 'pdr-lan.test');
+    const { context, page } = await open({ url: lan });
+    assert.equal(await page.evaluate(() => window.isSecureContext), false);
+    assert.match((await messages(page)).join('\n'), /need a secure page.*https:\/\//);
+    assert.equal(await page.isDisabled('#start'), true);
+    await context.close();
+  }
+});
+
+test('Chromium virtual sensors: the page reads the Generic Sensor API', async () => {
+  const { context, page, errors } = await open({ context: { permissions: ['accelerometer', 'gyroscope', 'magnetometer'] } });
+  const cdp = await context.newCDPSession(page);
+  for (const type of ['accelerometer', 'linear-acceleration', 'gravity', 'gyroscope', 'absolute-orientation', 'relative-orientation']) {
+    await cdp.send('Emulation.setSensorOverrideEnabled', { enabled: true, type });
+  }
+  const xyz = (type, x, y, z) => cdp.send('Emulation.setSensorOverrideReadings', { type, reading: { xyz: { x, y, z } } });
+  await xyz('accelerometer', 0.3, -0.2, 9.81);
+  await xyz('linear-acceleration', 0.3, -0.2, 0);
+  await xyz('gravity', 0, 0, 9.81);
+  await xyz('gyroscope', 0.01, 0.02, 0.03);
+  for (const type of ['absolute-orientation', 'relative-orientation']) {
+    await cdp.send('Emulation.setSensorOverrideReadings', { type, reading: { quaternion: { x: 0, y: 0, z: 0.3826834, w: 0.9238795 } } });
+  }
+  await start(page);
+  assert.equal(await page.evaluate(() => document.documentElement.dataset.source), 'sensors');
+  // A Generic Sensor fires `reading` only when the value changes: a phone's noise, here a wobble.
+  for (let i = 0; i < 150 && (await readouts(page)).samples <= 30; i++) {
+    await xyz('accelerometer', 0.3, -0.2, 9.81 + 0.05 * (i % 2));
+    await xyz('gyroscope', 0.01, 0.02, 0.03 + 0.001 * (i % 2));
+    await page.waitForTimeout(15);
+  }
+  const r = await readouts(page);
+  console.log(`Generic Sensor API: ${r.sample_rate_hz.toFixed(0)} Hz, orientation ${r.orientation}`);
+  assert.equal(r.orientation, 'os');
+  assert.ok(r.absolute_heading);
+  assert.ok(r.sample_rate_hz > 20);
+  assert.equal(r.refused, 0, r.last_error);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('installable and private: manifest, service worker, offline reload, CSP', async () => {
+  const { context, page, errors } = await open({ context: { viewport: { width: 1000, height: 800 } } });
+  const manifest = await page.evaluate(async () => {
+    const href = document.querySelector('link[rel=manifest]').href;
+    return (await fetch(href)).json();
+  });
+  assert.equal(manifest.display, 'standalone');
+  assert.ok(manifest.icons.length >= 1);
+  await page.waitForFunction(async () => {
+    const reg = await navigator.serviceWorker.getRegistration();
+    return reg?.active?.state === 'activated';
+  }, null, { timeout: 15_000, polling: 200 });
+  await page.reload();
+  await page.waitForFunction(() => !!navigator.serviceWorker.controller);
+  await context.setOffline(true);
+  await page.reload();
+  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
+  assert.ok(await page.isVisible('#start'));
+  await context.setOffline(false);
+  const csp = await page.getAttribute('meta[http-equiv="Content-Security-Policy"]', 'content');
+  assert.match(csp, /default-src 'self'/);
+  assert.match(csp, /connect-src 'self'/);
+  assert.doesNotMatch(csp, /unsafe-inline|https?:/);
+  assert.match(await page.textContent('#live .lede'), /never leave/);
+  assert.deepEqual(errors, []);
+  await context.close();
+});

@@ -1,0 +1,524 @@
+// Live mode: sensors in, readouts and plots out, the recording into IndexedDB.
+// Event plumbing only. Every number goes to the engine (Live, in wasm) as the browser gives it;
+// the conversions (iOS sign, interval units, deg/s, angles) are in src/live.rs.
+import { Live } from './pkg/pdr.js';
+import * as store from './store.js';
+
+const $ = (id) => document.getElementById(id);
+const dark = window.matchMedia('(prefers-color-scheme: dark)');
+const FLUSH_MS = 250; // recording batches: a crash loses at most this much
+const DRAW_MS = 100; // at most ten redraws a second
+const NO_DATA_MS = 3000; // no motion sample this long after Start: say so
+const HOLD_MS = 2000; // press-and-hold to unlock the pocket guard
+
+/**
+ * Whether motion events follow iOS's conventions: every browser on iOS is WebKit. Told from the
+ * user agent (iPadOS reports a Mac with a touch screen), not from `requestPermission`, which
+ * recent Chromium has too.
+ */
+const isIos = () => /iPhone|iPad|iPod/.test(navigator.userAgent)
+  || (/Macintosh/.test(navigator.userAgent) && navigator.maxTouchPoints > 1);
+
+const MESSAGES = {
+  insecure: 'Motion and location need a secure page. Open it as https:// (./dev run serves one on port 8443 with a self-signed certificate; accept the warning once) or as http://localhost.',
+  motionDenied: 'Motion access was refused, so steps cannot be counted. On an iPhone, tap Start again and choose Allow; if no prompt appears, close the tab and open the page again (Safari › Settings › Motion & Orientation Access must be on). On Android, allow “Motion sensors” in the site settings (the icon left of the address).',
+  noSensor: 'No motion data has arrived. This device or browser may have no accelerometer, or may withhold it (desktop browsers usually do). Use a phone with Chrome, Samsung Internet, Firefox or Safari.',
+  noCompass: 'No compass heading: the track’s shape is right, but it is turned by an unknown angle. Allow motion and orientation access, or use a browser that reports an absolute orientation.',
+  locationDenied: 'Location was refused: the track uses the motion sensors alone, without GNSS corrections. To use GNSS, allow location for this site and tap Start again.',
+  locationUnavailable: 'No GNSS fix yet (indoors, or the receiver is starting). The track goes on without; fixes are used when they come.',
+  noGeolocation: 'This browser has no geolocation: the track uses the motion sensors alone.',
+  noWakeLock: 'This browser cannot keep the screen on. Set a long screen timeout: when the screen goes off, the browser stops the sensors and the walk has a gap.',
+  engine: 'Some sensor events were refused: ',
+  storage: 'The recording cannot be saved on this device (private mode or storage full): ',
+};
+
+/** Shows or clears a message; `kind` is 'error' or 'warn'. */
+function message(key, show, kind = 'warn', extra = '') {
+  const list = $('live-messages');
+  let li = list.querySelector(`[data-key="${key}"]`);
+  if (!show) { li?.remove(); return; }
+  if (!li) {
+    li = document.createElement('li');
+    li.dataset.key = key;
+    list.append(li);
+  }
+  li.className = kind;
+  li.textContent = MESSAGES[key] + extra;
+}
+
+function fmtTime(s) {
+  const m = Math.floor(s / 60);
+  const h = Math.floor(m / 60);
+  const ss = String(Math.floor(s % 60)).padStart(2, '0');
+  return h ? `${h}:${String(m % 60).padStart(2, '0')}:${ss}` : `${m}:${ss}`;
+}
+
+function compassPoint(deg) {
+  return ['N', 'NE', 'E', 'SE', 'S', 'SW', 'W', 'NW'][Math.round((((deg % 360) + 360) % 360) / 45) % 8];
+}
+
+function download(text, name) {
+  const url = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
+  const a = document.createElement('a');
+  a.href = url;
+  a.download = name;
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+const fileName = (started) => `pdr-${new Date(started).toISOString().slice(0, 19).replace(/[:T]/g, '-')}.pdrlog`;
+
+/** Sizes a canvas's backing store to its CSS size × the device pixel ratio. */
+function fit(canvas) {
+  const dpr = window.devicePixelRatio || 1;
+  const r = canvas.getBoundingClientRect();
+  const w = Math.round(r.width * dpr);
+  const h = Math.round(r.height * dpr);
+  if (w === 0 || h === 0) return 0;
+  if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
+  return dpr;
+}
+
+/** The live session with everything around it. One at a time. */
+class Session {
+  constructor(live, rec, ios) {
+    this.live = live;
+    this.rec = rec; // { id, started }
+    this.ios = ios;
+    this.ended = false;
+    this.dirty = true;
+    this.lastDraw = -Infinity;
+    this.lastSampleAt = performance.now();
+    this.hiddenAt = null;
+    this.source = 'events';
+    this.sensors = [];
+    this.geoWatch = null;
+    this.wakeLock = null;
+    this.writes = Promise.resolve();
+    this.queue = [];
+    this.seq = rec.nextSeq ?? 0;
+    this.handlers = [];
+  }
+
+  on(target, type, fn) {
+    target.addEventListener(type, fn);
+    this.handlers.push(() => target.removeEventListener(type, fn));
+  }
+
+  refused(err) {
+    message('engine', true, 'warn', String(err?.message ?? err));
+  }
+
+  sample() {
+    this.lastSampleAt = performance.now();
+    this.dirty = true;
+  }
+
+  // --- sensors -------------------------------------------------------------------------
+  listenEvents() {
+    this.on(window, 'devicemotion', (e) => {
+      const a = e.accelerationIncludingGravity;
+      const r = e.rotationRate;
+      // Chromium without an accelerometer fires events with null values: no sample (and the
+      // "no motion data" message after a few seconds).
+      if (a?.x == null) return;
+      try {
+        this.live.push_motion(e.timeStamp, a?.x ?? undefined, a?.y ?? undefined, a?.z ?? undefined,
+          r?.alpha ?? undefined, r?.beta ?? undefined, r?.gamma ?? undefined, e.interval ?? undefined);
+        this.sample();
+      } catch (err) { this.refused(err); }
+    });
+    this.listenOrientation();
+  }
+
+  listenOrientation() {
+    this.on(window, 'deviceorientationabsolute', (e) => {
+      if (e.alpha != null) this.live.push_orientation(e.timeStamp, e.alpha, e.beta, e.gamma, true);
+    });
+    this.on(window, 'deviceorientation', (e) => {
+      if (typeof e.webkitCompassHeading === 'number' && e.webkitCompassHeading >= 0) {
+        this.live.push_compass(e.timeStamp, e.webkitCompassHeading, e.beta, e.gamma, screen.orientation?.angle ?? 0);
+      } else if (e.alpha != null) {
+        this.live.push_orientation(e.timeStamp, e.alpha, e.beta, e.gamma, !!e.absolute);
+      }
+    });
+  }
+
+  /** The Generic Sensor API at the highest rate it grants, if it delivers within a second. */
+  async tryGenericSensors() {
+    if (!('Accelerometer' in window && 'Gyroscope' in window) || this.ios) return false;
+    try {
+      const states = await Promise.all(['accelerometer', 'gyroscope']
+        .map((name) => navigator.permissions.query({ name }).then((p) => p.state)));
+      if (states.includes('denied')) return false;
+    } catch { /* the Permissions API may not know these names: try anyway */ }
+    let acc;
+    let gyr;
+    try {
+      acc = new Accelerometer({ frequency: 200 });
+      gyr = new Gyroscope({ frequency: 200 });
+    } catch { return false; }
+    const ok = await new Promise((resolve) => {
+      const timer = setTimeout(() => resolve(false), 1000);
+      acc.addEventListener('error', () => { clearTimeout(timer); resolve(false); }, { once: true });
+      acc.addEventListener('reading', () => { clearTimeout(timer); resolve(true); }, { once: true });
+      acc.start();
+      gyr.start();
+    });
+    if (!ok || this.ended) { acc.stop(); gyr.stop(); return false; }
+    acc.addEventListener('reading', () => {
+      try {
+        this.live.push_sensor(acc.timestamp, acc.x, acc.y, acc.z, gyr.x ?? undefined, gyr.y ?? undefined, gyr.z ?? undefined);
+        this.sample();
+      } catch (err) { this.refused(err); }
+    });
+    this.sensors.push(acc, gyr);
+    if ('AbsoluteOrientationSensor' in window) {
+      try {
+        const ori = new AbsoluteOrientationSensor({ frequency: 60 });
+        ori.addEventListener('reading', () => {
+          const [x, y, z, w] = ori.quaternion;
+          this.live.push_quaternion(ori.timestamp, x, y, z, w);
+        });
+        ori.addEventListener('error', () => this.listenOrientation(), { once: true });
+        ori.start();
+        this.sensors.push(ori);
+      } catch { this.listenOrientation(); }
+    } else {
+      this.listenOrientation();
+    }
+    return true;
+  }
+
+  async startSensors() {
+    this.source = (await this.tryGenericSensors()) ? 'Generic Sensor API' : 'devicemotion events';
+    if (this.ended) return;
+    if (this.source === 'devicemotion events') this.listenEvents();
+    document.documentElement.dataset.source = this.source === 'Generic Sensor API' ? 'sensors' : 'events';
+    this.lastSampleAt = performance.now();
+  }
+
+  // --- GNSS ----------------------------------------------------------------------------
+  geoOn() {
+    if (this.geoWatch != null || !navigator.geolocation) return;
+    this.geoWatch = navigator.geolocation.watchPosition((p) => {
+      const c = p.coords;
+      try {
+        this.live.push_fix(performance.now(), c.latitude, c.longitude, c.accuracy,
+          c.altitude ?? undefined, c.speed ?? undefined, Number.isFinite(c.heading) ? c.heading : undefined);
+        message('locationUnavailable', false);
+        this.dirty = true;
+      } catch (err) { this.refused(err); }
+    }, (err) => {
+      if (err.code === err.PERMISSION_DENIED) {
+        message('locationDenied', true);
+        this.geoOff();
+        this.geoRefused = true;
+      } else {
+        message('locationUnavailable', true);
+      }
+    }, { enableHighAccuracy: true, maximumAge: 0, timeout: 60_000 });
+  }
+
+  geoOff() {
+    if (this.geoWatch != null) navigator.geolocation.clearWatch(this.geoWatch);
+    this.geoWatch = null;
+  }
+
+  /** Energy saving: the watch is really stopped while the engine does not want fixes. */
+  followGnssSchedule(r) {
+    if (this.gnssMode === 'off' || this.geoRefused || !navigator.geolocation) return;
+    if (r.gnss_wanted) this.geoOn(); else this.geoOff();
+  }
+
+  // --- screen ----------------------------------------------------------------------------
+  async keepAwake() {
+    if (!('wakeLock' in navigator)) { message('noWakeLock', true); return; }
+    try {
+      this.wakeLock = await navigator.wakeLock.request('screen');
+      message('noWakeLock', false);
+    } catch {
+      message('noWakeLock', true);
+    }
+  }
+
+  onVisibility() {
+    if (document.visibilityState === 'hidden') {
+      this.hiddenAt = performance.now();
+      this.flush();
+    } else if (this.hiddenAt != null) {
+      // Events stopped while hidden: tell the engine, so that nothing bridges the gap.
+      this.live.mark_gap(this.hiddenAt, performance.now());
+      this.hiddenAt = null;
+      this.dirty = true;
+      this.keepAwake();
+    }
+  }
+
+  // --- recording -----------------------------------------------------------------------
+  flush() {
+    const text = this.live.take_log();
+    if (!text) return this.writes;
+    const chunk = { seq: this.seq++, text };
+    const samples = this.live.readouts().samples;
+    this.queue.push(chunk); // written in order; shifted once written
+    this.writes = this.writes
+      .then(() => store.append(this.rec.id, chunk, samples))
+      .then(() => this.queue.shift())
+      .catch((err) => message('storage', true, 'error', String(err?.message ?? err)));
+    return this.writes;
+  }
+
+  /**
+   * The page is going away: IndexedDB writes started now may not finish, so the chunks not yet
+   * written are also put in localStorage, synchronously; recovery adds those IndexedDB lacks.
+   */
+  onPageHide() {
+    if (this.ended) return;
+    this.flush();
+    try {
+      if (this.queue.length) localStorage.setItem(store.tailKey(this.rec.id), JSON.stringify(this.queue));
+    } catch { /* storage full or refused: the last batch is lost */ }
+  }
+
+  // --- display -------------------------------------------------------------------------
+  tick(now) {
+    if (this.ended && !this.dirty) return;
+    if (now - this.lastDraw < DRAW_MS) return;
+    this.lastDraw = now;
+    const r = this.live.readouts();
+    this.followGnssSchedule(r);
+    message('noSensor', !this.ended && r.samples === 0 && now - this.startedAt > NO_DATA_MS, 'error');
+    message('noCompass', r.samples > 0 && !r.absolute_heading);
+    show(r, this);
+    if (!this.dirty) return;
+    this.dirty = false;
+    if (!$('guard').hidden) return; // nobody sees the plots
+    const dpr = fit($('live-map'));
+    if (dpr) this.live.draw($('live-map'), dark.matches, dpr, this.ended);
+    const dpr2 = fit($('live-scope'));
+    if (dpr2) this.live.draw_scope($('live-scope'), dark.matches, dpr2);
+  }
+
+  async start(gnssMode) {
+    this.gnssMode = gnssMode;
+    this.startedAt = performance.now();
+    this.on(document, 'visibilitychange', () => this.onVisibility());
+    this.on(window, 'pagehide', () => this.onPageHide());
+    this.flushTimer = setInterval(() => this.flush(), FLUSH_MS);
+    const loop = (t) => { this.tick(t); if (!this.stopped) this.raf = requestAnimationFrame(loop); };
+    this.raf = requestAnimationFrame(loop);
+    if (gnssMode !== 'off') {
+      if (navigator.geolocation) this.geoOn(); else message('noGeolocation', true);
+    }
+    this.keepAwake();
+    await this.startSensors();
+  }
+
+  async stop() {
+    this.ended = true;
+    for (const off of this.handlers) off();
+    for (const s of this.sensors) s.stop();
+    this.geoOff();
+    clearInterval(this.flushTimer);
+    this.wakeLock?.release().catch(() => {});
+    this.wakeLock = null;
+    await this.flush();
+    await store.setState(this.rec.id, 'done');
+    message('noSensor', false);
+    this.dirty = true;
+    this.lastDraw = -Infinity;
+    this.tick(performance.now());
+    this.stopped = true;
+  }
+}
+
+/** Writes the readouts into the page and the pocket guard. */
+function show(r, s) {
+  const set = (id, v) => { const el = $(id); if (el.textContent !== v) el.textContent = v; };
+  set('r-steps', String(r.steps));
+  set('r-motion', r.motion ?? 'waiting for motion');
+  set('r-distance', r.distance_m.toFixed(1));
+  set('r-time', fmtTime(r.duration_s) + (r.gaps ? ` · ${r.gaps} gap${r.gaps > 1 ? 's' : ''}` : ''));
+  set('r-cadence', r.cadence_hz != null ? r.cadence_hz.toFixed(2) : '–');
+  set('r-spm', r.cadence_hz != null ? `${Math.round(r.cadence_hz * 60)} steps/min` : '– steps/min');
+  const h = r.heading_deg != null ? ((r.heading_deg % 360) + 360) % 360 : null;
+  set('r-heading', h != null ? `${Math.round(h)}° ${compassPoint(h)}` : '–');
+  set('r-heading-ref', r.absolute_heading ? 'from north' : (r.samples ? 'relative to start' : '–'));
+  set('r-gnss', r.gnss_accuracy_m != null ? `±${Math.round(r.gnss_accuracy_m)} m` : '–');
+  set('r-fixes', r.fixes ? `${r.fixes} fix${r.fixes > 1 ? 'es' : ''}${r.gnss_wanted ? '' : ' · off to save energy'}` : (s.gnssMode === 'off' ? 'off' : 'no fix'));
+  set('r-rate', r.sample_rate_hz ? r.sample_rate_hz.toFixed(0) : '–');
+  set('r-source', s.source + (r.orientation ? ` · ${r.orientation}` : ''));
+  set('g-steps', String(r.steps));
+  set('g-distance', r.distance_m.toFixed(0));
+  set('g-time', fmtTime(r.duration_s));
+  set('g-note', r.samples ? `${r.motion ?? ''}` : 'waiting for the sensors…');
+}
+
+// --- pocket guard ------------------------------------------------------------------------
+function lock() {
+  $('guard').hidden = false;
+  document.documentElement.dataset.guard = 'on';
+}
+
+function unlock() {
+  $('guard').hidden = true;
+  document.documentElement.dataset.guard = 'off';
+  if (current) { current.dirty = true; current.lastDraw = -Infinity; }
+}
+
+function setupGuard() {
+  const guard = $('guard');
+  const button = $('unlock');
+  let timer = null;
+  const cancel = () => {
+    clearTimeout(timer);
+    timer = null;
+    button.classList.remove('holding');
+  };
+  // Touches anywhere else do nothing.
+  for (const type of ['click', 'dblclick', 'contextmenu', 'touchstart', 'touchmove', 'wheel']) {
+    guard.addEventListener(type, (e) => { if (e.cancelable) e.preventDefault(); }, { passive: false });
+  }
+  button.addEventListener('pointerdown', (e) => {
+    e.preventDefault();
+    button.setPointerCapture?.(e.pointerId);
+    button.classList.add('holding');
+    timer = setTimeout(() => { cancel(); unlock(); }, HOLD_MS);
+  });
+  for (const type of ['pointerup', 'pointercancel', 'pointerleave', 'lostpointercapture']) button.addEventListener(type, cancel);
+  // Keyboard users: hold Space or Enter.
+  button.addEventListener('keydown', (e) => {
+    if ((e.key === ' ' || e.key === 'Enter') && !timer && !e.repeat) {
+      button.classList.add('holding');
+      timer = setTimeout(() => { cancel(); unlock(); }, HOLD_MS);
+    }
+  });
+  button.addEventListener('keyup', cancel);
+}
+
+// --- start, stop, recovery -----------------------------------------------------------------
+let current = null;
+let lastFinished = null;
+
+function controls(state) {
+  $('start').hidden = state === 'recording';
+  $('stop').hidden = state !== 'recording';
+  $('lock').hidden = state !== 'recording';
+  $('download').hidden = state !== 'stopped';
+  $('gnss-mode').disabled = state === 'recording';
+  document.documentElement.dataset.live = state;
+}
+
+/** Asks for motion permission where the browser wants it asked (iOS, recent Chromium), from the tap. */
+async function askMotionPermission() {
+  const dm = window.DeviceMotionEvent;
+  const dor = window.DeviceOrientationEvent;
+  if (typeof dm?.requestPermission !== 'function') return true;
+  try {
+    // Both prompts from the same tap (a second await would lose the user activation).
+    const [m] = await Promise.all([dm.requestPermission(),
+      typeof dor?.requestPermission === 'function' ? dor.requestPermission() : Promise.resolve('granted')]);
+    return m === 'granted';
+  } catch {
+    return false;
+  }
+}
+
+async function begin(makeLive, rec) {
+  const ios = isIos();
+  if (!(await askMotionPermission())) {
+    message('motionDenied', true, 'error');
+    controls('idle');
+    return;
+  }
+  message('motionDenied', false);
+  for (const key of ['noSensor', 'noCompass', 'engine', 'storage', 'locationDenied', 'locationUnavailable']) message(key, false);
+  let live;
+  try {
+    live = makeLive(ios);
+  } catch (err) {
+    message('engine', true, 'error', String(err?.message ?? err));
+    return;
+  }
+  current = new Session(live, rec, ios);
+  const session = current;
+  // For the end-to-end tests and the curious: the session's state now.
+  window.__pdrLive = { get readouts() { return session.live.readouts(); }, get source() { return session.source; } };
+  $('live-view').hidden = false;
+  controls('recording');
+  lock();
+  try {
+    if (!rec.resumed) await store.create({ id: rec.id, started: rec.started, ios });
+    else await store.setState(rec.id, 'recording');
+  } catch (err) {
+    message('storage', true, 'error', String(err?.message ?? err));
+  }
+  await current.start($('gnss-mode').value);
+}
+
+async function stop() {
+  const s = current;
+  if (!s) return;
+  await s.stop();
+  lastFinished = s.rec;
+  unlock();
+  controls('stopped');
+}
+
+async function offerRecovery() {
+  let open;
+  try {
+    open = (await store.list()).filter((r) => r.state === 'recording');
+  } catch {
+    return; // no IndexedDB: nothing to recover
+  }
+  if (!open.length) return;
+  const rec = open.sort((a, b) => b.started - a.started)[0];
+  // Read now: on iOS the permission prompt must come straight from the Resume tap.
+  const { text, nextSeq } = await store.text(rec.id);
+  const samples = text.split('\n').filter((l) => l.startsWith('imu,')).length;
+  $('recovery-text').textContent = `An unfinished recording from ${new Date(rec.started).toLocaleString()} `
+    + `(${samples} samples) was not stopped: the page was closed or reloaded. Resume it, or download it.`;
+  $('recovery').hidden = false;
+  document.documentElement.dataset.recovery = 'offered';
+  window.__pdrRecovery = { id: rec.id, samples };
+  const done = () => { $('recovery').hidden = true; document.documentElement.dataset.recovery = 'done'; };
+  $('recover-resume').onclick = () => {
+    done();
+    begin((ios) => Live.resume(ios, performance.timeOrigin, $('gnss-mode').value, text),
+      { id: rec.id, started: rec.started, resumed: true, nextSeq });
+  };
+  $('recover-save').onclick = async () => {
+    download(text, fileName(rec.started));
+    await store.setState(rec.id, 'done');
+    done();
+  };
+  $('recover-discard').onclick = async () => { await store.remove(rec.id); done(); };
+}
+
+/** Wires up the live section. */
+export function setupLive() {
+  setupGuard();
+  controls('idle');
+  if (!window.isSecureContext) {
+    message('insecure', true, 'error');
+    $('start').disabled = true;
+    return;
+  }
+  $('start').addEventListener('click', () => {
+    const started = Date.now();
+    begin((ios) => new Live(ios, performance.timeOrigin, $('gnss-mode').value), { id: `rec-${started}`, started });
+  });
+  $('stop').addEventListener('click', stop);
+  $('lock').addEventListener('click', lock);
+  $('download').addEventListener('click', async () => {
+    if (lastFinished) download((await store.text(lastFinished.id)).text, fileName(lastFinished.started));
+  });
+  const redraw = () => { if (current) { current.dirty = true; current.lastDraw = -Infinity; current.tick(performance.now()); } };
+  new ResizeObserver(redraw).observe($('live-map'));
+  dark.addEventListener('change', redraw);
+  offerRecovery();
+}
