@@ -506,7 +506,9 @@ impl LiveSession {
     /// The page was hidden (or the sensors paused) between two times, ms on the page's clock.
     /// The gap starts no earlier than the last sample received.
     pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
-        let t0 = self.seconds(t0_ms).max(self.last_t.unwrap_or(f64::NEG_INFINITY));
+        let t0 = self
+            .seconds(t0_ms)
+            .max(self.last_t.unwrap_or(f64::NEG_INFINITY));
         self.gap_at(t0, self.seconds(t1_ms), true);
     }
 

@@ -608,7 +608,8 @@ pub fn draw_scope<DB: DrawingBackend>(
             ShapeStyle::from(&colour).stroke_width(px(3.0)),
         ))?;
         area.draw(&Text::new(label, (x + px(20.0) as i32, y0), font.clone()))?;
-        x += px(28.0) as i32 + (label.chars().count() as f64 * 6.6 * scale) as i32;
+        let (w, _) = area.estimate_text_size(label, &font)?;
+        x += px(32.0) as i32 + w as i32;
     }
     Ok(())
 }

@@ -144,13 +144,9 @@ impl Live {
     /// `performance.timeOrigin` (event times are counted from it).
     #[wasm_bindgen(constructor)]
     pub fn new(ios: bool, time_origin_ms: f64, gnss: &str) -> Result<Live, JsError> {
-        crate::live::LiveSession::new(
-            live_config(gnss)?,
-            platform(ios),
-            time_origin_ms,
-        )
-        .map(|session| Live { session })
-        .map_err(|e| JsError::new(&e.to_string()))
+        crate::live::LiveSession::new(live_config(gnss)?, platform(ios), time_origin_ms)
+            .map(|session| Live { session })
+            .map_err(|e| JsError::new(&e.to_string()))
     }
 
     /// A session continuing a recording (pdr-log text) after a reload.

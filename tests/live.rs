@@ -299,7 +299,7 @@ fn generic_sensor_readings_and_motion_events_agree() {
     assert_eq!((r.samples, r.refused, r.orientation), (500, 0, Some("os")));
 }
 
-#[test]
+#[wasm_bindgen_test(unsupported = test)]
 fn the_ios_compass_heading_gives_the_absolute_alpha() {
     use pdr::live::{ios_compass_alpha, orientation_quaternion};
     // Flat, top to the east: compass 90°.

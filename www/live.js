@@ -134,9 +134,13 @@ class Session {
   }
 
   listenOrientation() {
-    this.on(window, 'deviceorientationabsolute', (e) => {
-      if (e.alpha != null) this.live.push_orientation(e.timeStamp, e.alpha, e.beta, e.gamma, true);
-    });
+    if ('ondeviceorientationabsolute' in window) {
+      // Chromium: the absolute stream; its `deviceorientation` is relative to an arbitrary start.
+      this.on(window, 'deviceorientationabsolute', (e) => {
+        if (e.alpha != null) this.live.push_orientation(e.timeStamp, e.alpha, e.beta, e.gamma, true);
+      });
+      return;
+    }
     this.on(window, 'deviceorientation', (e) => {
       if (typeof e.webkitCompassHeading === 'number' && e.webkitCompassHeading >= 0) {
         this.live.push_compass(e.timeStamp, e.webkitCompassHeading, e.beta, e.gamma, screen.orientation?.angle ?? 0);

@@ -44,6 +44,8 @@ async function open({ ios = false, permission = 'granted', context: options = {}
   const context = await browser.newContext({ ...PHONE, acceptDownloads: true, ...(ios ? { userAgent: IPHONE_UA } : {}), ...options });
   if (ios) {
     await context.addInitScript((answer) => {
+      // Safari has no `deviceorientationabsolute`; it asks for motion permission.
+      delete window.ondeviceorientationabsolute; // [Global]: on the window itself
       DeviceMotionEvent.requestPermission = async () => answer;
       DeviceOrientationEvent.requestPermission = async () => answer;
     }, permission);
@@ -123,13 +125,20 @@ async function liveWalk({ ios }) {
   const { page } = session;
   await start(page);
   const base = await page.evaluate(() => performance.now());
-  await dispatch(page, w.events, { base, ios });
+  const half = Math.floor(w.events.length / 2);
+  await dispatch(page, w.events, { base, ios, to: half });
+  await page.waitForTimeout(150); // a redraw
+  const mid = { shown: Number(await page.textContent('#g-steps')), steps: (await readouts(page)).steps };
+  await dispatch(page, w.events, { base, ios, from: half });
   await page.waitForTimeout(300); // one more redraw
-  return { ...session, w, r: await readouts(page) };
+  return { ...session, w, mid, r: await readouts(page) };
 }
 
 test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown, pocket guard looks deliberate', async () => {
-  const { context, page, w, r, errors } = await liveWalk({ ios: false });
+  const { context, page, w, r, mid, errors } = await liveWalk({ ios: false });
+  // Halfway, the guard showed the steps so far.
+  assert.ok(mid.shown > 0.3 * w.truth_steps && mid.shown < 0.7 * w.truth_steps, `halfway: ${mid.shown} shown`);
+  assert.ok(Math.abs(mid.shown - mid.steps) <= 3, `halfway: ${mid.shown} shown, ${mid.steps} counted`);
   const err = Math.abs(r.steps - w.truth_steps) / w.truth_steps;
   console.log(`live walk (Android events): ${r.steps} steps of ${w.truth_steps} (${(100 * err).toFixed(1)} %), `
     + `${r.distance_m.toFixed(1)} m of ${w.distance_m.toFixed(1)} m, source ${await page.evaluate(() => window.__pdrLive.source)}`);

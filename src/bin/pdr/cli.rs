@@ -604,7 +604,11 @@ fn simulate(
             "events": events,
         });
         write(path, doc.to_string())?;
-        out!("wrote {} browser events to {}", events.len(), path.display());
+        out!(
+            "wrote {} browser events to {}",
+            events.len(),
+            path.display()
+        );
     }
     Ok(())
 }
