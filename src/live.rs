@@ -211,6 +211,8 @@ pub struct Readouts {
     pub last_error: Option<String>,
     /// Whether the GNSS receiver should be on now (energy-saving mode).
     pub gnss_wanted: bool,
+    /// The fusion filter's step-length scale and its standard deviation, once fixes have come.
+    pub fusion_scale: Option<(f64, f64)>,
 }
 
 /// A live session: the pipeline, the latest attitude, the recent signal for the scrolling view,
@@ -524,6 +526,40 @@ impl LiveSession {
         }
     }
 
+    /// The frequencies of the steps counted so far, Hz (a calibration walk's f_k).
+    pub fn step_freqs(&self) -> Vec<f64> {
+        self.pipeline.track().iter().map(|s| s.freq_hz).collect()
+    }
+
+    /// The distance along the fixes no worse than `max_accuracy_m`, m: a fix is kept once it is
+    /// at least 2·`max_accuracy_m` from the last kept one, so that the fixes' noise does not add
+    /// up; the last fix closes the path. The calibration wizard's GNSS distance.
+    pub fn fix_path_m(&self, max_accuracy_m: f64) -> f64 {
+        let Some(frame) = self.pipeline.frame() else {
+            return 0.0;
+        };
+        let pts: Vec<(f64, f64)> = self
+            .pipeline
+            .fixes()
+            .iter()
+            .filter(|f| f.h_accuracy_m <= max_accuracy_m)
+            .map(|f| frame.en_of_fix(f))
+            .collect();
+        let (Some(&first), Some(&last)) = (pts.first(), pts.last()) else {
+            return 0.0;
+        };
+        let d = |a: (f64, f64), b: (f64, f64)| libm::hypot(a.0 - b.0, a.1 - b.1);
+        let mut kept = first;
+        let mut total = 0.0;
+        for &p in &pts {
+            if d(kept, p) >= 2.0 * max_accuracy_m {
+                total += d(kept, p);
+                kept = p;
+            }
+        }
+        total + d(kept, last)
+    }
+
     /// The recording since the last call, pdr-log lines (the first call starts with the
     /// version tag): the page appends it to storage in small batches.
     pub fn take_log(&mut self) -> String {
@@ -566,6 +602,11 @@ impl LiveSession {
             refused: self.refused,
             last_error: self.last_error.clone(),
             gnss_wanted: self.pipeline.gnss_wanted(now),
+            fusion_scale: self
+                .pipeline
+                .fused()
+                .last()
+                .map(|f| (f.scale, f.scale_bias_sd[0])),
         }
     }
 }

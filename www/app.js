@@ -1,6 +1,7 @@
 // Thin glue: load the WebAssembly engine, show the demo walks' figures, draw their tracks.
 import init, { Demo, FusionDemo } from './pkg/pdr.js';
 import { setupLive } from './live.js';
+import { setupWizard } from './wizard.js';
 
 const $ = (id) => document.getElementById(id);
 const dark = window.matchMedia('(prefers-color-scheme: dark)');
@@ -16,6 +17,7 @@ function fail(err) {
 async function main() {
   await init();
   setupLive();
+  setupWizard();
   const demo = new Demo();
   const s = demo.summary();
   $('steps').textContent = String(s.steps);

@@ -3,6 +3,7 @@
 // the conversions (iOS sign, interval units, deg/s, angles) are in src/live.rs.
 import { Live } from './pkg/pdr.js';
 import * as store from './store.js';
+import * as profiles from './profiles.js';
 
 const $ = (id) => document.getElementById(id);
 const dark = window.matchMedia('(prefers-color-scheme: dark)');
@@ -33,8 +34,9 @@ const MESSAGES = {
 };
 
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
+let messageList = 'live-messages';
 function message(key, show, kind = 'warn', extra = '') {
-  const list = $('live-messages');
+  const list = $(messageList);
   let li = list.querySelector(`[data-key="${key}"]`);
   if (!show) { li?.remove(); return; }
   if (!li) {
@@ -83,9 +85,10 @@ function fit(canvas) {
 
 /** The live session with everything around it. One at a time. */
 class Session {
-  constructor(live, rec, ios) {
+  constructor(live, rec, ios, onTick) {
     this.live = live;
-    this.rec = rec; // { id, started }
+    this.rec = rec; // { id, started }, or null: not recorded (a calibration walk)
+    this.onTick = onTick;
     this.ios = ios;
     this.ended = false;
     this.dirty = true;
@@ -98,7 +101,7 @@ class Session {
     this.wakeLock = null;
     this.writes = Promise.resolve();
     this.queue = [];
-    this.seq = rec.nextSeq ?? 0;
+    this.seq = rec?.nextSeq ?? 0;
     this.handlers = [];
   }
 
@@ -264,7 +267,7 @@ class Session {
   // --- recording -----------------------------------------------------------------------
   flush() {
     const text = this.live.take_log();
-    if (!text) return this.writes;
+    if (!text || !this.rec) return this.writes;
     const chunk = { seq: this.seq++, text };
     const samples = this.live.readouts().samples;
     this.queue.push(chunk); // written in order; shifted once written
@@ -280,7 +283,7 @@ class Session {
    * written are also put in localStorage, synchronously; recovery adds those IndexedDB lacks.
    */
   onPageHide() {
-    if (this.ended) return;
+    if (this.ended || !this.rec) return;
     this.flush();
     try {
       if (this.queue.length) localStorage.setItem(store.tailKey(this.rec.id), JSON.stringify(this.queue));
@@ -297,7 +300,8 @@ class Session {
     message('noSensor', !this.ended && r.samples === 0 && now - this.startedAt > NO_DATA_MS, 'error');
     message('noCompass', r.samples > 0 && !r.absolute_heading);
     show(r, this);
-    if (!this.dirty) return;
+    this.onTick?.(r, this);
+    if (!this.dirty || !this.rec) return;
     this.dirty = false;
     if (!$('guard').hidden) return; // nobody sees the plots
     const dpr = fit($('live-map'));
@@ -330,7 +334,7 @@ class Session {
     this.wakeLock?.release().catch(() => {});
     this.wakeLock = null;
     await this.flush();
-    await store.setState(this.rec.id, 'done');
+    if (this.rec) await store.setState(this.rec.id, 'done');
     message('noSensor', false);
     this.dirty = true;
     this.lastDraw = -Infinity;
@@ -431,45 +435,85 @@ async function askMotionPermission() {
   }
 }
 
-async function begin(makeLive, rec) {
+/**
+ * Starts a session: permissions, the engine, the guard, the sensors. `rec` is the recording
+ * (null: none, a calibration walk); `opts.onTick(readouts, session)` runs at each display tick,
+ * `opts.messages` is the message list's id, `opts.title` the guard's title.
+ */
+async function begin(makeLive, rec, opts = {}) {
+  delete document.documentElement.dataset.source; // set again once the sensors listen
+  const live = !opts.onTick;
+  messageList = opts.messages ?? 'live-messages';
+  $('guard-title').textContent = opts.title ?? 'Recording — screen locked for the pocket';
   const ios = isIos();
   if (!(await askMotionPermission())) {
     message('motionDenied', true, 'error');
-    controls('idle');
-    return;
+    if (live) controls('idle');
+    return false;
   }
   message('motionDenied', false);
   for (const key of ['noSensor', 'noCompass', 'engine', 'storage', 'locationDenied', 'locationUnavailable']) message(key, false);
-  let live;
+  let engine;
   try {
-    live = makeLive(ios);
+    engine = makeLive(ios);
   } catch (err) {
     message('engine', true, 'error', String(err?.message ?? err));
-    return;
+    return false;
   }
-  current = new Session(live, rec, ios);
+  current = new Session(engine, rec, ios, opts.onTick);
   const session = current;
   // For the end-to-end tests and the curious: the session's state now.
   window.__pdrLive = { get readouts() { return session.live.readouts(); }, get source() { return session.source; } };
-  $('live-view').hidden = false;
-  controls('recording');
-  lock();
-  try {
-    if (!rec.resumed) await store.create({ id: rec.id, started: rec.started, ios });
-    else await store.setState(rec.id, 'recording');
-  } catch (err) {
-    message('storage', true, 'error', String(err?.message ?? err));
+  if (live) {
+    $('live-view').hidden = false;
+    controls('recording');
   }
-  await current.start($('gnss-mode').value);
+  lock();
+  if (rec) {
+    try {
+      if (!rec.resumed) await store.create({ id: rec.id, started: rec.started, ios });
+      else await store.setState(rec.id, 'recording');
+    } catch (err) {
+      message('storage', true, 'error', String(err?.message ?? err));
+    }
+  }
+  await session.start(opts.gnss ?? $('gnss-mode').value);
+  return true;
 }
+
+/**
+ * A calibration walk: the live mode's sensors, pocket guard and wake lock, without recording.
+ * `onTick(readouts, session)` runs at each display tick. Returns the session, or null when it
+ * could not start (the reason is in the list `messages`).
+ */
+export async function startWalk({ onTick, gnss, messages, title }) {
+  if (busy()) return null; // a live recording runs: the wizard says so
+  const ok = await begin((ios) => new Live(ios, performance.timeOrigin, gnss, undefined), null,
+    { onTick, gnss, messages, title });
+  return ok ? current : null;
+}
+
+/** Ends a calibration walk. */
+export async function stopWalk(session) {
+  if (session.ended) return;
+  await session.stop();
+  unlock();
+}
+
+/** Whether a live recording or a calibration walk is running. */
+export const busy = () => !!current && !current.ended;
 
 async function stop() {
   const s = current;
   if (!s) return;
   await s.stop();
-  lastFinished = s.rec;
   unlock();
-  controls('stopped');
+  if (s.rec) {
+    lastFinished = s.rec;
+    controls('stopped');
+    // The profile's opt-in refinement listens (wizard.js).
+    window.dispatchEvent(new CustomEvent('pdr-walk-ended', { detail: { readouts: s.live.readouts(), freqs: s.live.step_freqs() } }));
+  }
 }
 
 async function offerRecovery() {
@@ -492,7 +536,7 @@ async function offerRecovery() {
   const done = () => { $('recovery').hidden = true; document.documentElement.dataset.recovery = 'done'; };
   $('recover-resume').onclick = () => {
     done();
-    begin((ios) => Live.resume(ios, performance.timeOrigin, $('gnss-mode').value, text),
+    begin((ios) => Live.resume(ios, performance.timeOrigin, $('gnss-mode').value, profiles.selected(), text),
       { id: rec.id, started: rec.started, resumed: true, nextSeq });
   };
   $('recover-save').onclick = async () => {
@@ -513,8 +557,9 @@ export function setupLive() {
     return;
   }
   $('start').addEventListener('click', () => {
+    if (busy()) return;
     const started = Date.now();
-    begin((ios) => new Live(ios, performance.timeOrigin, $('gnss-mode').value), { id: `rec-${started}`, started });
+    begin((ios) => new Live(ios, performance.timeOrigin, $('gnss-mode').value, profiles.selected()), { id: `rec-${started}`, started });
   });
   $('stop').addEventListener('click', stop);
   $('lock').addEventListener('click', lock);

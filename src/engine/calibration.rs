@@ -250,6 +250,156 @@ impl ProfileFile {
     }
 }
 
+/// The band a calibration walk belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Band {
+    /// Slow, normal and fast walking.
+    Walking,
+    /// Jogging and running.
+    Running,
+}
+
+/// One walk of the wizard: its band, the pace the user was asked for, the walk and its point.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct WizardWalk {
+    /// Walking or running.
+    pub band: Band,
+    /// The pace asked for (`slow`, `normal`, `fast`, `jog`, `run`).
+    pub pace: String,
+    /// Distance, m.
+    pub distance_m: f64,
+    /// Steps counted.
+    pub steps: usize,
+    /// f̄ by eq. 1, Hz.
+    pub f_mean_hz: f64,
+    /// SL̄ = D/N by eq. 2, m.
+    pub sl_mean_m: f64,
+}
+
+/// Why a walk cannot be a calibration point.
+#[derive(Debug, Clone, PartialEq)]
+pub enum WalkError {
+    /// The distance is not a positive number of metres.
+    Distance(f64),
+    /// Too few steps were counted for a mean.
+    TooFewSteps(usize),
+}
+
+impl std::fmt::Display for WalkError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            WalkError::Distance(d) => write!(f, "the distance must be a positive number of metres, not {d}"),
+            WalkError::TooFewSteps(n) => write!(
+                f,
+                "only {n} steps were counted: walk at least {MIN_STEPS} steps with the phone in the pocket"
+            ),
+        }
+    }
+}
+
+/// The fewest steps a calibration walk needs (a count off by one is then within 5 %).
+pub const MIN_STEPS: usize = 20;
+
+/// The wizard's state: the walks so far, and the profile they make.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Wizard {
+    /// The walks, in the order walked.
+    pub walks: Vec<WizardWalk>,
+}
+
+impl Wizard {
+    /// Adds a walk from its distance and the frequencies of the steps counted.
+    pub fn add(
+        &mut self,
+        band: Band,
+        pace: &str,
+        walk: &CalibrationWalk,
+    ) -> Result<&WizardWalk, WalkError> {
+        if !(walk.distance_m.is_finite() && walk.distance_m > 0.0) {
+            return Err(WalkError::Distance(walk.distance_m));
+        }
+        if walk.step_freqs_hz.len() < MIN_STEPS {
+            return Err(WalkError::TooFewSteps(walk.step_freqs_hz.len()));
+        }
+        let (f, sl) = walk
+            .point()
+            .ok_or(WalkError::TooFewSteps(walk.step_freqs_hz.len()))?;
+        self.walks.push(WizardWalk {
+            band,
+            pace: pace.to_string(),
+            distance_m: walk.distance_m,
+            steps: walk.step_freqs_hz.len(),
+            f_mean_hz: f,
+            sl_mean_m: sl,
+        });
+        Ok(&self.walks[self.walks.len() - 1])
+    }
+
+    /// The points (f̄, SL̄) of a band.
+    pub fn points(&self, band: Band) -> Vec<(f64, f64)> {
+        self.walks
+            .iter()
+            .filter(|w| w.band == band)
+            .map(|w| (w.f_mean_hz, w.sl_mean_m))
+            .collect()
+    }
+
+    /// The profile the walks make, starting from `base` (the bands' limits and any band without
+    /// walks stay as they are), and a note per band saying how its line was made:
+    /// - two or more points whose fit has a positive slope: the least-squares line (Basso 2016
+    ///   §II.D);
+    /// - otherwise (one point, or a slope that cannot be right): quick mode, the base line's slope
+    ///   through the mean point (for walking the base slope is the population's,
+    ///   [`UNIVERSAL_SLOPE`] by default; Munoz Diaz 2015 §5.1).
+    pub fn profile(&self, base: &StepLengthProfile) -> (StepLengthProfile, Vec<String>) {
+        let mut p = base.clone();
+        let mut notes = Vec::new();
+        for (band, line, name) in [
+            (Band::Walking, &mut p.walking, "walking"),
+            (Band::Running, &mut p.running, "running"),
+        ] {
+            let pts = self.points(band);
+            if pts.is_empty() {
+                notes.push(format!(
+                    "{name}: no walks, the line stays SL = {:.3}·f {:+.3} m",
+                    line.a, line.b
+                ));
+                continue;
+            }
+            match fit_line(&pts).filter(|f| f.a > 0.0) {
+                Some(f) => {
+                    line.a = f.a;
+                    line.b = f.b;
+                    notes.push(format!(
+                        "{name}: least-squares line through {} walks, SL = {:.3}·f {:+.3} m (R² {:.3})",
+                        pts.len(),
+                        f.a,
+                        f.b,
+                        f.r2
+                    ));
+                }
+                None => {
+                    let n = pts.len() as f64;
+                    let mean = (
+                        pts.iter().map(|p| p.0).sum::<f64>() / n,
+                        pts.iter().map(|p| p.1).sum::<f64>() / n,
+                    );
+                    line.b = mean.1 - line.a * mean.0;
+                    notes.push(format!(
+                        "{name}: quick mode, slope {:.2} m/Hz kept, offset from {} walk(s): SL = {:.3}·f {:+.3} m",
+                        line.a,
+                        pts.len(),
+                        line.a,
+                        line.b
+                    ));
+                }
+            }
+        }
+        (p, notes)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

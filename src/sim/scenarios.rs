@@ -129,3 +129,19 @@ pub fn gnss_city_walk() -> Scenario {
         ..Scenario::new(segs)
     }
 }
+
+/// A calibration walk: `metres` straight at cadence `f` by a walker whose walking step length is
+/// `a`·f + `b`, between two 3 s pauses (the calibration wizard's tests).
+pub fn calibration_walk(f: f64, metres: f64, a: f64, b: f64) -> Scenario {
+    let mut w = Walker::default();
+    w.step_length.walking.a = a;
+    w.step_length.walking.b = b;
+    Scenario {
+        walker: w.clone(),
+        ..Scenario::new(vec![
+            Segment::still(3.0),
+            Segment::walk_distance(metres, f, &w),
+            Segment::still(3.0),
+        ])
+    }
+}

@@ -132,6 +132,9 @@ enum ScenarioArg {
     /// Eleven minutes through city blocks with GNSS (outliers, an outage), a step length 10 %
     /// off and an 8° heading bias: the fusion's test walk.
     GnssCity,
+    /// A calibration walk: `--metres` straight at `--cadence`, by a walker whose step length is
+    /// `--sl-a`·f + `--sl-b`, between two 3 s pauses.
+    Calibration,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -183,6 +186,18 @@ enum Cmd {
         /// The platform whose event conventions `--events` follows.
         #[arg(long, value_enum, default_value = "android")]
         platform: PlatformArg,
+        /// Calibration walk: step frequency, Hz.
+        #[arg(long, default_value_t = 1.8)]
+        cadence: f64,
+        /// Calibration walk: distance, m.
+        #[arg(long, default_value_t = 40.0)]
+        metres: f64,
+        /// Calibration walk: the walker's step-length slope, m/Hz.
+        #[arg(long, default_value_t = 0.25)]
+        sl_a: f64,
+        /// Calibration walk: the walker's step-length offset, m.
+        #[arg(long, default_value_t = 0.17)]
+        sl_b: f64,
     },
     /// Accuracy of every method on simulated walks with known truth.
     Simcheck,
@@ -253,7 +268,22 @@ pub fn main() -> ExitCode {
             out,
             events,
             platform,
-        } => simulate(scenario, out.as_deref(), events.as_deref(), platform),
+            cadence,
+            metres,
+            sl_a,
+            sl_b,
+        } => {
+            let sc = match scenario {
+                ScenarioArg::Demo => scenarios::demo_walk(),
+                ScenarioArg::Square => scenarios::square(25.0),
+                ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
+                ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
+                ScenarioArg::Calibration => {
+                    scenarios::calibration_walk(cadence, metres, sl_a, sl_b)
+                }
+            };
+            simulate(sc, out.as_deref(), events.as_deref(), platform)
+        }
         Cmd::Simcheck => {
             simcheck();
             Ok(())
@@ -566,17 +596,11 @@ fn demo(json: bool) -> Result<(), String> {
 }
 
 fn simulate(
-    which: ScenarioArg,
+    sc: pdr::sim::Scenario,
     out: Option<&Path>,
     events: Option<&Path>,
     platform: PlatformArg,
 ) -> Result<(), String> {
-    let sc = match which {
-        ScenarioArg::Demo => scenarios::demo_walk(),
-        ScenarioArg::Square => scenarios::square(25.0),
-        ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
-        ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
-    };
     let sim = sc.generate();
     let write = |path: &Path, text: String| {
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))

@@ -1,0 +1,157 @@
+// End-to-end test of the step-length calibration wizard in headless Chromium: three paces walked
+// (simulated motion events dispatched on the page) over a typed distance, the fit, the saved
+// profile, a replay with it, and a profile's export and import.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync } from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
+const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
+const ARTIFACTS = path.join(here, 'artifacts');
+const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-wizard-'));
+// The walker: SL = 0.30·f + 0.20 m, longer steps than the built-in profile's 0.25·f + 0.17.
+const A = 0.30;
+const B = 0.20;
+const METRES = 40;
+
+function simulate(cadence, metres, out) {
+  const file = path.join(tmp, out);
+  const kind = out.endsWith('.json') ? '--events' : '--out';
+  execFileSync(BIN, ['simulate', '--scenario', 'calibration', '--cadence', String(cadence), '--metres', String(metres),
+    '--sl-a', String(A), '--sl-b', String(B), kind, file]);
+  return readFileSync(file, 'utf8');
+}
+
+let browser;
+before(async () => {
+  browser = await chromium.launch({
+    executablePath: '/usr/bin/chromium',
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync'],
+  });
+});
+after(async () => { await browser?.close(); });
+
+async function dispatch(page, events) {
+  const base = await page.evaluate(() => performance.now());
+  for (let i = 0; i < events.length; i += 400) {
+    await page.evaluate(({ chunk, base }) => {
+      for (const e of chunk) {
+        const ev = e.type === 'motion'
+          ? new DeviceMotionEvent('devicemotion', { accelerationIncludingGravity: { x: e.x, y: e.y, z: e.z }, rotationRate: { alpha: e.alpha, beta: e.beta, gamma: e.gamma }, interval: e.interval })
+          : new DeviceOrientationEvent('deviceorientationabsolute', { alpha: e.alpha, beta: e.beta, gamma: e.gamma, absolute: true });
+        Object.defineProperty(ev, 'timeStamp', { value: base + e.t });
+        window.dispatchEvent(ev);
+      }
+    }, { chunk: events.slice(i, i + 400), base });
+  }
+}
+
+async function holdToUnlock(page) {
+  const box = await page.locator('#unlock').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.waitForTimeout(2300);
+  await page.mouse.up();
+  await page.waitForFunction(() => document.documentElement.dataset.guard === 'off');
+}
+
+test('calibration wizard: three paces over a typed distance give the walker\'s line, a saved profile that fixes the distance, and a profile survives export and import', async () => {
+  const context = await browser.newContext({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true, acceptDownloads: true,
+    permissions: ['accelerometer', 'gyroscope', 'magnetometer'] });
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(URL_HTTP);
+  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
+  await page.click('#cal-open');
+  await page.fill('#cal-distance', String(METRES));
+  await page.locator('#calibrate').screenshot({ path: path.join(ARTIFACTS, 'wizard-1-start-phone.png') });
+
+  for (const [pace, cadence] of [['slow', 1.5], ['normal', 1.8], ['fast', 2.1]]) {
+    const w = JSON.parse(simulate(cadence, METRES, `${pace}.json`));
+    // The walker takes whole steps: the measured distance is that of the simulated walk.
+    await page.fill('#cal-distance', w.distance_m.toFixed(1));
+    await page.click(`tr[data-pace="${pace}"] button`);
+    await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
+    assert.equal(await page.isVisible('#guard'), true, 'no pocket guard during a calibration walk');
+    assert.match(await page.textContent('#guard-title'), new RegExp(`Calibration, ${pace} walk`));
+    if (pace === 'slow') await page.screenshot({ path: path.join(ARTIFACTS, 'wizard-2-walking-phone.png') });
+    await dispatch(page, w.events);
+    await holdToUnlock(page);
+    await page.click(`tr[data-pace="${pace}"] button`);
+    await page.waitForFunction(() => document.documentElement.dataset.calibration === 'walked');
+    const result = await page.textContent(`tr[data-pace="${pace}"] .result`);
+    console.log(`${pace}: ${result}`);
+    const n = Number(result.match(/N = (\d+) steps/)[1]);
+    assert.ok(Math.abs(n - w.truth_steps) <= 1, `${pace}: ${n} steps of ${w.truth_steps}`);
+    assert.match(result, /f̄ = \d\.\d\d Hz \(eq\. 1\) · SL̄ = D\/N = \d\.\d{3} m \(eq\. 2\)/);
+  }
+  const st = await page.evaluate(() => window.__pdrCalibration);
+  console.log(`fit: a ${st.walking.a.toFixed(4)} (true ${A}), b ${st.walking.b.toFixed(4)} (true ${B}), R² ${st.walking.r2.toFixed(4)}`);
+  assert.ok(Math.abs(st.walking.a - A) < 0.02 * A, `a = ${st.walking.a}`);
+  assert.ok(Math.abs(st.walking.b - B) < 0.02 * B, `b = ${st.walking.b}`);
+  assert.deepEqual(st.walking.warnings, []);
+  const chart = await page.evaluate(() => {
+    const c = document.getElementById('cal-chart-walking');
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - d[0]) + Math.abs(d[i + 1] - d[1]) + Math.abs(d[i + 2] - d[2]) > 30) n++;
+    return { n, total: d.length / 4 };
+  });
+  assert.ok(chart.n > 0.02 * chart.total, `fit chart looks blank: ${chart.n} of ${chart.total}`);
+  assert.deepEqual(errors, []);
+  await page.locator('#cal-wizard').screenshot({ path: path.join(ARTIFACTS, 'wizard-3-fit-phone.png') });
+
+  // Save: stored, selected, shown.
+  await page.fill('#cal-name', 'tester');
+  await page.click('#cal-save');
+  await page.waitForFunction(() => document.documentElement.dataset.profile === 'saved');
+  const saved = await page.evaluate(() => JSON.parse(localStorage.getItem('pdr-profiles')).tester);
+  assert.ok(saved, 'the profile was not saved');
+  assert.equal(await page.evaluate(() => localStorage.getItem('pdr-profile')), 'tester');
+  assert.equal(await page.textContent('#profile-in-use'), 'tester');
+  assert.match(await page.textContent('#profile-values'), /Walking SL = 0\.\d{3}·f/);
+
+  // Another walk by the same walker, replayed with and without the profile.
+  const other = simulate(1.7, 120, 'other.pdrlog');
+  const [withProfile, builtIn] = await page.evaluate(async ({ text, profile }) => {
+    const { replay_log } = await import('./www/pkg/pdr.js');
+    return [replay_log(text, profile), replay_log(text, undefined)];
+  }, { text: other, profile: saved });
+  const errWith = Math.abs(withProfile.distance_m - 120) / 120;
+  const errBuiltIn = Math.abs(builtIn.distance_m - 120) / 120;
+  console.log(`120 m at 1.7 Hz: ${withProfile.distance_m.toFixed(1)} m with the profile (${(100 * errWith).toFixed(1)} %), `
+    + `${builtIn.distance_m.toFixed(1)} m built-in (${(100 * errBuiltIn).toFixed(1)} %)`);
+  assert.ok(errWith < 0.02, `with the profile: ${(100 * errWith).toFixed(1)} %`);
+  assert.ok(errBuiltIn > 0.08, `built-in: ${(100 * errBuiltIn).toFixed(1)} %`);
+
+  // Export, delete, import: the same profile back.
+  const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#profile-export')]);
+  const file = path.join(tmp, dl.suggestedFilename());
+  await dl.saveAs(file);
+  assert.equal(readFileSync(file, 'utf8'), saved);
+  assert.equal(JSON.parse(saved).version, 1);
+  await page.click('#profile-delete');
+  assert.equal(await page.evaluate(() => localStorage.getItem('pdr-profiles')), '{}');
+  await page.setInputFiles('#profile-import', file);
+  await page.waitForFunction(() => JSON.parse(localStorage.getItem('pdr-profiles') ?? '{}').tester);
+  assert.equal(await page.evaluate(() => JSON.parse(localStorage.getItem('pdr-profiles')).tester), saved);
+  assert.equal(await page.textContent('#profile-in-use'), 'tester');
+  // A damaged file is refused with the field named.
+  const bad = path.join(tmp, 'bad.json');
+  execFileSync('sh', ['-c', `sed 's/"version": 1/"version": 9/' '${file}' > '${bad}'`]);
+  await page.setInputFiles('#profile-import', bad);
+  await page.waitForSelector('#profile-messages li.error');
+  assert.match(await page.textContent('#profile-messages li.error'), /bad\.json: .*profile\.version/);
+  await page.locator('#calibrate .profiles').screenshot({ path: path.join(ARTIFACTS, 'wizard-4-profiles-phone.png') });
+  assert.deepEqual(errors, []);
+  await context.close();
+});

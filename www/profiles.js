@@ -1,0 +1,36 @@
+// Step-length profiles on this device (localStorage): several named profiles, one selected.
+// Each is a profile file's JSON (see src/engine/calibration.rs, `ProfileFile`, version field).
+const LIST = 'pdr-profiles';
+const SELECTED = 'pdr-profile';
+
+/** `{name: json}` of every saved profile. */
+export function all() {
+  try { return JSON.parse(localStorage.getItem(LIST) ?? '{}'); } catch { return {}; }
+}
+
+export function save(name, json) {
+  const p = all();
+  p[name] = json;
+  localStorage.setItem(LIST, JSON.stringify(p));
+}
+
+export function remove(name) {
+  const p = all();
+  delete p[name];
+  localStorage.setItem(LIST, JSON.stringify(p));
+  if (selectedName() === name) select('');
+}
+
+/** The selected profile's name ('' for the built-in default). */
+export function selectedName() {
+  const n = localStorage.getItem(SELECTED) ?? '';
+  return n in all() ? n : '';
+}
+
+export function select(name) { localStorage.setItem(SELECTED, name); }
+
+/** The selected profile's JSON, or undefined for the built-in default. */
+export function selected() {
+  const n = selectedName();
+  return n ? all()[n] : undefined;
+}

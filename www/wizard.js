@@ -1,0 +1,262 @@
+// The step-length calibration wizard and the profiles panel. This only drives the steps: the
+// walks run through live mode's session (sensors, pocket guard, wake lock), and every figure —
+// eq. 1 and 2, the fits, their warnings, the profile, its chart, the refinement — comes from
+// the engine (CalibrationWizard, profile_summary, refine_profile in src/web.rs).
+import { CalibrationWizard, profile_summary, refine_profile } from './pkg/pdr.js';
+import { startWalk, stopWalk } from './live.js';
+import * as profiles from './profiles.js';
+
+const $ = (id) => document.getElementById(id);
+const dark = window.matchMedia('(prefers-color-scheme: dark)');
+const GNSS_LIMIT_M = 10; // GNSS is offered as the distance source at this accuracy or better
+const PACES = { slow: 'slow walk', normal: 'normal walk', fast: 'fast walk', jog: 'jog', run: 'run' };
+
+let wizard; // made in setupWizard, once the engine is loaded
+let walking = null; // { session, row, pace, band, target }
+
+function note(list, key, text, kind = 'warn') {
+  const ul = $(list);
+  let li = ul.querySelector(`[data-key="${key}"]`);
+  if (!text) { li?.remove(); return null; }
+  if (!li) { li = document.createElement('li'); li.dataset.key = key; ul.append(li); }
+  li.className = kind;
+  li.textContent = text;
+  return li;
+}
+
+const source = () => document.querySelector('input[name=cal-source]:checked').value;
+
+/** Starts or stops the walk of a pace row. */
+async function paceClicked(row) {
+  if (walking) {
+    if (walking.row === row) await finish();
+    return;
+  }
+  const pace = row.dataset.pace;
+  const band = row.dataset.band;
+  const gnss = source() === 'gnss';
+  const target = Number(gnss ? $('cal-gnss-distance').value : $('cal-distance').value);
+  if (!(target > 0)) {
+    note('cal-messages', 'distance', 'Type the distance in metres first.', 'error');
+    return;
+  }
+  note('cal-messages', 'distance', null);
+  const button = row.querySelector('button');
+  const result = row.querySelector('.result');
+  const session = await startWalk({
+    gnss: gnss ? 'best' : 'off',
+    messages: 'cal-messages',
+    title: gnss
+      ? `Calibration, ${PACES[pace]}: walk; the wizard stops you at ${target} m`
+      : `Calibration, ${PACES[pace]}: walk the ${target} m, then unlock and tap Stop`,
+    onTick: (r, s) => {
+      if (walking?.session !== s) return;
+      const path = gnss ? s.live.fix_path_m(GNSS_LIMIT_M) : null;
+      result.textContent = `${r.steps} steps` + (gnss ? ` · ${path.toFixed(0)} of ${target} m by GNSS` : '');
+      if (gnss && path >= target) finish();
+    },
+  });
+  if (!session) {
+    note('cal-messages', 'busy', 'A live recording is running: stop it first.', 'error');
+    return;
+  }
+  walking = { session, row, pace, band, target, gnss };
+  button.textContent = 'Stop';
+  button.classList.add('running');
+  result.classList.remove('error');
+  document.documentElement.dataset.calibration = 'walking';
+}
+
+/** Ends the running walk and adds its point. */
+async function finish() {
+  const w = walking;
+  if (!w || w.finishing) return;
+  w.finishing = true;
+  await stopWalk(w.session);
+  walking = null;
+  const button = w.row.querySelector('button');
+  const result = w.row.querySelector('.result');
+  button.textContent = 'Walk again';
+  button.classList.remove('running');
+  const distance = w.gnss ? w.session.live.fix_path_m(GNSS_LIMIT_M) : w.target;
+  try {
+    const p = wizard.add_walk(w.band, w.pace, distance, w.session.live.step_freqs());
+    result.textContent = `N = ${p.steps} steps over ${p.distance_m.toFixed(1)} m · f̄ = ${p.f_mean_hz.toFixed(2)} Hz (eq. 1) · SL̄ = D/N = ${p.sl_mean_m.toFixed(3)} m (eq. 2) → one point of your ${w.band} line`;
+  } catch (err) {
+    result.textContent = String(err?.message ?? err);
+    result.classList.add('error');
+  }
+  document.documentElement.dataset.calibration = 'walked';
+  refresh();
+}
+
+/** Redraws the fits, warnings and notes from the engine's state. */
+function refresh() {
+  const st = wizard.state();
+  const fits = $('cal-fits');
+  fits.replaceChildren();
+  for (const band of ['walking', 'running']) {
+    const f = st[band];
+    if (!f.points) continue;
+    const box = document.createElement('div');
+    box.className = 'fit';
+    const canvas = document.createElement('canvas');
+    canvas.id = `cal-chart-${band}`;
+    canvas.setAttribute('role', 'img');
+    canvas.setAttribute('aria-label', `Calibration points, line and residuals, ${band}`);
+    box.append(canvas);
+    if (f.warnings.length) {
+      const ul = document.createElement('ul');
+      for (const w of f.warnings) {
+        const li = document.createElement('li');
+        li.dataset.kind = w.kind;
+        li.textContent = w.message;
+        if (w.walk != null) {
+          const drop = document.createElement('button');
+          drop.type = 'button';
+          drop.className = 'small';
+          drop.textContent = `Drop walk ${w.walk + 1}`;
+          drop.addEventListener('click', () => { wizard.remove_walk(w.walk); refresh(); });
+          li.append(' ', drop);
+        }
+        ul.append(li);
+      }
+      box.append(ul);
+    }
+    fits.append(box);
+    draw(canvas, band);
+  }
+  $('cal-notes').replaceChildren(...st.notes.map((n) => Object.assign(document.createElement('li'), { textContent: n })));
+  $('cal-save').disabled = st.walking.points + st.running.points === 0;
+  window.__pdrCalibration = st;
+}
+
+function draw(canvas, band) {
+  const dpr = window.devicePixelRatio || 1;
+  const r = canvas.getBoundingClientRect();
+  canvas.width = Math.round(r.width * dpr);
+  canvas.height = Math.round(r.height * dpr);
+  if (canvas.width && canvas.height) wizard.draw(canvas, dark.matches, dpr, band);
+}
+
+function save() {
+  const name = $('cal-name').value.trim() || 'me';
+  const json = wizard.profile_json(name);
+  profile_summary(json); // checks it
+  profiles.save(name, json);
+  profiles.select(name);
+  showProfiles();
+  note('cal-messages', 'saved', `Saved “${name}” and selected it: live mode now uses it.`, 'ok');
+  document.documentElement.dataset.profile = 'saved';
+}
+
+// --- GNSS availability for the GNSS distance source ---------------------------------------
+function checkGnss() {
+  if (!navigator.geolocation) { $('cal-gnss-state').textContent = 'this browser has no geolocation'; return; }
+  $('cal-gnss-state').textContent = 'waiting for a fix…';
+  const id = navigator.geolocation.watchPosition((p) => {
+    const acc = p.coords.accuracy;
+    const good = acc <= GNSS_LIMIT_M;
+    $('cal-gnss-state').textContent = `±${acc.toFixed(0)} m now: ${good ? 'good enough' : 'not good enough (go into the open)'}`;
+    $('cal-gnss-radio').disabled = !good;
+    if (!good && source() === 'gnss') document.querySelector('input[value=typed]').checked = true;
+  }, (err) => {
+    $('cal-gnss-state').textContent = err.code === err.PERMISSION_DENIED ? 'location refused' : 'no fix';
+  }, { enableHighAccuracy: true, maximumAge: 0, timeout: 30_000 });
+  setTimeout(() => navigator.geolocation.clearWatch(id), 60_000);
+}
+
+// --- profiles ---------------------------------------------------------------------------
+function showProfiles() {
+  const sel = $('profile-select');
+  const names = Object.keys(profiles.all()).sort();
+  sel.replaceChildren(new Option('built-in (no calibration)', ''), ...names.map((n) => new Option(n, n)));
+  sel.value = profiles.selectedName();
+  const json = profiles.selected();
+  $('profile-in-use').textContent = json ? profiles.selectedName() : 'built-in';
+  $('profile-export').disabled = !json;
+  $('profile-delete').disabled = !json;
+  if (json) {
+    const s = profile_summary(json);
+    $('profile-values').textContent = `Walking SL = ${s.walking[0].toFixed(3)}·f ${s.walking[1] >= 0 ? '+' : '−'} ${Math.abs(s.walking[1]).toFixed(3)} m `
+      + `(${s.walking_points} walks); running SL = ${s.running[0].toFixed(3)}·f ${s.running[1] >= 0 ? '+' : '−'} ${Math.abs(s.running[1]).toFixed(3)} m (${s.running_points} runs).`;
+  } else {
+    $('profile-values').textContent = 'Built-in: walking SL = 0.25·f + 0.17 m, running SL = 0.90·f − 1.50 m.';
+  }
+}
+
+function download(text, name) {
+  const url = URL.createObjectURL(new Blob([text], { type: 'application/json' }));
+  const a = Object.assign(document.createElement('a'), { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+async function importProfile(file) {
+  const text = await file.text();
+  let s;
+  try {
+    s = profile_summary(text);
+  } catch (err) {
+    note('profile-messages', 'import', `${file.name}: ${err?.message ?? err}`, 'error');
+    return;
+  }
+  let name = s.name || file.name.replace(/\.json$/, '');
+  for (let k = 2; name in profiles.all() && profiles.all()[name] !== text; k++) name = `${s.name} (${k})`;
+  profiles.save(name, text);
+  profiles.select(name);
+  note('profile-messages', 'import', `Imported “${name}”.`, 'ok');
+  showProfiles();
+}
+
+/** Opt-in refinement after a live walk with fixes: the walking offset moves halfway to what the
+ * fusion filter's step-length scale says, with an undo. */
+function refineAfterWalk(e) {
+  const name = profiles.selectedName();
+  const json = profiles.selected();
+  const { readouts: r, freqs } = e.detail;
+  if (!$('refine').checked || !json || !r.fusion_scale || r.fixes < 20 || freqs.length < 50) return;
+  const [k, sd] = r.fusion_scale;
+  if (sd > 0.03 || Math.abs(k - 1) < 2 * sd) return; // not learnt, or not different from 1
+  const f = [...freqs].sort((a, b) => a - b)[Math.floor(freqs.length / 2)];
+  let refined;
+  try { refined = refine_profile(json, k, f, 0.5); } catch { return; }
+  const before = profile_summary(json).walking[1];
+  const after = profile_summary(refined).walking[1];
+  profiles.save(name, refined);
+  showProfiles();
+  const li = note('profile-messages', 'refined',
+    `“${name}”: walking offset b ${before.toFixed(3)} → ${after.toFixed(3)} m (the fixes found your steps ${k.toFixed(3)}× the profile's at ${f.toFixed(2)} Hz). `, 'ok');
+  const undo = Object.assign(document.createElement('button'), { type: 'button', className: 'small', textContent: 'Undo' });
+  undo.addEventListener('click', () => { profiles.save(name, json); showProfiles(); li.remove(); });
+  li.append(undo);
+}
+
+export function setupWizard() {
+  wizard = new CalibrationWizard();
+  $('cal-open').addEventListener('click', () => {
+    $('cal-wizard').hidden = false;
+    $('cal-open').hidden = true;
+    document.documentElement.dataset.calibration = 'open';
+  });
+  for (const row of document.querySelectorAll('.paces tr')) {
+    row.querySelector('button').addEventListener('click', () => paceClicked(row));
+  }
+  $('cal-save').addEventListener('click', save);
+  $('cal-gnss-check').addEventListener('click', checkGnss);
+  $('profile-select').addEventListener('change', (e) => { profiles.select(e.target.value); showProfiles(); });
+  $('profile-export').addEventListener('click', () => {
+    const name = profiles.selectedName();
+    download(profiles.selected(), `pdr-profile-${name.replace(/[^\w-]+/g, '_')}.json`);
+  });
+  $('profile-import').addEventListener('change', (e) => { if (e.target.files[0]) importProfile(e.target.files[0]); e.target.value = ''; });
+  $('profile-delete').addEventListener('click', () => { profiles.remove(profiles.selectedName()); showProfiles(); });
+  $('refine').checked = localStorage.getItem('pdr-refine') === 'on';
+  $('refine').addEventListener('change', (e) => localStorage.setItem('pdr-refine', e.target.checked ? 'on' : 'off'));
+  window.addEventListener('pdr-walk-ended', refineAfterWalk);
+  const redraw = () => { for (const band of ['walking', 'running']) { const c = $(`cal-chart-${band}`); if (c) draw(c, band); } };
+  dark.addEventListener('change', redraw);
+  showProfiles();
+}
