@@ -151,7 +151,26 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   await page.setInputFiles('#profile-import', bad);
   await page.waitForSelector('#profile-messages li.error');
   assert.match(await page.textContent('#profile-messages li.error'), /bad\.json: .*profile\.version/);
+  // Opt-in refinement after a live walk whose fusion learnt a step-length scale of 0.95 ± 0.01
+  // over 40 fixes (the event live mode sends at Stop): b moves halfway, and Undo restores it.
+  const before = JSON.parse(saved).profile.walking.b;
+  const ended = (k) => page.evaluate((k) => window.dispatchEvent(new CustomEvent('pdr-walk-ended', {
+    detail: { readouts: { fusion_scale: [k, 0.01], fixes: 40 }, freqs: Array(100).fill(1.8) },
+  })), k);
+  await ended(0.95);
+  assert.equal(await page.evaluate(() => document.querySelectorAll('#profile-messages li[data-key="refined"]').length), 0,
+    'refined without the opt-in');
+  await page.check('#refine');
+  await ended(0.95);
+  await page.waitForSelector('#profile-messages li[data-key="refined"]');
+  const refined = await page.evaluate(() => JSON.parse(JSON.parse(localStorage.getItem('pdr-profiles')).tester).profile.walking);
+  const sl = A * 1.8 + B; // about the profile's SL at 1.8 Hz
+  console.log(`refinement: b ${before.toFixed(4)} → ${refined.b.toFixed(4)} m`);
+  assert.ok(Math.abs(refined.b - (before - 0.5 * 0.05 * sl)) < 0.005, `b ${refined.b}`);
+  assert.match(await page.textContent('#profile-messages li[data-key="refined"]'), /walking offset b .* → .* m/);
   await page.locator('#calibrate .profiles').screenshot({ path: path.join(ARTIFACTS, 'wizard-4-profiles-phone.png') });
+  await page.click('#profile-messages li[data-key="refined"] button');
+  assert.equal(await page.evaluate(() => JSON.parse(localStorage.getItem('pdr-profiles')).tester), saved);
   assert.deepEqual(errors, []);
   await context.close();
 });
