@@ -208,17 +208,18 @@ pub struct Report {
 
 /// Runs one log through a pipeline with `cfg` and scores it.
 pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
+    match replay(cfg.clone(), &log.records) {
+        Ok(run) => score(log, &run),
+        Err(e) => LogResult::failed(&log.source, log.format.as_str(), e.to_string()),
+    }
+}
+
+/// Scores a run of the engine over a log against the truth the log carries.
+pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
     let mut res = LogResult::failed(&log.source, log.format.as_str(), String::new());
     res.error = None;
     res.skipped_lines = log.skipped;
     res.group = log.group.clone();
-    let run = match replay(cfg.clone(), &log.records) {
-        Ok(r) => r,
-        Err(e) => {
-            res.error = Some(e.to_string());
-            return res;
-        }
-    };
     let p = &run.pipeline;
     let d = p.diagnostics();
     let track = p.track();
@@ -350,28 +351,7 @@ pub fn position_at(track: &[StepRecord], t: f64) -> (f64, f64) {
 /// fewer than two waypoints.
 pub fn waypoint_errors(track: &[StepRecord], wps: &[Waypoint]) -> Option<Vec<(f64, Option<f64>)>> {
     let (w0, rest) = wps.split_first()?;
-    if rest.is_empty() {
-        return None;
-    }
-    let p0 = position_at(track, w0.t);
-    let pairs: Vec<((f64, f64), (f64, f64))> = rest
-        .iter()
-        .map(|w| {
-            let p = position_at(track, w.t);
-            ((p.0 - p0.0, p.1 - p0.1), (w.x_m - w0.x_m, w.y_m - w0.y_m))
-        })
-        .collect();
-    // Least-squares rotation of the estimate onto the truth (2-D Procrustes without scale).
-    let (mut dot, mut cross) = (0.0, 0.0);
-    for ((ex, ey), (rx, ry)) in &pairs {
-        dot += ex * rx + ey * ry;
-        cross += ex * ry - ey * rx;
-    }
-    let (s, c) = if dot == 0.0 && cross == 0.0 {
-        (0.0, 1.0)
-    } else {
-        libm::sincos(libm::atan2(cross, dot))
-    };
+    let (pairs, s, c) = alignment(track, wps)?;
     let mut path = 0.0;
     let mut last = (w0.x_m, w0.y_m);
     let mut out = Vec::with_capacity(pairs.len());
@@ -384,6 +364,56 @@ pub fn waypoint_errors(track: &[StepRecord], wps: &[Waypoint]) -> Option<Vec<(f6
         out.push((err, pct));
     }
     Some(out)
+}
+
+/// The estimate's positions at the waypoints after the first, relative to its position at the
+/// first, paired with the waypoints relative to the first; and the least-squares rotation
+/// (sin, cos) of the estimate onto the truth (2-D Procrustes without scale). `None` with fewer
+/// than two waypoints.
+#[allow(clippy::type_complexity)]
+fn alignment(
+    track: &[StepRecord],
+    wps: &[Waypoint],
+) -> Option<(Vec<((f64, f64), (f64, f64))>, f64, f64)> {
+    let (w0, rest) = wps.split_first()?;
+    if rest.is_empty() {
+        return None;
+    }
+    let p0 = position_at(track, w0.t);
+    let pairs: Vec<((f64, f64), (f64, f64))> = rest
+        .iter()
+        .map(|w| {
+            let p = position_at(track, w.t);
+            ((p.0 - p0.0, p.1 - p0.1), (w.x_m - w0.x_m, w.y_m - w0.y_m))
+        })
+        .collect();
+    let (mut dot, mut cross) = (0.0, 0.0);
+    for ((ex, ey), (rx, ry)) in &pairs {
+        dot += ex * rx + ey * ry;
+        cross += ex * ry - ey * rx;
+    }
+    let (s, c) = if dot == 0.0 && cross == 0.0 {
+        (0.0, 1.0)
+    } else {
+        libm::sincos(libm::atan2(cross, dot))
+    };
+    Some((pairs, s, c))
+}
+
+/// The waypoints drawn in the track's frame, placed as [`waypoint_errors`] compares them (the
+/// alignment's rotation undone about the track's position at the first waypoint).
+pub fn waypoints_in_track_frame(track: &[StepRecord], wps: &[Waypoint]) -> Vec<(f64, f64)> {
+    let Some((_, s, c)) = alignment(track, wps) else {
+        return Vec::new();
+    };
+    let w0 = wps[0];
+    let p0 = position_at(track, w0.t);
+    wps.iter()
+        .map(|w| {
+            let (rx, ry) = (w.x_m - w0.x_m, w.y_m - w0.y_m);
+            (p0.0 + c * rx + s * ry, p0.1 - s * rx + c * ry)
+        })
+        .collect()
 }
 
 /// Mean of a non-empty slice (0 when empty).

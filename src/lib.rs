@@ -5,6 +5,7 @@
 //! - [`sim`]: a gait simulator producing phone-in-pocket IMU streams with known truth.
 //! - [`io`]: the project's own log format, the import of other formats, track exports.
 //! - [`live`]: browser sensor events into engine records (the platforms' quirks, in one place).
+//! - [`analysis`]: upload mode's analysis of a log (the engine run once, everything kept).
 //! - [`plot`]: drawing, generic over the plotters backend.
 //! - `web` (wasm32 only): wasm-bindgen glue.
 //!
@@ -18,6 +19,7 @@
 //!   face up at rest reads (0, 0, +9.81).
 //! - Angular rate: rad/s, right-handed about the device axes. Magnetic field: µT.
 
+pub mod analysis;
 pub mod demo;
 pub mod engine;
 pub mod eval;

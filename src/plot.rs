@@ -1,6 +1,8 @@
 //! Drawing, generic over the plotters [`DrawingBackend`], so the same code draws on a browser
 //! canvas and, in tests, into a bitmap.
 
+pub mod upload;
+
 use crate::engine::pipeline::StepRecord;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
@@ -93,6 +95,37 @@ fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f6
     (x0, x1, y0, y1)
 }
 
+/// Bounds of exactly the given corner points, widened on one axis to an equal scale.
+fn equal_aspect_exact(
+    points: impl Iterator<Item = (f64, f64)>,
+    w: f64,
+    h: f64,
+) -> (f64, f64, f64, f64) {
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for (x, y) in points {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    if !(x1 > x0 && y1 > y0) {
+        return equal_aspect([(x0, y0), (x1, y1)].into_iter(), w, h);
+    }
+    let (sx, sy) = ((x1 - x0) / w, (y1 - y0) / h);
+    if sx > sy {
+        let grow = (sx * h - (y1 - y0)) / 2.0;
+        (x0, x1, y0 - grow, y1 + grow)
+    } else {
+        let grow = (sy * w - (x1 - x0)) / 2.0;
+        (x0 - grow, x1 + grow, y0, y1)
+    }
+}
+
 /// A "nice" scale-bar length (1, 2 or 5 × 10^k m) close to a quarter of `span` metres.
 pub fn scale_bar_length(span: f64) -> f64 {
     let target = span / 4.0;
@@ -104,13 +137,26 @@ pub fn scale_bar_length(span: f64) -> f64 {
         .unwrap_or(k)
 }
 
-type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+pub(crate) type MapChart<'a, DB> =
+    ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// Fills the area and sets up a map in metres (east right, north up, equal scale) fitting
 /// `points`, with its grid and axis labels.
 fn map_chart<'a, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     points: impl Iterator<Item = (f64, f64)>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<MapChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    map_chart_in(area, points, None, theme, scale)
+}
+
+/// [`map_chart`] showing `bounds` (min_e, max_e, min_n, max_n; widened to an equal scale)
+/// instead of fitting the points, when given: a zoomed or panned view.
+pub(crate) fn map_chart_in<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    points: impl Iterator<Item = (f64, f64)>,
+    bounds: Option<(f64, f64, f64, f64)>,
     theme: &Theme,
     scale: f64,
 ) -> Result<MapChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
@@ -123,7 +169,10 @@ fn map_chart<'a, DB: DrawingBackend>(
     let label_area = px(34.0);
     let plot_w = (w as f64 - label_area as f64 - px(12.0) as f64).max(10.0);
     let plot_h = (h as f64 - label_area as f64 - px(12.0) as f64).max(10.0);
-    let (x0, x1, y0, y1) = equal_aspect(points, plot_w, plot_h);
+    let (x0, x1, y0, y1) = match bounds {
+        Some((a, b, c, d)) => equal_aspect_exact([(a, c), (b, d)].into_iter(), plot_w, plot_h),
+        None => equal_aspect(points, plot_w, plot_h),
+    };
     let mut chart = ChartBuilder::on(area)
         .margin(px(12.0))
         .x_label_area_size(label_area)
@@ -144,7 +193,7 @@ fn map_chart<'a, DB: DrawingBackend>(
 }
 
 /// A north arrow (top right) and a scale bar (bottom left) over the map, in pixel space.
-fn north_and_scale<DB: DrawingBackend>(
+pub(crate) fn north_and_scale<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     chart: &MapChart<'_, DB>,
     theme: &Theme,
@@ -201,7 +250,7 @@ fn north_and_scale<DB: DrawingBackend>(
 }
 
 /// Start and end marks of a path.
-fn start_end<DB: DrawingBackend>(
+pub(crate) fn start_end<DB: DrawingBackend>(
     chart: &mut MapChart<'_, DB>,
     path: &[(f64, f64)],
     theme: &Theme,
@@ -333,14 +382,14 @@ pub fn draw_fusion<DB: DrawingBackend>(
 
 /// How a legend entry is drawn.
 #[derive(Debug, Clone, Copy)]
-enum Mark {
+pub(crate) enum Mark {
     Line(RGBColor),
     Dot(RGBColor),
     Ring(RGBColor),
 }
 
 /// A legend in the top-left corner of the chart's plotting area.
-fn legend<DB: DrawingBackend>(
+pub(crate) fn legend<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     chart: &MapChart<'_, DB>,
     entries: &[(&str, Mark)],
@@ -718,24 +767,20 @@ pub fn draw_calibration<DB: DrawingBackend>(
     Ok(())
 }
 
+/// An in-memory raster for the drawing tests.
 #[cfg(test)]
-mod tests {
-    use super::*;
+pub(crate) mod raster {
+    use plotters::prelude::*;
 
-    #[test]
-    fn scale_bar_is_nice() {
-        assert_eq!(scale_bar_length(100.0), 20.0);
-        assert_eq!(scale_bar_length(9.0), 2.0);
-        assert_eq!(scale_bar_length(1000.0), 200.0);
-    }
-
+    /// The raster's pixels, shared with the test that reads them.
+    pub(crate) type Pixels = std::rc::Rc<std::cell::RefCell<Vec<(u8, u8, u8)>>>;
     use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle, DrawingErrorKind};
 
     /// An in-memory RGB raster that ignores text (no font engine natively).
-    struct Raster {
-        w: u32,
-        h: u32,
-        px: std::rc::Rc<std::cell::RefCell<Vec<(u8, u8, u8)>>>,
+    pub(crate) struct Raster {
+        pub(crate) w: u32,
+        pub(crate) h: u32,
+        pub(crate) px: Pixels,
     }
 
     impl DrawingBackend for Raster {
@@ -780,6 +825,42 @@ mod tests {
             Ok((7 * text.len() as u32, 13))
         }
     }
+
+    /// A raster of `w` × `h` and its shared pixels.
+    #[allow(clippy::type_complexity)]
+    pub(crate) fn new(w: u32, h: u32) -> (Raster, Pixels) {
+        let px = std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); (w * h) as usize]));
+        (
+            Raster {
+                w,
+                h,
+                px: px.clone(),
+            },
+            px,
+        )
+    }
+
+    /// Pixels of exactly colour `c`.
+    pub(crate) fn count(px: &Pixels, c: RGBColor) -> usize {
+        px.borrow()
+            .iter()
+            .filter(|p| **p == (c.0, c.1, c.2))
+            .count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scale_bar_is_nice() {
+        assert_eq!(scale_bar_length(100.0), 20.0);
+        assert_eq!(scale_bar_length(9.0), 2.0);
+        assert_eq!(scale_bar_length(1000.0), 200.0);
+    }
+
+    use raster::Raster;
 
     #[test]
     fn draws_the_fusion_demo_with_every_series() {

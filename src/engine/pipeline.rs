@@ -134,7 +134,7 @@ impl PipelineConfig {
 }
 
 /// One detected step and where it took the walker.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct StepRecord {
     /// Time of the step (end of the step), s.
     pub t: f64,
@@ -701,6 +701,21 @@ impl Pipeline {
     /// Vertical linear acceleration of the latest sample, m/s², up positive.
     pub fn vertical_accel(&self) -> Option<f64> {
         self.buf.back().map(|x| x.up)
+    }
+
+    /// The latest sample in the navigation frame: vertical, east and north acceleration, m/s².
+    pub fn last_nav(&self) -> Option<(f64, f64, f64)> {
+        self.buf.back().map(|x| (x.up, x.e, x.n))
+    }
+
+    /// The motion state now.
+    pub fn motion_state(&self) -> Motion {
+        self.motion.state()
+    }
+
+    /// The device → ENU attitude of the latest sample, when the orientation source has one.
+    pub fn attitude(&self) -> Option<nalgebra::UnitQuaternion<f64>> {
+        self.attitude
     }
 
     /// Mean and σ of the vertical acceleration over the motion detector's window, m/s².

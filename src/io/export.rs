@@ -129,23 +129,30 @@ pub fn fusion_features(
     ]
 }
 
-/// The track as a GeoJSON FeatureCollection.
+/// The track as a GeoJSON FeatureCollection: a LineString with one point per step (where the
+/// step ended) and the start as a Point. WGS84 longitude/latitude when the log has a GNSS
+/// origin (`frame`), else local east/north metres from the start (`properties.coordinates`
+/// says which; GeoJSON readers take them for degrees, so such a file is for plotting in
+/// metres, not for maps).
 pub fn track_geojson(track: &[StepRecord], frame: Option<&LocalFrame>) -> serde_json::Value {
-    let points = std::iter::once((0.0, 0.0)).chain(track.iter().map(|r| (r.east_m, r.north_m)));
-    let coords: Vec<[f64; 2]> = match frame {
-        Some(f) => points
-            .map(|(e, n)| {
-                let (lat, lon, _) = f.to_geodetic([e, n, 0.0]);
-                [lon, lat]
-            })
-            .collect(),
-        None => points.map(|(e, n)| [e, n]).collect(),
+    let at = |e: f64, n: f64| match frame {
+        Some(f) => {
+            let (lat, lon, _) = f.to_geodetic([e, n, 0.0]);
+            [lon, lat]
+        }
+        None => [e, n],
     };
+    let coords: Vec<[f64; 2]> = track.iter().map(|r| at(r.east_m, r.north_m)).collect();
     let distance: f64 = track
         .iter()
         .filter(|r| r.heading_rad.is_some())
         .map(|r| r.length_m)
         .sum();
+    let kind = if frame.is_some() {
+        "wgs84"
+    } else {
+        "local_enu_metres"
+    };
     serde_json::json!({
         "type": "FeatureCollection",
         "features": [{
@@ -155,8 +162,87 @@ pub fn track_geojson(track: &[StepRecord], frame: Option<&LocalFrame>) -> serde_
                 "name": "PDR track",
                 "steps": track.len(),
                 "distance_m": distance,
-                "coordinates": if frame.is_some() { "wgs84" } else { "local_enu_metres" },
+                "coordinates": kind,
             }
+        }, {
+            "type": "Feature",
+            "geometry": { "type": "Point", "coordinates": at(0.0, 0.0) },
+            "properties": { "name": "start", "coordinates": kind }
         }]
     })
+}
+
+/// The track as GPX 1.1: one track point per step, with its time when the log's clock is Unix
+/// time. GPX is geodetic only: without a GNSS origin the track is placed at 0° N 0° E (its
+/// shape and size in metres are right, its place is not), and the description says so.
+pub fn track_gpx(track: &[StepRecord], frame: Option<&LocalFrame>) -> String {
+    use std::fmt::Write as _;
+    let placed = frame.copied().unwrap_or(LocalFrame::new(0.0, 0.0, 0.0));
+    let desc = if frame.is_some() {
+        "PDR track, placed by the log's first GNSS fix"
+    } else {
+        "PDR track without a GNSS origin: placed at 0 N 0 E; only its shape and size are meaningful"
+    };
+    let mut out = String::from(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<gpx version=\"1.1\" creator=\"pdr\" xmlns=\"http://www.topografix.com/GPX/1/1\">\n",
+    );
+    let _ = write!(
+        out,
+        "  <metadata><desc>{desc}</desc></metadata>\n  <trk><name>PDR track</name><trkseg>\n"
+    );
+    for r in track {
+        let (lat, lon, _) = placed.to_geodetic([r.east_m, r.north_m, 0.0]);
+        let _ = write!(out, "    <trkpt lat=\"{lat:.8}\" lon=\"{lon:.8}\">");
+        if (1.0e9..4.0e9).contains(&r.t) {
+            let _ = write!(out, "<time>{}</time>", iso8601(r.t));
+        }
+        out.push_str("</trkpt>\n");
+    }
+    out.push_str("  </trkseg></trk>\n</gpx>\n");
+    out
+}
+
+/// Unix seconds as an ISO 8601 UTC time with milliseconds.
+fn iso8601(t: f64) -> String {
+    let ms = (t * 1000.0).round() as i64;
+    let (days, rem) = (ms.div_euclid(86_400_000), ms.rem_euclid(86_400_000));
+    // Civil date from days since 1970-01-01 (Howard Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}.{:03}Z",
+        rem / 3_600_000,
+        rem / 60_000 % 60,
+        rem / 1000 % 60,
+        rem % 1000
+    )
+}
+
+#[cfg(test)]
+mod gpx_tests {
+    use super::*;
+
+    #[test]
+    fn iso_times_and_gpx_points() {
+        assert_eq!(iso8601(0.0), "1970-01-01T00:00:00.000Z");
+        assert_eq!(iso8601(1_795_424_328.439_6), "2026-11-23T08:58:48.440Z");
+        assert_eq!(iso8601(951_782_400.0), "2000-02-29T00:00:00.000Z");
+        let demo = crate::demo::run_demo();
+        let gpx = track_gpx(&demo.track, None);
+        assert_eq!(gpx.matches("<trkpt ").count(), demo.track.len());
+        assert!(gpx.contains("0 N 0 E"));
+        let j = track_geojson(&demo.track, None);
+        let n = j["features"][0]["geometry"]["coordinates"]
+            .as_array()
+            .unwrap()
+            .len();
+        assert_eq!(n, demo.track.len());
+    }
 }

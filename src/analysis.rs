@@ -1,0 +1,219 @@
+//! Upload mode's analysis of one log: the engine runs once over it, and everything the page
+//! shows is kept — the track, the per-sample signals of the diagnostics plots, the fixes, the
+//! fused and smoothed tracks, the truth placed in the track's frame, and the evaluation bench's
+//! scores. Pure Rust: the web worker makes it, the page draws it ([`crate::plot`]), the tests
+//! check it natively.
+//!
+//! It is serialised ([`Analysis::to_bytes`], bincode) to cross from the worker to the page:
+//! signals are `f32` (plenty for a plot), times `f64` (Unix seconds need it).
+
+use crate::engine::pipeline::{Pipeline, PipelineConfig, Record, Replay, StepRecord};
+use crate::engine::types::ConfigError;
+use crate::io::import::Log;
+
+/// The per-sample signals, one entry per IMU sample the engine accepted.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Trace {
+    /// Time, s.
+    pub t: Vec<f64>,
+    /// Vertical linear acceleration, m/s².
+    pub up: Vec<f32>,
+    /// PLL output cos φ (NaN with the peak detector).
+    pub pll: Vec<f32>,
+    /// σ of the vertical acceleration over the motion window, m/s².
+    pub sigma: Vec<f32>,
+    /// Motion state: 0 still, 1 walking, 2 running.
+    pub motion: Vec<u8>,
+    /// Compass heading of the device's top from the OS (or filter) attitude, degrees (NaN
+    /// without one).
+    pub device_heading_deg: Vec<f32>,
+    /// Horizontal acceleration east and north, m/s² (the tip-to-tail ellipse of a stride).
+    pub east: Vec<f32>,
+    /// See `east`.
+    pub north: Vec<f32>,
+}
+
+/// A GNSS fix in the local frame: time, east, north, reported accuracy.
+pub type FixPoint = [f64; 4];
+
+/// Everything upload mode shows about one log.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Analysis {
+    /// Where the log came from (file, or archive/member).
+    pub source: String,
+    /// Its format.
+    pub format: String,
+    /// Lines the reader skipped, with the first reasons.
+    pub warnings: Vec<String>,
+    /// The evaluation bench's result for this log, JSON (the same object as `pdr eval --json`).
+    pub score_json: String,
+    /// The steps.
+    pub steps: Vec<StepRecord>,
+    /// The per-sample signals.
+    pub trace: Trace,
+    /// Fixes in the local frame of the first fix.
+    pub fixes: Vec<FixPoint>,
+    /// Fused track: t, east, north, step-length scale, heading correction (rad).
+    pub fused: Vec<[f64; 5]>,
+    /// Smoothed track: t, east, north.
+    pub smoothed: Vec<[f64; 3]>,
+    /// Innovations of the fixes offered: t, east, north, m.
+    pub innovations: Vec<[f64; 3]>,
+    /// Added to the PDR track to draw it in the fixes' frame (zero without fixes).
+    pub pdr_offset: (f64, f64),
+    /// The local frame's origin (latitude, longitude, height), when there are fixes.
+    pub origin: Option<(f64, f64, f64)>,
+    /// Truth waypoints in the PDR track's frame (aligned as the bench scores them).
+    pub truth_path: Vec<(f64, f64)>,
+    /// True step times, when the truth has them.
+    pub truth_steps: Vec<f64>,
+    /// The motion detector's σ thresholds: still below, running above (m/s²).
+    pub sigma_thresholds: (f64, f64),
+}
+
+/// How often [`analyse`] reports progress, records.
+pub const PROGRESS_EVERY: usize = 65_536;
+
+/// Runs the engine over a log, keeping what the page shows. `progress(done, total)` is called
+/// every [`PROGRESS_EVERY`] records.
+pub fn analyse(
+    log: &Log,
+    cfg: &PipelineConfig,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Analysis, ConfigError> {
+    let mut pipeline = Pipeline::new(cfg.clone())?;
+    let total = log.records.len();
+    let mut tr = Trace::default();
+    let n = log.imu_samples();
+    for v in [&mut tr.up, &mut tr.pll, &mut tr.sigma] {
+        v.reserve(n);
+    }
+    tr.t.reserve(n);
+    let mut errors = Vec::new();
+    let mut refused = 0;
+    let deg = 180.0 / std::f64::consts::PI;
+    for (i, r) in log.records.iter().enumerate() {
+        if i % PROGRESS_EVERY == 0 {
+            progress(i, total);
+        }
+        let res = match r {
+            Record::Imu(s) => pipeline.push_imu(s).map(|_| ()).map(|()| {
+                let (up, e, north) = pipeline.last_nav().unwrap_or((f64::NAN, 0.0, 0.0));
+                tr.t.push(s.t);
+                tr.up.push(up as f32);
+                tr.pll
+                    .push(pipeline.pll_output().map_or(f32::NAN, |p| p as f32));
+                tr.sigma.push(pipeline.vertical_stats().1 as f32);
+                tr.motion.push(pipeline.motion_state() as u8);
+                tr.device_heading_deg
+                    .push(pipeline.attitude().map_or(f32::NAN, |q| {
+                        let top = q * nalgebra::Vector3::y();
+                        (libm::atan2(top.x, top.y) * deg).rem_euclid(360.0) as f32
+                    }));
+                tr.east.push(e as f32);
+                tr.north.push(north as f32);
+            }),
+            Record::Gnss(f) => pipeline.push_gnss(f),
+            Record::Gap(t0, t1) => {
+                pipeline.mark_gap(*t0, *t1);
+                Ok(())
+            }
+        };
+        if let Err(e) = res {
+            refused += 1;
+            if errors.len() < 100 {
+                errors.push((i, e));
+            }
+        }
+    }
+    progress(total, total);
+    let run = Replay {
+        pipeline,
+        errors,
+        refused,
+    };
+    let score = crate::eval::score(log, &run);
+    let p = &run.pipeline;
+    let frame = p.frame();
+    let fixes: Vec<FixPoint> = frame.map_or_else(Vec::new, |fr| {
+        p.fixes()
+            .iter()
+            .map(|f| {
+                let (e, n) = fr.en_of_fix(f);
+                [f.t, e, n, f.h_accuracy_m]
+            })
+            .collect()
+    });
+    let fused = p.fused();
+    let pdr_offset = fused.first().map_or((0.0, 0.0), |f| {
+        let at = crate::eval::position_at(p.track(), f.t);
+        (f.east_m - at.0, f.north_m - at.1)
+    });
+    let mut warnings: Vec<String> = log.warnings.iter().map(|e| e.to_string()).collect();
+    if log.skipped > warnings.len() as u64 {
+        warnings.push(format!("{} lines skipped in all", log.skipped));
+    }
+    for (i, e) in run.errors.iter().take(10) {
+        warnings.push(format!("record {}: {e} (refused by the engine)", i + 1));
+    }
+    Ok(Analysis {
+        source: log.source.clone(),
+        format: log.format.as_str().to_string(),
+        warnings,
+        score_json: serde_json::to_string(&score).unwrap_or_default(),
+        steps: p.track().to_vec(),
+        trace: tr,
+        fixes,
+        fused: fused
+            .iter()
+            .map(|f| [f.t, f.east_m, f.north_m, f.scale, f.bias_rad])
+            .collect(),
+        smoothed: p
+            .smoothed()
+            .iter()
+            .map(|f| [f.t, f.east_m, f.north_m])
+            .collect(),
+        innovations: fused
+            .iter()
+            .filter_map(|f| f.innovation.map(|i| [f.t, i[0], i[1]]))
+            .collect(),
+        pdr_offset,
+        origin: frame.map(|f| (f.lat0_deg, f.lon0_deg, f.h0_m)),
+        truth_path: crate::eval::waypoints_in_track_frame(p.track(), &log.truth.waypoints),
+        truth_steps: log.truth.step_events.iter().map(|s| s.t).collect(),
+        sigma_thresholds: (cfg.motion.still_max, cfg.motion.run_sigma_min),
+    })
+}
+
+impl Analysis {
+    /// The analysis as bytes (bincode: compact, and NaN survives), for the trip from the worker
+    /// to the page.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        bincode::serialize(self).unwrap_or_default()
+    }
+
+    /// Reads [`Analysis::to_bytes`].
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
+        bincode::deserialize(bytes).map_err(|e| format!("unreadable analysis: {e}"))
+    }
+
+    /// The local frame of the fixes, for geodetic exports.
+    pub fn frame(&self) -> Option<crate::engine::geo::LocalFrame> {
+        self.origin
+            .map(|(lat, lon, h)| crate::engine::geo::LocalFrame::new(lat, lon, h))
+    }
+
+    /// The index of the step nearest to a time, s.
+    pub fn step_near_time(&self, t: f64) -> Option<usize> {
+        let i = self.steps.partition_point(|s| s.t < t);
+        [i.checked_sub(1), Some(i)]
+            .into_iter()
+            .flatten()
+            .filter(|&k| k < self.steps.len())
+            .min_by(|&a, &b| {
+                (self.steps[a].t - t)
+                    .abs()
+                    .total_cmp(&(self.steps[b].t - t).abs())
+            })
+    }
+}
