@@ -3,11 +3,109 @@
 use crate::demo::{run_demo, run_fusion_demo, DemoSummary, FusionDemoSummary};
 use crate::plot::{draw_fusion, draw_live, draw_scope, draw_track, FusionView, LiveView, Theme};
 use plotters::prelude::IntoDrawingArea;
+use plotters_backend::{
+    BackendColor, BackendCoord, BackendStyle, BackendTextStyle, DrawingErrorKind, FontTransform,
+};
 use plotters_canvas::CanvasBackend;
+use serde::Serialize;
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
-type CanvasArea = plotters::drawing::DrawingArea<CanvasBackend, plotters::coord::Shift>;
+/// plotters' canvas backend, with text measured by the canvas itself (`measureText`): plotters'
+/// own web measurement puts a styled `<span>` in the page, which the page's Content Security
+/// Policy (no inline styles) refuses, and which would measure the wrong font anyway.
+struct Canvas {
+    inner: CanvasBackend,
+    ctx: web_sys::CanvasRenderingContext2d,
+}
+
+impl plotters::prelude::DrawingBackend for Canvas {
+    type ErrorType = <CanvasBackend as plotters::prelude::DrawingBackend>::ErrorType;
+    fn get_size(&self) -> (u32, u32) {
+        self.inner.get_size()
+    }
+    fn ensure_prepared(&mut self) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.ensure_prepared()
+    }
+    fn present(&mut self) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.present()
+    }
+    fn draw_pixel(
+        &mut self,
+        p: BackendCoord,
+        c: BackendColor,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_pixel(p, c)
+    }
+    fn draw_line<S: BackendStyle>(
+        &mut self,
+        a: BackendCoord,
+        b: BackendCoord,
+        s: &S,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_line(a, b, s)
+    }
+    fn draw_rect<S: BackendStyle>(
+        &mut self,
+        a: BackendCoord,
+        b: BackendCoord,
+        s: &S,
+        fill: bool,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_rect(a, b, s, fill)
+    }
+    fn draw_path<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        s: &S,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_path(path, s)
+    }
+    fn draw_circle<S: BackendStyle>(
+        &mut self,
+        c: BackendCoord,
+        r: u32,
+        s: &S,
+        fill: bool,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_circle(c, r, s, fill)
+    }
+    fn fill_polygon<S: BackendStyle, I: IntoIterator<Item = BackendCoord>>(
+        &mut self,
+        path: I,
+        s: &S,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.fill_polygon(path, s)
+    }
+    fn draw_text<S: BackendTextStyle>(
+        &mut self,
+        text: &str,
+        s: &S,
+        pos: BackendCoord,
+    ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
+        self.inner.draw_text(text, s, pos)
+    }
+    fn estimate_text_size<S: BackendTextStyle>(
+        &self,
+        text: &str,
+        s: &S,
+    ) -> Result<(u32, u32), DrawingErrorKind<Self::ErrorType>> {
+        self.ctx.set_font(&format!(
+            "{} {}px {}",
+            s.style().as_str(),
+            s.size(),
+            s.family().as_str()
+        ));
+        let w = self.ctx.measure_text(text).map_or(0.0, |m| m.width());
+        let (w, h) = (w.ceil() as u32, (s.size() * 1.2).ceil() as u32);
+        Ok(match s.transform() {
+            FontTransform::Rotate90 | FontTransform::Rotate270 => (h, w),
+            _ => (w, h),
+        })
+    }
+}
+
+type CanvasArea = plotters::drawing::DrawingArea<Canvas, plotters::coord::Shift>;
 
 /// Runs `draw` on `canvas` (backing store sized by the caller to CSS size × `dpr`) with the
 /// scheme's theme and the pixel ratio as the drawing scale, then presents it.
@@ -17,9 +115,16 @@ fn on_canvas<E: std::fmt::Display>(
     dpr: f64,
     draw: impl FnOnce(&CanvasArea, &Theme, f64) -> Result<(), E>,
 ) -> Result<(), JsError> {
-    let backend = CanvasBackend::with_canvas_object(canvas.clone())
-        .ok_or_else(|| JsError::new("the canvas has no 2D context"))?;
-    let area = backend.into_drawing_area();
+    use wasm_bindgen::JsCast;
+    let no_2d = || JsError::new("the canvas has no 2D context");
+    let ctx = canvas
+        .get_context("2d")
+        .ok()
+        .flatten()
+        .and_then(|c| c.dyn_into::<web_sys::CanvasRenderingContext2d>().ok())
+        .ok_or_else(no_2d)?;
+    let inner = CanvasBackend::with_canvas_object(canvas.clone()).ok_or_else(no_2d)?;
+    let area = Canvas { inner, ctx }.into_drawing_area();
     let theme = if dark { Theme::DARK } else { Theme::LIGHT };
     draw(&area, &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
     area.present().map_err(|e| JsError::new(&e.to_string()))
@@ -583,5 +688,290 @@ pub fn refine_profile(text: &str, k: f64, f_hz: f64, rate: f64) -> Result<String
 impl Default for Demo {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// Upload mode, the web worker's side: files in, logs parsed, each analysed into bytes for the
+/// page ([`AnalysisView`]).
+#[wasm_bindgen]
+pub struct Upload {
+    files: Vec<(String, Vec<u8>)>,
+    logs: Vec<crate::io::import::Log>,
+}
+
+#[wasm_bindgen]
+impl Upload {
+    /// No files yet.
+    #[wasm_bindgen(constructor)]
+    pub fn new() -> Upload {
+        Upload {
+            files: Vec::new(),
+            logs: Vec::new(),
+        }
+    }
+
+    /// Adds a file: its name (with its folder path for a folder upload) and bytes.
+    pub fn add_file(&mut self, name: String, bytes: Vec<u8>) {
+        self.files.push((name, bytes));
+    }
+
+    /// Reads every log in the files (their bytes are then dropped): `{logs: [{index, source,
+    /// format, samples, duration_s, warnings}], errors: [{file, line, column, field, message}]}`.
+    /// A file that fails is an error; the others still load.
+    pub fn parse(&mut self) -> Result<JsValue, JsError> {
+        #[derive(serde::Serialize)]
+        struct Info {
+            index: usize,
+            source: String,
+            format: &'static str,
+            samples: usize,
+            duration_s: f64,
+            warnings: usize,
+        }
+        #[derive(serde::Serialize)]
+        struct Parsed {
+            logs: Vec<Info>,
+            errors: Vec<crate::io::ParseError>,
+        }
+        let mut set = crate::io::import::fileset::MemSet::new(std::mem::take(&mut self.files));
+        let mut out = Parsed {
+            logs: Vec::new(),
+            errors: Vec::new(),
+        };
+        for r in crate::io::import::import_all(&mut set) {
+            match r {
+                Ok(log) => {
+                    out.logs.push(Info {
+                        index: self.logs.len(),
+                        source: log.source.clone(),
+                        format: log.format.as_str(),
+                        samples: log.imu_samples(),
+                        duration_s: log.time_span().map_or(0.0, |(a, b)| b - a),
+                        warnings: log.skipped as usize,
+                    });
+                    self.logs.push(log);
+                }
+                Err(e) => out.errors.push(e),
+            }
+        }
+        serde_wasm_bindgen::to_value(&out).map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Runs the engine over log `index` with the default configuration changed by `sets`
+    /// (`key=value`, as `pdr eval --set`), the step-length profile `profile` (JSON) and the
+    /// GNSS mode; `progress(done, total)` is called as records go through. Returns the
+    /// analysis as bytes for [`AnalysisView::from_bytes`].
+    pub fn analyse(
+        &self,
+        index: usize,
+        sets: Vec<String>,
+        profile: Option<String>,
+        gnss: &str,
+        progress: &js_sys::Function,
+    ) -> Result<Vec<u8>, JsError> {
+        let log = self
+            .logs
+            .get(index)
+            .ok_or_else(|| JsError::new(&format!("no log {index}")))?;
+        let cfg = crate::eval::apply_overrides(&live_config(gnss, profile)?, &sets)
+            .map_err(|e| JsError::new(&e))?;
+        let a = crate::analysis::analyse(log, &cfg, &mut |done, total| {
+            let _ = progress.call2(
+                &JsValue::NULL,
+                &(done as f64).into(),
+                &(total as f64).into(),
+            );
+        })
+        .map_err(|e| JsError::new(&e.to_string()))?;
+        Ok(a.to_bytes())
+    }
+
+    /// Log `index` in the project's own format (pdr-log).
+    pub fn pdrlog(&self, index: usize) -> Result<String, JsError> {
+        let log = self
+            .logs
+            .get(index)
+            .ok_or_else(|| JsError::new(&format!("no log {index}")))?;
+        Ok(crate::io::pdrlog::to_string(&log.records))
+    }
+}
+
+impl Default for Upload {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Upload mode, the page's side: one analysis, drawn and queried.
+#[wasm_bindgen]
+pub struct AnalysisView {
+    a: crate::analysis::Analysis,
+    frame: std::cell::Cell<crate::plot::upload::MapFrame>,
+}
+
+#[wasm_bindgen]
+impl AnalysisView {
+    /// Reads the bytes [`Upload::analyse`] made.
+    pub fn from_bytes(bytes: &[u8]) -> Result<AnalysisView, JsError> {
+        Ok(AnalysisView {
+            a: crate::analysis::Analysis::from_bytes(bytes).map_err(|e| JsError::new(&e))?,
+            frame: Default::default(),
+        })
+    }
+
+    /// `{source, format, steps, samples, t0, t1, fixes, truth_waypoints, truth_steps, warnings,
+    /// score}`; `score` is the bench's result (`pdr eval --json` for this log).
+    pub fn summary(&self) -> Result<JsValue, JsError> {
+        let a = &self.a;
+        let score: serde_json::Value =
+            serde_json::from_str(&a.score_json).unwrap_or(serde_json::Value::Null);
+        let v = serde_json::json!({
+            "source": a.source,
+            "format": a.format,
+            "steps": a.steps.len(),
+            "samples": a.trace.t.len(),
+            "t0": a.trace.t.first(),
+            "t1": a.trace.t.last(),
+            "fixes": a.fixes.len(),
+            "truth_waypoints": a.truth_path.len(),
+            "truth_steps": a.truth_steps.len(),
+            "warnings": a.warnings,
+            "score": score,
+        });
+        v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Draws the map; `bounds` `[min_e, max_e, min_n, max_n]` zooms (empty: fit all);
+    /// `highlight` rings a step.
+    pub fn draw_map(
+        &self,
+        canvas: &HtmlCanvasElement,
+        dark: bool,
+        dpr: f64,
+        bounds: Vec<f64>,
+        highlight: Option<usize>,
+    ) -> Result<(), JsError> {
+        let b = (bounds.len() == 4).then(|| (bounds[0], bounds[1], bounds[2], bounds[3]));
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            crate::plot::upload::draw_map(area, &self.a, b, highlight, theme, scale)
+                .map(|f| self.frame.set(f))
+        })
+    }
+
+    /// The metres the last map showed, `[min_e, max_e, min_n, max_n]`, and metres per canvas
+    /// pixel.
+    pub fn map_view(&self) -> Vec<f64> {
+        let f = self.frame.get();
+        vec![f.m.0, f.m.1, f.m.2, f.m.3, f.metres_per_px()]
+    }
+
+    /// The point (east, north) under canvas pixel (x, y) on the last map drawn.
+    pub fn to_metres(&self, x: f64, y: f64) -> Vec<f64> {
+        let (e, n) = self.frame.get().to_metres(x, y);
+        vec![e, n]
+    }
+
+    /// The step nearest to canvas pixel (x, y) on the last map, within `radius` pixels.
+    pub fn pick(&self, x: f64, y: f64, radius: f64) -> Option<usize> {
+        let f = self.frame.get();
+        let (e, n) = f.to_metres(x, y);
+        let r = radius * f.metres_per_px();
+        let (oe, on) = self.a.pdr_offset;
+        self.a
+            .steps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| (i, libm::hypot(s.east_m + oe - e, s.north_m + on - n)))
+            .filter(|(_, d)| *d <= r)
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(i, _)| i)
+    }
+
+    /// Canvas pixel `[x, y]` of step `i` on the last map drawn.
+    pub fn step_pixel(&self, i: usize) -> Option<Vec<f64>> {
+        let s = self.a.steps.get(i)?;
+        let f = self.frame.get();
+        let (l, r, t, b) = f.px;
+        let (e0, e1, n0, n1) = f.m;
+        let (oe, on) = self.a.pdr_offset;
+        Some(vec![
+            l as f64 + (s.east_m + oe - e0) / (e1 - e0) * (r - l) as f64,
+            t as f64 + (n1 - (s.north_m + on)) / (n1 - n0) * (b - t) as f64,
+        ])
+    }
+
+    /// The step nearest to time `t` (s, the log's clock).
+    pub fn step_near_time(&self, t: f64) -> Option<usize> {
+        self.a.step_near_time(t)
+    }
+
+    /// Step `i`: `{index, t, t_rel_s, length_m, freq_hz, heading_deg, step_heading_deg, motion}`.
+    pub fn step_info(&self, i: usize) -> Result<JsValue, JsError> {
+        let s = self
+            .a
+            .steps
+            .get(i)
+            .ok_or_else(|| JsError::new(&format!("no step {i}")))?;
+        let deg = |r: Option<f64>| r.map(|r| r.to_degrees().rem_euclid(360.0));
+        let v = serde_json::json!({
+            "index": i,
+            "t": s.t,
+            "t_rel_s": s.t - self.a.trace.t.first().copied().unwrap_or(s.t),
+            "length_m": s.length_m,
+            "freq_hz": s.freq_hz,
+            "heading_deg": deg(s.heading_rad),
+            "step_heading_deg": deg(s.step_heading_rad),
+            "motion": s.motion.as_str(),
+        });
+        v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
+            .map_err(|e| JsError::new(&e.to_string()))
+    }
+
+    /// Draws diagnostics plot `kind` (`accel`, `sigma`, `heading`, `steps`, `gnss`) between
+    /// `t0` and `t1` (s), with a cursor at `cursor`.
+    pub fn draw_plot(
+        &self,
+        canvas: &HtmlCanvasElement,
+        dark: bool,
+        dpr: f64,
+        kind: &str,
+        t0: f64,
+        t1: f64,
+        cursor: Option<f64>,
+    ) -> Result<(), JsError> {
+        let plot = crate::plot::upload::Plot::parse(kind)
+            .ok_or_else(|| JsError::new(&format!("no plot `{kind}`")))?;
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            crate::plot::upload::draw_plot(area, &self.a, plot, (t0, t1), cursor, theme, scale)
+        })
+    }
+
+    /// Draws the stride ellipse ending at step `k`.
+    pub fn draw_ellipse(
+        &self,
+        canvas: &HtmlCanvasElement,
+        dark: bool,
+        dpr: f64,
+        k: usize,
+    ) -> Result<(), JsError> {
+        on_canvas(canvas, dark, dpr, |area, theme, scale| {
+            crate::plot::upload::draw_ellipse(area, &self.a, k, theme, scale)
+        })
+    }
+
+    /// The track as GPX (geodetic when the log has fixes; see `io::export::track_gpx`).
+    pub fn gpx(&self) -> String {
+        crate::io::export::track_gpx(&self.a.steps, self.a.frame().as_ref())
+    }
+
+    /// The track as GeoJSON.
+    pub fn geojson(&self) -> String {
+        crate::io::export::track_geojson(&self.a.steps, self.a.frame().as_ref()).to_string()
+    }
+
+    /// One row per step, CSV.
+    pub fn steps_csv(&self) -> String {
+        crate::io::export::track_csv(&self.a.steps, self.a.frame().as_ref())
     }
 }

@@ -2,6 +2,7 @@
 import init, { Demo, FusionDemo } from './pkg/pdr.js';
 import { setupLive } from './live.js';
 import { setupWizard } from './wizard.js';
+import { setupUpload } from './upload.js';
 
 const $ = (id) => document.getElementById(id);
 const dark = window.matchMedia('(prefers-color-scheme: dark)');
@@ -18,6 +19,7 @@ async function main() {
   await init();
   setupLive();
   setupWizard();
+  setupUpload();
   const demo = new Demo();
   const s = demo.summary();
   $('steps').textContent = String(s.steps);

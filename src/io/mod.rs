@@ -8,7 +8,7 @@ pub mod pdrlog;
 use std::fmt;
 
 /// A problem with one field of one line of an input file.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ParseError {
     /// File name as given by the caller.
     pub file: String,

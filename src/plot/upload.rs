@@ -357,7 +357,13 @@ pub fn draw_plot<DB: DrawingBackend>(
         .label_style(font.clone())
         .x_labels(8)
         .y_labels(5)
-        .x_label_formatter(&|v| format!("{v:.0} s"))
+        .x_label_formatter(&|v| {
+            if x1 - x0 < 20.0 {
+                format!("{v:.1} s")
+            } else {
+                format!("{v:.0} s")
+            }
+        })
         .y_label_formatter(&|v| format!("{v:.0}{}", if y_label == "°" { "°" } else { "" }))
         .draw()?;
     if right.is_some() {

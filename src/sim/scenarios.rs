@@ -145,3 +145,17 @@ pub fn calibration_walk(f: f64, metres: f64, a: f64, b: f64) -> Scenario {
         ])
     }
 }
+
+/// A long mixed walk of about `minutes`: 60 m walks with 90° turns, 5 s pauses and 20 s runs, in
+/// a loop (the throughput benchmarks' walk).
+pub fn long_walk(minutes: f64) -> Scenario {
+    let mut segs: Vec<Segment> = Vec::new();
+    let w = Walker::default();
+    while segs.iter().map(|s| s.duration_s).sum::<f64>() < minutes * 60.0 {
+        segs.push(Segment::walk_distance(60.0, 1.8, &w));
+        segs.push(Segment::walk(2.0, 1.8).turning(90.0));
+        segs.push(Segment::still(5.0));
+        segs.push(Segment::run(20.0, 3.0));
+    }
+    Scenario::new(segs)
+}

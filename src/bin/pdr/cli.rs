@@ -135,6 +135,8 @@ enum ScenarioArg {
     /// A calibration walk: `--metres` straight at `--cadence`, by a walker whose step length is
     /// `--sl-a`·f + `--sl-b`, between two 3 s pauses.
     Calibration,
+    /// `--minutes` of walking, turning, pausing and running (the benchmarks' walk).
+    Long,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -198,6 +200,9 @@ enum Cmd {
         /// Calibration walk: the walker's step-length offset, m.
         #[arg(long, default_value_t = 0.17)]
         sl_b: f64,
+        /// Long walk: its duration, minutes.
+        #[arg(long, default_value_t = 60.0)]
+        minutes: f64,
     },
     /// Accuracy of every method on simulated walks with known truth.
     Simcheck,
@@ -272,6 +277,7 @@ pub fn main() -> ExitCode {
             metres,
             sl_a,
             sl_b,
+            minutes,
         } => {
             let sc = match scenario {
                 ScenarioArg::Demo => scenarios::demo_walk(),
@@ -281,6 +287,7 @@ pub fn main() -> ExitCode {
                 ScenarioArg::Calibration => {
                     scenarios::calibration_walk(cadence, metres, sl_a, sl_b)
                 }
+                ScenarioArg::Long => scenarios::long_walk(minutes),
             };
             simulate(sc, out.as_deref(), events.as_deref(), platform)
         }
@@ -741,21 +748,8 @@ fn simcheck() {
 }
 
 fn bench(minutes: f64, repeats: usize) {
-    let mut segs = Vec::new();
-    let w = pdr::sim::Walker::default();
-    while segs
-        .iter()
-        .map(|s: &pdr::sim::Segment| s.duration_s)
-        .sum::<f64>()
-        < minutes * 60.0
-    {
-        segs.push(pdr::sim::Segment::walk_distance(60.0, 1.8, &w));
-        segs.push(pdr::sim::Segment::walk(2.0, 1.8).turning(90.0));
-        segs.push(pdr::sim::Segment::still(5.0));
-        segs.push(pdr::sim::Segment::run(20.0, 3.0));
-    }
     let t = Instant::now();
-    let sim = pdr::sim::Scenario::new(segs).generate();
+    let sim = scenarios::long_walk(minutes).generate();
     let n = sim.records.len();
     out!(
         "simulated {n} IMU samples ({minutes} min at 100 Hz) in {:.2} s",

@@ -1,0 +1,217 @@
+// End-to-end tests of upload mode in headless Chromium: files of every format through the web
+// worker, the plots, hovering, a corrupt file beside a good one, exports, the shared data sets
+// against `pdr eval`, and a one-hour log's load time (printed).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, statSync } from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
+const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
+const ARTIFACTS = path.join(here, 'artifacts');
+const FIXTURES = path.join(here, '../fixtures/import');
+const SHARED = path.join(here, '../../../shared/data');
+const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-upload-'));
+
+let browser;
+before(async () => {
+  browser = await chromium.launch({
+    executablePath: '/usr/bin/chromium',
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
+      '--disable-component-update', '--disable-sync'],
+  });
+});
+after(async () => { await browser?.close(); });
+
+async function open(viewport = { width: 1100, height: 900 }) {
+  const context = await browser.newContext({ viewport, acceptDownloads: true });
+  const page = await context.newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  await page.goto(URL_HTTP);
+  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
+  return { context, page, errors };
+}
+
+/** Uploads files (or a folder) and waits until every analysis is in. */
+async function upload(page, paths, { folder = false, timeout = 60_000 } = {}) {
+  await page.setInputFiles(folder ? '#upload-folder' : '#upload-files', paths);
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done', null, { timeout });
+  return page.evaluate(() => ({ logs: window.__pdrUpload.logs, errors: window.__pdrUpload.errors, progress: window.__pdrUpload.progress_seen, ms: window.__pdrUpload.done_ms }));
+}
+
+const nativeSteps = (p) => Number(execFileSync(BIN, ['run', p], { encoding: 'utf8' }).match(/^steps\s+(\d+)/m)[1]);
+
+/** Non-background pixels of every canvas of result `k`. */
+async function canvases(page, k) {
+  return page.evaluate((k) => [...document.querySelectorAll(`.log-result[data-index="${k}"] canvas`)].map((c) => {
+    const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+    let n = 0;
+    for (let i = 0; i < d.length; i += 4) if (Math.abs(d[i] - d[0]) + Math.abs(d[i + 1] - d[1]) + Math.abs(d[i + 2] - d[2]) > 30) n++;
+    return { what: c.getAttribute('aria-label'), n, total: d.length / 4 };
+  }), k);
+}
+
+test('a generated log and a file of every format: progress, the native step count, non-blank plots, hover', async () => {
+  const walk = path.join(tmp, 'city.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', walk]);
+  const files = [walk, ...['walk.pdrlog', 'get_sensor_data.txt', 'gnss_logger.txt', 'ms_indoor.txt', 'sensor_logger.json', 'xio_foot.csv']
+    .map((f) => path.join(FIXTURES, f))];
+  const { context, page, errors } = await open();
+  const r = await upload(page, files);
+  assert.ok(r.progress, 'no progress was shown');
+  assert.deepEqual(r.errors, []);
+  assert.equal(r.logs.length, files.length);
+  for (const l of r.logs) {
+    const file = files.find((f) => path.basename(f) === l.a.source);
+    assert.equal(l.a.steps, nativeSteps(file), `${l.a.source}: steps differ from pdr run`);
+  }
+  console.log(`uploaded ${files.length} files: ${r.logs.map((l) => `${l.a.source} ${l.a.format} ${l.a.steps} steps`).join('; ')}`);
+  const city = r.logs.findIndex((l) => l.a.source === 'city.pdrlog');
+  for (const c of await canvases(page, city)) assert.ok(c.n > 0.01 * c.total, `${c.what} looks blank: ${c.n} of ${c.total}`);
+  // Hovering a step shows its values.
+  const [x, y] = await page.evaluate((k) => window.__pdrUpload.stepPixel(k, 500), city);
+  await page.locator(`.log-result[data-index="${city}"] canvas.map`).scrollIntoViewIfNeeded();
+  const [x2, y2] = await page.evaluate((k) => window.__pdrUpload.stepPixel(k, 500), city);
+  await page.mouse.move(x2, y2);
+  await page.waitForFunction((k) => document.querySelector(`.log-result[data-index="${k}"] .stepinfo`).dataset.step, city);
+  const info = await page.textContent(`.log-result[data-index="${city}"] .stepinfo`);
+  assert.match(info, /^Step \d+: t = [\d.]+ s · length 0\.\d\d m · frequency \d\.\d\d Hz · heading \d+°/);
+  const picked = Number(await page.getAttribute(`.log-result[data-index="${city}"] .stepinfo`, 'data-step'));
+  assert.ok(Math.abs(picked - 500) <= 3, `hovered step ${picked}, expected about 500 (${x},${y})`);
+  assert.deepEqual(errors, []);
+  await page.locator(`.log-result[data-index="${city}"]`).screenshot({ path: path.join(ARTIFACTS, 'upload-desktop.png') });
+  await context.close();
+});
+
+test('folders: Sensor Logger (Android and iOS), phyphox and Oxford folders load as one log each', async () => {
+  const { context, page, errors } = await open();
+  for (const dir of ['sensor_logger_android', 'sensor_logger_ios', 'phyphox', 'phyphox_semicolon', 'oxford/Pixel_Test_Hard_FrontPocket_1']) {
+    const r = await upload(page, path.join(FIXTURES, dir), { folder: true });
+    assert.deepEqual(r.errors, [], dir);
+    assert.equal(r.logs.length, 1, `${dir}: ${r.logs.length} logs`);
+    assert.equal(r.logs[0].a.steps, nativeSteps(path.join(FIXTURES, dir)), dir);
+  }
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('a corrupt file beside a good one: the banner names the file and line, the good one loads', async () => {
+  const bad = path.join(tmp, 'broken.json');
+  const json = readFileSync(path.join(FIXTURES, 'sensor_logger.json'), 'utf8');
+  // Damaged inside its first record: nothing can be read from it (a file damaged later keeps
+  // what comes before the damage, with a warning).
+  writeFileSync(bad, `${json.slice(0, json.indexOf('"sensor"') + 9)}@@@${json.slice(json.indexOf('"sensor"') + 9)}`);
+  const { context, page } = await open();
+  const r = await upload(page, [bad, path.join(FIXTURES, 'ms_indoor.txt')]);
+  assert.equal(r.logs.length, 1);
+  assert.equal(r.logs[0].a.source, 'ms_indoor.txt');
+  const banner = await page.textContent('#upload-banners li.error');
+  console.log(`banner: ${banner}`);
+  assert.match(banner, /^broken\.json:[1-9]\d*:\d+: /);
+  await context.close();
+});
+
+test('exports: GPX and GeoJSON parse back with a point per step; CSV, pdr-log and PNG download', async () => {
+  const walk = path.join(tmp, 'demo.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'demo', '--out', walk]);
+  const { context, page } = await open();
+  const r = await upload(page, [walk]);
+  const steps = r.logs[0].a.steps;
+  const get = async (what) => {
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click(`.log-result[data-index="0"] [data-export="${what}"]`)]);
+    const file = path.join(tmp, dl.suggestedFilename());
+    await dl.saveAs(file);
+    return file;
+  };
+  const geo = JSON.parse(readFileSync(await get('geojson'), 'utf8'));
+  assert.equal(geo.features[0].geometry.coordinates.length, steps);
+  assert.equal(geo.features[0].properties.coordinates, 'local_enu_metres');
+  const gpx = readFileSync(await get('gpx'), 'utf8');
+  assert.equal((gpx.match(/<trkpt /g) ?? []).length, steps);
+  assert.match(gpx, /<gpx version="1.1"/);
+  const csv = readFileSync(await get('csv'), 'utf8').trim().split('\n');
+  assert.equal(csv.length, steps + 1);
+  const log = await get('pdrlog');
+  assert.equal(nativeSteps(log), steps, 'the exported pdr-log replays to another count');
+  const png = readFileSync(await get('png'));
+  assert.deepEqual([...png.subarray(1, 4)].map((c) => String.fromCharCode(c)).join(''), 'PNG');
+  await context.close();
+});
+
+test('compare two configurations side by side, and re-run', async () => {
+  const walk = path.join(tmp, 'demo2.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'demo', '--out', walk]);
+  const { context, page, errors } = await open({ width: 390, height: 844 });
+  await page.check('#compare');
+  const r = await upload(page, [walk]);
+  const { a, b } = r.logs[0];
+  assert.ok(a && b, 'both configurations ran');
+  const peak = Number(execFileSync(BIN, ['run', walk, '--detector', 'peak', '--heading', 'closed-form'], { encoding: 'utf8' }).match(/^steps\s+(\d+)/m)[1]);
+  assert.equal(b.steps, peak, 'configuration B (peak, closed form) differs from pdr run');
+  assert.equal(await page.locator('.log-result .mapbox').count(), 2);
+  await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-compare-phone.png') });
+  // Re-run A with the peak detector: its count becomes B's.
+  await page.selectOption('.config[data-config="a"] [name=detector]', 'peak');
+  await page.selectOption('.config[data-config="a"] [name=heading]', 'closed_form2021');
+  await page.click('#rerun');
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0].a.steps !== undefined);
+  await page.waitForFunction((n) => window.__pdrUpload.logs[0].a.steps === n, peak, { timeout: 20_000 });
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('shared data sets: an Oxford and a Microsoft trace show the errors `pdr eval` gives', { skip: !existsSync(SHARED) && `${SHARED} is absent` }, async () => {
+  const oxRoot = path.join(SHARED, 'oxford-steps');
+  const msRoot = path.join(SHARED, 'ms-indoor');
+  const findDir = (root, test) => {
+    for (const e of readdirSync(root, { recursive: true })) {
+      const p = path.join(root, e);
+      if (test(p)) return p;
+    }
+    return null;
+  };
+  const ox = findDir(oxRoot, (p) => statSync(p).isDirectory() && existsSync(path.join(p, 'stepcounter.csv')));
+  const ms = findDir(msRoot, (p) => p.endsWith('.txt') && statSync(p).isFile() && statSync(p).size > 100_000);
+  assert.ok(ox && ms, 'no Oxford or Microsoft trace found');
+  const evalOf = (p) => JSON.parse(execFileSync(BIN, ['eval', '--json', p], { encoding: 'utf8', maxBuffer: 1 << 26 })).logs[0];
+  const { context, page } = await open();
+  const r1 = await upload(page, ox, { folder: true });
+  const e1 = evalOf(ox);
+  const s1 = r1.logs[0].a.score;
+  console.log(`Oxford ${path.basename(ox)}: ${s1.steps} steps, error ${s1.step_error_pct?.toFixed(2)} % (pdr eval ${e1.step_error_pct?.toFixed(2)} %)`);
+  assert.equal(s1.steps, e1.steps);
+  assert.equal(s1.step_error_pct, e1.step_error_pct);
+  assert.match(await page.textContent('.log-result .summary'), new RegExp(`error ${e1.step_error_pct.toFixed(1)} %`));
+  const r2 = await upload(page, [ms]);
+  const e2 = evalOf(ms);
+  const s2 = r2.logs[0].a.score;
+  console.log(`Microsoft ${path.basename(ms)}: waypoint p75 ${s2.waypoint_error_m?.p75.toFixed(2)} m (pdr eval ${e2.waypoint_error_m?.p75.toFixed(2)} m)`);
+  assert.equal(s2.waypoint_error_m.p75, e2.waypoint_error_m.p75);
+  assert.match(await page.textContent('.log-result .summary'), new RegExp(`error p75 ${e2.waypoint_error_m.p75.toFixed(1)} m`));
+  await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-ms-desktop.png') });
+  await context.close();
+});
+
+test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed, not asserted)', async () => {
+  const hour = path.join(tmp, 'hour.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'long', '--minutes', '60', '--out', hour]);
+  const mb = statSync(hour).size / 1e6;
+  const { context, page } = await open();
+  const cdp = await context.newCDPSession(page);
+  await cdp.send('Performance.enable');
+  const r = await upload(page, [hour], { timeout: 120_000 });
+  const m = await cdp.send('Performance.getMetrics');
+  const heap = m.metrics.find((x) => x.name === 'JSHeapUsedSize').value / 1e6;
+  const rate = r.logs[0].a.samples / (r.ms / 1000);
+  console.log(`one hour, ${mb.toFixed(0)} MB pdr-log: parse + engine + first draw ${(r.ms / 1000).toFixed(2)} s `
+    + `(${(rate / 1e6).toFixed(2)} M samples/s end to end); page JS heap afterwards ${heap.toFixed(0)} MB`);
+  assert.equal(r.logs[0].a.steps, nativeSteps(hour));
+  await context.close();
+});

@@ -1,0 +1,491 @@
+// Upload mode: files in (picker, folder, drag & drop), the worker parses and runs the engine,
+// the page draws each analysis (AnalysisView, in wasm) and lets the user zoom, pan, hover,
+// compare two configurations and export. Event plumbing only: the figures come from the engine.
+import { AnalysisView } from './pkg/pdr.js';
+import * as profiles from './profiles.js';
+
+const $ = (id) => document.getElementById(id);
+const dark = window.matchMedia('(prefers-color-scheme: dark)');
+const PLOTS = [
+  ['accel', 'Vertical acceleration, PLL output and steps'],
+  ['sigma', 'σ of vertical acceleration and motion state'],
+  ['heading', 'Heading per step'],
+  ['steps', 'Step frequency and length'],
+  ['gnss', 'GNSS accuracy, innovations and step-length scale'],
+];
+
+let worker = null;
+let logs = []; // [{info, card, views: {a, b}, span, cursor, step, bounds}]
+let lastFiles = null;
+let pending = 0; // worker jobs not yet done
+
+function banner(text, kind = 'error') {
+  const li = document.createElement('li');
+  li.className = kind;
+  li.textContent = text;
+  $('upload-banners').append(li);
+}
+
+/** The configuration of a row (A or B) for the worker. */
+function config(tag) {
+  const row = document.querySelector(`.config[data-config="${tag}"]`);
+  const v = (name) => row.querySelector(`[name=${name}]`).value;
+  const profileName = v('profile');
+  return {
+    sets: [`detector.kind=${v('detector')}`, `heading.method=${v('heading')}`],
+    profile: profileName ? profiles.all()[profileName] : undefined,
+    gnss: v('gnss'),
+    label: `${row.querySelector('[name=detector]').selectedOptions[0].text}, ${row.querySelector('[name=heading]').selectedOptions[0].text}, `
+      + `${profileName || 'built-in step length'}, ${row.querySelector('[name=gnss]').selectedOptions[0].text}`,
+  };
+}
+
+function configs() {
+  const c = { a: config('a') };
+  if ($('compare').checked) c.b = config('b');
+  return c;
+}
+
+function fillProfiles() {
+  for (const sel of document.querySelectorAll('.config [name=profile]')) {
+    const keep = sel.value;
+    sel.replaceChildren(new Option('built-in step length', ''), ...Object.keys(profiles.all()).sort().map((n) => new Option(`profile: ${n}`, n)));
+    sel.value = keep && keep in profiles.all() ? keep : profiles.selectedName();
+  }
+}
+
+// --- loading -------------------------------------------------------------------------------
+function progress(text, fraction) {
+  if (window.__pdrUpload) window.__pdrUpload.progress_seen = true;
+  $('upload-progress').hidden = false;
+  $('upload-status').textContent = text;
+  $('upload-bar').value = fraction;
+  document.documentElement.dataset.upload = 'loading';
+}
+
+function fmtBytes(n) {
+  return n > 1e6 ? `${(n / 1e6).toFixed(1)} MB` : `${Math.ceil(n / 1e3)} kB`;
+}
+
+function startWorker() {
+  worker?.terminate();
+  worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  worker.onmessage = ({ data }) => onWorker(data);
+  worker.onerror = (e) => { banner(`The worker failed: ${e.message}`); finish(); };
+}
+
+function load(files) {
+  if (!files.length) return;
+  lastFiles = files;
+  for (const l of logs) for (const v of Object.values(l.views)) v?.free();
+  logs = [];
+  $('upload-results').replaceChildren();
+  $('upload-banners').replaceChildren();
+  startWorker();
+  window.__pdrUpload = {
+    logs: [],
+    errors: [],
+    started: performance.now(),
+    // For the end-to-end tests: where step `i` of log `k` is on the screen (CSS pixels).
+    stepPixel(k, i) {
+      const cv = logs[k].card.querySelector('.mapbox[data-tag="a"] canvas');
+      const p = logs[k].views.a.step_pixel(i);
+      const r = cv.getBoundingClientRect();
+      return p && [r.left + p[0] * r.width / cv.width, r.top + p[1] * r.height / cv.height];
+    },
+  };
+  progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
+  pending = 1;
+  worker.postMessage({ type: 'load', files, configs: configs() });
+}
+
+function finish() {
+  $('upload-progress').hidden = true;
+  $('rerun').disabled = !logs.length;
+  document.documentElement.dataset.upload = 'done';
+  if (window.__pdrUpload) window.__pdrUpload.done_ms = performance.now() - window.__pdrUpload.started;
+}
+
+function onWorker(m) {
+  if (m.type === 'progress') {
+    if (m.phase === 'read') progress(`read ${fmtBytes(m.done)} of ${fmtBytes(m.total)}`, 0.3 * m.done / m.total);
+    else if (m.phase === 'parse') progress('parsing…', 0.3);
+    else {
+      const l = logs[m.index];
+      const samples = l ? Math.round(l.info.samples * m.done / Math.max(m.total, 1)) : 0;
+      progress(`${l?.info.source ?? ''}: ${samples.toLocaleString('en')} of ${(l?.info.samples ?? 0).toLocaleString('en')} samples through the engine`,
+        0.35 + 0.65 * ((m.index + m.done / Math.max(m.total, 1)) / Math.max(logs.length, 1)));
+    }
+  } else if (m.type === 'parsed') {
+    for (const e of m.parsed.errors) {
+      const where = [e.file, e.line, e.column].filter((x) => x != null && x !== 0).join(':');
+      banner(`${where}${e.field ? ` (${e.field})` : ''}: ${e.message}`);
+      window.__pdrUpload.errors.push(e);
+    }
+    if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files.');
+    for (const info of m.parsed.logs) logs[info.index] = { info, views: {}, card: card(info) };
+  } else if (m.type === 'analysis') {
+    const l = logs[m.index];
+    l.views[m.tag]?.free();
+    l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
+    show(l, m.tag);
+  } else if (m.type === 'pdrlog') {
+    save(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`, 'text/plain');
+  } else if (m.type === 'done') {
+    pending -= 1;
+    if (pending <= 0) finish();
+  } else if (m.type === 'failed') {
+    banner(m.message);
+    finish();
+  }
+}
+
+/** Files from a drop, folders walked (their paths kept, so that folder formats are found). */
+async function dropped(dt) {
+  const entries = [...dt.items].map((i) => i.webkitGetAsEntry?.()).filter(Boolean);
+  if (!entries.length) return [...dt.files].map((file) => ({ name: file.name, file }));
+  const out = [];
+  const walk = async (entry, path) => {
+    if (entry.isFile) {
+      out.push({ name: path + entry.name, file: await new Promise((res, rej) => entry.file(res, rej)) });
+    } else if (entry.isDirectory) {
+      const reader = entry.createReader();
+      for (;;) {
+        const batch = await new Promise((res, rej) => reader.readEntries(res, rej));
+        if (!batch.length) break;
+        for (const e of batch) await walk(e, `${path}${entry.name}/`);
+      }
+    }
+  };
+  for (const e of entries) await walk(e, '');
+  return out;
+}
+
+// --- results -------------------------------------------------------------------------------
+function el(tag, props = {}, ...children) {
+  const e = Object.assign(document.createElement(tag), props);
+  e.append(...children);
+  return e;
+}
+
+function card(info) {
+  const c = el('article', { className: 'log-result' });
+  c.dataset.index = info.index;
+  c.append(el('h3', { textContent: info.source }),
+    el('p', { className: 'hint', textContent: `${info.format} · ${info.samples.toLocaleString('en')} IMU samples · ${(info.duration_s / 60).toFixed(1)} min`
+      + (info.warnings ? ` · ${info.warnings} lines skipped` : '') }));
+  c.append(el('div', { className: 'maps' }));
+  c.append(el('div', { className: 'stepinfo', textContent: 'Hover or tap a step on the track, or click a plot, to see its values.' }));
+  const plots = el('div', { className: 'plots' });
+  for (const [kind, label] of PLOTS) {
+    const cv = el('canvas', { className: `plot plot-${kind}` });
+    cv.dataset.kind = kind;
+    cv.setAttribute('role', 'img');
+    cv.setAttribute('aria-label', label);
+    plots.append(cv);
+  }
+  const ell = el('canvas', { className: 'ellipse' });
+  ell.setAttribute('role', 'img');
+  ell.setAttribute('aria-label', 'Horizontal acceleration over the selected stride, with its heading');
+  plots.append(el('p', { className: 'hint', textContent: 'Wheel or pinch to zoom the time axis, drag to pan, double-click to reset; click to pick a step.' }), ell);
+  c.append(plots);
+  const ex = el('div', { className: 'controls exports' });
+  for (const [what, label] of [['gpx', 'GPX'], ['geojson', 'GeoJSON'], ['csv', 'Steps CSV'], ['pdrlog', 'pdr-log'], ['png', 'PNG of the plots']]) {
+    const b = el('button', { type: 'button', className: 'small', textContent: label });
+    b.dataset.export = what;
+    ex.append(b);
+  }
+  c.append(ex);
+  $('upload-results').append(c);
+  return c;
+}
+
+function fmt(v, d = 1) { return v == null ? '–' : Number(v).toFixed(d); }
+
+function summaryHtml(s, label) {
+  const sc = s.score ?? {};
+  const rows = [
+    ['Steps', `${s.steps}` + (sc.truth_steps != null ? ` (true ${sc.truth_steps}, error ${fmt(sc.step_error_pct)} %${sc.step_error_debounced_pct != null ? `; ${fmt(sc.step_error_debounced_pct)} % against debounced truth` : ''})` : '')],
+    ['Distance', `${fmt(sc.distance_m)} m in ${fmt(sc.duration_s / 60)} min`],
+  ];
+  if (sc.waypoint_error_m) rows.push(['Waypoints', `error p75 ${fmt(sc.waypoint_error_m.p75)} m, max ${fmt(sc.waypoint_error_m.max)} m over ${sc.waypoints} waypoints`]);
+  if (sc.loop_closure_m != null) rows.push(['Loop closure', `${fmt(sc.loop_closure_m)} m`]);
+  for (const [k, name] of [['gnss_error_m', 'GNSS alone'], ['fused_error_m', 'Fused'], ['smoothed_error_m', 'Smoothed']]) {
+    if (sc[k]) rows.push([name, `p75 ${fmt(sc[k].p75)} m, max ${fmt(sc[k].max)} m`]);
+  }
+  if (s.fixes) rows.push(['GNSS', `${s.fixes} fixes`]);
+  const dl = el('dl', { className: 'summary' });
+  if (label) dl.append(el('dt', { className: 'config-label', textContent: label }), el('dd'));
+  for (const [k, v] of rows) dl.append(el('dt', { textContent: k }), el('dd', { textContent: v }));
+  for (const w of s.warnings.slice(0, 3)) dl.append(el('dt', { textContent: 'Note' }), el('dd', { textContent: w }));
+  return dl;
+}
+
+function fit(canvas) {
+  const dpr = window.devicePixelRatio || 1;
+  const r = canvas.getBoundingClientRect();
+  canvas.width = Math.round(r.width * dpr);
+  canvas.height = Math.round(r.height * dpr);
+  return canvas.width && canvas.height ? dpr : 0;
+}
+
+function show(l, tag) {
+  const v = l.views[tag];
+  const s = v.summary();
+  l.summaries = { ...(l.summaries ?? {}), [tag]: s };
+  window.__pdrUpload.logs[l.info.index] = { ...(window.__pdrUpload.logs[l.info.index] ?? {}), [tag]: s };
+  const maps = l.card.querySelector('.maps');
+  let box = maps.querySelector(`[data-tag="${tag}"]`);
+  if (!box) {
+    box = el('div', { className: 'mapbox' });
+    box.dataset.tag = tag;
+    const cv = el('canvas', { className: 'map' });
+    cv.setAttribute('role', 'img');
+    cv.setAttribute('aria-label', 'Track in metres, east right, north up');
+    box.append(cv, el('div'));
+    maps.append(box);
+    [...maps.children].sort((a, b) => a.dataset.tag.localeCompare(b.dataset.tag)).forEach((c) => maps.append(c));
+    wireMap(l, tag, cv);
+  }
+  const cfg = configs()[tag];
+  box.children[1].replaceWith(summaryHtml(s, l.views.b || tag === 'b' ? `${tag.toUpperCase()}: ${cfg?.label ?? ''}` : ''));
+  maps.classList.toggle('two', Object.keys(l.views).length > 1);
+  if (tag === 'a') {
+    l.span = [s.t0 ?? 0, s.t1 ?? 1];
+    l.full = [...l.span];
+    l.step = null;
+    wirePlots(l);
+  }
+  drawAll(l);
+  l.card.dataset.ready = 'yes';
+}
+
+function drawAll(l) {
+  for (const [tag, v] of Object.entries(l.views)) {
+    const cv = l.card.querySelector(`.mapbox[data-tag="${tag}"] canvas`);
+    const dpr = fit(cv);
+    if (dpr) v.draw_map(cv, dark.matches, dpr, l.bounds ?? [], l.step ?? undefined);
+  }
+  drawPlots(l);
+}
+
+function drawPlots(l) {
+  const v = l.views.a;
+  if (!v) return;
+  const cursor = l.step != null ? v.step_info(l.step).t : undefined;
+  for (const cv of l.card.querySelectorAll('canvas.plot')) {
+    const dpr = fit(cv);
+    if (dpr) v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, l.span[0], l.span[1], cursor);
+  }
+  const ell = l.card.querySelector('canvas.ellipse');
+  const dpr = fit(ell);
+  if (dpr) v.draw_ellipse(ell, dark.matches, dpr, l.step ?? Math.floor(v.summary().steps / 2));
+}
+
+function select(l, i, view) {
+  if (i == null) return;
+  l.step = i;
+  const s = view.step_info(i);
+  const info = l.card.querySelector('.stepinfo');
+  info.textContent = `Step ${i + 1}: t = ${s.t_rel_s.toFixed(2)} s · length ${s.length_m.toFixed(2)} m · frequency ${s.freq_hz.toFixed(2)} Hz · `
+    + `heading ${s.heading_deg == null ? '–' : `${s.heading_deg.toFixed(0)}°`} (single step ${s.step_heading_deg == null ? '–' : `${s.step_heading_deg.toFixed(0)}°`}) · ${s.motion}`;
+  info.dataset.step = String(i);
+  drawAll(l);
+}
+
+/** Hover or tap picks a step; wheel and pinch zoom; drag pans; double-click resets. */
+function wireMap(l, tag, cv) {
+  const pointers = new Map();
+  let drag = null;
+  const pos = (e) => {
+    const r = cv.getBoundingClientRect();
+    const dpr = cv.width / r.width;
+    return [(e.clientX - r.left) * dpr, (e.clientY - r.top) * dpr, dpr];
+  };
+  const zoom = (x, y, factor) => {
+    const v = l.views[tag];
+    const [e0, e1, n0, n1] = v.map_view();
+    const [e, n] = v.to_metres(x, y);
+    l.bounds = [e - (e - e0) * factor, e + (e1 - e) * factor, n - (n - n0) * factor, n + (n1 - n) * factor];
+    drawAll(l);
+  };
+  cv.addEventListener('wheel', (e) => { e.preventDefault(); const [x, y] = pos(e); zoom(x, y, e.deltaY > 0 ? 1.25 : 0.8); }, { passive: false });
+  cv.addEventListener('dblclick', () => { l.bounds = null; drawAll(l); });
+  cv.addEventListener('pointerdown', (e) => {
+    cv.setPointerCapture(e.pointerId);
+    pointers.set(e.pointerId, pos(e));
+    drag = { moved: false };
+  });
+  cv.addEventListener('pointermove', (e) => {
+    const p = pos(e);
+    const v = l.views[tag];
+    if (!pointers.has(e.pointerId)) {
+      if (e.pointerType === 'mouse') {
+        const i = v.pick(p[0], p[1], 12 * p[2]);
+        if (i != null && i !== l.step) select(l, i, v);
+      }
+      return;
+    }
+    const prev = pointers.get(e.pointerId);
+    pointers.set(e.pointerId, p);
+    if (pointers.size === 2) {
+      const [a, b] = [...pointers.values()];
+      const other = a === p ? b : a;
+      const d0 = Math.hypot(prev[0] - other[0], prev[1] - other[1]);
+      const d1 = Math.hypot(p[0] - other[0], p[1] - other[1]);
+      if (d0 > 0 && d1 > 0) zoom((p[0] + other[0]) / 2, (p[1] + other[1]) / 2, d0 / d1);
+    } else if (pointers.size === 1 && Math.hypot(p[0] - prev[0], p[1] - prev[1]) > 0.5) {
+      drag.moved = true;
+      const [e0, e1, n0, n1, mpp] = v.map_view();
+      const de = (p[0] - prev[0]) * mpp;
+      const dn = (p[1] - prev[1]) * mpp;
+      l.bounds = [e0 - de, e1 - de, n0 + dn, n1 + dn];
+      drawAll(l);
+    }
+  });
+  const up = (e) => {
+    const p = pointers.get(e.pointerId);
+    pointers.delete(e.pointerId);
+    if (p && drag && !drag.moved) {
+      const v = l.views[tag];
+      select(l, v.pick(p[0], p[1], 24 * p[2]), v);
+    }
+  };
+  cv.addEventListener('pointerup', up);
+  cv.addEventListener('pointercancel', (e) => pointers.delete(e.pointerId));
+}
+
+/** The plots share one time axis: wheel zooms it about the pointer, drag pans, click picks. */
+function wirePlots(l) {
+  for (const cv of l.card.querySelectorAll('canvas.plot')) {
+    if (cv.dataset.wired) continue;
+    cv.dataset.wired = '1';
+    // The plotting area spans from 40+6 px (labels) to the right edge less the right axis:
+    // close enough to map a pointer to a time for zoom and picking.
+    const timeAt = (e) => {
+      const r = cv.getBoundingClientRect();
+      const left = 46;
+      const right = r.width - 46;
+      const f = Math.min(1, Math.max(0, (e.clientX - r.left - left) / (right - left)));
+      return l.span[0] + f * (l.span[1] - l.span[0]);
+    };
+    let drag = null;
+    cv.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      const t = timeAt(e);
+      const k = e.deltaY > 0 ? 1.25 : 0.8;
+      const span = Math.max(1, (l.span[1] - l.span[0]) * k);
+      const f = (t - l.span[0]) / (l.span[1] - l.span[0]);
+      l.span = [Math.max(l.full[0], t - f * span), Math.min(l.full[1], t - f * span + span)];
+      drawPlots(l);
+    }, { passive: false });
+    cv.addEventListener('dblclick', () => { l.span = [...l.full]; drawPlots(l); });
+    cv.addEventListener('pointerdown', (e) => { cv.setPointerCapture(e.pointerId); drag = { x: e.clientX, span: [...l.span], moved: false }; });
+    cv.addEventListener('pointermove', (e) => {
+      if (!drag) return;
+      const r = cv.getBoundingClientRect();
+      const dt = -(e.clientX - drag.x) / Math.max(r.width - 92, 1) * (drag.span[1] - drag.span[0]);
+      if (Math.abs(e.clientX - drag.x) > 3) drag.moved = true;
+      if (!drag.moved) return;
+      const w = drag.span[1] - drag.span[0];
+      const t0 = Math.min(Math.max(l.full[0], drag.span[0] + dt), l.full[1] - w);
+      l.span = [t0, t0 + w];
+      drawPlots(l);
+    });
+    cv.addEventListener('pointerup', (e) => {
+      if (drag && !drag.moved) select(l, l.views.a.step_near_time(timeAt(e)), l.views.a);
+      drag = null;
+    });
+  }
+}
+
+function save(text, name, type) {
+  const url = URL.createObjectURL(text instanceof Blob ? text : new Blob([text], { type }));
+  const a = el('a', { href: url, download: name });
+  document.body.append(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+}
+
+/** One PNG of the card's plots stacked (the map, then the diagnostics and the ellipse). */
+function pngOf(l) {
+  const canvases = [...l.card.querySelectorAll('canvas')];
+  const w = Math.max(...canvases.map((c) => c.width));
+  const h = canvases.reduce((s, c) => s + c.height, 0);
+  const out = el('canvas', { width: w, height: h });
+  const ctx = out.getContext('2d');
+  let y = 0;
+  for (const c of canvases) { ctx.drawImage(c, 0, y); y += c.height; }
+  return new Promise((res) => out.toBlob(res, 'image/png'));
+}
+
+async function exportClicked(l, what) {
+  const v = l.views.a;
+  const base = l.info.source.split('/').pop().replace(/[^\w.-]+/g, '_');
+  if (what === 'gpx') save(v.gpx(), `${base}.gpx`, 'application/gpx+xml');
+  else if (what === 'geojson') save(v.geojson(), `${base}.geojson`, 'application/geo+json');
+  else if (what === 'csv') save(v.steps_csv(), `${base}.steps.csv`, 'text/csv');
+  else if (what === 'pdrlog') worker.postMessage({ type: 'pdrlog', index: l.info.index });
+  else if (what === 'png') save(await pngOf(l), `${base}.png`, 'image/png');
+}
+
+export function setupUpload() {
+  fillProfiles();
+  window.addEventListener('storage', fillProfiles);
+  for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', fillProfiles);
+  $('upload-files').addEventListener('change', (e) => {
+    load([...e.target.files].map((file) => ({ name: file.name, file })));
+    e.target.value = '';
+  });
+  $('upload-folder').addEventListener('change', (e) => {
+    load([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
+    e.target.value = '';
+  });
+  const drop = $('drop');
+  drop.addEventListener('dragover', (e) => { e.preventDefault(); drop.classList.add('over'); });
+  drop.addEventListener('dragleave', () => drop.classList.remove('over'));
+  drop.addEventListener('drop', async (e) => {
+    e.preventDefault();
+    drop.classList.remove('over');
+    load(await dropped(e.dataTransfer));
+  });
+  $('upload-cancel').addEventListener('click', () => {
+    worker?.terminate();
+    worker = null;
+    banner('Cancelled.', 'warn');
+    finish();
+    $('rerun').disabled = !lastFiles;
+  });
+  $('compare').addEventListener('change', (e) => {
+    document.querySelector('.config[data-config="b"]').hidden = !e.target.checked;
+  });
+  $('rerun').addEventListener('click', () => {
+    fillProfiles();
+    if (!worker || !logs.length) { if (lastFiles) load(lastFiles); return; }
+    const c = configs();
+    for (const l of logs) {
+      if (!c.b && l.views.b) {
+        l.views.b.free();
+        delete l.views.b;
+        l.card.querySelector('.mapbox[data-tag="b"]')?.remove();
+      }
+    }
+    progress('running the engine again…', 0.35);
+    for (const l of logs) {
+      for (const [tag, config] of Object.entries(c)) {
+        pending += 1;
+        worker.postMessage({ type: 'rerun', index: l.info.index, config, tag });
+      }
+    }
+  });
+  $('upload-results').addEventListener('click', (e) => {
+    const what = e.target.dataset?.export;
+    if (!what) return;
+    const l = logs[Number(e.target.closest('.log-result').dataset.index)];
+    exportClicked(l, what);
+  });
+  const redraw = () => { for (const l of logs) if (l?.views.a) drawAll(l); };
+  dark.addEventListener('change', redraw);
+  window.addEventListener('resize', redraw);
+}

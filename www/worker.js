@@ -1,0 +1,50 @@
+// Upload mode's worker: the files are read, parsed and run through the engine here, off the
+// page's thread. Messages in: {type: 'load', files: [{name, file}], config} and
+// {type: 'rerun', index, config, tag} and {type: 'pdrlog', index}. Out: 'progress', 'parsed',
+// 'analysis' (bytes, transferred), 'pdrlog', 'done', 'failed'.
+import init, { Upload } from './pkg/pdr.js';
+
+let upload = null;
+const ready = init();
+
+function analyse(index, config, tag) {
+  let last = 0;
+  const bytes = upload.analyse(index, config.sets, config.profile, config.gnss, (done, total) => {
+    const now = performance.now();
+    if (now - last > 50 || done === total) {
+      last = now;
+      postMessage({ type: 'progress', phase: 'engine', index, done, total });
+    }
+  });
+  postMessage({ type: 'analysis', index, tag, bytes }, [bytes.buffer]);
+}
+
+onmessage = async ({ data }) => {
+  try {
+    await ready;
+    if (data.type === 'load') {
+      upload = new Upload();
+      const total = data.files.reduce((s, f) => s + f.file.size, 0);
+      let read = 0;
+      for (const { name, file } of data.files) {
+        upload.add_file(name, new Uint8Array(await file.arrayBuffer()));
+        read += file.size;
+        postMessage({ type: 'progress', phase: 'read', done: read, total });
+      }
+      postMessage({ type: 'progress', phase: 'parse', done: 0, total: data.files.length });
+      const parsed = upload.parse();
+      postMessage({ type: 'parsed', parsed });
+      for (const log of parsed.logs) {
+        for (const [tag, config] of Object.entries(data.configs)) analyse(log.index, config, tag);
+      }
+      postMessage({ type: 'done' });
+    } else if (data.type === 'rerun') {
+      analyse(data.index, data.config, data.tag);
+      postMessage({ type: 'done' });
+    } else if (data.type === 'pdrlog') {
+      postMessage({ type: 'pdrlog', index: data.index, text: upload.pdrlog(data.index) });
+    }
+  } catch (err) {
+    postMessage({ type: 'failed', message: String(err?.message ?? err) });
+  }
+};
