@@ -203,6 +203,17 @@ impl Analysis {
             .map(|(lat, lon, h)| crate::engine::geo::LocalFrame::new(lat, lon, h))
     }
 
+    /// Where step `i` is drawn on the map: its fused position when the fusion has the step,
+    /// else the PDR track's (shifted into the fixes' frame).
+    pub fn step_position(&self, i: usize) -> Option<(f64, f64)> {
+        let s = self.steps.get(i)?;
+        let k = self.fused.partition_point(|f| f[0] < s.t);
+        match self.fused.get(k) {
+            Some(f) if (f[0] - s.t).abs() < 1e-6 => Some((f[1], f[2])),
+            _ => Some((s.east_m + self.pdr_offset.0, s.north_m + self.pdr_offset.1)),
+        }
+    }
+
     /// The index of the step nearest to a time, s.
     pub fn step_near_time(&self, t: f64) -> Option<usize> {
         let i = self.steps.partition_point(|s| s.t < t);

@@ -877,12 +877,12 @@ impl AnalysisView {
         let f = self.frame.get();
         let (e, n) = f.to_metres(x, y);
         let r = radius * f.metres_per_px();
-        let (oe, on) = self.a.pdr_offset;
-        self.a
-            .steps
-            .iter()
-            .enumerate()
-            .map(|(i, s)| (i, libm::hypot(s.east_m + oe - e, s.north_m + on - n)))
+        (0..self.a.steps.len())
+            .filter_map(|i| {
+                self.a
+                    .step_position(i)
+                    .map(|p| (i, libm::hypot(p.0 - e, p.1 - n)))
+            })
             .filter(|(_, d)| *d <= r)
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(i, _)| i)
@@ -890,14 +890,13 @@ impl AnalysisView {
 
     /// Canvas pixel `[x, y]` of step `i` on the last map drawn.
     pub fn step_pixel(&self, i: usize) -> Option<Vec<f64>> {
-        let s = self.a.steps.get(i)?;
+        let (e, n) = self.a.step_position(i)?;
         let f = self.frame.get();
         let (l, r, t, b) = f.px;
         let (e0, e1, n0, n1) = f.m;
-        let (oe, on) = self.a.pdr_offset;
         Some(vec![
-            l as f64 + (s.east_m + oe - e0) / (e1 - e0) * (r - l) as f64,
-            t as f64 + (n1 - (s.north_m + on)) / (n1 - n0) * (b - t) as f64,
+            l as f64 + (e - e0) / (e1 - e0) * (r - l) as f64,
+            t as f64 + (n1 - n) / (n1 - n0) * (b - t) as f64,
         ])
     }
 

@@ -117,6 +117,7 @@ function onWorker(m) {
         0.35 + 0.65 * ((m.index + m.done / Math.max(m.total, 1)) / Math.max(logs.length, 1)));
     }
   } else if (m.type === 'parsed') {
+    Object.assign(window.__pdrUpload, { parse_ms: m.parse_ms, bytes: m.bytes });
     for (const e of m.parsed.errors) {
       const where = [e.file, e.line, e.column].filter((x) => x != null && x !== 0).join(':');
       banner(`${where}${e.field ? ` (${e.field})` : ''}: ${e.message}`);
@@ -129,6 +130,7 @@ function onWorker(m) {
     l.views[m.tag]?.free();
     l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
     show(l, m.tag);
+    Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, memory_mb: m.memory_mb });
   } else if (m.type === 'pdrlog') {
     save(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`, 'text/plain');
   } else if (m.type === 'done') {

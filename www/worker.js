@@ -7,8 +7,13 @@ import init, { Upload } from './pkg/pdr.js';
 let upload = null;
 const ready = init();
 
+/** The engine's linear memory, MB (it grows and never shrinks: its high-water mark). */
+let memoryMb = () => 0;
+ready.then((w) => { memoryMb = () => w.memory.buffer.byteLength / 1e6; });
+
 function analyse(index, config, tag) {
   let last = 0;
+  const t0 = performance.now();
   const bytes = upload.analyse(index, config.sets, config.profile, config.gnss, (done, total) => {
     const now = performance.now();
     if (now - last > 50 || done === total) {
@@ -16,7 +21,8 @@ function analyse(index, config, tag) {
       postMessage({ type: 'progress', phase: 'engine', index, done, total });
     }
   });
-  postMessage({ type: 'analysis', index, tag, bytes }, [bytes.buffer]);
+  const engineMs = performance.now() - t0;
+  postMessage({ type: 'analysis', index, tag, bytes, engine_ms: engineMs, memory_mb: memoryMb() }, [bytes.buffer]);
 }
 
 onmessage = async ({ data }) => {
@@ -32,8 +38,9 @@ onmessage = async ({ data }) => {
         postMessage({ type: 'progress', phase: 'read', done: read, total });
       }
       postMessage({ type: 'progress', phase: 'parse', done: 0, total: data.files.length });
+      const t0 = performance.now();
       const parsed = upload.parse();
-      postMessage({ type: 'parsed', parsed });
+      postMessage({ type: 'parsed', parsed, parse_ms: performance.now() - t0, bytes: total });
       for (const log of parsed.logs) {
         for (const [tag, config] of Object.entries(data.configs)) analyse(log.index, config, tag);
       }

@@ -133,6 +133,12 @@ pub struct Parsed {
 /// ([`crate::io::import::MAX_LINE`]), so a file of any size is read in memory proportional to
 /// its records.
 pub fn read(input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
+    read_sized(input, file, 0)
+}
+
+/// [`read`], with room made for `records` records at once: a large upload then needs no
+/// reallocation of its records, whose doubling would otherwise hold them twice for a moment.
+pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Parsed, ParseError> {
     let err = |line: u64, column: Option<usize>, field: Option<&str>, message: String| ParseError {
         file: file.to_string(),
         line,
@@ -141,6 +147,7 @@ pub fn read(input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
         message,
     };
     let mut out = Parsed::default();
+    out.records.reserve(records);
     let mut fatal = None;
     let mut saw_header = false;
     let skip = |out: &mut Parsed, e: ParseError| {
@@ -424,4 +431,20 @@ mod tests {
         );
         assert!(read("imu,0,0,0,9.8\n".as_bytes(), "x").is_err());
     }
+}
+
+/// The number of records a pdr-log of `size` bytes holds, estimated from its first bytes
+/// (`head`): the size over the mean length of the record lines there, plus 2 %.
+pub fn estimate_records(head: &str, size: u64) -> usize {
+    let (mut n, mut bytes) = (0usize, 0usize);
+    for l in head.lines().skip(1) {
+        if !l.starts_with('#') && !l.is_empty() {
+            n += 1;
+            bytes += l.len() + 1;
+        }
+    }
+    if n < 3 {
+        return 0;
+    }
+    (size as f64 * n as f64 / bytes as f64 * 1.02) as usize
 }

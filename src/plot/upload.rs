@@ -115,8 +115,7 @@ pub fn draw_map<DB: DrawingBackend>(
         theme,
         scale,
     )?;
-    if let Some(s) = highlight.and_then(|i| a.steps.get(i)) {
-        let p = (s.east_m + oe, s.north_m + on);
+    if let Some(p) = highlight.and_then(|i| a.step_position(i)) {
         chart.draw_series([Circle::new(
             p,
             px(8.0),
@@ -543,7 +542,7 @@ pub fn draw_ellipse<DB: DrawingBackend>(
         * 1.15;
     area.draw(&Text::new(
         format!(
-            "step {} at {:.1} s: horizontal acceleration over its stride (m/s²), heading {}",
+            "step {} at {:.1} s, stride's horizontal acc. (m/s²), heading {}",
             k + 1,
             step.t - tr.t.first().copied().unwrap_or(0.0),
             step.heading_rad.map_or("–".into(), |h| format!(

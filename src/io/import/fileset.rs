@@ -21,6 +21,10 @@ pub trait FileSet {
         self.open(name)?.read_to_end(&mut bytes)?;
         Ok(Box::new(Cursor::new(bytes)))
     }
+    /// The size of a file in bytes, when known cheaply.
+    fn size(&mut self, _name: &str) -> Option<u64> {
+        None
+    }
     /// The first [`HEAD_BYTES`] bytes of a file, as text (invalid UTF-8 replaced).
     fn head(&mut self, name: &str) -> io::Result<String> {
         let mut buf = Vec::with_capacity(HEAD_BYTES);
@@ -101,6 +105,10 @@ impl DirSet {
 }
 
 impl FileSet for DirSet {
+    fn size(&mut self, name: &str) -> Option<u64> {
+        std::fs::metadata(self.path(name)).ok().map(|m| m.len())
+    }
+
     fn names(&self) -> &[String] {
         &self.names
     }
@@ -186,6 +194,10 @@ impl MemSet {
 impl FileSet for MemSet {
     fn names(&self) -> &[String] {
         &self.names
+    }
+
+    fn size(&mut self, name: &str) -> Option<u64> {
+        self.bytes(name).ok().map(|b| b.len() as u64)
     }
 
     fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {

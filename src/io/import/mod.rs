@@ -447,10 +447,14 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
             continue;
         };
         let label = set.label(name);
+        let records = match (format, set.size(name)) {
+            (Format::PdrLog, Some(size)) => crate::io::pdrlog::estimate_records(&head, size),
+            _ => 0,
+        };
         let r = match set.open(name) {
             Err(e) => Err(file_error(&label, 0, e.to_string())),
             Ok(reader) => match format {
-                Format::PdrLog => crate::io::pdrlog::read(reader, &label).map(|p| {
+                Format::PdrLog => crate::io::pdrlog::read_sized(reader, &label, records).map(|p| {
                     let mut log = Log::new(&label, Format::PdrLog);
                     log.records = p.records;
                     let extra = p.skipped.saturating_sub(p.errors.len() as u64);
