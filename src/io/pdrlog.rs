@@ -366,6 +366,22 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
     })
 }
 
+/// The number of records a pdr-log of `size` bytes holds, estimated from its first bytes
+/// (`head`): the size over the mean length of the record lines there, plus 2 %.
+pub fn estimate_records(head: &str, size: u64) -> usize {
+    let (mut n, mut bytes) = (0usize, 0usize);
+    for l in head.lines().skip(1) {
+        if !l.starts_with('#') && !l.is_empty() {
+            n += 1;
+            bytes += l.len() + 1;
+        }
+    }
+    if n < 3 {
+        return 0;
+    }
+    (size as f64 * n as f64 / bytes as f64 * 1.02) as usize
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -431,20 +447,4 @@ mod tests {
         );
         assert!(read("imu,0,0,0,9.8\n".as_bytes(), "x").is_err());
     }
-}
-
-/// The number of records a pdr-log of `size` bytes holds, estimated from its first bytes
-/// (`head`): the size over the mean length of the record lines there, plus 2 %.
-pub fn estimate_records(head: &str, size: u64) -> usize {
-    let (mut n, mut bytes) = (0usize, 0usize);
-    for l in head.lines().skip(1) {
-        if !l.starts_with('#') && !l.is_empty() {
-            n += 1;
-            bytes += l.len() + 1;
-        }
-    }
-    if n < 3 {
-        return 0;
-    }
-    (size as f64 * n as f64 / bytes as f64 * 1.02) as usize
 }
