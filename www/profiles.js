@@ -8,10 +8,14 @@ export function all() {
   try { return JSON.parse(localStorage.getItem(LIST) ?? '{}'); } catch { return {}; }
 }
 
+/** Tells the page's other parts (upload mode's profile choice) that the profiles changed. */
+const changed = () => window.dispatchEvent(new Event('pdr-profiles-changed'));
+
 export function save(name, json) {
   const p = all();
   p[name] = json;
   localStorage.setItem(LIST, JSON.stringify(p));
+  changed();
 }
 
 export function remove(name) {
@@ -19,6 +23,7 @@ export function remove(name) {
   delete p[name];
   localStorage.setItem(LIST, JSON.stringify(p));
   if (selectedName() === name) select('');
+  changed();
 }
 
 /** The selected profile's name ('' for the built-in default). */
@@ -27,7 +32,10 @@ export function selectedName() {
   return n in all() ? n : '';
 }
 
-export function select(name) { localStorage.setItem(SELECTED, name); }
+export function select(name) {
+  localStorage.setItem(SELECTED, name);
+  changed();
+}
 
 /** The selected profile's JSON, or undefined for the built-in default. */
 export function selected() {

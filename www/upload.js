@@ -46,9 +46,10 @@ function configs() {
   return c;
 }
 
-function fillProfiles() {
+/** The profile choices; `adopt` sets them to the profile now selected on the device. */
+function fillProfiles(adopt = false) {
   for (const sel of document.querySelectorAll('.config [name=profile]')) {
-    const keep = sel.value;
+    const keep = adopt === true ? profiles.selectedName() : sel.value;
     sel.replaceChildren(new Option('built-in step length', ''), ...Object.keys(profiles.all()).sort().map((n) => new Option(`profile: ${n}`, n)));
     sel.value = keep && keep in profiles.all() ? keep : profiles.selectedName();
   }
@@ -434,8 +435,9 @@ async function exportClicked(l, what) {
 
 export function setupUpload() {
   fillProfiles();
-  window.addEventListener('storage', fillProfiles);
-  for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', fillProfiles);
+  window.addEventListener('storage', () => fillProfiles());
+  window.addEventListener('pdr-profiles-changed', () => fillProfiles(true));
+  for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', () => fillProfiles());
   $('upload-files').addEventListener('change', (e) => {
     load([...e.target.files].map((file) => ({ name: file.name, file })));
     e.target.value = '';

@@ -132,6 +132,11 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
     + `${builtIn.distance_m.toFixed(1)} m built-in (${(100 * errBuiltIn).toFixed(1)} %)`);
   assert.ok(errWith < 0.02, `with the profile: ${(100 * errWith).toFixed(1)} %`);
   assert.ok(errBuiltIn > 0.08, `built-in: ${(100 * errBuiltIn).toFixed(1)} %`);
+  // Upload mode uses the selected profile.
+  await page.setInputFiles('#upload-files', path.join(tmp, 'other.pdrlog'));
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0]?.a);
+  const uploaded = await page.evaluate(() => window.__pdrUpload.logs[0].a.score.distance_m);
+  assert.ok(Math.abs(uploaded - withProfile.distance_m) < 1e-9, `upload with the profile: ${uploaded} m`);
 
   // Export, delete, import: the same profile back.
   const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#profile-export')]);
