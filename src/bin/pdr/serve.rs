@@ -142,8 +142,11 @@ fn handle(root: &Path, req: tiny_http::Request) {
 
 fn spawn(server: tiny_http::Server, root: Arc<PathBuf>) -> std::thread::JoinHandle<()> {
     std::thread::spawn(move || {
+        // A thread per request: a client that stops reading (a page reloaded while a large file
+        // was on its way) blocks its own write only, never the server.
         for req in server.incoming_requests() {
-            handle(&root, req);
+            let root = Arc::clone(&root);
+            std::thread::spawn(move || handle(&root, req));
         }
     })
 }
