@@ -11,6 +11,8 @@ use serde::Serialize;
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
+mod blobs;
+
 /// plotters' canvas backend, with text measured by the canvas itself (`measureText`): plotters'
 /// own web measurement puts a styled `<span>` in the page, which the page's Content Security
 /// Policy (no inline styles) refuses, and which would measure the wrong font anyway.
@@ -695,7 +697,7 @@ impl Default for Demo {
 /// page ([`AnalysisView`]).
 #[wasm_bindgen]
 pub struct Upload {
-    files: Vec<(String, Vec<u8>)>,
+    files: Vec<(String, web_sys::Blob)>,
     logs: Vec<crate::io::import::Log>,
 }
 
@@ -710,15 +712,17 @@ impl Upload {
         }
     }
 
-    /// Adds a file: its name (with its folder path for a folder upload) and bytes.
-    pub fn add_file(&mut self, name: String, bytes: Vec<u8>) {
-        self.files.push((name, bytes));
+    /// Adds a file: its name (with its folder path for a folder upload) and the `File`. Its bytes
+    /// are read only while parsing, a slice at a time ([`blobs::BlobSet`]).
+    pub fn add_file(&mut self, name: String, file: web_sys::Blob) {
+        self.files.push((name, file));
     }
 
-    /// Reads every log in the files (their bytes are then dropped): `{logs: [{index, source,
-    /// format, samples, duration_s, warnings}], errors: [{file, line, column, field, message}]}`.
-    /// A file that fails is an error; the others still load.
-    pub fn parse(&mut self) -> Result<JsValue, JsError> {
+    /// Reads every log in the files: `{logs: [{index, source, format, samples, duration_s,
+    /// warnings}], errors: [{file, line, column, field, message}]}`. A file that fails is an
+    /// error; the others still load. `progress(bytes_read)` is called as reading goes on.
+    /// Workers only (it reads with `FileReaderSync`).
+    pub fn parse(&mut self, progress: js_sys::Function) -> Result<JsValue, JsError> {
         #[derive(serde::Serialize)]
         struct Info {
             index: usize,
@@ -733,7 +737,10 @@ impl Upload {
             logs: Vec<Info>,
             errors: Vec<crate::io::ParseError>,
         }
-        let mut set = crate::io::import::fileset::MemSet::new(std::mem::take(&mut self.files));
+        let mut set =
+            blobs::BlobSet::new(std::mem::take(&mut self.files), progress).map_err(|_| {
+                JsError::new("FileReaderSync is missing: upload parsing runs in a worker")
+            })?;
         let mut out = Parsed {
             logs: Vec::new(),
             errors: Vec::new(),

@@ -109,8 +109,7 @@ function finish() {
 
 function onWorker(m) {
   if (m.type === 'progress') {
-    if (m.phase === 'read') progress(`read ${fmtBytes(m.done)} of ${fmtBytes(m.total)}`, 0.3 * m.done / m.total);
-    else if (m.phase === 'parse') progress('parsing…', 0.3);
+    if (m.phase === 'read') progress(`parsed ${fmtBytes(m.done)} of ${fmtBytes(m.total)}`, 0.35 * m.done / Math.max(m.total, 1));
     else {
       const l = logs[m.index];
       const samples = l ? Math.round(l.info.samples * m.done / Math.max(m.total, 1)) : 0;

@@ -30,16 +30,12 @@ onmessage = async ({ data }) => {
     await ready;
     if (data.type === 'load') {
       upload = new Upload();
+      // The files stay where they are: the parser reads them a slice at a time.
       const total = data.files.reduce((s, f) => s + f.file.size, 0);
-      let read = 0;
-      for (const { name, file } of data.files) {
-        upload.add_file(name, new Uint8Array(await file.arrayBuffer()));
-        read += file.size;
-        postMessage({ type: 'progress', phase: 'read', done: read, total });
-      }
-      postMessage({ type: 'progress', phase: 'parse', done: 0, total: data.files.length });
+      for (const { name, file } of data.files) upload.add_file(name, file);
+      postMessage({ type: 'progress', phase: 'read', done: 0, total });
       const t0 = performance.now();
-      const parsed = upload.parse();
+      const parsed = upload.parse((read) => postMessage({ type: 'progress', phase: 'read', done: Math.min(read, total), total }));
       postMessage({ type: 'parsed', parsed, parse_ms: performance.now() - t0, bytes: total });
       for (const log of parsed.logs) {
         for (const [tag, config] of Object.entries(data.configs)) analyse(log.index, config, tag);

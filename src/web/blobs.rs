@@ -1,0 +1,165 @@
+//! The files of an upload, read where they lie: a `File` (a `Blob`) is read a slice at a time
+//! with `FileReaderSync` as the parser asks for bytes, so that a 100 MB recording is never held
+//! whole in the engine's memory. `FileReaderSync` exists only in workers: this is the upload
+//! worker's file set.
+
+use crate::io::import::fileset::ReadSeek;
+use crate::io::import::FileSet;
+use std::cell::Cell;
+use std::io::{self, BufRead, BufReader, Read, Seek, SeekFrom};
+use std::rc::Rc;
+use wasm_bindgen::JsValue;
+use web_sys::{Blob, FileReaderSync};
+
+/// Bytes per read from a blob (one `FileReaderSync` call).
+const CHUNK: usize = 1 << 20;
+/// Progress is reported after every this many bytes read.
+const REPORT_EVERY: u64 = 4 << 20;
+
+/// Bytes read so far across the set, and who to tell.
+struct Progress {
+    read: Cell<u64>,
+    reported: Cell<u64>,
+    callback: js_sys::Function,
+}
+
+impl Progress {
+    fn add(&self, n: usize) {
+        let read = self.read.get() + n as u64;
+        self.read.set(read);
+        if read - self.reported.get() >= REPORT_EVERY {
+            self.reported.set(read);
+            let _ = self.callback.call1(&JsValue::NULL, &(read as f64).into());
+        }
+    }
+}
+
+/// One blob as a seekable byte stream.
+struct BlobFile {
+    blob: Blob,
+    size: u64,
+    pos: u64,
+    reader: Rc<FileReaderSync>,
+    progress: Rc<Progress>,
+}
+
+fn js_error(e: JsValue) -> io::Error {
+    io::Error::other(
+        e.as_string()
+            .or_else(|| js_sys::Error::from(e).message().as_string())
+            .unwrap_or_else(|| "the browser could not read the file".into()),
+    )
+}
+
+impl Read for BlobFile {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        let n = buf
+            .len()
+            .min(CHUNK)
+            .min(self.size.saturating_sub(self.pos) as usize);
+        if n == 0 {
+            return Ok(0);
+        }
+        let slice = self
+            .blob
+            .slice_with_f64_and_f64(self.pos as f64, (self.pos + n as u64) as f64)
+            .map_err(js_error)?;
+        let buffer = self.reader.read_as_array_buffer(&slice).map_err(js_error)?;
+        let bytes = js_sys::Uint8Array::new(&buffer);
+        let got = (bytes.length() as usize).min(n);
+        bytes.subarray(0, got as u32).copy_to(&mut buf[..got]);
+        self.pos += got as u64;
+        self.progress.add(got);
+        Ok(got)
+    }
+}
+
+impl Seek for BlobFile {
+    fn seek(&mut self, to: SeekFrom) -> io::Result<u64> {
+        let pos = match to {
+            SeekFrom::Start(p) => Some(p),
+            SeekFrom::End(d) => self.size.checked_add_signed(d),
+            SeekFrom::Current(d) => self.pos.checked_add_signed(d),
+        }
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "seek before the start"))?;
+        self.pos = pos;
+        Ok(pos)
+    }
+}
+
+/// The upload's files, by name (with their folder path for a folder upload).
+pub struct BlobSet {
+    files: Vec<(String, Blob)>,
+    names: Vec<String>,
+    reader: Rc<FileReaderSync>,
+    progress: Rc<Progress>,
+}
+
+impl BlobSet {
+    /// A set from `(name, blob)` pairs; `progress(bytes_read)` is called as reading goes on.
+    pub fn new(
+        mut files: Vec<(String, Blob)>,
+        progress: js_sys::Function,
+    ) -> Result<Self, JsValue> {
+        files.sort_by(|a, b| a.0.cmp(&b.0));
+        Ok(BlobSet {
+            names: files.iter().map(|f| f.0.clone()).collect(),
+            files,
+            reader: Rc::new(FileReaderSync::new()?),
+            progress: Rc::new(Progress {
+                read: Cell::new(0),
+                reported: Cell::new(0),
+                callback: progress,
+            }),
+        })
+    }
+
+    fn file(&self, name: &str) -> io::Result<BlobFile> {
+        let blob = self
+            .files
+            .iter()
+            .find(|f| f.0 == name)
+            .map(|f| f.1.clone())
+            .ok_or_else(|| io::Error::new(io::ErrorKind::NotFound, name.to_string()))?;
+        Ok(BlobFile {
+            size: blob.size() as u64,
+            blob,
+            pos: 0,
+            reader: Rc::clone(&self.reader),
+            progress: Rc::clone(&self.progress),
+        })
+    }
+}
+
+impl FileSet for BlobSet {
+    fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    fn size(&mut self, name: &str) -> Option<u64> {
+        self.file(name).ok().map(|f| f.size)
+    }
+
+    fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {
+        Ok(Box::new(BufReader::with_capacity(CHUNK, self.file(name)?)))
+    }
+
+    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
+        Ok(Box::new(BufReader::with_capacity(
+            1 << 16,
+            self.file(name)?,
+        )))
+    }
+
+    fn label(&self, name: &str) -> String {
+        name.to_string()
+    }
+
+    fn head(&mut self, name: &str) -> io::Result<String> {
+        let mut buf = Vec::with_capacity(crate::io::import::fileset::HEAD_BYTES);
+        self.file(name)?
+            .take(crate::io::import::fileset::HEAD_BYTES as u64)
+            .read_to_end(&mut buf)?;
+        Ok(String::from_utf8_lossy(&buf).into_owned())
+    }
+}
