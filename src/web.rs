@@ -111,12 +111,12 @@ type CanvasArea = plotters::drawing::DrawingArea<Canvas, plotters::coord::Shift>
 
 /// Runs `draw` on `canvas` (backing store sized by the caller to CSS size × `dpr`) with the
 /// scheme's theme and the pixel ratio as the drawing scale, then presents it.
-fn on_canvas<E: std::fmt::Display>(
+fn on_canvas<T, E: std::fmt::Display>(
     canvas: &HtmlCanvasElement,
     dark: bool,
     dpr: f64,
-    draw: impl FnOnce(&CanvasArea, &Theme, f64) -> Result<(), E>,
-) -> Result<(), JsError> {
+    draw: impl FnOnce(&CanvasArea, &Theme, f64) -> Result<T, E>,
+) -> Result<T, JsError> {
     use wasm_bindgen::JsCast;
     let no_2d = || JsError::new("the canvas has no 2D context");
     let ctx = canvas
@@ -128,8 +128,9 @@ fn on_canvas<E: std::fmt::Display>(
     let inner = CanvasBackend::with_canvas_object(canvas.clone()).ok_or_else(no_2d)?;
     let area = Canvas { inner, ctx }.into_drawing_area();
     let theme = if dark { Theme::DARK } else { Theme::LIGHT };
-    draw(&area, &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
-    area.present().map_err(|e| JsError::new(&e.to_string()))
+    let out = draw(&area, &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
+    area.present().map_err(|e| JsError::new(&e.to_string()))?;
+    Ok(out)
 }
 
 /// The embedded demo walk, processed once and drawn on demand.
@@ -934,8 +935,9 @@ impl AnalysisView {
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
-    /// Draws diagnostics plot `kind` (`accel`, `sigma`, `heading`, `steps`, `gnss`) between
-    /// `t0` and `t1` (s), with a cursor at `cursor`.
+    /// Draws diagnostics plot `kind` (`accel`, `sigma`, `heading`, `steps`, `gnss`, `fusion`)
+    /// between `t0` and `t1` (s), with a cursor at `cursor`. Returns the canvas pixel columns
+    /// of `t0` and `t1`.
     pub fn draw_plot(
         &self,
         canvas: &HtmlCanvasElement,
@@ -945,12 +947,13 @@ impl AnalysisView {
         t0: f64,
         t1: f64,
         cursor: Option<f64>,
-    ) -> Result<(), JsError> {
+    ) -> Result<Vec<f64>, JsError> {
         let plot = crate::plot::upload::Plot::parse(kind)
             .ok_or_else(|| JsError::new(&format!("no plot `{kind}`")))?;
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
             crate::plot::upload::draw_plot(area, &self.a, plot, (t0, t1), cursor, theme, scale)
         })
+        .map(|(left, right)| vec![f64::from(left), f64::from(right)])
     }
 
     /// Draws the stride ellipse ending at step `k`.

@@ -11,7 +11,8 @@ const PLOTS = [
   ['sigma', 'σ of vertical acceleration and motion state'],
   ['heading', 'Heading per step'],
   ['steps', 'Step frequency and length'],
-  ['gnss', 'GNSS accuracy, innovations and step-length scale'],
+  ['gnss', 'GNSS accuracy and innovations'],
+  ['fusion', 'Fusion: estimated step-length scale and heading correction'],
 ];
 
 let worker = null;
@@ -51,7 +52,8 @@ function fillProfiles(adopt = false) {
   for (const sel of document.querySelectorAll('.config [name=profile]')) {
     const keep = adopt === true ? profiles.selectedName() : sel.value;
     sel.replaceChildren(new Option('built-in step length', ''), ...Object.keys(profiles.all()).sort().map((n) => new Option(`profile: ${n}`, n)));
-    sel.value = keep && keep in profiles.all() ? keep : profiles.selectedName();
+    // '' is the built-in step length: a choice of its own, kept like a profile's name.
+    sel.value = keep === '' || keep in profiles.all() ? keep : profiles.selectedName();
   }
 }
 
@@ -94,6 +96,16 @@ function load(files) {
       const r = cv.getBoundingClientRect();
       return p && [r.left + p[0] * r.width / cv.width, r.top + p[1] * r.height / cv.height];
     },
+    // Where time `t` (the log's clock) is on plot `kind` of log `k` (CSS pixels), and the span shown.
+    plotPoint(k, kind, t) {
+      const cv = logs[k].card.querySelector(`canvas.plot-${kind}`);
+      const r = cv.getBoundingClientRect();
+      const [left, right] = cv.axis;
+      const [t0, t1] = logs[k].span;
+      return [r.left + left + (t - t0) / (t1 - t0) * (right - left), r.top + r.height / 2];
+    },
+    span: (k) => [...logs[k].span],
+    stepTime: (k, i) => logs[k].views.a.step_info(i).t,
   };
   progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
   pending = 1;
@@ -277,7 +289,8 @@ function drawPlots(l) {
   const cursor = l.step != null ? v.step_info(l.step).t : undefined;
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
     const dpr = fit(cv);
-    if (dpr) v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, l.span[0], l.span[1], cursor);
+    // Where the time axis lies, canvas pixels → CSS pixels, for pointer → time.
+    if (dpr) cv.axis = v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, l.span[0], l.span[1], cursor).map((x) => x / dpr);
   }
   const ell = l.card.querySelector('canvas.ellipse');
   const dpr = fit(ell);
@@ -357,47 +370,70 @@ function wireMap(l, tag, cv) {
   cv.addEventListener('pointercancel', (e) => pointers.delete(e.pointerId));
 }
 
-/** The plots share one time axis: wheel zooms it about the pointer, drag pans, click picks. */
+/** The plots share one time axis: wheel or pinch zooms it about the pointer, drag pans, click
+ * picks, double-click resets. */
 function wirePlots(l) {
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
     if (cv.dataset.wired) continue;
     cv.dataset.wired = '1';
-    // The plotting area spans from 40+6 px (labels) to the right edge less the right axis:
-    // close enough to map a pointer to a time for zoom and picking.
-    const timeAt = (e) => {
-      const r = cv.getBoundingClientRect();
-      const left = 46;
-      const right = r.width - 46;
-      const f = Math.min(1, Math.max(0, (e.clientX - r.left - left) / (right - left)));
-      return l.span[0] + f * (l.span[1] - l.span[0]);
-    };
+    const pointers = new Map(); // pointerId → clientX
     let drag = null;
+    // The fraction of the time axis at a client x, from where the engine drew the axis.
+    const fraction = (x) => {
+      const r = cv.getBoundingClientRect();
+      const [left, right] = cv.axis ?? [0, r.width];
+      return (x - r.left - left) / Math.max(right - left, 1);
+    };
+    const timeAt = (x) => l.span[0] + Math.min(1, Math.max(0, fraction(x))) * (l.span[1] - l.span[0]);
+    // Zooms by `k` keeping time `t` at the fraction `f` of the axis.
+    const zoom = (t, f, k) => {
+      const span = Math.min(l.full[1] - l.full[0], Math.max(1, (l.span[1] - l.span[0]) * k));
+      const t0 = Math.min(Math.max(l.full[0], t - f * span), l.full[1] - span);
+      l.span = [t0, t0 + span];
+      drawPlots(l);
+    };
     cv.addEventListener('wheel', (e) => {
       e.preventDefault();
-      const t = timeAt(e);
-      const k = e.deltaY > 0 ? 1.25 : 0.8;
-      const span = Math.max(1, (l.span[1] - l.span[0]) * k);
-      const f = (t - l.span[0]) / (l.span[1] - l.span[0]);
-      l.span = [Math.max(l.full[0], t - f * span), Math.min(l.full[1], t - f * span + span)];
-      drawPlots(l);
+      zoom(timeAt(e.clientX), Math.min(1, Math.max(0, fraction(e.clientX))), e.deltaY > 0 ? 1.25 : 0.8);
     }, { passive: false });
     cv.addEventListener('dblclick', () => { l.span = [...l.full]; drawPlots(l); });
-    cv.addEventListener('pointerdown', (e) => { cv.setPointerCapture(e.pointerId); drag = { x: e.clientX, span: [...l.span], moved: false }; });
+    cv.addEventListener('pointerdown', (e) => {
+      cv.setPointerCapture(e.pointerId);
+      pointers.set(e.pointerId, e.clientX);
+      drag = { x: e.clientX, span: [...l.span], moved: pointers.size > 1 };
+    });
     cv.addEventListener('pointermove', (e) => {
+      if (!pointers.has(e.pointerId)) return;
+      const prev = pointers.get(e.pointerId);
+      pointers.set(e.pointerId, e.clientX);
+      if (pointers.size === 2) {
+        // Pinch: the time under the two fingers' middle stays put; the span scales with their
+        // distance.
+        const other = [...pointers.entries()].find(([id]) => id !== e.pointerId)[1];
+        const d0 = Math.abs(prev - other);
+        const d1 = Math.abs(e.clientX - other);
+        const mid = (prev + other) / 2;
+        if (d0 > 4 && d1 > 4) zoom(timeAt(mid), Math.min(1, Math.max(0, fraction((e.clientX + other) / 2))), d0 / d1);
+        return;
+      }
       if (!drag) return;
-      const r = cv.getBoundingClientRect();
-      const dt = -(e.clientX - drag.x) / Math.max(r.width - 92, 1) * (drag.span[1] - drag.span[0]);
       if (Math.abs(e.clientX - drag.x) > 3) drag.moved = true;
       if (!drag.moved) return;
       const w = drag.span[1] - drag.span[0];
+      const dt = -(fraction(e.clientX) - fraction(drag.x)) * w;
       const t0 = Math.min(Math.max(l.full[0], drag.span[0] + dt), l.full[1] - w);
       l.span = [t0, t0 + w];
       drawPlots(l);
     });
-    cv.addEventListener('pointerup', (e) => {
-      if (drag && !drag.moved) select(l, l.views.a.step_near_time(timeAt(e)), l.views.a);
-      drag = null;
-    });
+    const up = (e) => {
+      pointers.delete(e.pointerId);
+      if (drag && !drag.moved && !pointers.size) select(l, l.views.a.step_near_time(timeAt(e.clientX)), l.views.a);
+      // A finger left after a pinch does not start a pan from where it was.
+      drag = pointers.size ? { x: [...pointers.values()][0], span: [...l.span], moved: true } : null;
+    };
+    cv.addEventListener('pointerup', up);
+    // The browser took the gesture (a vertical scroll): nothing to pick.
+    cv.addEventListener('pointercancel', (e) => { pointers.delete(e.pointerId); drag = null; });
   }
 }
 
@@ -433,7 +469,7 @@ async function exportClicked(l, what) {
 }
 
 export function setupUpload() {
-  fillProfiles();
+  fillProfiles(true);
   window.addEventListener('storage', () => fillProfiles());
   window.addEventListener('pdr-profiles-changed', () => fillProfiles(true));
   for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', () => fillProfiles());

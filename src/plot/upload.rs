@@ -164,8 +164,11 @@ pub enum Plot {
     Heading,
     /// Step frequency and step length per step.
     Steps,
-    /// GNSS accuracy, innovations, and the fusion's scale and heading correction.
+    /// GNSS accuracy and the innovations of the fixes offered to the filter.
     Gnss,
+    /// The fusion's estimated step-length scale and heading correction (Basso 2021 §2.2.5's
+    /// systematic errors) per step.
+    Fusion,
 }
 
 impl Plot {
@@ -177,6 +180,7 @@ impl Plot {
             "heading" => Plot::Heading,
             "steps" => Plot::Steps,
             "gnss" => Plot::Gnss,
+            "fusion" => Plot::Fusion,
             _ => return None,
         })
     }
@@ -245,7 +249,8 @@ fn envelope(
 }
 
 /// Draws one diagnostics plot between `t0` and `t1` (s, the log's clock), with a cursor at a
-/// time when given. The time axis is in seconds from the log's first sample.
+/// time when given. The time axis is in seconds from the log's first sample. Returns the
+/// pixel columns where `t0` and `t1` fall, for the page to map a pointer to a time.
 pub fn draw_plot<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     a: &Analysis,
@@ -254,7 +259,7 @@ pub fn draw_plot<DB: DrawingBackend>(
     cursor: Option<f64>,
     theme: &Theme,
     scale: f64,
-) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+) -> Result<(i32, i32), DrawingAreaErrorKind<DB::ErrorType>> {
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
     area.fill(&theme.background)?;
     let font = ("sans-serif", 12.0 * scale)
@@ -325,19 +330,50 @@ pub fn draw_plot<DB: DrawingBackend>(
                 .min(200.0)
                 * 1.1;
             (
-                "GNSS accuracy (m, dots), innovation (m, rings); step-length scale (right, line)",
+                "GNSS accuracy (m, dots), innovation (m, rings)",
                 "m",
                 (0.0, top),
-                Some(("scale", (0.8, 1.2))),
+                None,
+            )
+        }
+        Plot::Fusion => {
+            // Each axis spans what the filter estimated and its neutral value (1, 0°), the
+            // scale in the upper half and the correction in the lower, so they do not overlap.
+            let (mut k, mut b) = ((1.0_f64, 1.0_f64), (0.0_f64, 0.0_f64));
+            for f in a.fused.iter().filter(|f| f[0] >= t0 && f[0] <= t1) {
+                k = (k.0.min(f[3]), k.1.max(f[3]));
+                let d = f[4].to_degrees();
+                b = (b.0.min(d), b.1.max(d));
+            }
+            let ks = (k.1 - k.0).max(0.02);
+            let bs = (b.1 - b.0).max(2.0);
+            (
+                "fusion: step-length scale (blue, left), heading correction (°, orange, right)",
+                "",
+                (k.0 - 1.3 * ks, k.1 + 0.2 * ks),
+                Some(("°", (b.0 - 0.2 * bs, b.1 + 1.3 * bs))),
             )
         }
     };
-    area.draw(&Text::new(
-        title,
-        (px(8.0) as i32, px(4.0) as i32),
-        font.clone(),
-    ))?;
-    let body = area.margin(px(20.0), 0, 0, 0);
+    // The title, on two lines when one is too narrow (a phone), broken after a comma.
+    let width = area.dim_in_pixel().0.saturating_sub(px(16.0));
+    let fits = |t: &str| {
+        area.estimate_text_size(t, &font)
+            .is_ok_and(|(w, _)| w <= width)
+    };
+    let breaks: Vec<usize> = title.match_indices(", ").map(|(i, _)| i).collect();
+    let lines: Vec<&str> = match breaks.into_iter().rev().find(|&i| fits(&title[..=i])) {
+        Some(i) if !fits(title) => vec![&title[..=i], &title[i + 2..]],
+        _ => vec![title],
+    };
+    for (k, line) in lines.iter().enumerate() {
+        area.draw(&Text::new(
+            *line,
+            (px(8.0) as i32, px(4.0 + 15.0 * k as f64) as i32),
+            font.clone(),
+        ))?;
+    }
+    let body = area.margin(px(5.0 + 15.0 * lines.len() as f64), 0, 0, 0);
     let mut builder = ChartBuilder::on(&body);
     builder
         .margin(px(6.0))
@@ -363,7 +399,11 @@ pub fn draw_plot<DB: DrawingBackend>(
                 format!("{v:.0} s")
             }
         })
-        .y_label_formatter(&|v| format!("{v:.0}{}", if y_label == "°" { "°" } else { "" }))
+        .y_label_formatter(&|v| match y_label {
+            "°" => format!("{v:.0}°"),
+            "" => format!("{v:.2}"),
+            _ => format!("{v:.0}"),
+        })
         .draw()?;
     if right.is_some() {
         chart
@@ -371,9 +411,24 @@ pub fn draw_plot<DB: DrawingBackend>(
             .axis_style(theme.foreground)
             .label_style(font.clone())
             .y_labels(5)
-            .y_label_formatter(&|v| format!("{v:.2}"))
+            .y_label_formatter(&|v| match right {
+                Some(("°", _)) => format!("{v:.0}°"),
+                _ => format!("{v:.2}"),
+            })
             .draw()?;
     }
+    let (columns, rows) = chart.plotting_area().get_pixel_range();
+    if matches!(plot, Plot::Gnss | Plot::Fusion) && a.fixes.is_empty() {
+        area.draw(&Text::new(
+            "no GNSS fixes in this log",
+            (
+                columns.start + px(12.0) as i32,
+                rows.start + px(12.0) as i32,
+            ),
+            font.clone(),
+        ))?;
+    }
+    let columns = (columns.start, columns.end);
     let line = |c: RGBColor, w: f64| ShapeStyle::from(&c).stroke_width(px(w));
     let rel = |t: f64| t - origin;
     match plot {
@@ -487,13 +542,20 @@ pub fn draw_plot<DB: DrawingBackend>(
                         )
                     }),
             )?;
-            chart.draw_secondary_series(LineSeries::new(
-                a.fused
-                    .iter()
-                    .filter(|f| f[0] >= t0 && f[0] <= t1)
-                    .map(|f| (rel(f[0]), f[3])),
-                line(theme.smoothed, 2.0),
+        }
+        Plot::Fusion => {
+            let fused_in = || a.fused.iter().filter(|f| f[0] >= t0 && f[0] <= t1);
+            chart.draw_series(LineSeries::new(
+                [(x0, 1.0), (x1, 1.0)],
+                line(theme.grid, 1.0),
             ))?;
+            chart.draw_series(LineSeries::new(
+                fused_in().map(|f| (rel(f[0]), f[3])),
+                line(theme.track, 2.0),
+            ))?;
+            chart.draw_secondary_series(fused_in().map(|f| {
+                Circle::new((rel(f[0]), f[4].to_degrees()), px(1.5), theme.gnss.filled())
+            }))?;
         }
     }
     if let Some(c) = cursor.filter(|c| *c >= t0 && *c <= t1) {
@@ -502,7 +564,7 @@ pub fn draw_plot<DB: DrawingBackend>(
             line(theme.foreground, 1.0),
         )])?;
     }
-    Ok(())
+    Ok(columns)
 }
 
 /// The horizontal acceleration (east, north) over the stride that ends at step `k` (from the
@@ -623,9 +685,10 @@ mod tests {
             (Plot::Heading, t.track),
             (Plot::Steps, t.track),
             (Plot::Gnss, t.gnss),
+            (Plot::Fusion, t.track),
         ] {
             let (r, px) = raster::new(600, 200);
-            draw_plot(
+            let (left, right) = draw_plot(
                 &r.into_drawing_area(),
                 &a,
                 plot,
@@ -640,7 +703,25 @@ mod tests {
                 "{plot:?}: {}",
                 raster::count(&px, colour)
             );
+            // The time axis lies between the label areas.
+            assert!(
+                left > 30 && right < 595 && right - left > 450,
+                "{plot:?}: {left}..{right}"
+            );
         }
+        // The heading correction is drawn too (dots on the fusion plot's right axis).
+        let (r, px) = raster::new(600, 200);
+        draw_plot(
+            &r.into_drawing_area(),
+            &a,
+            Plot::Fusion,
+            span,
+            None,
+            &t,
+            1.0,
+        )
+        .unwrap();
+        assert!(raster::count(&px, t.gnss) > 100);
         let (r, px) = raster::new(300, 300);
         draw_ellipse(&r.into_drawing_area(), &a, 40, &t, 1.0).unwrap();
         assert!(raster::count(&px, t.track) > 50 && raster::count(&px, t.end) > 20);

@@ -28,8 +28,8 @@ before(async () => {
 });
 after(async () => { await browser?.close(); });
 
-async function open(viewport = { width: 1100, height: 900 }) {
-  const context = await browser.newContext({ viewport, acceptDownloads: true });
+async function open(viewport = { width: 1100, height: 900 }, device = {}) {
+  const context = await browser.newContext({ viewport, acceptDownloads: true, ...device });
   const page = await context.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
@@ -87,6 +87,42 @@ test('a generated log and a file of every format: progress, the native step coun
   assert.ok(Math.abs(picked - 500) <= 3, `hovered step ${picked}, expected about 500 (${x},${y})`);
   assert.deepEqual(errors, []);
   await page.locator(`.log-result[data-index="${city}"]`).screenshot({ path: path.join(ARTIFACTS, 'upload-desktop.png') });
+  await context.close();
+});
+
+test('phone: tapping a plot picks the step at that time, a pinch zooms the time axis, the fusion plots', async () => {
+  const walk = path.join(tmp, 'city-phone.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', walk]);
+  const { context, page, errors } = await open({ width: 390, height: 844 }, { hasTouch: true, isMobile: true, deviceScaleFactor: 3 });
+  await upload(page, [walk]);
+  for (const c of await canvases(page, 0)) assert.ok(c.n > 0.01 * c.total, `${c.what} looks blank: ${c.n} of ${c.total}`);
+  // A tap on the time of step 200 picks step 200.
+  await page.locator('canvas.plot-accel').scrollIntoViewIfNeeded();
+  const [x, y] = await page.evaluate(() => window.__pdrUpload.plotPoint(0, 'accel', window.__pdrUpload.stepTime(0, 200)));
+  await page.touchscreen.tap(x, y);
+  await page.waitForFunction(() => document.querySelector('.log-result .stepinfo').dataset.step);
+  const picked = Number(await page.getAttribute('.log-result .stepinfo', 'data-step'));
+  assert.ok(Math.abs(picked - 200) <= 1, `tapped step ${picked}, expected 200`);
+  // Two fingers moving apart on the step plot: the span shrinks by about their distance ratio.
+  await page.locator('canvas.plot-steps').scrollIntoViewIfNeeded();
+  const box = await page.locator('canvas.plot-steps').boundingBox();
+  const before = await page.evaluate(() => window.__pdrUpload.span(0));
+  const cdp = await context.newCDPSession(page);
+  const cy = box.y + box.height / 2;
+  const cx = box.x + box.width / 2;
+  const touch = (type, d) => cdp.send('Input.dispatchTouchEvent', {
+    type, touchPoints: type === 'touchEnd' ? [] : [{ x: cx - d, y: cy, id: 1 }, { x: cx + d, y: cy, id: 2 }],
+  });
+  await touch('touchStart', 40);
+  for (let d = 45; d <= 120; d += 5) await touch('touchMove', d);
+  await touch('touchEnd', 0);
+  const after = await page.evaluate(() => window.__pdrUpload.span(0));
+  const ratio = (after[1] - after[0]) / (before[1] - before[0]);
+  console.log(`pinch 80 → 240 px: time span ${(before[1] - before[0]).toFixed(0)} s → ${(after[1] - after[0]).toFixed(0)} s`);
+  assert.ok(ratio > 0.2 && ratio < 0.5, `span ratio ${ratio}`);
+  assert.deepEqual(errors, []);
+  await page.locator('canvas.plot-gnss').scrollIntoViewIfNeeded();
+  await page.screenshot({ path: path.join(ARTIFACTS, 'upload-plots-phone.png') });
   await context.close();
 });
 

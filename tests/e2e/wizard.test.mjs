@@ -137,6 +137,10 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0]?.a);
   const uploaded = await page.evaluate(() => window.__pdrUpload.logs[0].a.score.distance_m);
   assert.ok(Math.abs(uploaded - withProfile.distance_m) < 1e-9, `upload with the profile: ${uploaded} m`);
+  // Re-run with the built-in step length chosen instead: the distance becomes the built-in one.
+  await page.selectOption('.config[data-config="a"] [name=profile]', '');
+  await page.click('#rerun');
+  await page.waitForFunction((d) => Math.abs(window.__pdrUpload.logs[0].a.score.distance_m - d) < 1e-9, builtIn.distance_m, { timeout: 20_000 });
 
   // Export, delete, import: the same profile back.
   const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#profile-export')]);

@@ -6,9 +6,11 @@
 //! run with `rcgen` and kept outside the repository (in the user's data directory); it is
 //! regenerated when the machine's LAN addresses change. The LAN URL is printed with a QR code.
 
-use std::net::IpAddr;
+use std::io::{ErrorKind, Read, Write};
+use std::net::{IpAddr, TcpListener};
 use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
+use std::time::Duration;
 
 /// Options of `pdr serve`.
 #[derive(Debug, Clone)]
@@ -119,36 +121,133 @@ fn certificate(dir: &Path, names: &[String]) -> Result<(Vec<u8>, Vec<u8>), Strin
     Ok((c, k))
 }
 
-fn handle(root: &Path, req: tiny_http::Request) {
-    let found = resolve(root, req.url()).and_then(|p| std::fs::read(&p).ok().map(|body| (p, body)));
-    let result = match found {
-        Some((path, body)) => {
-            let ct =
-                tiny_http::Header::from_bytes("Content-Type", mime(&path)).expect("static header");
-            let cc =
-                tiny_http::Header::from_bytes("Cache-Control", "no-cache").expect("static header");
-            req.respond(
-                tiny_http::Response::from_data(body)
-                    .with_header(ct)
-                    .with_header(cc),
-            )
+/// The longest request head read (request line and headers).
+const MAX_HEAD: usize = 16 * 1024;
+
+/// Answers one request on a connection and closes it. One request per connection
+/// (`Connection: close`): the browser then never reuses a connection, which is where
+/// tiny_http's keep-alive lost a response now and then (a module script stayed pending for
+/// ever, about 1 page load in 40 in headless Chromium).
+fn handle<S: Read + Write>(root: &Path, mut s: S) -> std::io::Result<()> {
+    let mut head = Vec::with_capacity(1024);
+    let mut chunk = [0u8; 4096];
+    while !head.windows(4).any(|w| w == b"\r\n\r\n") {
+        if head.len() > MAX_HEAD {
+            return respond(
+                &mut s,
+                "431 Request Header Fields Too Large",
+                "text/plain",
+                b"",
+                false,
+            );
         }
-        None => req.respond(tiny_http::Response::from_string("not found").with_status_code(404)),
-    };
-    if let Err(e) = result {
-        eprintln!("pdr serve: response failed: {e}");
+        let n = s.read(&mut chunk)?;
+        if n == 0 {
+            return Ok(());
+        }
+        head.extend_from_slice(&chunk[..n]);
+    }
+    let line = String::from_utf8_lossy(head.split(|&b| b == b'\r').next().unwrap_or_default());
+    let mut parts = line.split(' ');
+    let (method, target) = (parts.next().unwrap_or(""), parts.next().unwrap_or("/"));
+    let head_only = method == "HEAD";
+    if method != "GET" && !head_only {
+        return respond(
+            &mut s,
+            "405 Method Not Allowed",
+            "text/plain",
+            b"GET or HEAD only",
+            false,
+        );
+    }
+    match resolve(root, target).and_then(|p| std::fs::read(&p).ok().map(|b| (p, b))) {
+        Some((path, body)) => respond(&mut s, "200 OK", mime(&path), &body, head_only),
+        None => respond(
+            &mut s,
+            "404 Not Found",
+            "text/plain",
+            b"not found",
+            head_only,
+        ),
     }
 }
 
-fn spawn(server: tiny_http::Server, root: Arc<PathBuf>) -> std::thread::JoinHandle<()> {
+fn respond<S: Write>(
+    s: &mut S,
+    status: &str,
+    content_type: &str,
+    body: &[u8],
+    head_only: bool,
+) -> std::io::Result<()> {
+    write!(
+        s,
+        "HTTP/1.1 {status}\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\n\
+         Cache-Control: no-cache\r\nConnection: close\r\n\r\n",
+        body.len()
+    )?;
+    if !head_only {
+        s.write_all(body)?;
+    }
+    s.flush()
+}
+
+/// Accepts connections for ever, each answered in its own thread (a client that stops reading
+/// blocks only its own thread), over TLS when `tls` is given.
+fn spawn(
+    listener: TcpListener,
+    root: Arc<PathBuf>,
+    tls: Option<Arc<rustls::ServerConfig>>,
+) -> std::thread::JoinHandle<()> {
     std::thread::spawn(move || {
-        // A thread per request: a client that stops reading (a page reloaded while a large file
-        // was on its way) blocks its own write only, never the server.
-        for req in server.incoming_requests() {
-            let root = Arc::clone(&root);
-            std::thread::spawn(move || handle(&root, req));
+        for stream in listener.incoming() {
+            let Ok(stream) = stream else { continue };
+            let (root, tls) = (Arc::clone(&root), tls.clone());
+            std::thread::spawn(move || {
+                let _ = stream.set_read_timeout(Some(Duration::from_secs(30)));
+                let _ = stream.set_write_timeout(Some(Duration::from_secs(60)));
+                let result = match tls {
+                    None => handle(&root, &stream),
+                    Some(cfg) => rustls::ServerConnection::new(cfg)
+                        .map_err(std::io::Error::other)
+                        .and_then(|conn| {
+                            let mut tls = rustls::StreamOwned::new(conn, &stream);
+                            handle(&root, &mut tls)?;
+                            tls.conn.send_close_notify();
+                            tls.flush()
+                        }),
+                };
+                if let Err(e) = result {
+                    // A phone refusing the self-signed certificate ends up here too.
+                    if !matches!(
+                        e.kind(),
+                        ErrorKind::BrokenPipe | ErrorKind::ConnectionReset | ErrorKind::WouldBlock
+                    ) {
+                        eprintln!("pdr serve: {e}");
+                    }
+                }
+            });
         }
     })
+}
+
+/// The TLS configuration from a PEM certificate and PKCS#8 key.
+fn tls_config(cert: &[u8], key: &[u8]) -> Result<Arc<rustls::ServerConfig>, String> {
+    let certs = rustls_pemfile::certs(&mut &cert[..])
+        .map_err(|e| format!("certificate: {e}"))?
+        .into_iter()
+        .map(rustls::Certificate)
+        .collect();
+    let key = rustls_pemfile::pkcs8_private_keys(&mut &key[..])
+        .map_err(|e| format!("private key: {e}"))?
+        .into_iter()
+        .next()
+        .ok_or("private key: none in the file")?;
+    rustls::ServerConfig::builder()
+        .with_safe_defaults()
+        .with_no_client_auth()
+        .with_single_cert(certs, rustls::PrivateKey(key))
+        .map(Arc::new)
+        .map_err(|e| format!("certificate: {e}"))
 }
 
 /// Serves `opts.root` until the process is stopped.
@@ -165,24 +264,13 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
     names.extend(ips.iter().map(|ip| ip.to_string()));
     let cert_dir = opts.cert_dir.clone().unwrap_or_else(default_cert_dir);
     let (certificate, private_key) = certificate(&cert_dir, &names)?;
-    let http = tiny_http::Server::http(("127.0.0.1", opts.http_port))
+    let tls = tls_config(&certificate, &private_key)?;
+    let http = TcpListener::bind(("127.0.0.1", opts.http_port))
         .map_err(|e| format!("cannot listen on 127.0.0.1:{}: {e}", opts.http_port))?;
-    let https = tiny_http::Server::https(
-        ("0.0.0.0", opts.https_port),
-        tiny_http::SslConfig {
-            certificate,
-            private_key,
-        },
-    )
-    .map_err(|e| format!("cannot listen on 0.0.0.0:{}: {e}", opts.https_port))?;
-    let http_port = http
-        .server_addr()
-        .to_ip()
-        .map_or(opts.http_port, |a| a.port());
-    let https_port = https
-        .server_addr()
-        .to_ip()
-        .map_or(opts.https_port, |a| a.port());
+    let https = TcpListener::bind(("0.0.0.0", opts.https_port))
+        .map_err(|e| format!("cannot listen on 0.0.0.0:{}: {e}", opts.https_port))?;
+    let http_port = http.local_addr().map_or(opts.http_port, |a| a.port());
+    let https_port = https.local_addr().map_or(opts.https_port, |a| a.port());
     out!("Serving {}", opts.root.display());
     out!("  this machine:  http://localhost:{http_port}/");
     out!("                 https://localhost:{https_port}/");
@@ -206,8 +294,8 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
         None => out!("  no LAN address found: a phone cannot reach this machine"),
     }
     out!("Certificate: {}   Stop with Ctrl-C.", cert_dir.display());
-    let a = spawn(http, root.clone());
-    let b = spawn(https, root);
+    let a = spawn(http, root.clone(), None);
+    let b = spawn(https, root, Some(tls));
     a.join()
         .map_err(|_| "the HTTP server stopped".to_string())?;
     b.join().map_err(|_| "the HTTPS server stopped".to_string())
