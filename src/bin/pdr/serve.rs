@@ -312,6 +312,58 @@ mod tests {
         assert_eq!(mime(Path::new("index.HTML")), "text/html; charset=utf-8");
     }
 
+    /// A connection in memory: the request in, the response out.
+    struct Conn(std::io::Cursor<Vec<u8>>, Vec<u8>);
+    impl Read for Conn {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            // A few bytes at a time, as a slow network delivers them.
+            let n = buf.len().min(7);
+            self.0.read(&mut buf[..n])
+        }
+    }
+    impl Write for Conn {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.1.write(buf)
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    fn ask(root: &Path, request: &[u8]) -> String {
+        let mut c = Conn(std::io::Cursor::new(request.to_vec()), Vec::new());
+        handle(root, &mut c).unwrap();
+        String::from_utf8_lossy(&c.1).into_owned()
+    }
+
+    #[test]
+    fn answers_one_request_and_closes() {
+        let root = std::env::temp_dir().join(format!("pdr-serve-{}", std::process::id()));
+        std::fs::create_dir_all(root.join("www")).unwrap();
+        std::fs::write(root.join("index.html"), "<!doctype html>hi").unwrap();
+        std::fs::write(root.join("www/app.js"), "let x = 1;").unwrap();
+        let r = ask(
+            &root,
+            b"GET /www/app.js HTTP/1.1\r\nHost: x\r\nConnection: keep-alive\r\n\r\n",
+        );
+        assert!(r.starts_with("HTTP/1.1 200 OK\r\n"), "{r}");
+        assert!(r.contains("Content-Type: text/javascript; charset=utf-8\r\n"));
+        assert!(r.contains("Content-Length: 10\r\n") && r.contains("Connection: close\r\n"));
+        assert!(r.ends_with("\r\n\r\nlet x = 1;"));
+        let r = ask(&root, b"HEAD / HTTP/1.1\r\n\r\n");
+        assert!(
+            r.contains("Content-Length: 17\r\n") && r.ends_with("\r\n\r\n"),
+            "{r}"
+        );
+        assert!(ask(&root, b"GET /../etc/passwd HTTP/1.1\r\n\r\n").starts_with("HTTP/1.1 404"));
+        assert!(ask(&root, b"POST / HTTP/1.1\r\n\r\n").starts_with("HTTP/1.1 405"));
+        let long = format!("GET / HTTP/1.1\r\nX: {}\r\n\r\n", "a".repeat(20_000));
+        assert!(ask(&root, long.as_bytes()).starts_with("HTTP/1.1 431"));
+        // A client that hangs up before the end of its request gets nothing.
+        assert_eq!(ask(&root, b"GET / HT"), "");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
     #[test]
     fn paths_stay_inside_the_root() {
         let root = Path::new("/srv/site");
