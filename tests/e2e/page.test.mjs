@@ -210,8 +210,11 @@ test('HTTPS with the self-signed certificate serves the same working page', asyn
   assert.ok(await page.evaluate(() => window.isSecureContext));
   // Chromium refuses a service worker from a certificate it does not trust, and says so: on
   // a phone over the LAN with the self-signed certificate the page works but not offline.
+  // Over a reused connection Chromium names the certificate; over a new one (pdr serve closes
+  // each connection after one response) its TLS handshake fails with CertificateUnknown (the
+  // server logs it) and Chromium calls that an unknown error.
   await page.waitForTimeout(500);
-  assert.deepEqual(errors.filter((e) => !/SSL certificate error occurred when fetching the script/.test(e)), []);
+  assert.deepEqual(errors.filter((e) => !/(SSL certificate|An unknown) error occurred when fetching the script/.test(e)), []);
   await context.close();
 });
 
