@@ -211,6 +211,9 @@ pub struct Readouts {
     pub last_error: Option<String>,
     /// Whether the GNSS receiver should be on now (energy-saving mode).
     pub gnss_wanted: bool,
+    /// How long the receiver has been wanted on since the first fix, and that span, s (the
+    /// saving of energy-saving mode is the rest of the span).
+    pub gnss_on_s: Option<(f64, f64)>,
     /// The fusion filter's step-length scale and its standard deviation, once fixes have come.
     pub fusion_scale: Option<(f64, f64)>,
 }
@@ -602,6 +605,7 @@ impl LiveSession {
             refused: self.refused,
             last_error: self.last_error.clone(),
             gnss_wanted: self.pipeline.gnss_wanted(now),
+            gnss_on_s: d.gnss_on_s,
             fusion_scale: self
                 .pipeline
                 .fused()

@@ -227,10 +227,20 @@ fn read_profile(text: &str) -> Result<crate::engine::calibration::ProfileFile, J
 }
 
 /// The default configuration with the page's GNSS choice — `best` (every fix),
-/// `energy-saving` (10 s every 60 s) or `off` — and the selected step-length profile (JSON).
+/// `energy-saving` (the receiver on for `window_s` every `period_s`, by default 10 s every 60 s)
+/// or `off` — and the selected step-length profile (JSON).
 fn live_config(
     gnss: &str,
     profile: Option<String>,
+) -> Result<crate::engine::PipelineConfig, JsError> {
+    live_config_with(gnss, profile, None, None)
+}
+
+fn live_config_with(
+    gnss: &str,
+    profile: Option<String>,
+    period_s: Option<f64>,
+    window_s: Option<f64>,
 ) -> Result<crate::engine::PipelineConfig, JsError> {
     let mut c = crate::engine::PipelineConfig::default();
     if let Some(p) = profile {
@@ -239,13 +249,18 @@ fn live_config(
     match gnss {
         "best" => {}
         "energy-saving" => {
+            use crate::engine::fusion::{GnssMode, DEFAULT_PERIOD_S, DEFAULT_WINDOW_S};
             if let Some(f) = &mut c.fusion {
-                f.mode = crate::engine::fusion::GnssMode::ENERGY_SAVING;
+                f.mode = GnssMode::EnergySaving {
+                    period_s: period_s.unwrap_or(DEFAULT_PERIOD_S),
+                    window_s: window_s.unwrap_or(DEFAULT_WINDOW_S),
+                };
             }
         }
         "off" => c.fusion = None,
         other => return Err(JsError::new(&format!("unknown GNSS mode `{other}`"))),
     }
+    c.validate().map_err(|e| JsError::new(&e.to_string()))?;
     Ok(c)
 }
 
@@ -262,29 +277,36 @@ impl Live {
     /// A session with the default configuration, GNSS mode `gnss` (`best`, `energy-saving`,
     /// `off`) and the step-length profile `profile` (a profile file's JSON, or the default);
     /// `ios` selects Safari's conventions; `time_origin_ms` is `performance.timeOrigin` (event
-    /// times are counted from it).
+    /// times are counted from it). In energy-saving mode the receiver is on for `window_s`
+    /// every `period_s` (default 10 s every 60 s).
     #[wasm_bindgen(constructor)]
     pub fn new(
         ios: bool,
         time_origin_ms: f64,
         gnss: &str,
         profile: Option<String>,
+        period_s: Option<f64>,
+        window_s: Option<f64>,
     ) -> Result<Live, JsError> {
-        crate::live::LiveSession::new(live_config(gnss, profile)?, platform(ios), time_origin_ms)
+        let cfg = live_config_with(gnss, profile, period_s, window_s)?;
+        crate::live::LiveSession::new(cfg, platform(ios), time_origin_ms)
             .map(|session| Live { session })
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
-    /// A session continuing a recording (pdr-log text) after a reload.
+    /// A session continuing a recording (pdr-log text) after a reload; the other arguments as
+    /// for [`Live::new`].
     pub fn resume(
         ios: bool,
         time_origin_ms: f64,
         gnss: &str,
         profile: Option<String>,
         recorded: &str,
+        period_s: Option<f64>,
+        window_s: Option<f64>,
     ) -> Result<Live, JsError> {
         crate::live::LiveSession::resume(
-            live_config(gnss, profile)?,
+            live_config_with(gnss, profile, period_s, window_s)?,
             platform(ios),
             time_origin_ms,
             recorded,

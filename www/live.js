@@ -30,6 +30,7 @@ const MESSAGES = {
   noGeolocation: 'This browser has no geolocation: the track uses the motion sensors alone.',
   noWakeLock: 'This browser cannot keep the screen on. Set a long screen timeout: when the screen goes off, the browser stops the sensors and the walk has a gap.',
   engine: 'Some sensor events were refused: ',
+  cannotStart: 'Live mode could not start: ',
   storage: 'The recording cannot be saved on this device (private mode or storage full): ',
 };
 
@@ -46,6 +47,12 @@ function message(key, show, kind = 'warn', extra = '') {
   }
   li.className = kind;
   li.textContent = MESSAGES[key] + extra;
+}
+
+/** The GNSS choice: the mode, and energy saving's window and period in seconds. */
+function gnssChoice() {
+  const num = (id) => { const v = $(id).valueAsNumber; return Number.isFinite(v) ? v : undefined; };
+  return { mode: $('gnss-mode').value, window: num('gnss-window'), period: num('gnss-period') };
 }
 
 function fmtTime(s) {
@@ -343,6 +350,14 @@ class Session {
   }
 }
 
+/** Energy saving: whether the receiver is off now, and its share of the time on since the first fix. */
+function receiver(r, s) {
+  if (s.gnssMode !== 'energy-saving' || !r.gnss_on_s) return '';
+  const [on, span] = r.gnss_on_s;
+  const share = span > 0 ? ` · on ${fmtTime(on)} of ${fmtTime(span)} (${Math.round(100 * on / span)} %)` : '';
+  return (r.gnss_wanted ? '' : ' · off to save energy') + share;
+}
+
 /** Writes the readouts into the page and the pocket guard. */
 function show(r, s) {
   const set = (id, v) => { const el = $(id); if (el.textContent !== v) el.textContent = v; };
@@ -356,7 +371,7 @@ function show(r, s) {
   set('r-heading', h != null ? `${Math.round(h)}° ${compassPoint(h)}` : '–');
   set('r-heading-ref', r.absolute_heading ? 'from north' : (r.samples ? 'relative to start' : '–'));
   set('r-gnss', r.gnss_accuracy_m != null ? `±${Math.round(r.gnss_accuracy_m)} m` : '–');
-  set('r-fixes', r.fixes ? `${r.fixes} fix${r.fixes > 1 ? 'es' : ''}${r.gnss_wanted ? '' : ' · off to save energy'}` : (s.gnssMode === 'off' ? 'off' : 'no fix'));
+  set('r-fixes', r.fixes ? `${r.fixes} fix${r.fixes > 1 ? 'es' : ''}${receiver(r, s)}` : (s.gnssMode === 'off' ? 'off' : 'no fix'));
   set('r-rate', r.sample_rate_hz ? r.sample_rate_hz.toFixed(0) : '–');
   set('r-source', s.source + (r.orientation ? ` · ${r.orientation}` : ''));
   set('g-steps', String(r.steps));
@@ -416,7 +431,7 @@ function controls(state) {
   $('stop').hidden = state !== 'recording';
   $('lock').hidden = state !== 'recording';
   $('download').hidden = state !== 'stopped';
-  $('gnss-mode').disabled = state === 'recording';
+  for (const id of ['gnss-mode', 'gnss-window', 'gnss-period']) $(id).disabled = state === 'recording';
   document.documentElement.dataset.live = state;
 }
 
@@ -452,12 +467,13 @@ async function begin(makeLive, rec, opts = {}) {
     return false;
   }
   message('motionDenied', false);
-  for (const key of ['noSensor', 'noCompass', 'engine', 'storage', 'locationDenied', 'locationUnavailable']) message(key, false);
+  for (const key of ['noSensor', 'noCompass', 'engine', 'cannotStart', 'storage', 'locationDenied', 'locationUnavailable']) message(key, false);
   let engine;
   try {
     engine = makeLive(ios);
   } catch (err) {
-    message('engine', true, 'error', String(err?.message ?? err));
+    message('cannotStart', true, 'error', String(err?.message ?? err));
+    if (live) controls('idle');
     return false;
   }
   current = new Session(engine, rec, ios, opts.onTick);
@@ -477,7 +493,7 @@ async function begin(makeLive, rec, opts = {}) {
       message('storage', true, 'error', String(err?.message ?? err));
     }
   }
-  await session.start(opts.gnss ?? $('gnss-mode').value);
+  await session.start(opts.gnss ?? gnssChoice().mode);
   return true;
 }
 
@@ -536,7 +552,8 @@ async function offerRecovery() {
   const done = () => { $('recovery').hidden = true; document.documentElement.dataset.recovery = 'done'; };
   $('recover-resume').onclick = () => {
     done();
-    begin((ios) => Live.resume(ios, performance.timeOrigin, $('gnss-mode').value, profiles.selected(), text),
+    const g = gnssChoice();
+    begin((ios) => Live.resume(ios, performance.timeOrigin, g.mode, profiles.selected(), text, g.period, g.window),
       { id: rec.id, started: rec.started, resumed: true, nextSeq });
   };
   $('recover-save').onclick = async () => {
@@ -559,8 +576,12 @@ export function setupLive() {
   $('start').addEventListener('click', () => {
     if (busy()) return;
     const started = Date.now();
-    begin((ios) => new Live(ios, performance.timeOrigin, $('gnss-mode').value, profiles.selected()), { id: `rec-${started}`, started });
+    const g = gnssChoice();
+    begin((ios) => new Live(ios, performance.timeOrigin, g.mode, profiles.selected(), g.period, g.window), { id: `rec-${started}`, started });
   });
+  const duty = () => { $('duty').hidden = $('gnss-mode').value !== 'energy-saving'; };
+  $('gnss-mode').addEventListener('change', duty);
+  duty();
   $('stop').addEventListener('click', stop);
   $('lock').addEventListener('click', lock);
   $('download').addEventListener('click', async () => {

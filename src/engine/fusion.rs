@@ -65,19 +65,24 @@ pub enum GnssMode {
     },
 }
 
+/// Energy saving's default period, s (Basso 2021 §3.1.2 chooses 60 s).
+pub const DEFAULT_PERIOD_S: f64 = 60.0;
+/// Energy saving's default window, s.
+pub const DEFAULT_WINDOW_S: f64 = 10.0;
+
 fn default_period_s() -> f64 {
-    60.0
+    DEFAULT_PERIOD_S
 }
 
 fn default_window_s() -> f64 {
-    10.0
+    DEFAULT_WINDOW_S
 }
 
 impl GnssMode {
     /// Energy saving with the defaults of the issue: 10 s every 60 s.
     pub const ENERGY_SAVING: GnssMode = GnssMode::EnergySaving {
-        period_s: 60.0,
-        window_s: 10.0,
+        period_s: DEFAULT_PERIOD_S,
+        window_s: DEFAULT_WINDOW_S,
     };
 }
 

@@ -40,8 +40,9 @@ after(async () => { await browser?.close(); });
 /** Opens the page; `ios` makes it look like Safari (its user agent, and a motion permission prompt answering `permission`). */
 const IPHONE_UA = 'Mozilla/5.0 (iPhone; CPU iPhone OS 18_1 like Mac OS X) AppleWebKit/605.1.15 (KHTML, like Gecko) Version/18.1 Mobile/15E148 Safari/604.1';
 
-async function open({ ios = false, permission = 'granted', context: options = {}, url = URL_HTTP } = {}) {
+async function open({ ios = false, permission = 'granted', context: options = {}, url = URL_HTTP, init } = {}) {
   const context = await browser.newContext({ ...PHONE, acceptDownloads: true, ...(ios ? { userAgent: IPHONE_UA } : {}), ...options });
+  if (init) await context.addInitScript(init);
   if (ios) {
     await context.addInitScript((answer) => {
       // Safari has no `deviceorientationabsolute`; it asks for motion permission.
@@ -50,6 +51,27 @@ async function open({ ios = false, permission = 'granted', context: options = {}
       DeviceOrientationEvent.requestPermission = async () => answer;
     }, permission);
   }
+  // window.__pdrFire(e, base, ios) dispatches one walk event (see `dispatch`).
+  await context.addInitScript(() => {
+    window.__pdrFire = (e, base, ios) => {
+      let ev;
+      if (e.type === 'motion') {
+        ev = new DeviceMotionEvent('devicemotion', {
+          accelerationIncludingGravity: { x: e.x, y: e.y, z: e.z },
+          rotationRate: e.alpha == null ? null : { alpha: e.alpha, beta: e.beta, gamma: e.gamma },
+          interval: e.interval,
+        });
+      } else if (ios) {
+        // Safari: alpha from an arbitrary start, the compass heading beside it.
+        ev = new DeviceOrientationEvent('deviceorientation', { alpha: (e.alpha + 123) % 360, beta: e.beta, gamma: e.gamma, absolute: false });
+        Object.defineProperty(ev, 'webkitCompassHeading', { value: (360 - e.alpha) % 360 });
+      } else {
+        ev = new DeviceOrientationEvent('deviceorientationabsolute', { alpha: e.alpha, beta: e.beta, gamma: e.gamma, absolute: true });
+      }
+      Object.defineProperty(ev, 'timeStamp', { value: base + e.t });
+      window.dispatchEvent(ev);
+    };
+  });
   const page = await context.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
@@ -74,26 +96,26 @@ async function dispatch(page, events, { base, ios = false, from = 0, to = events
   const CHUNK = 400;
   for (let i = from; i < to; i += CHUNK) {
     await page.evaluate(({ chunk, base, ios }) => {
-      for (const e of chunk) {
-        let ev;
-        if (e.type === 'motion') {
-          ev = new DeviceMotionEvent('devicemotion', {
-            accelerationIncludingGravity: { x: e.x, y: e.y, z: e.z },
-            rotationRate: e.alpha == null ? null : { alpha: e.alpha, beta: e.beta, gamma: e.gamma },
-            interval: e.interval,
-          });
-        } else if (ios) {
-          // Safari: alpha from an arbitrary start, the compass heading beside it.
-          ev = new DeviceOrientationEvent('deviceorientation', { alpha: (e.alpha + 123) % 360, beta: e.beta, gamma: e.gamma, absolute: false });
-          Object.defineProperty(ev, 'webkitCompassHeading', { value: (360 - e.alpha) % 360 });
-        } else {
-          ev = new DeviceOrientationEvent('deviceorientationabsolute', { alpha: e.alpha, beta: e.beta, gamma: e.gamma, absolute: true });
-        }
-        Object.defineProperty(ev, 'timeStamp', { value: base + e.t });
-        window.dispatchEvent(ev);
-      }
+      for (const e of chunk) window.__pdrFire(e, base, ios);
     }, { chunk: events.slice(i, Math.min(i + CHUNK, to)), base, ios });
   }
+}
+
+/**
+ * Starts dispatching a walk's events in real time, each when the page's clock reaches
+ * base + e.t (as a phone fires them); `window.__pdrWalked` counts the events fired so far.
+ */
+async function dispatchRealTime(page, events, base) {
+  await page.evaluate(({ events, base }) => {
+    window.__pdrWalked = 0;
+    const timer = setInterval(() => {
+      const now = performance.now();
+      while (window.__pdrWalked < events.length && base + events[window.__pdrWalked].t <= now) {
+        window.__pdrFire(events[window.__pdrWalked++], base, false);
+      }
+      if (window.__pdrWalked >= events.length) clearInterval(timer);
+    }, 10);
+  }, { events, base });
 }
 
 const readouts = (page) => page.evaluate(() => window.__pdrLive?.readouts);
@@ -262,6 +284,83 @@ test('a hidden page is a gap on the track, not phantom steps', async () => {
   assert.equal(r.gaps, 1);
   assert.ok(r.steps < 0.75 * w.truth_steps, `${r.steps} steps: the hidden third was bridged`);
   assert.match(await page.textContent('#r-time'), /1 gap/);
+  await context.close();
+});
+
+test('energy saving: the geolocation watch is really stopped between windows and started again', async () => {
+  const w = walk('straight', 'android');
+  // A spy on the real geolocation: every watchPosition, clearWatch and delivered fix, on the page's clock.
+  const spy = () => {
+    const g = navigator.geolocation;
+    const watch = g.watchPosition.bind(g);
+    const clear = g.clearWatch.bind(g);
+    window.__geo = [];
+    g.watchPosition = (ok, fail, opts) => {
+      const id = watch((p) => { window.__geo.push({ what: 'fix', t: performance.now() }); ok(p); }, fail, opts);
+      window.__geo.push({ what: 'watch', t: performance.now() });
+      return id;
+    };
+    g.clearWatch = (id) => { window.__geo.push({ what: 'clear', t: performance.now() }); clear(id); };
+  };
+  const fixAt = ([, east, north]) => ({
+    latitude: GEO.latitude + north / 111_320,
+    longitude: GEO.longitude + east / (111_320 * Math.cos(GEO.latitude * Math.PI / 180)),
+    accuracy: 3,
+  });
+  const { context, page, errors } = await open({
+    init: spy,
+    context: { geolocation: fixAt(w.path[0]), permissions: ['geolocation', 'accelerometer', 'gyroscope', 'magnetometer'] },
+  });
+  await page.selectOption('#gnss-mode', 'energy-saving');
+  assert.equal(await page.isVisible('#duty'), true, 'the window and period inputs are hidden');
+  const WINDOW = 3;
+  const PERIOD = 8;
+  await page.fill('#gnss-window', String(WINDOW));
+  await page.fill('#gnss-period', String(PERIOD));
+  await start(page);
+  assert.equal(await page.isDisabled('#gnss-period'), true);
+  const base = await page.evaluate(() => performance.now());
+  await dispatchRealTime(page, w.events, base);
+  // Walk in real time, the browser's location following the true path, until the watch has
+  // been stopped and started again twice after the receiver's calibration. Chromium delivers a
+  // fix at each change of its location override: here about four a second, which lets the
+  // filter learn the scale and heading correction within the 70 s walk.
+  const count = (log, what) => log.filter((e) => e.what === what).length;
+  let log = [];
+  for (let now = 0; now < w.events.at(-1).t; now = (await page.evaluate(() => performance.now())) - base) {
+    await context.setGeolocation(fixAt(w.path.find((p) => p[0] >= now) ?? w.path.at(-1)));
+    log = await page.evaluate(() => window.__geo);
+    if (count(log, 'clear') >= 2 && count(log, 'watch') >= 3) break;
+    await page.waitForTimeout(250);
+  }
+  const r = await readouts(page);
+  const fixesText = await page.textContent('#r-fixes');
+  await page.evaluate(() => { window.__pdrWalked = Infinity; }); // the walk stops here
+  const rel = log.map((e) => ({ ...e, t: (e.t - base) / 1000 }));
+  const watches = rel.filter((e) => e.what === 'watch');
+  const clears = rel.filter((e) => e.what === 'clear');
+  console.log(`energy saving ${WINDOW} s every ${PERIOD} s: watch at ${watches.map((e) => e.t.toFixed(1)).join(', ')} s; `
+    + `cleared at ${clears.map((e) => e.t.toFixed(1)).join(', ')} s; ${count(log, 'fix')} fixes delivered, ${r.fixes} used; `
+    + `receiver on ${r.gnss_on_s?.[0].toFixed(1)} of ${r.gnss_on_s?.[1].toFixed(1)} s; "${fixesText}"`);
+  assert.ok(clears.length >= 2 && watches.length >= 3, 'the watch was not stopped and started again twice');
+  // Watches and clears alternate, and no fix arrives while the watch is stopped.
+  let on = false;
+  for (const e of rel) {
+    if (e.what === 'watch') { assert.equal(on, false, `a second watch at ${e.t} s`); on = true; }
+    if (e.what === 'clear') { assert.equal(on, true, `a clear without a watch at ${e.t} s`); on = false; }
+    if (e.what === 'fix') assert.equal(on, true, `a fix at ${e.t} s while the watch was stopped`);
+  }
+  // After calibration (the first watch), the receiver is off for period − window and on for the window.
+  for (let k = 1; k < clears.length; k++) {
+    const off = watches[k].t - clears[k - 1].t;
+    const onFor = clears[k].t - watches[k].t;
+    assert.ok(Math.abs(off - (PERIOD - WINDOW)) < 1.5, `off for ${off.toFixed(1)} s, not ${PERIOD - WINDOW} s`);
+    assert.ok(Math.abs(onFor - WINDOW) < 1.5, `on for ${onFor.toFixed(1)} s, not ${WINDOW} s`);
+  }
+  // The saving is shown.
+  assert.ok(r.gnss_on_s[0] < r.gnss_on_s[1] - PERIOD + WINDOW, `on ${r.gnss_on_s}`);
+  assert.match(fixesText, /on \d+:\d\d of \d+:\d\d \(\d+ %\)/);
+  assert.deepEqual(errors, []);
   await context.close();
 });
 

@@ -181,8 +181,9 @@ enum Cmd {
         #[arg(long, required_unless_present = "events")]
         out: Option<PathBuf>,
         /// Also (or instead) write the walk as the browser events a phone would fire, JSON:
-        /// `{truth_steps, distance_m, events: [{type: "motion"|"orientation", t, …}]}`. The
-        /// end-to-end tests dispatch these on the live page.
+        /// `{truth_steps, distance_m, path: [[t, east, north], …], events: [{type:
+        /// "motion"|"orientation", t, …}]}` (t in ms, the path in metres). The end-to-end tests
+        /// dispatch these on the live page.
         #[arg(long)]
         events: Option<PathBuf>,
         /// The platform whose event conventions `--events` follows.
@@ -628,10 +629,18 @@ fn simulate(
             PlatformArg::Ios => pdr::live::Platform::Ios,
         };
         let events = pdr::live::browser_events(&sim.records, platform);
+        // The true path every half second or so, on the events' clock (ms), east and north (m).
+        let mut truth_path: Vec<[f64; 3]> = Vec::new();
+        for &(t, e, n) in &sim.truth.path {
+            if truth_path.last().map_or(true, |p| t * 1e3 - p[0] >= 500.0) {
+                truth_path.push([t * 1e3, e, n]);
+            }
+        }
         let doc = serde_json::json!({
             "truth_steps": sim.truth.steps.len(),
             "distance_m": sim.truth.distance_m,
             "platform": format!("{platform:?}").to_lowercase(),
+            "path": truth_path,
             "events": events,
         });
         write(path, doc.to_string())?;
