@@ -350,12 +350,16 @@ class Session {
   }
 }
 
-/** Energy saving: whether the receiver is off now, and its share of the time on since the first fix. */
+/**
+ * Energy saving: whether the receiver is off now, and its share of the time since the first fix
+ * (the tooltip has the times).
+ */
 function receiver(r, s) {
-  if (s.gnssMode !== 'energy-saving' || !r.gnss_on_s) return '';
+  const el = $('r-fixes');
+  if (s.gnssMode !== 'energy-saving' || !r.gnss_on_s || !(r.gnss_on_s[1] > 0)) { el.title = ''; return ''; }
   const [on, span] = r.gnss_on_s;
-  const share = span > 0 ? ` · on ${fmtTime(on)} of ${fmtTime(span)} (${Math.round(100 * on / span)} %)` : '';
-  return (r.gnss_wanted ? '' : ' · off to save energy') + share;
+  el.title = `The receiver has been on ${fmtTime(on)} of the ${fmtTime(span)} since the first fix.`;
+  return `${r.gnss_wanted ? '' : ' · off'} · on ${Math.round(100 * on / span)} %`;
 }
 
 /** Writes the readouts into the page and the pocket guard. */

@@ -359,8 +359,12 @@ test('energy saving: the geolocation watch is really stopped between windows and
   }
   // The saving is shown.
   assert.ok(r.gnss_on_s[0] < r.gnss_on_s[1] - PERIOD + WINDOW, `on ${r.gnss_on_s}`);
-  assert.match(fixesText, /on \d+:\d\d of \d+:\d\d \(\d+ %\)/);
+  assert.match(fixesText, /^\d+ fixes( · off)? · on \d+ %$/);
+  assert.match(await page.getAttribute('#r-fixes', 'title'), /on \d+:\d\d of the \d+:\d\d since the first fix/);
   assert.deepEqual(errors, []);
+  await holdToUnlock(page, 2300);
+  await page.waitForFunction(() => document.documentElement.dataset.guard === 'off');
+  await page.locator('#live').screenshot({ path: path.join(ARTIFACTS, 'live-energy-phone.png') });
   await context.close();
 });
 
