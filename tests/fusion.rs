@@ -191,4 +191,48 @@ fn fusion_is_bit_identical_natively_and_in_wasm() {
     assert_eq!(d, FUSION_DIGEST, "fusion digest changed: {d:#x}");
 }
 
-const FUSION_DIGEST: u64 = 0x9321_23e4_e84a_15f4;
+const FUSION_DIGEST: u64 = 0xc66b_9410_3579_e3b2;
+
+/// A walker who stands at a crossing for a minute: the fixes that come while no step does
+/// update the last step's estimate, instead of all but the newest being dropped; the position
+/// tightens as sixty fixes average, and the smoother sees them too.
+#[wasm_bindgen_test(unsupported = test)]
+fn fixes_while_standing_update_the_position() {
+    use pdr::sim::{GnssSim, Scenario, Segment, Walker};
+    let w = Walker::default();
+    let sim = Scenario {
+        gnss: Some(GnssSim::default()),
+        clock_offset_s: 1_780_272_000.0,
+        ..Scenario::new(vec![
+            Segment::still(3.0),
+            Segment::walk_distance(80.0, 1.8, &w),
+            Segment::still(60.0),
+            Segment::walk_distance(40.0, 1.8, &w),
+            Segment::still(3.0),
+        ])
+    }
+    .generate();
+    let p = run(&sim, PipelineConfig::default());
+    let stand = sim.truth.segments[2];
+    // The last step before the stand, as the filter left it once the stand was over.
+    let k = p.fused().iter().rposition(|s| s.t < stand.0 + 1.0).unwrap();
+    let at = &p.fused()[k];
+    let sd = (0.5 * (at.cov[0] + at.cov[2])).sqrt();
+    let (e, n) = truth_at(&sim, &p, at.t);
+    let err = libm::hypot(at.east_m - e, at.north_m - n);
+    let c = p.diagnostics().fix_counts.unwrap();
+    let before = &p.fused()[k - 1];
+    let sd_before = (0.5 * (before.cov[0] + before.cov[2])).sqrt();
+    println!("standing a minute: sd {sd_before:.2} -> {sd:.2} m, error {err:.2} m, {c:?}");
+    assert!(c.superseded < 5, "fixes dropped while standing: {c:?}");
+    assert!(sd < 0.8, "position sd {sd:.2} m after a minute of fixes");
+    assert!(
+        err < 2.0,
+        "position error {err:.2} m after a minute of fixes"
+    );
+    // The step before was known far less well.
+    assert!(
+        sd < 0.6 * sd_before,
+        "sd {sd:.2} m, one step earlier {sd_before:.2} m"
+    );
+}
