@@ -538,20 +538,18 @@ impl LiveSession {
     /// at least 2·`max_accuracy_m` from the last kept one, so that the fixes' noise does not add
     /// up; the last fix closes the path. The calibration wizard's GNSS distance.
     pub fn fix_path_m(&self, max_accuracy_m: f64) -> f64 {
-        let Some(frame) = self.pipeline.frame() else {
-            return 0.0;
-        };
+        // Between fixes by the haversine formula, as Basso 2021 §2.1 measures them.
         let pts: Vec<(f64, f64)> = self
             .pipeline
             .fixes()
             .iter()
             .filter(|f| f.h_accuracy_m <= max_accuracy_m)
-            .map(|f| frame.en_of_fix(f))
+            .map(|f| (f.lat_deg, f.lon_deg))
             .collect();
         let (Some(&first), Some(&last)) = (pts.first(), pts.last()) else {
             return 0.0;
         };
-        let d = |a: (f64, f64), b: (f64, f64)| libm::hypot(a.0 - b.0, a.1 - b.1);
+        let d = |a: (f64, f64), b: (f64, f64)| crate::engine::geo::haversine_m(a.0, a.1, b.0, b.1);
         let mut kept = first;
         let mut total = 0.0;
         for &p in &pts {
