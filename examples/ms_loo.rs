@@ -58,7 +58,7 @@ fn main() {
             .min_by(|&a, &b| pooled(a, Some(i)).total_cmp(&pooled(b, Some(i))))
             .unwrap();
         chosen.push(grid[g]);
-        held_out.extend(errors[g][i].iter().copied());
+        held_out.extend(errors[g].get(i).into_iter().flatten().copied());
     }
     let default_b = match PipelineConfig::default().step_length {
         StepLengthModel::Frequency(p) => p.walking.b,
@@ -68,9 +68,21 @@ fn main() {
         .iter()
         .position(|&b| (b - default_b).abs() < 1e-9)
         .unwrap();
-    println!("{} traces, offsets {:.2}..{:.2} m", logs.len(), grid[0], grid[grid.len() - 1]);
-    println!("default b {default_b:.2}: pooled p75 {:.2} m (in-sample)", pooled(g_def, None));
-    println!("best b on all 24: {:.2} (p75 {:.2} m)", grid[best_all], pooled(best_all, None));
+    println!(
+        "{} traces, offsets {:.2}..{:.2} m",
+        logs.len(),
+        grid[0],
+        grid[grid.len() - 1]
+    );
+    println!(
+        "default b {default_b:.2}: pooled p75 {:.2} m (in-sample)",
+        pooled(g_def, None)
+    );
+    println!(
+        "best b on all 24: {:.2} (p75 {:.2} m)",
+        grid[best_all],
+        pooled(best_all, None)
+    );
     chosen.sort_by(f64::total_cmp);
     println!(
         "leave-one-out: pooled held-out p75 {:.2} m; offsets chosen {:.2}..{:.2} m",
