@@ -523,7 +523,8 @@ pub fn apply_overrides(cfg: &PipelineConfig, sets: &[String]) -> Result<Pipeline
                 parents.join(".")
             )
         })?;
-        if *last == "kind" {
+        let kind = *last == "kind";
+        if kind {
             obj.clear();
         } else if !obj.contains_key(*last) {
             return Err(format!(
@@ -531,6 +532,12 @@ pub fn apply_overrides(cfg: &PipelineConfig, sets: &[String]) -> Result<Pipeline
             ));
         }
         obj.insert(last.to_string(), value);
+        if kind {
+            // The new kind's settings, at their defaults, so that later --set can change them.
+            let filled: PipelineConfig =
+                serde_json::from_value(v).map_err(|e| format!("--set {key}: {e}"))?;
+            v = serde_json::to_value(&filled).map_err(|e| e.to_string())?;
+        }
     }
     let out: PipelineConfig = serde_json::from_value(v).map_err(|e| format!("--set: {e}"))?;
     out.validate().map_err(|e| format!("--set: {e}"))?;
@@ -622,6 +629,19 @@ mod tests {
             c.detector,
             crate::engine::pipeline::StepDetectorConfig::Peak(_)
         ));
+        // A new kind's own settings can be set after it.
+        let c = apply_overrides(
+            &base,
+            &[
+                "detector.kind=peak".into(),
+                "detector.min_interval_s=0.3".into(),
+            ],
+        )
+        .unwrap();
+        let crate::engine::pipeline::StepDetectorConfig::Peak(p) = c.detector else {
+            panic!("not the peak detector: {:?}", c.detector)
+        };
+        assert_eq!(p.min_interval_s, 0.3);
         let e = apply_overrides(&base, &["motion.nope=1".into()]).unwrap_err();
         assert!(e.contains("nope"), "{e}");
         let e = apply_overrides(&base, &["motion.still_max=-1".into()]).unwrap_err();
