@@ -246,6 +246,8 @@ pub struct LiveSession {
     recent: VecDeque<f64>,
     refused: u64,
     last_error: Option<String>,
+    // The smoothed track as of the filter's last correction: (corrections then, positions).
+    smoothed: (u64, Vec<(f64, f64)>),
 }
 
 impl LiveSession {
@@ -273,6 +275,7 @@ impl LiveSession {
             last_t: None,
             gaps_seen: 0,
             gap_marks: Vec::new(),
+            smoothed: (0, Vec::new()),
             scope: VecDeque::new(),
             log: crate::io::pdrlog::preamble(),
             recent: VecDeque::new(),
@@ -622,7 +625,9 @@ pub struct MapData {
     pub pdr: Vec<(f64, f64)>,
     /// The fused track.
     pub fused: Vec<(f64, f64)>,
-    /// The smoothed track (when asked for: after the walk).
+    /// The smoothed track: the walk so far with each fix's correction carried back over the
+    /// steps before it (the past trajectory corrected, Basso 2021 §3.1.2; in energy-saving
+    /// mode this takes out the jump at each window).
     pub smoothed: Vec<(f64, f64)>,
     /// Fixes: east, north, accuracy, m.
     pub fixes: Vec<(f64, f64, f64)>,
@@ -633,9 +638,30 @@ pub struct MapData {
 }
 
 impl LiveSession {
-    /// The map's data; `smoothed` runs the backward pass over the walk (for after it).
-    pub fn map_data(&self, smoothed: bool) -> MapData {
+    /// The map's data. The smoother's backward pass runs again only when a fix has corrected
+    /// the filter since the last call: after the last correction the smoothed steps are the
+    /// filtered ones.
+    pub fn map_data(&mut self) -> MapData {
+        let corrections = self
+            .pipeline
+            .diagnostics()
+            .fix_counts
+            .map_or(0, |c| c.used + c.resets);
+        if corrections != self.smoothed.0 {
+            let s = self.pipeline.smoothed();
+            self.smoothed = (
+                corrections,
+                s.iter().map(|f| (f.east_m, f.north_m)).collect(),
+            );
+        }
         let p = &self.pipeline;
+        let mut smoothed = self.smoothed.1.clone();
+        smoothed.extend(
+            p.fused()
+                .iter()
+                .skip(smoothed.len())
+                .map(|f| (f.east_m, f.north_m)),
+        );
         let track = p.track();
         let fused: Vec<(f64, f64)> = p.fused().iter().map(|f| (f.east_m, f.north_m)).collect();
         let offset = p.fused().first().map_or((0.0, 0.0), |f| {
@@ -649,11 +675,7 @@ impl LiveSession {
                 .map(|(e, n)| shift(e, n))
                 .collect(),
             fused,
-            smoothed: if smoothed {
-                p.smoothed().iter().map(|f| (f.east_m, f.north_m)).collect()
-            } else {
-                Vec::new()
-            },
+            smoothed,
             fixes: p.frame().map_or_else(Vec::new, |frame| {
                 p.fixes()
                     .iter()

@@ -442,7 +442,7 @@ pub struct LiveView<'a> {
     pub pdr: &'a [(f64, f64)],
     /// The fused track (empty without fixes).
     pub fused: &'a [(f64, f64)],
-    /// The smoothed track, once the walk has ended.
+    /// The smoothed track: the walk so far, each fix's correction carried back.
     pub smoothed: &'a [(f64, f64)],
     /// GNSS fixes as received: east, north, reported accuracy, m.
     pub fixes: &'a [(f64, f64, f64)],
@@ -453,8 +453,8 @@ pub struct LiveView<'a> {
 }
 
 /// The live map: the track so far with its start, the current position and heading, every fix
-/// with its accuracy circle, the fused (and, after the walk, smoothed) track, gaps, a legend, a
-/// north arrow and a scale bar.
+/// with its accuracy circle, the fused and smoothed tracks, gaps, a legend, a north arrow and a
+/// scale bar.
 pub fn draw_live<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     view: &LiveView<'_>,
@@ -956,7 +956,7 @@ mod tests {
             }
         }
         assert!(sim.records.iter().any(|r| matches!(r, Record::Imu(_))));
-        let d = live.map_data(false);
+        let d = live.map_data();
         assert_eq!(d.gaps.len(), 1, "the 4 s without events is a gap");
         let (w, h) = (400u32, 400u32);
         let px = std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); (w * h) as usize]));

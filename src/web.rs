@@ -441,15 +441,14 @@ impl Live {
             .map_err(|e| JsError::new(&e.to_string()))
     }
 
-    /// Draws the map; `ended` adds the smoothed track (after Stop).
+    /// Draws the map.
     pub fn draw(
-        &self,
+        &mut self,
         canvas: &HtmlCanvasElement,
         dark: bool,
         dpr: f64,
-        ended: bool,
     ) -> Result<(), JsError> {
-        let d = self.session.map_data(ended);
+        let d = self.session.map_data();
         let view = LiveView {
             pdr: &d.pdr,
             fused: &d.fused,

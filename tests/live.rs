@@ -312,3 +312,34 @@ fn the_ios_compass_heading_gives_the_absolute_alpha() {
     assert!((ios_compass_alpha(0.0, 90.0) - 270.0).abs() < 1e-9);
     assert!((ios_compass_alpha(350.0, 90.0) - 280.0).abs() < 1e-9);
 }
+
+/// The live map's smoothed track, kept between fixes, is at every moment the smoother's whole
+/// backward pass over the walk so far (energy-saving mode, the city walk's fixes).
+#[wasm_bindgen_test(unsupported = test)]
+fn live_smoothed_track_equals_the_smoother_at_any_time() {
+    use pdr::engine::fusion::GnssMode;
+    let sim = scenarios::gnss_city_walk().generate();
+    let mut cfg = PipelineConfig::default();
+    cfg.fusion.as_mut().unwrap().mode = GnssMode::ENERGY_SAVING;
+    let mut live = LiveSession::new(cfg, Platform::Android, 0.0).unwrap();
+    let mut checks = 0;
+    for (i, r) in sim.records.iter().enumerate() {
+        match r {
+            Record::Gnss(f) => live.push_fix(f).unwrap(),
+            Record::Imu(_) => feed_into(&mut live, std::slice::from_ref(r), Platform::Android),
+            Record::Gap(..) => {}
+        }
+        if i % 3000 == 0 || i + 1 == sim.records.len() {
+            let shown = live.map_data().smoothed;
+            let full: Vec<(f64, f64)> = live
+                .pipeline()
+                .smoothed()
+                .iter()
+                .map(|f| (f.east_m, f.north_m))
+                .collect();
+            assert_eq!(shown, full, "after record {i}");
+            checks += usize::from(!full.is_empty());
+        }
+    }
+    assert!(checks > 20, "{checks} checks with a fused track");
+}

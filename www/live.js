@@ -312,7 +312,7 @@ class Session {
     this.dirty = false;
     if (!$('guard').hidden) return; // nobody sees the plots
     const dpr = fit($('live-map'));
-    if (dpr) this.live.draw($('live-map'), dark.matches, dpr, this.ended);
+    if (dpr) this.live.draw($('live-map'), dark.matches, dpr);
     const dpr2 = fit($('live-scope'));
     if (dpr2) this.live.draw_scope($('live-scope'), dark.matches, dpr2);
   }
