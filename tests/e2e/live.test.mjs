@@ -1,21 +1,15 @@
 // End-to-end tests of live mode in a real headless Chromium, against `pdr serve`.
 // A simulated walk (`pdr simulate --events`) is dispatched on the page as real DeviceMotionEvent
 // and DeviceOrientationEvent objects at the walk's timestamps, faster than real time.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, dispatchRealTime, holdToUnlock, openPage, useBrowser } from './util.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
-const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
-const ARTIFACTS = path.join(here, 'artifacts');
 const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-live-'));
-const PHONE = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true };
 const GEO = { latitude: 46.0037, longitude: 8.9511, accuracy: 12 }; // Lugano
 
 /** A simulated walk as browser events of a platform: {truth_steps, distance_m, events}. */
@@ -25,60 +19,23 @@ function walk(scenario, platform) {
   return JSON.parse(readFileSync(file, 'utf8'));
 }
 
-let browser;
-before(async () => {
-  browser = await chromium.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync',
-      // A name that is not localhost: the page is then an insecure context, as on a LAN.
-      '--host-resolver-rules=MAP pdr-lan.test 127.0.0.1'],
-  });
-});
-after(async () => { await browser?.close(); });
+// A name that is not localhost: the page is then an insecure context, as on a LAN.
+const browser = useBrowser(['--host-resolver-rules=MAP pdr-lan.test 127.0.0.1']);
 
 /** Opens the page; `ios` makes it look like Safari (its user agent, and a motion permission prompt answering `permission`). */
 const IPHONE_UA = 'Mozilla/5.0 (iPhone; CPU iPhone OS 18_1 like Mac OS X) AppleWebKit/605.1.15 (KHTML, like Gecko) Version/18.1 Mobile/15E148 Safari/604.1';
 
-async function open({ ios = false, permission = 'granted', context: options = {}, url = URL_HTTP, init } = {}) {
-  const context = await browser.newContext({ ...PHONE, acceptDownloads: true, ...(ios ? { userAgent: IPHONE_UA } : {}), ...options });
-  if (init) await context.addInitScript(init);
-  if (ios) {
-    await context.addInitScript((answer) => {
-      // Safari has no `deviceorientationabsolute`; it asks for motion permission.
-      delete window.ondeviceorientationabsolute; // [Global]: on the window itself
-      DeviceMotionEvent.requestPermission = async () => answer;
-      DeviceOrientationEvent.requestPermission = async () => answer;
-    }, permission);
-  }
-  // window.__pdrFire(e, base, ios) dispatches one walk event (see `dispatch`).
-  await context.addInitScript(() => {
-    window.__pdrFire = (e, base, ios) => {
-      let ev;
-      if (e.type === 'motion') {
-        ev = new DeviceMotionEvent('devicemotion', {
-          accelerationIncludingGravity: { x: e.x, y: e.y, z: e.z },
-          rotationRate: e.alpha == null ? null : { alpha: e.alpha, beta: e.beta, gamma: e.gamma },
-          interval: e.interval,
-        });
-      } else if (ios) {
-        // Safari: alpha from an arbitrary start, the compass heading beside it.
-        ev = new DeviceOrientationEvent('deviceorientation', { alpha: (e.alpha + 123) % 360, beta: e.beta, gamma: e.gamma, absolute: false });
-        Object.defineProperty(ev, 'webkitCompassHeading', { value: (360 - e.alpha) % 360 });
-      } else {
-        ev = new DeviceOrientationEvent('deviceorientationabsolute', { alpha: e.alpha, beta: e.beta, gamma: e.gamma, absolute: true });
-      }
-      Object.defineProperty(ev, 'timeStamp', { value: base + e.t });
-      window.dispatchEvent(ev);
-    };
+function open({ ios = false, permission = 'granted', context: options = {}, url = URL_HTTP, init } = {}) {
+  const safari = [(answer) => {
+    // Safari has no `deviceorientationabsolute`; it asks for motion permission.
+    delete window.ondeviceorientationabsolute; // [Global]: on the window itself
+    DeviceMotionEvent.requestPermission = async () => answer;
+    DeviceOrientationEvent.requestPermission = async () => answer;
+  }, permission];
+  return openPage(browser(), url, {
+    options: { ...PHONE, acceptDownloads: true, ...(ios ? { userAgent: IPHONE_UA } : {}), ...options },
+    init: [...(init ? [init] : []), ...(ios ? [safari] : [])],
   });
-  const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.goto(url);
-  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
-  return { context, page, errors };
 }
 
 /** Taps Start and waits until the page listens to motion events. */
@@ -87,47 +44,8 @@ async function start(page) {
   await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
 }
 
-/**
- * Dispatches events `from`..`to` of a walk on the page, in chunks, with
- * timeStamp = base + t (the walk's own times, on the page's clock from `base`).
- * iOS orientation events carry `webkitCompassHeading` and a relative alpha, as Safari's do.
- */
-async function dispatch(page, events, { base, ios = false, from = 0, to = events.length }) {
-  const CHUNK = 400;
-  for (let i = from; i < to; i += CHUNK) {
-    await page.evaluate(({ chunk, base, ios }) => {
-      for (const e of chunk) window.__pdrFire(e, base, ios);
-    }, { chunk: events.slice(i, Math.min(i + CHUNK, to)), base, ios });
-  }
-}
-
-/**
- * Starts dispatching a walk's events in real time, each when the page's clock reaches
- * base + e.t (as a phone fires them); `window.__pdrWalked` counts the events fired so far.
- */
-async function dispatchRealTime(page, events, base) {
-  await page.evaluate(({ events, base }) => {
-    window.__pdrWalked = 0;
-    const timer = setInterval(() => {
-      const now = performance.now();
-      while (window.__pdrWalked < events.length && base + events[window.__pdrWalked].t <= now) {
-        window.__pdrFire(events[window.__pdrWalked++], base, false);
-      }
-      if (window.__pdrWalked >= events.length) clearInterval(timer);
-    }, 10);
-  }, { events, base });
-}
-
 const readouts = (page) => page.evaluate(() => window.__pdrLive?.readouts);
 const messages = (page) => page.$$eval('#live-messages li', (els) => els.map((e) => `${e.dataset.key}: ${e.textContent}`));
-
-async function holdToUnlock(page, ms) {
-  const box = await page.locator('#unlock').boundingBox();
-  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
-  await page.mouse.down();
-  await page.waitForTimeout(ms);
-  await page.mouse.up();
-}
 
 /** Pixels of a canvas differing from its corner, and the canvas's backing size. */
 async function nonBlank(page, id) {

@@ -1,45 +1,26 @@
 // End-to-end tests of the first page in a real headless Chromium, against `pdr serve`.
 // Run by `./dev test` (which starts the server and sets the variables below).
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync } from 'node:fs';
+import { existsSync } from 'node:fs';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { ARTIFACTS, BIN, DIST, URL_HTTP, URL_HTTPS, openPage, useBrowser } from './util.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
-const URL_HTTPS = process.env.PDR_E2E_HTTPS_URL ?? 'https://127.0.0.1:8443/';
-const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
-const DIST = process.env.PDR_DIST ?? path.join(here, '../../dist');
-const ARTIFACTS = path.join(here, 'artifacts');
-mkdirSync(ARTIFACTS, { recursive: true });
-
-let browser;
-before(async () => {
-  // Playwright gives each launch a fresh temporary profile (user data dir).
-  browser = await chromium.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync'],
-  });
-});
-after(async () => { await browser?.close(); });
+const browser = useBrowser();
 
 /** Opens the page, collecting console errors, page errors, requests and failed responses. */
-async function open(url, contextOptions = {}) {
-  const context = await browser.newContext(contextOptions);
-  const page = await context.newPage();
-  const errors = [];
+async function open(url, options = {}) {
   const requests = [];
   const failures = [];
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('request', (r) => requests.push(r.url()));
-  page.on('response', (r) => { if (r.status() >= 400) failures.push(`${r.status()} ${r.url()}`); });
-  await page.goto(url);
-  await page.waitForFunction(() => ['ready', 'error'].includes(document.documentElement.dataset.state), null, { timeout: 30_000 });
+  const { context, page, errors } = await openPage(browser(), url, {
+    options,
+    states: ['ready', 'error'],
+    onPage: (page) => {
+      page.on('request', (r) => requests.push(r.url()));
+      page.on('response', (r) => { if (r.status() >= 400) failures.push(`${r.status()} ${r.url()}`); });
+    },
+  });
   const state = await page.evaluate(() => document.documentElement.dataset.state);
   const message = await page.evaluate(() => document.getElementById('error')?.textContent ?? '');
   assert.equal(state, 'ready', `page did not become ready: ${message}`);

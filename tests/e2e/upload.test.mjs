@@ -1,42 +1,24 @@
 // End-to-end tests of upload mode in headless Chromium: files of every format through the web
 // worker, the plots, hovering, a corrupt file beside a good one, exports, the shared data sets
 // against `pdr eval`, and a one-hour log's load time (printed).
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, statSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { ARTIFACTS, BIN, URL_HTTP, openPage, useBrowser } from './util.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
-const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
-const ARTIFACTS = path.join(here, 'artifacts');
 const FIXTURES = path.join(here, '../fixtures/import');
 const SHARED = path.join(here, '../../../shared/data');
 const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-upload-'));
 
-let browser;
-before(async () => {
-  browser = await chromium.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync'],
-  });
-});
-after(async () => { await browser?.close(); });
+const browser = useBrowser();
 
-async function open(viewport = { width: 1100, height: 900 }, device = {}) {
-  const context = await browser.newContext({ viewport, acceptDownloads: true, ...device });
-  const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.goto(URL_HTTP);
-  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
-  return { context, page, errors };
+function open(viewport = { width: 1100, height: 900 }, device = {}) {
+  return openPage(browser(), URL_HTTP, { options: { viewport, acceptDownloads: true, ...device } });
 }
 
 /** Uploads files (or a folder) and waits until every analysis is in. */

@@ -1,19 +1,14 @@
 // End-to-end test of the step-length calibration wizard in headless Chromium: three paces walked
 // (simulated motion events dispatched on the page) over a typed distance, the fit, the saved
 // profile, a replay with it, and a profile's export and import.
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, holdToUnlock, openPage, useBrowser } from './util.mjs';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
-const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/pdr');
-const ARTIFACTS = path.join(here, 'artifacts');
 const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-wizard-'));
 // The walker: SL = 0.30·f + 0.20 m, longer steps than the built-in profile's 0.25·f + 0.17.
 const A = 0.30;
@@ -28,49 +23,18 @@ function simulate(cadence, metres, out) {
   return readFileSync(file, 'utf8');
 }
 
-let browser;
-before(async () => {
-  browser = await chromium.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
-      '--disable-component-update', '--disable-sync'],
-  });
-});
-after(async () => { await browser?.close(); });
+const browser = useBrowser();
 
-async function dispatch(page, events) {
-  const base = await page.evaluate(() => performance.now());
-  for (let i = 0; i < events.length; i += 400) {
-    await page.evaluate(({ chunk, base }) => {
-      for (const e of chunk) {
-        const ev = e.type === 'motion'
-          ? new DeviceMotionEvent('devicemotion', { accelerationIncludingGravity: { x: e.x, y: e.y, z: e.z }, rotationRate: { alpha: e.alpha, beta: e.beta, gamma: e.gamma }, interval: e.interval })
-          : new DeviceOrientationEvent('deviceorientationabsolute', { alpha: e.alpha, beta: e.beta, gamma: e.gamma, absolute: true });
-        Object.defineProperty(ev, 'timeStamp', { value: base + e.t });
-        window.dispatchEvent(ev);
-      }
-    }, { chunk: events.slice(i, i + 400), base });
-  }
-}
-
-async function holdToUnlock(page) {
-  const box = await page.locator('#unlock').boundingBox();
-  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
-  await page.mouse.down();
-  await page.waitForTimeout(2300);
-  await page.mouse.up();
+/** Holds the pocket guard's unlock button until the guard is off. */
+async function unlock(page) {
+  await holdToUnlock(page, 2300);
   await page.waitForFunction(() => document.documentElement.dataset.guard === 'off');
 }
 
 test('calibration wizard: three paces over a typed distance give the walker\'s line, a saved profile that fixes the distance, and a profile survives export and import', async () => {
-  const context = await browser.newContext({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true, acceptDownloads: true,
-    permissions: ['accelerometer', 'gyroscope', 'magnetometer'] });
-  const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.goto(URL_HTTP);
-  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
+  const { context, page, errors } = await openPage(browser(), URL_HTTP, {
+    options: { ...PHONE, acceptDownloads: true, permissions: ['accelerometer', 'gyroscope', 'magnetometer'] },
+  });
   await page.click('#cal-open');
   await page.fill('#cal-distance', String(METRES));
   await page.locator('#calibrate').screenshot({ path: path.join(ARTIFACTS, 'wizard-1-start-phone.png') });
@@ -84,8 +48,8 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
     assert.equal(await page.isVisible('#guard'), true, 'no pocket guard during a calibration walk');
     assert.match(await page.textContent('#guard-title'), new RegExp(`Calibration, ${pace} walk`));
     if (pace === 'slow') await page.screenshot({ path: path.join(ARTIFACTS, 'wizard-2-walking-phone.png') });
-    await dispatch(page, w.events);
-    await holdToUnlock(page);
+    await dispatch(page, w.events, { base: await page.evaluate(() => performance.now()) });
+    await unlock(page);
     await page.click(`tr[data-pace="${pace}"] button`);
     await page.waitForFunction(() => document.documentElement.dataset.calibration === 'walked');
     const result = await page.textContent(`tr[data-pace="${pace}"] .result`);
