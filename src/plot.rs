@@ -62,60 +62,22 @@ impl Theme {
     };
 }
 
-/// Bounds (min_e, max_e, min_n, max_n) of the points with a margin, widened so that one metre
-/// spans the same number of pixels on both axes.
-fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f64, f64, f64, f64) {
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for (x, y) in points {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (-10.0, 10.0, -10.0, 10.0);
-    }
-    let pad = 0.06 * (x1 - x0).max(y1 - y0).max(10.0);
-    let (mut x0, mut x1, mut y0, mut y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
-    let (sx, sy) = ((x1 - x0) / w, (y1 - y0) / h);
-    if sx > sy {
-        let grow = (sx * h - (y1 - y0)) / 2.0;
-        y0 -= grow;
-        y1 += grow;
-    } else {
-        let grow = (sy * w - (x1 - x0)) / 2.0;
-        x0 -= grow;
-        x1 += grow;
-    }
-    (x0, x1, y0, y1)
+/// The bounds (min_e, max_e, min_n, max_n) of the points; infinite when there are none.
+fn bounds(points: impl Iterator<Item = (f64, f64)>) -> (f64, f64, f64, f64) {
+    points.fold(
+        (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ),
+        |(x0, x1, y0, y1), (x, y)| (x0.min(x), x1.max(x), y0.min(y), y1.max(y)),
+    )
 }
 
-/// Bounds of exactly the given corner points, widened on one axis to an equal scale.
-fn equal_aspect_exact(
-    points: impl Iterator<Item = (f64, f64)>,
-    w: f64,
-    h: f64,
-) -> (f64, f64, f64, f64) {
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for (x, y) in points {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if !(x1 > x0 && y1 > y0) {
-        return equal_aspect([(x0, y0), (x1, y1)].into_iter(), w, h);
-    }
+/// Widens bounds on one axis, about their centre, so that one metre spans the same number of
+/// pixels on both axes of a `w` × `h` area.
+fn to_equal_scale((x0, x1, y0, y1): (f64, f64, f64, f64), w: f64, h: f64) -> (f64, f64, f64, f64) {
     let (sx, sy) = ((x1 - x0) / w, (y1 - y0) / h);
     if sx > sy {
         let grow = (sx * h - (y1 - y0)) / 2.0;
@@ -124,6 +86,30 @@ fn equal_aspect_exact(
         let grow = (sy * w - (x1 - x0)) / 2.0;
         (x0 - grow, x1 + grow, y0, y1)
     }
+}
+
+/// Bounds (min_e, max_e, min_n, max_n) of the points with a margin, widened so that one metre
+/// spans the same number of pixels on both axes.
+fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f64, f64, f64, f64) {
+    let (mut x0, mut x1, mut y0, mut y1) = bounds(points);
+    if !x0.is_finite() {
+        (x0, x1, y0, y1) = (-10.0, 10.0, -10.0, 10.0);
+    }
+    let pad = 0.06 * (x1 - x0).max(y1 - y0).max(10.0);
+    to_equal_scale((x0 - pad, x1 + pad, y0 - pad, y1 + pad), w, h)
+}
+
+/// Bounds of exactly the given corner points, widened on one axis to an equal scale.
+fn equal_aspect_exact(
+    points: impl Iterator<Item = (f64, f64)>,
+    w: f64,
+    h: f64,
+) -> (f64, f64, f64, f64) {
+    let (x0, x1, y0, y1) = bounds(points);
+    if !(x1 > x0 && y1 > y0) {
+        return equal_aspect([(x0, y0), (x1, y1)].into_iter(), w, h);
+    }
+    to_equal_scale((x0, x1, y0, y1), w, h)
 }
 
 /// A "nice" scale-bar length (1, 2 or 5 × 10^k m) close to a quarter of `span` metres.
