@@ -441,13 +441,16 @@ impl Fusion {
     }
 
     /// Offers a fix at time `t`, already in the local frame (east, north, m), with its reported
-    /// accuracy (m). It is kept for the next step, replacing an older unused one.
+    /// accuracy (m). It is kept for the next step, replacing an older unused one, unless the
+    /// walker stands: `still` (the motion detector says so) and no step for
+    /// [`FusionConfig::standing_after_s`]. Then it updates the last step's estimate at once.
     pub fn offer_fix(
         &mut self,
         t: f64,
         east: f64,
         north: f64,
         accuracy_m: f64,
+        still: bool,
     ) -> Option<FixOutcome> {
         if self.first_fix_t.is_none() {
             self.first_fix_t = Some(t);
@@ -467,7 +470,8 @@ impl Fusion {
             sigma: accuracy_m / ACCURACY_PER_SIGMA,
         };
         let last_step_t = self.steps.last().map(|s| s.t).filter(|_| self.started);
-        if let Some(t_step) = last_step_t.filter(|&ts| t - ts >= self.cfg.standing_after_s) {
+        let standing = last_step_t.filter(|&ts| still && t - ts >= self.cfg.standing_after_s);
+        if let Some(t_step) = standing {
             // The walker has not moved since the last step: the fix updates that step's
             // estimate (and what the smoother stored of it) now, as if it had come then.
             self.velocity = Vector2::zeros();
@@ -498,18 +502,7 @@ impl Fusion {
                 self.counts.stale += 1;
                 return None;
             }
-            self.x = Vector4::new(p.en.x, p.en.y, 1.0, 0.0);
-            // One fix may be an outlier: start wide, so that the next fixes are taken by
-            // consensus (see `consensus_sd_m`).
-            let s2 = (p.sigma * p.sigma).max(4.0 * sq(self.cfg.consensus_sd_m));
-            self.p = Matrix4::from_diagonal(&Vector4::new(
-                s2,
-                s2,
-                self.cfg.scale0_sd * self.cfg.scale0_sd,
-                sq(self.cfg.bias0_sd_deg.to_radians()),
-            ));
-            self.started = true;
-            self.counts.used += 1;
+            self.start(p);
             self.last_step = Some((t, p.en));
             let rec = self.record(t, None, Some(FixOutcome::Started));
             self.stored.push(Stored {
@@ -550,6 +543,22 @@ impl Fusion {
             p: self.p,
         });
         Some(self.record(t, innovation, outcome))
+    }
+
+    /// Starts the filter at a fix: the position there, the scale 1 and no heading correction.
+    /// One fix may be an outlier: the position starts wide, so that the next fixes are taken by
+    /// consensus (see [`FusionConfig::consensus_sd_m`]).
+    fn start(&mut self, fix: PendingFix) {
+        self.x = Vector4::new(fix.en.x, fix.en.y, 1.0, 0.0);
+        let s2 = (fix.sigma * fix.sigma).max(4.0 * sq(self.cfg.consensus_sd_m));
+        self.p = Matrix4::from_diagonal(&Vector4::new(
+            s2,
+            s2,
+            self.cfg.scale0_sd * self.cfg.scale0_sd,
+            sq(self.cfg.bias0_sd_deg.to_radians()),
+        ));
+        self.started = true;
+        self.counts.used += 1;
     }
 
     /// Marks the end of a bout (a stop or a gap): the walking velocity used to carry fixes to
@@ -897,7 +906,13 @@ mod tests {
             let t = i as f64 * 0.55;
             truth.y += 0.7;
             if i % 2 == 0 {
-                f.offer_fix(t, truth.x + 6.0 * noise(), truth.y + 6.0 * noise(), 4.0);
+                f.offer_fix(
+                    t,
+                    truth.x + 6.0 * noise(),
+                    truth.y + 6.0 * noise(),
+                    4.0,
+                    false,
+                );
             }
             f.step(t, 0.77, Some(8f64.to_radians()));
             let p = f.covariance();

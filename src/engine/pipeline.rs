@@ -638,7 +638,8 @@ impl Pipeline {
         }
         if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
             let (e, n) = frame.en_of_fix(f);
-            fusion.offer_fix(f.t, e, n, f.h_accuracy_m);
+            let still = self.motion.state() == Motion::Still;
+            fusion.offer_fix(f.t, e, n, f.h_accuracy_m, still);
         }
         Ok(())
     }
