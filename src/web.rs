@@ -236,6 +236,7 @@ fn live_config(
     live_config_with(gnss, profile, None, None)
 }
 
+/// [`live_config`] with energy saving's period and window, s (`None`: the defaults).
 fn live_config_with(
     gnss: &str,
     profile: Option<String>,

@@ -17,12 +17,13 @@
 //! - **Update** with the newest fix not yet used (size-varying: no fix, no update). The fix is
 //!   associated with the step time by extrapolating it along the fused walking velocity over the
 //!   interval between the fix and the step ("an extrapolation technique", §2.2.6), and its
-//!   covariance is widened by the extrapolation's uncertainty. Our addition: a fix that comes
-//!   [`FusionConfig::standing_after_s`] or more after the last step finds the walker standing
-//!   and updates that step's estimate at once (the paper's step trigger would keep only the
-//!   newest of the fixes that came while the walker waited at a crossing; a test measures it). R = σ² I with σ = accuracy / 1.5096:
+//!   covariance is widened by the extrapolation's uncertainty. R = σ² I with σ = accuracy / 1.5096:
 //!   Android and iOS report the radius of 68 % confidence, and for a circular normal distribution
 //!   P(r ≤ a) = 1 − exp(−a²/2σ²) = 0.68 gives a = 1.5096 σ.
+//! - **Standing** (our addition): a fix that comes [`FusionConfig::standing_after_s`] or more
+//!   after the last step, while the motion detector says still, updates that step's estimate at
+//!   once. The paper's step trigger would keep only the newest of the fixes that come while the
+//!   walker waits at a crossing (a test measures the difference).
 //! - **Gating**: a fix is refused when its accuracy is worse than [`FusionConfig::max_accuracy_m`],
 //!   when it is older than [`FusionConfig::max_fix_age_s`] at the step, or when its squared
 //!   Mahalanobis distance exceeds [`FusionConfig::gate_chi2`] (χ² with 2 degrees of freedom).
@@ -141,8 +142,8 @@ pub struct FusionConfig {
     pub consensus_sd_m: f64,
     /// Fixes that must agree for a consensus.
     pub consensus_n: u32,
-    /// A fix that comes this long after the last step finds the walker standing, s: it updates
-    /// that step's estimate at once. Waiting for the next step would keep only the newest of
+    /// A fix that comes this long after the last step, while the motion detector says still,
+    /// finds the walker standing, s: it updates that step's estimate at once. Waiting for the next step would keep only the newest of
     /// the fixes that come meanwhile (one a second at a crossing). 2 s: twice the longest
     /// walking step (1 Hz).
     pub standing_after_s: f64,
@@ -502,7 +503,18 @@ impl Fusion {
                 self.counts.stale += 1;
                 return None;
             }
-            self.start(p);
+            self.x = Vector4::new(p.en.x, p.en.y, 1.0, 0.0);
+            // One fix may be an outlier: start wide, so that the next fixes are taken by
+            // consensus (see `consensus_sd_m`).
+            let s2 = (p.sigma * p.sigma).max(4.0 * sq(self.cfg.consensus_sd_m));
+            self.p = Matrix4::from_diagonal(&Vector4::new(
+                s2,
+                s2,
+                self.cfg.scale0_sd * self.cfg.scale0_sd,
+                sq(self.cfg.bias0_sd_deg.to_radians()),
+            ));
+            self.started = true;
+            self.counts.used += 1;
             self.last_step = Some((t, p.en));
             let rec = self.record(t, None, Some(FixOutcome::Started));
             self.stored.push(Stored {
@@ -543,22 +555,6 @@ impl Fusion {
             p: self.p,
         });
         Some(self.record(t, innovation, outcome))
-    }
-
-    /// Starts the filter at a fix: the position there, the scale 1 and no heading correction.
-    /// One fix may be an outlier: the position starts wide, so that the next fixes are taken by
-    /// consensus (see [`FusionConfig::consensus_sd_m`]).
-    fn start(&mut self, fix: PendingFix) {
-        self.x = Vector4::new(fix.en.x, fix.en.y, 1.0, 0.0);
-        let s2 = (fix.sigma * fix.sigma).max(4.0 * sq(self.cfg.consensus_sd_m));
-        self.p = Matrix4::from_diagonal(&Vector4::new(
-            s2,
-            s2,
-            self.cfg.scale0_sd * self.cfg.scale0_sd,
-            sq(self.cfg.bias0_sd_deg.to_radians()),
-        ));
-        self.started = true;
-        self.counts.used += 1;
     }
 
     /// Marks the end of a bout (a stop or a gap): the walking velocity used to carry fixes to
