@@ -308,6 +308,19 @@ test('permission denied, no sensors, no location, insecure page: each says what 
     assert.match(m, /Location was refused.*allow location/);
     await context.close();
   }
+  // Energy saving with a window longer than its period: refused, naming the setting.
+  {
+    const { context, page } = await open();
+    await page.selectOption('#gnss-mode', 'energy-saving');
+    await page.fill('#gnss-window', '20');
+    await page.fill('#gnss-period', '10');
+    await page.click('#start');
+    await page.waitForSelector('#live-messages li[data-key="cannotStart"]');
+    assert.match((await messages(page)).join('\n'), /could not start.*fusion\.mode\.window_s.*period_s/);
+    assert.equal(await page.isVisible('#guard'), false);
+    assert.equal(await page.isVisible('#start'), true);
+    await context.close();
+  }
   // HTTP on a LAN name: not a secure context.
   {
     const lan = URL_HTTP.replace('127.0.0.1', 'pdr-lan.test');
