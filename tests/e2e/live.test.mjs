@@ -223,7 +223,7 @@ test('energy saving: the geolocation watch is really stopped between windows and
   const fixAt = ([, east, north]) => ({
     latitude: GEO.latitude + north / 111_320,
     longitude: GEO.longitude + east / (111_320 * Math.cos(GEO.latitude * Math.PI / 180)),
-    accuracy: 3,
+    accuracy: 1,
   });
   const { context, page, errors } = await open({
     init: spy,
