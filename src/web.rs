@@ -227,17 +227,9 @@ fn read_profile(text: &str) -> Result<crate::engine::calibration::ProfileFile, J
 }
 
 /// The default configuration with the page's GNSS choice — `best` (every fix),
-/// `energy-saving` (the receiver on for `window_s` every `period_s`, by default 10 s every 60 s)
+/// `energy-saving` (the receiver on for `window_s` every `period_s`, s; `None`: 10 s every 60 s)
 /// or `off` — and the selected step-length profile (JSON).
 fn live_config(
-    gnss: &str,
-    profile: Option<String>,
-) -> Result<crate::engine::PipelineConfig, JsError> {
-    live_config_with(gnss, profile, None, None)
-}
-
-/// [`live_config`] with energy saving's period and window, s (`None`: the defaults).
-fn live_config_with(
     gnss: &str,
     profile: Option<String>,
     period_s: Option<f64>,
@@ -289,7 +281,7 @@ impl Live {
         period_s: Option<f64>,
         window_s: Option<f64>,
     ) -> Result<Live, JsError> {
-        let cfg = live_config_with(gnss, profile, period_s, window_s)?;
+        let cfg = live_config(gnss, profile, period_s, window_s)?;
         crate::live::LiveSession::new(cfg, platform(ios), time_origin_ms)
             .map(|session| Live { session })
             .map_err(|e| JsError::new(&e.to_string()))
@@ -307,7 +299,7 @@ impl Live {
         window_s: Option<f64>,
     ) -> Result<Live, JsError> {
         crate::live::LiveSession::resume(
-            live_config_with(gnss, profile, period_s, window_s)?,
+            live_config(gnss, profile, period_s, window_s)?,
             platform(ios),
             time_origin_ms,
             recorded,
@@ -491,8 +483,9 @@ impl Live {
 pub fn replay_log(text: &str, profile: Option<String>) -> Result<JsValue, JsError> {
     let parsed = crate::io::pdrlog::read(text.as_bytes(), "recording")
         .map_err(|e| JsError::new(&e.to_string()))?;
-    let r = crate::engine::pipeline::replay(live_config("best", profile)?, &parsed.records)
-        .map_err(|e| JsError::new(&e.to_string()))?;
+    let r =
+        crate::engine::pipeline::replay(live_config("best", profile, None, None)?, &parsed.records)
+            .map_err(|e| JsError::new(&e.to_string()))?;
     let d = r.pipeline.diagnostics();
     #[derive(serde::Serialize)]
     struct Summary {
@@ -803,7 +796,7 @@ impl Upload {
             .logs
             .get(index)
             .ok_or_else(|| JsError::new(&format!("no log {index}")))?;
-        let cfg = crate::eval::apply_overrides(&live_config(gnss, profile)?, &sets)
+        let cfg = crate::eval::apply_overrides(&live_config(gnss, profile, None, None)?, &sets)
             .map_err(|e| JsError::new(&e))?;
         let a = crate::analysis::analyse(log, &cfg, &mut |done, total| {
             let _ = progress.call2(

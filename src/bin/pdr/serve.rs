@@ -131,7 +131,11 @@ const MAX_HEAD: usize = 16 * 1024;
 fn handle<S: Read + Write>(root: &Path, mut s: S) -> std::io::Result<()> {
     let mut head = Vec::with_capacity(1024);
     let mut chunk = [0u8; 4096];
-    while !head.windows(4).any(|w| w == b"\r\n\r\n") {
+    // Where the search for the blank line resumes: only what the last read added (and the
+    // three bytes before it) is new.
+    let mut searched = 0;
+    while !head[searched..].windows(4).any(|w| w == b"\r\n\r\n") {
+        searched = head.len().saturating_sub(3);
         if head.len() > MAX_HEAD {
             return respond(
                 &mut s,
