@@ -31,13 +31,18 @@ function banner(text, kind = 'error') {
 function config(tag) {
   const row = document.querySelector(`.config[data-config="${tag}"]`);
   const v = (name) => row.querySelector(`[name=${name}]`).value;
-  const profileName = v('profile');
+  const text = (name) => row.querySelector(`[name=${name}]`).selectedOptions[0]?.text ?? '';
+  // The profile is a line in frequency: it has no meaning for Weinberg's model.
+  const weinberg = v('length') === 'weinberg';
+  const profileName = weinberg ? '' : v('profile');
+  const sets = [`detector.kind=${v('detector')}`, `heading.method=${v('heading')}`];
+  if (weinberg) sets.push('step_length.kind=weinberg');
   return {
-    sets: [`detector.kind=${v('detector')}`, `heading.method=${v('heading')}`],
+    sets,
     profile: profileName ? profiles.all()[profileName] : undefined,
     gnss: v('gnss'),
-    label: `${row.querySelector('[name=detector]').selectedOptions[0].text}, ${row.querySelector('[name=heading]').selectedOptions[0].text}, `
-      + `${profileName || 'built-in step length'}, ${row.querySelector('[name=gnss]').selectedOptions[0].text}`,
+    label: [text('detector'), text('heading'), weinberg ? 'Weinberg step length (K = 0.47)' : profileName ? `profile ${profileName}` : 'built-in step-length line',
+      text('gnss')].join(', '),
   };
 }
 
@@ -59,8 +64,12 @@ function fillProfiles(adopt = false) {
 
 // --- loading -------------------------------------------------------------------------------
 function progress(text, fraction) {
-  if (window.__pdrUpload) window.__pdrUpload.progress_seen = true;
+  if (window.__pdrUpload) {
+    window.__pdrUpload.progress_seen = true;
+    window.__pdrUpload.progress_max = Math.max(window.__pdrUpload.progress_max ?? 0, fraction);
+  }
   $('upload-progress').hidden = false;
+  $('upload-cancel').hidden = false;
   $('upload-status').textContent = text;
   $('upload-bar').value = fraction;
   document.documentElement.dataset.upload = 'loading';
@@ -112,11 +121,23 @@ function load(files) {
   worker.postMessage({ type: 'load', files, configs: configs() });
 }
 
-function finish() {
-  $('upload-progress').hidden = true;
+/** The end of a load or a re-run: the bar stays, full, with what was done (or why not). */
+function finish(cancelled = false) {
+  const u = window.__pdrUpload;
+  const ms = u ? performance.now() - u.started : 0;
+  const n = logs.filter(Boolean).length;
+  if (cancelled) $('upload-status').textContent = 'Cancelled.';
+  else {
+    if (u) u.progress_max = 1;
+    $('upload-bar').value = 1;
+    $('upload-status').textContent = `${n} recording${n === 1 ? '' : 's'} loaded`
+      + (u?.bytes ? ` from ${fmtBytes(u.bytes)}` : '') + ` in ${(ms / 1000).toFixed(1)} s`
+      + (u?.errors.length ? `, ${u.errors.length} file${u.errors.length === 1 ? '' : 's'} refused` : '');
+  }
+  $('upload-cancel').hidden = true;
   $('rerun').disabled = !logs.length;
   document.documentElement.dataset.upload = 'done';
-  if (window.__pdrUpload) window.__pdrUpload.done_ms = performance.now() - window.__pdrUpload.started;
+  if (u) u.done_ms = ms;
 }
 
 function onWorker(m) {
@@ -141,7 +162,7 @@ function onWorker(m) {
     const l = logs[m.index];
     l.views[m.tag]?.free();
     l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
-    show(l, m.tag);
+    show(l, m.tag, m.label);
     Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, memory_mb: m.memory_mb });
   } else if (m.type === 'pdrlog') {
     save(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`, 'text/plain');
@@ -216,7 +237,7 @@ function card(info) {
 
 function fmt(v, d = 1) { return v == null ? '–' : Number(v).toFixed(d); }
 
-function summaryHtml(s, label) {
+function summaryHtml(s) {
   const sc = s.score ?? {};
   const rows = [
     ['Steps', `${s.steps}` + (sc.truth_steps != null ? ` (true ${sc.truth_steps}, error ${fmt(sc.step_error_pct)} %${sc.step_error_debounced_pct != null ? `; ${fmt(sc.step_error_debounced_pct)} % against debounced truth` : ''})` : '')],
@@ -229,7 +250,6 @@ function summaryHtml(s, label) {
   }
   if (s.fixes) rows.push(['GNSS', `${s.fixes} fixes`]);
   const dl = el('dl', { className: 'summary' });
-  if (label) dl.append(el('dt', { className: 'config-label', textContent: label }), el('dd'));
   for (const [k, v] of rows) dl.append(el('dt', { textContent: k }), el('dd', { textContent: v }));
   for (const w of s.warnings.slice(0, 3)) dl.append(el('dt', { textContent: 'Note' }), el('dd', { textContent: w }));
   return dl;
@@ -243,7 +263,7 @@ function fit(canvas) {
   return canvas.width && canvas.height ? dpr : 0;
 }
 
-function show(l, tag) {
+function show(l, tag, label) {
   const v = l.views[tag];
   const s = v.summary();
   l.summaries = { ...(l.summaries ?? {}), [tag]: s };
@@ -256,14 +276,21 @@ function show(l, tag) {
     const cv = el('canvas', { className: 'map' });
     cv.setAttribute('role', 'img');
     cv.setAttribute('aria-label', 'Track in metres, east right, north up');
-    box.append(cv, el('div'));
+    box.append(el('h4', { className: 'config-label' }), cv, el('dl'));
     maps.append(box);
     [...maps.children].sort((a, b) => a.dataset.tag.localeCompare(b.dataset.tag)).forEach((c) => maps.append(c));
     wireMap(l, tag, cv);
   }
-  const cfg = configs()[tag];
-  box.children[1].replaceWith(summaryHtml(s, l.views.b || tag === 'b' ? `${tag.toUpperCase()}: ${cfg?.label ?? ''}` : ''));
-  maps.classList.toggle('two', Object.keys(l.views).length > 1);
+  box.querySelector('dl').replaceWith(summaryHtml(s));
+  // The configuration each map was run with, named once there are two.
+  box.dataset.label = label;
+  const two = Object.keys(l.views).length > 1;
+  maps.classList.toggle('two', two);
+  for (const b of maps.children) {
+    const h = b.querySelector('.config-label');
+    h.hidden = !two;
+    h.textContent = `${b.dataset.tag.toUpperCase()}: ${b.dataset.label}`;
+  }
   if (tag === 'a') {
     l.span = [s.t0 ?? 0, s.t1 ?? 1];
     l.full = [...l.span];
@@ -492,10 +519,14 @@ export function setupUpload() {
   $('upload-cancel').addEventListener('click', () => {
     worker?.terminate();
     worker = null;
-    banner('Cancelled.', 'warn');
-    finish();
+    banner('Cancelled: nothing more will be read or run. Choose the files again, or Re-run, to start over.', 'warn');
+    finish(true);
     $('rerun').disabled = !lastFiles;
   });
+  for (const sel of document.querySelectorAll('.config [name=length]')) {
+    const profile = sel.closest('.config').querySelector('[name=profile]');
+    sel.addEventListener('change', () => { profile.disabled = sel.value === 'weinberg'; });
+  }
   $('compare').addEventListener('change', (e) => {
     document.querySelector('.config[data-config="b"]').hidden = !e.target.checked;
   });
@@ -510,6 +541,8 @@ export function setupUpload() {
         l.card.querySelector('.mapbox[data-tag="b"]')?.remove();
       }
     }
+    window.__pdrUpload.started = performance.now();
+    window.__pdrUpload.progress_max = 0;
     progress('running the engine again…', 0.35);
     for (const l of logs) {
       for (const [tag, config] of Object.entries(c)) {

@@ -22,7 +22,7 @@ function analyse(index, config, tag) {
     }
   });
   const engineMs = performance.now() - t0;
-  postMessage({ type: 'analysis', index, tag, bytes, engine_ms: engineMs, memory_mb: memoryMb() }, [bytes.buffer]);
+  postMessage({ type: 'analysis', index, tag, label: config.label, bytes, engine_ms: engineMs, memory_mb: memoryMb() }, [bytes.buffer]);
 }
 
 onmessage = async ({ data }) => {

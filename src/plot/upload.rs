@@ -355,31 +355,16 @@ pub fn draw_plot<DB: DrawingBackend>(
             )
         }
     };
-    // The title, on two lines when one is too narrow (a phone), broken after a comma.
-    let width = area.dim_in_pixel().0.saturating_sub(px(16.0));
-    let fits = |t: &str| {
-        area.estimate_text_size(t, &font)
-            .is_ok_and(|(w, _)| w <= width)
-    };
-    let breaks: Vec<usize> = title.match_indices(", ").map(|(i, _)| i).collect();
-    let lines: Vec<&str> = match breaks.into_iter().rev().find(|&i| fits(&title[..=i])) {
-        Some(i) if !fits(title) => vec![&title[..=i], &title[i + 2..]],
-        _ => vec![title],
-    };
-    for (k, line) in lines.iter().enumerate() {
-        area.draw(&Text::new(
-            *line,
-            (px(8.0) as i32, px(4.0 + 15.0 * k as f64) as i32),
-            font.clone(),
-        ))?;
-    }
-    let body = area.margin(px(5.0 + 15.0 * lines.len() as f64), 0, 0, 0);
+    let lines = draw_title(area, title, &font, scale)?;
+    let body = area.margin(px(5.0 + 15.0 * lines as f64), 0, 0, 0);
     let mut builder = ChartBuilder::on(&body);
+    // The same label areas on every plot, with a right axis or not, so that their time axes
+    // line up on the page.
     builder
         .margin(px(6.0))
         .x_label_area_size(px(22.0))
         .y_label_area_size(px(40.0))
-        .right_y_label_area_size(if right.is_some() { px(40.0) } else { px(8.0) });
+        .right_y_label_area_size(px(40.0));
     let (r0, r1) = right.map_or((0.0, 1.0), |r| r.1);
     let mut chart = builder
         .build_cartesian_2d(x0..x1, y0..y1)?
@@ -567,6 +552,35 @@ pub fn draw_plot<DB: DrawingBackend>(
     Ok(columns)
 }
 
+/// Draws a plot's title at its top left, on two lines when one is too narrow (a phone), broken
+/// after a comma. Returns the number of lines.
+fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    font: &TextStyle,
+    scale: f64,
+) -> Result<usize, DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let width = area.dim_in_pixel().0.saturating_sub(px(16.0));
+    let fits = |t: &str| {
+        area.estimate_text_size(t, font)
+            .is_ok_and(|(w, _)| w <= width)
+    };
+    let breaks: Vec<usize> = title.match_indices(", ").map(|(i, _)| i).collect();
+    let lines: Vec<&str> = match breaks.into_iter().rev().find(|&i| fits(&title[..=i])) {
+        Some(i) if !fits(title) => vec![&title[..=i], &title[i + 2..]],
+        _ => vec![title],
+    };
+    for (k, line) in lines.iter().enumerate() {
+        area.draw(&Text::new(
+            *line,
+            (px(8.0) as i32, px(4.0 + 15.0 * k as f64) as i32),
+            font.clone(),
+        ))?;
+    }
+    Ok(lines.len())
+}
+
 /// The horizontal acceleration (east, north) over the stride that ends at step `k` (from the
 /// step two before it), as Basso 2016 Fig. 5 draws it, with the step's heading as an arrow from
 /// the centre.
@@ -602,20 +616,17 @@ pub fn draw_ellipse<DB: DrawingBackend>(
         .iter()
         .fold(1.0_f64, |m, p| m.max(p.0.abs()).max(p.1.abs()))
         * 1.15;
-    area.draw(&Text::new(
-        format!(
-            "step {} at {:.1} s, stride's horizontal acc. (m/s²), heading {}",
-            k + 1,
-            step.t - tr.t.first().copied().unwrap_or(0.0),
-            step.heading_rad.map_or("–".into(), |h| format!(
-                "{:.0}°",
-                h.to_degrees().rem_euclid(360.0)
-            ))
-        ),
-        (px(8.0) as i32, px(4.0) as i32),
-        font.clone(),
-    ))?;
-    let body = area.margin(px(20.0), 0, 0, 0);
+    let title = format!(
+        "step {} at {:.1} s, stride's horizontal acc. (m/s²), heading {}",
+        k + 1,
+        step.t - tr.t.first().copied().unwrap_or(0.0),
+        step.heading_rad.map_or("–".into(), |h| format!(
+            "{:.0}°",
+            h.to_degrees().rem_euclid(360.0)
+        ))
+    );
+    let lines = draw_title(area, &title, &font, scale)?;
+    let body = area.margin(px(5.0 + 15.0 * lines as f64), 0, 0, 0);
     let (w, h) = body.dim_in_pixel();
     let side = w.min(h);
     let square = body.margin(0, 0, (w - side) / 2, (w - side) / 2);
@@ -679,6 +690,7 @@ mod tests {
         let (e, n) = f.to_metres(f.px.0 as f64, f.px.2 as f64);
         assert!((e - f.m.0).abs() < 1e-9 && (n - f.m.3).abs() < 1e-9);
         let span = (a.trace.t[0], *a.trace.t.last().unwrap());
+        let mut axes = Vec::new();
         for (plot, colour) in [
             (Plot::Accel, t.track),
             (Plot::Sigma, t.track),
@@ -708,7 +720,10 @@ mod tests {
                 left > 30 && right < 595 && right - left > 450,
                 "{plot:?}: {left}..{right}"
             );
+            axes.push((left, right));
         }
+        // Stacked on the page, the plots share one time axis, pixel for pixel.
+        assert!(axes.iter().all(|x| *x == axes[0]), "{axes:?}");
         // The heading correction is drawn too (dots on the fusion plot's right axis).
         let (r, px) = raster::new(600, 200);
         draw_plot(
