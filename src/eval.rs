@@ -642,6 +642,14 @@ mod tests {
             panic!("not the peak detector: {:?}", c.detector)
         };
         assert_eq!(p.min_interval_s, 0.3);
+        // A kind whose setting has no default of its own in the base config (Weinberg's K).
+        let c = apply_overrides(&base, &["step_length.kind=weinberg".into()]).unwrap();
+        assert_eq!(
+            c.step_length,
+            crate::engine::StepLengthModel::Weinberg {
+                k: crate::engine::step_length::WEINBERG_K
+            }
+        );
         let e = apply_overrides(&base, &["motion.nope=1".into()]).unwrap_err();
         assert!(e.contains("nope"), "{e}");
         let e = apply_overrides(&base, &["motion.still_max=-1".into()]).unwrap_err();

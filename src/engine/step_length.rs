@@ -132,9 +132,17 @@ pub enum StepLengthModel {
     Frequency(StepLengthProfile),
     /// Weinberg: K·(a_max − a_min)^¼.
     Weinberg {
-        /// K, m/(m/s²)^¼. Default 0.47 gives 0.70 m at a 5 m/s² peak-to-peak.
+        /// K, m/(m/s²)^¼. Default [`WEINBERG_K`].
+        #[serde(default = "weinberg_k")]
         k: f64,
     },
+}
+
+/// Weinberg's K when none is given: 0.47 gives 0.70 m at a 5 m/s² peak-to-peak.
+pub const WEINBERG_K: f64 = 0.47;
+
+fn weinberg_k() -> f64 {
+    WEINBERG_K
 }
 
 impl Default for StepLengthModel {

@@ -5,6 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, statSync } from 'node:fs';
+import { deflateRawSync } from 'node:zlib';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -28,7 +29,79 @@ async function upload(page, paths, { folder = false, timeout = 60_000 } = {}) {
   return page.evaluate(() => ({ logs: window.__pdrUpload.logs, errors: window.__pdrUpload.errors, progress: window.__pdrUpload.progress_seen, ms: window.__pdrUpload.done_ms }));
 }
 
-const nativeSteps = (p) => Number(execFileSync(BIN, ['run', p], { encoding: 'utf8' }).match(/^steps\s+(\d+)/m)[1]);
+/** `pdr run`'s step count and distance for a file or folder, with extra options. */
+function native(p, ...args) {
+  const out = execFileSync(BIN, ['run', p, ...args], { encoding: 'utf8' });
+  return { steps: Number(out.match(/^steps\s+(\d+)/m)[1]), distance: Number(out.match(/^distance\s+([\d.]+) m/m)[1]) };
+}
+const nativeSteps = (p) => native(p).steps;
+
+/** The files under `dir`, as [relative path, bytes]. */
+function filesUnder(dir, prefix = '') {
+  return readdirSync(dir, { withFileTypes: true }).flatMap((e) => (e.isDirectory()
+    ? filesUnder(path.join(dir, e.name), `${prefix}${e.name}/`)
+    : [[`${prefix}${e.name}`, readFileSync(path.join(dir, e.name))]]));
+}
+
+const CRC_TABLE = Array.from({ length: 256 }, (_, n) => {
+  let c = n;
+  for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  return c >>> 0;
+});
+function crc32(bytes) {
+  let c = 0xffffffff;
+  for (const b of bytes) c = CRC_TABLE[(c ^ b) & 0xff] ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
+}
+
+/** A zip archive (deflated, as phones write them) of [name, bytes] entries. */
+function zip(entries) {
+  const parts = [];
+  const central = [];
+  let offset = 0;
+  const dosDate = ((2026 - 1980) << 9) | (11 << 5) | 23;
+  for (const [name, data] of entries) {
+    const n = Buffer.from(name);
+    const z = deflateRawSync(data);
+    const crc = crc32(data);
+    const head = Buffer.alloc(30);
+    head.writeUInt32LE(0x04034b50, 0);
+    [20, 0, 8, 0, dosDate].forEach((v, i) => head.writeUInt16LE(v, 4 + 2 * i));
+    head.writeUInt32LE(crc, 14);
+    head.writeUInt32LE(z.length, 18);
+    head.writeUInt32LE(data.length, 22);
+    head.writeUInt16LE(n.length, 26);
+    const c = Buffer.alloc(46);
+    c.writeUInt32LE(0x02014b50, 0);
+    [20, 20, 0, 8, 0, dosDate].forEach((v, i) => c.writeUInt16LE(v, 4 + 2 * i));
+    c.writeUInt32LE(crc, 16);
+    c.writeUInt32LE(z.length, 20);
+    c.writeUInt32LE(data.length, 24);
+    c.writeUInt16LE(n.length, 28);
+    c.writeUInt32LE(offset, 42);
+    parts.push(head, n, z);
+    central.push(c, n);
+    offset += head.length + n.length + z.length;
+  }
+  const cd = Buffer.concat(central);
+  const end = Buffer.alloc(22);
+  end.writeUInt32LE(0x06054b50, 0);
+  end.writeUInt16LE(entries.length, 8);
+  end.writeUInt16LE(entries.length, 10);
+  end.writeUInt32LE(cd.length, 12);
+  end.writeUInt32LE(offset, 16);
+  return Buffer.concat([...parts, cd, end]);
+}
+
+/** The one-hour 100 Hz walk (pdr-log), written once for the tests that need a long load. */
+let hourLog = null;
+function hour() {
+  if (!hourLog) {
+    hourLog = path.join(tmp, 'hour.pdrlog');
+    execFileSync(BIN, ['simulate', '--scenario', 'long', '--minutes', '60', '--out', hourLog]);
+  }
+  return hourLog;
+}
 
 /** Non-background pixels of every canvas of result `k`. */
 async function canvases(page, k) {
@@ -48,6 +121,8 @@ test('a generated log and a file of every format: progress, the native step coun
   const { context, page, errors } = await open();
   const r = await upload(page, files);
   assert.ok(r.progress, 'no progress was shown');
+  assert.equal(await page.evaluate(() => window.__pdrUpload.progress_max), 1, 'the progress bar did not complete');
+  assert.match(await page.textContent('#upload-status'), new RegExp(`^${files.length} recordings loaded from [\\d.]+ [kM]B in [\\d.]+ s$`));
   assert.deepEqual(r.errors, []);
   assert.equal(r.logs.length, files.length);
   for (const l of r.logs) {
@@ -78,6 +153,9 @@ test('phone: tapping a plot picks the step at that time, a pinch zooms the time 
   const { context, page, errors } = await open({ width: 390, height: 844 }, { hasTouch: true, isMobile: true, deviceScaleFactor: 3 });
   await upload(page, [walk]);
   for (const c of await canvases(page, 0)) assert.ok(c.n > 0.01 * c.total, `${c.what} looks blank: ${c.n} of ${c.total}`);
+  // The plots are stacked on one time axis: it spans the same pixels on each.
+  const axes = await page.evaluate(() => [...document.querySelectorAll('canvas.plot')].map((c) => c.axis.map((x) => x.toFixed(1)).join('..')));
+  assert.equal(new Set(axes).size, 1, `time axes differ: ${axes}`);
   // A tap on the time of step 200 picks step 200.
   await page.locator('canvas.plot-accel').scrollIntoViewIfNeeded();
   const [x, y] = await page.evaluate(() => window.__pdrUpload.plotPoint(0, 'accel', window.__pdrUpload.stepTime(0, 200)));
@@ -136,6 +214,56 @@ test('a corrupt file beside a good one: the banner names the file and line, the 
   await context.close();
 });
 
+test('drag and drop: files and a zip dropped together load like the picker', async () => {
+  const walk = path.join(tmp, 'dropped.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'demo', '--out', walk]);
+  const folder = path.join(FIXTURES, 'sensor_logger_android');
+  const archive = path.join(tmp, 'Recording.zip');
+  writeFileSync(archive, zip(filesUnder(folder, 'Recording 2026-11-23/')));
+  const { context, page, errors } = await open();
+  const files = [walk, archive].map((f) => ({ name: path.basename(f), b64: readFileSync(f).toString('base64') }));
+  const dt = await page.evaluateHandle((files) => {
+    const dt = new DataTransfer();
+    for (const f of files) dt.items.add(new File([Uint8Array.from(atob(f.b64), (c) => c.charCodeAt(0))], f.name));
+    return dt;
+  }, files);
+  await page.dispatchEvent('#drop', 'dragover', { dataTransfer: dt });
+  assert.ok(await page.$eval('#drop', (d) => d.classList.contains('over')), 'the drop zone does not show the drag');
+  await page.dispatchEvent('#drop', 'drop', { dataTransfer: dt });
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload?.logs.length === 2);
+  const logs = await page.evaluate(() => window.__pdrUpload.logs.map((l) => ({ source: l.a.source, format: l.a.format, steps: l.a.steps })));
+  logs.sort((x, y) => (x.source < y.source ? 1 : -1));
+  console.log(`dropped: ${logs.map((l) => `${l.source} (${l.format}) ${l.steps} steps`).join('; ')}`);
+  assert.deepEqual(logs.map((l) => l.source), ['dropped.pdrlog', 'Recording.zip/Recording 2026-11-23']);
+  assert.equal(logs[0].steps, nativeSteps(walk));
+  assert.equal(logs[1].steps, nativeSteps(archive));
+  assert.equal(logs[1].steps, nativeSteps(folder), 'the zip reads differently from its folder');
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
+test('cancel: a one-hour log stops loading at once, and the next upload works', async () => {
+  const { context, page, errors } = await open();
+  await page.setInputFiles('#upload-files', [hour()]);
+  await page.waitForFunction(() => /^parsed /.test(document.getElementById('upload-status').textContent));
+  await page.click('#upload-cancel');
+  assert.equal(await page.evaluate(() => document.documentElement.dataset.upload), 'done');
+  assert.equal(await page.textContent('#upload-status'), 'Cancelled.');
+  assert.match(await page.textContent('#upload-banners li.warn'), /^Cancelled/);
+  assert.ok(await page.isHidden('#upload-cancel'));
+  // Nothing arrives from the stopped worker.
+  await page.waitForTimeout(2500);
+  assert.equal(await page.evaluate(() => window.__pdrUpload.logs.filter(Boolean).length), 0);
+  assert.equal(await page.locator('.log-result[data-ready]').count(), 0);
+  const r = await upload(page, [path.join(FIXTURES, 'ms_indoor.txt')]);
+  assert.equal(r.logs.length, 1);
+  assert.equal(r.logs[0].a.steps, nativeSteps(path.join(FIXTURES, 'ms_indoor.txt')));
+  assert.match(await page.textContent('#upload-status'), /^1 recording loaded from 114 kB in \d+\.\d s$/);
+  assert.equal(await page.evaluate(() => document.getElementById('upload-bar').value), 1);
+  assert.deepEqual(errors, []);
+  await context.close();
+});
+
 test('exports: GPX and GeoJSON parse back with a point per step; CSV, pdr-log and PNG download', async () => {
   const walk = path.join(tmp, 'demo.pdrlog');
   execFileSync(BIN, ['simulate', '--scenario', 'demo', '--out', walk]);
@@ -168,19 +296,34 @@ test('compare two configurations side by side, and re-run', async () => {
   execFileSync(BIN, ['simulate', '--scenario', 'demo', '--out', walk]);
   const { context, page, errors } = await open({ width: 390, height: 844 });
   await page.check('#compare');
+  // B: the peak counter, the closed form and Weinberg's step length, whose K no profile sets.
+  await page.selectOption('.config[data-config="b"] [name=length]', 'weinberg');
+  assert.ok(await page.isDisabled('.config[data-config="b"] [name=profile]'), 'a profile offered to Weinberg');
   const r = await upload(page, [walk]);
   const { a, b } = r.logs[0];
   assert.ok(a && b, 'both configurations ran');
-  const peak = Number(execFileSync(BIN, ['run', walk, '--detector', 'peak', '--heading', 'closed-form'], { encoding: 'utf8' }).match(/^steps\s+(\d+)/m)[1]);
-  assert.equal(b.steps, peak, 'configuration B (peak, closed form) differs from pdr run');
+  const nb = native(walk, '--detector', 'peak', '--heading', 'closed-form', '--step-length', 'weinberg');
+  assert.equal(b.steps, nb.steps, 'configuration B (peak, closed form, Weinberg) differs from pdr run');
+  assert.equal(Number(b.score.distance_m.toFixed(1)), nb.distance, 'B distance differs from pdr run');
+  assert.notEqual(Number(a.score.distance_m.toFixed(1)), nb.distance, 'A has B\'s distance');
   assert.equal(await page.locator('.log-result .mapbox').count(), 2);
+  // Each map is named with the configuration it ran with, its figures under it.
+  const labels = await page.locator('.log-result .mapbox .config-label').allTextContents();
+  assert.deepEqual(labels, [
+    'A: PLL (Basso 2016), tip-to-tail (2016), built-in step-length line, GNSS: every fix',
+    'B: peak counter, closed form (2021), Weinberg step length (K = 0.47), GNSS: every fix',
+  ]);
+  const figures = await page.locator('.log-result .mapbox .summary').allTextContents();
+  assert.match(figures[1], new RegExp(`Steps${nb.steps}Distance${nb.distance.toFixed(1)} m`));
   await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-compare-phone.png') });
   // Re-run A with the peak detector: its count becomes B's.
   await page.selectOption('.config[data-config="a"] [name=detector]', 'peak');
   await page.selectOption('.config[data-config="a"] [name=heading]', 'closed_form2021');
   await page.click('#rerun');
   await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0].a.steps !== undefined);
+  const peak = native(walk, '--detector', 'peak', '--heading', 'closed-form').steps;
   await page.waitForFunction((n) => window.__pdrUpload.logs[0].a.steps === n, peak, { timeout: 20_000 });
+  assert.match(await page.locator('.log-result .mapbox .config-label').first().textContent(), /^A: peak counter, closed form \(2021\), /);
   assert.deepEqual(errors, []);
   await context.close();
 });
@@ -218,13 +361,12 @@ test('shared data sets: an Oxford and a Microsoft trace show the errors `pdr eva
 });
 
 test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed, not asserted)', async () => {
-  const hour = path.join(tmp, 'hour.pdrlog');
-  execFileSync(BIN, ['simulate', '--scenario', 'long', '--minutes', '60', '--out', hour]);
-  const mb = statSync(hour).size / 1e6;
+  const hourFile = hour();
+  const mb = statSync(hourFile).size / 1e6;
   const { context, page } = await open();
   const cdp = await context.newCDPSession(page);
   await cdp.send('Performance.enable');
-  const r = await upload(page, [hour], { timeout: 120_000 });
+  const r = await upload(page, [hourFile], { timeout: 120_000 });
   const m = await cdp.send('Performance.getMetrics');
   const heap = m.metrics.find((x) => x.name === 'JSHeapUsedSize').value / 1e6;
   const l = r.logs[0];
@@ -233,7 +375,7 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
     + `(parse ${(parse / 1000).toFixed(2)} s, engine with the plots' signals ${(l.engine_ms / 1000).toFixed(2)} s = `
     + `${(l.a.samples / l.engine_ms / 1000).toFixed(2)} M samples/s in wasm); worker wasm memory ${l.memory_mb.toFixed(0)} MB `
     + `(${(l.memory_mb / mb).toFixed(2)} × the file); page JS heap ${heap.toFixed(0)} MB`);
-  assert.equal(r.logs[0].a.steps, nativeSteps(hour));
+  assert.equal(r.logs[0].a.steps, nativeSteps(hourFile));
 
   // The same hour as a Sensor Logger (Android) folder: TotalAcceleration, Gyroscope,
   // Orientation and Metadata CSVs, time in ns.
@@ -243,7 +385,7 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
   const acc = ['time,seconds_elapsed,z,y,x'];
   const gyr = ['time,seconds_elapsed,z,y,x'];
   const ori = ['time,seconds_elapsed,qz,qy,qx,qw,roll,pitch,yaw'];
-  for (const line of readFileSync(hour, 'utf8').split('\n')) {
+  for (const line of readFileSync(hourFile, 'utf8').split('\n')) {
     if (!line.startsWith('imu,')) continue;
     const f = line.split(',');
     const t = Number(f[1]);
