@@ -178,6 +178,14 @@ pub(crate) fn split_line(line: &str, delimiter: u8) -> Vec<String> {
 pub(crate) fn split_into(line: &str, delimiter: u8, rec: &mut csv::StringRecord) {
     rec.clear();
     let d = delimiter as char;
+    // Almost every line of a sensor log has no quote: split it at once (a third of a Sensor
+    // Logger folder's reading time went to the character loop below).
+    if !line.contains('"') {
+        for f in line.split(d) {
+            rec.push_field(f);
+        }
+        return;
+    }
     let mut field = String::new();
     let mut chars = line.chars().peekable();
     loop {
