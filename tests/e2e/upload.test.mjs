@@ -360,13 +360,42 @@ test('shared data sets: an Oxford and a Microsoft trace show the errors `pdr eva
   await context.close();
 });
 
+/** Resident memory (now) and its peak (VmHWM) of every Chromium process, MB, from /proc. */
+async function processMemory() {
+  const cdp = await browser().newBrowserCDPSession();
+  const { processInfo } = await cdp.send('SystemInfo.getProcessInfo');
+  await cdp.detach();
+  const out = [];
+  for (const p of processInfo) {
+    if (!existsSync(`/proc/${p.id}/status`)) continue;
+    const st = readFileSync(`/proc/${p.id}/status`, 'utf8');
+    const kb = (k) => Number(st.match(new RegExp(`^${k}:\\s+(\\d+) kB`, 'm'))?.[1] ?? 0);
+    out.push({ pid: p.id, type: p.type, rss: kb('VmRSS') / 1e3, peak: kb('VmHWM') / 1e3 });
+  }
+  return out;
+}
+
+/** How much an upload added at its peak: per process, the peak after less the resident
+ * memory before, for the page's renderer (which runs the worker too) and for all processes. */
+function memoryGrowth(before, after) {
+  const grow = after.map((a) => ({ ...a, grow: a.peak - (before.find((b) => b.pid === a.pid)?.rss ?? 0) }));
+  return {
+    renderer: Math.max(...grow.filter((g) => g.type === 'renderer').map((g) => g.grow)),
+    all: grow.reduce((s, g) => s + Math.max(0, g.grow), 0),
+  };
+}
+
 test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed, not asserted)', async () => {
   const hourFile = hour();
   const mb = statSync(hourFile).size / 1e6;
   const { context, page } = await open();
   const cdp = await context.newCDPSession(page);
   await cdp.send('Performance.enable');
+  const before = await processMemory();
   const r = await upload(page, [hourFile], { timeout: 120_000 });
+  const grown = memoryGrowth(before, await processMemory());
+  console.log(`one hour, ${mb.toFixed(0)} MB pdr-log: peak memory added, the page's renderer (page and worker) ${grown.renderer.toFixed(0)} MB `
+    + `(${(grown.renderer / mb).toFixed(2)} × the file), all Chromium processes ${grown.all.toFixed(0)} MB (${(grown.all / mb).toFixed(2)} ×)`);
   const m = await cdp.send('Performance.getMetrics');
   const heap = m.metrics.find((x) => x.name === 'JSHeapUsedSize').value / 1e6;
   const l = r.logs[0];
@@ -400,8 +429,13 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
   writeFileSync(path.join(dir, 'Orientation.csv'), `${ori.join('\n')}\n`);
   writeFileSync(path.join(dir, 'Metadata.csv'), 'version,device name,recording time,platform\n3,Simulated,2026-11-23_09-00-00,android');
   const csvMb = readdirSync(dir).reduce((s, f) => s + statSync(path.join(dir, f)).size, 0) / 1e6;
+  await context.close();
   const { context: c2, page: p2 } = await open();
+  const before2 = await processMemory();
   const r2 = await upload(p2, dir, { folder: true, timeout: 120_000 });
+  const grown2 = memoryGrowth(before2, await processMemory());
+  console.log(`one hour, ${csvMb.toFixed(0)} MB Sensor Logger folder: peak memory added, the page's renderer ${grown2.renderer.toFixed(0)} MB `
+    + `(${(grown2.renderer / csvMb).toFixed(2)} × the files), all Chromium processes ${grown2.all.toFixed(0)} MB (${(grown2.all / csvMb).toFixed(2)} ×)`);
   assert.deepEqual(r2.errors, []);
   const l2 = r2.logs[0];
   const parse2 = await p2.evaluate(() => window.__pdrUpload.parse_ms);
@@ -409,5 +443,4 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
     + `(parse ${(parse2 / 1000).toFixed(2)} s, engine ${(l2.engine_ms / 1000).toFixed(2)} s); worker wasm memory ${l2.memory_mb.toFixed(0)} MB `
     + `(${(l2.memory_mb / csvMb).toFixed(2)} × the files)`);
   await c2.close();
-  await context.close();
 });
