@@ -288,6 +288,20 @@ test('exports: GPX and GeoJSON parse back with a point per step; CSV, pdr-log an
   assert.equal(nativeSteps(log), steps, 'the exported pdr-log replays to another count');
   const png = readFileSync(await get('png'));
   assert.deepEqual([...png.subarray(1, 4)].map((c) => String.fromCharCode(c)).join(''), 'PNG');
+  // A log with fixes: the same exports in WGS84, about the first fix (Florence, 43.77° N 11.26° E).
+  const city = path.join(tmp, 'exports-city.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', city]);
+  const [lat0, lon0] = readFileSync(city, 'utf8').match(/^gnss,[^,]+,([^,]+),([^,]+)/m).slice(1).map(Number);
+  const rc = await upload(page, [city]);
+  const n = rc.logs[0].a.steps;
+  const near = ([lon, lat]) => Math.abs(lat - lat0) < 0.01 && Math.abs(lon - lon0) < 0.01;
+  const geoCity = JSON.parse(readFileSync(await get('geojson'), 'utf8'));
+  assert.equal(geoCity.features[0].properties.coordinates, 'wgs84');
+  assert.equal(geoCity.features[0].geometry.coordinates.length, n);
+  assert.ok(geoCity.features[0].geometry.coordinates.every(near), 'GeoJSON points are not about the first fix');
+  const pts = [...readFileSync(await get('gpx'), 'utf8').matchAll(/<trkpt lat="([-\d.]+)" lon="([-\d.]+)"/g)].map((m) => [Number(m[2]), Number(m[1])]);
+  assert.equal(pts.length, n);
+  assert.ok(pts.every(near), 'GPX points are not about the first fix');
   await context.close();
 });
 
