@@ -405,8 +405,16 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
   const { context, page } = await open();
   const cdp = await context.newCDPSession(page);
   await cdp.send('Performance.enable');
+  // The page's main thread while the worker reads and runs: its long tasks (> 50 ms).
+  await page.evaluate(() => {
+    window.__longTasks = [];
+    new PerformanceObserver((l) => window.__longTasks.push(...l.getEntries().map((e) => e.duration))).observe({ type: 'longtask' });
+  });
   const before = await processMemory();
   const r = await upload(page, [hourFile], { timeout: 120_000 });
+  const long = await page.evaluate(() => window.__longTasks);
+  console.log(`one hour, main thread during the load: ${long.length} long tasks, the longest ${Math.max(0, ...long).toFixed(0)} ms `
+    + `(the analysis decoded and every plot drawn), ${long.reduce((a, b) => a + b, 0).toFixed(0)} ms in all`);
   const grown = memoryGrowth(before, await processMemory());
   console.log(`one hour, ${mb.toFixed(0)} MB pdr-log: peak memory added, the page's renderer (page and worker) ${grown.renderer.toFixed(0)} MB `
     + `(${(grown.renderer / mb).toFixed(2)} × the file), all Chromium processes ${grown.all.toFixed(0)} MB (${(grown.all / mb).toFixed(2)} ×)`);
