@@ -32,6 +32,7 @@
 //! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
 //! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
 
+pub mod formats;
 pub mod scenarios;
 
 use crate::engine::pipeline::Record;

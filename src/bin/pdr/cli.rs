@@ -147,6 +147,47 @@ enum PlatformArg {
     Ios,
 }
 
+#[derive(Clone, Copy, PartialEq, ValueEnum)]
+enum FormatArg {
+    /// The project's own log (one file).
+    PdrLog,
+    /// Sensor Logger's CSV folder, Android (or iOS with `--platform ios`).
+    SensorLogger,
+    /// Sensor Logger's CSV folder, iOS (g, Core Motion's signs and attitude).
+    SensorLoggerIos,
+    /// Sensor Logger's JSON export (one file; Android, or iOS with `--platform ios`).
+    SensorLoggerJson,
+    /// phyphox's CSV export (folder).
+    Phyphox,
+    /// Google GnssLogger `.txt`.
+    GnssLogger,
+    /// GetSensorData (IPIN) `.txt`, with `POSI` landmarks.
+    GetSensorData,
+    /// Oxford Step Counter trace folder, with the true foot contacts.
+    Oxford,
+    /// Microsoft Indoor Location 2.0 trace, with `TYPE_WAYPOINT` truth.
+    MsIndoor,
+    /// x-io Gait-Tracking CSV.
+    Xio,
+}
+
+impl FormatArg {
+    fn format(self) -> pdr::io::import::Format {
+        use pdr::io::import::Format;
+        match self {
+            FormatArg::PdrLog => Format::PdrLog,
+            FormatArg::SensorLogger | FormatArg::SensorLoggerIos => Format::SensorLogger,
+            FormatArg::SensorLoggerJson => Format::SensorLoggerJson,
+            FormatArg::Phyphox => Format::Phyphox,
+            FormatArg::GnssLogger => Format::GnssLogger,
+            FormatArg::GetSensorData => Format::GetSensorData,
+            FormatArg::Oxford => Format::OxfordSteps,
+            FormatArg::MsIndoor => Format::MsIndoor,
+            FormatArg::Xio => Format::XioFoot,
+        }
+    }
+}
+
 #[derive(Subcommand)]
 enum Cmd {
     /// Replay a recording: print a summary and write the per-step track.
@@ -172,21 +213,27 @@ enum Cmd {
         #[arg(long)]
         json: bool,
     },
-    /// Write a simulated walk as a pdr-log file.
+    /// Write a simulated walk as a log: a pdr-log, or any format the import reads, written as
+    /// the app writes it.
     Simulate {
         /// Which walk.
         #[arg(long, value_enum, default_value = "demo")]
         scenario: ScenarioArg,
-        /// Output file (pdr-log).
+        /// The output file; for a folder format (sensor-logger, sensor-logger-ios, phyphox,
+        /// oxford) a new or empty directory, which gets the recording's folder.
         #[arg(long, required_unless_present = "events")]
         out: Option<PathBuf>,
+        /// The format of `--out`.
+        #[arg(long, value_enum, default_value = "pdr-log")]
+        format: FormatArg,
         /// Also (or instead) write the walk as the browser events a phone would fire, JSON:
         /// `{truth_steps, distance_m, path: [[t, east, north], …], events: [{type:
         /// "motion"|"orientation", t, …}]}` (t in ms, the path in metres). The end-to-end tests
         /// dispatch these on the live page.
         #[arg(long)]
         events: Option<PathBuf>,
-        /// The platform whose event conventions `--events` follows.
+        /// The platform whose event conventions `--events` follows, and whose conventions the
+        /// Sensor Logger formats follow.
         #[arg(long, value_enum, default_value = "android")]
         platform: PlatformArg,
         /// Calibration walk: step frequency, Hz.
@@ -272,6 +319,7 @@ pub fn main() -> ExitCode {
         Cmd::Simulate {
             scenario,
             out,
+            format,
             events,
             platform,
             cadence,
@@ -290,7 +338,7 @@ pub fn main() -> ExitCode {
                 }
                 ScenarioArg::Long => scenarios::long_walk(minutes),
             };
-            simulate(sc, out.as_deref(), events.as_deref(), platform)
+            simulate(sc, out.as_deref(), format, events.as_deref(), platform)
         }
         Cmd::Simcheck => {
             simcheck();
@@ -606,6 +654,7 @@ fn demo(json: bool) -> Result<(), String> {
 fn simulate(
     sc: pdr::sim::Scenario,
     out: Option<&Path>,
+    format: FormatArg,
     events: Option<&Path>,
     platform: PlatformArg,
 ) -> Result<(), String> {
@@ -614,14 +663,18 @@ fn simulate(
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
     };
     if let Some(out) = out {
-        write(out, pdrlog::to_string(&sim.records))?;
-        out!(
-            "wrote {} records, {} true steps, {:.1} m, to {}",
-            sim.records.len(),
-            sim.truth.steps.len(),
-            sim.truth.distance_m,
-            out.display()
-        );
+        if format == FormatArg::PdrLog {
+            write(out, pdrlog::to_string(&sim.records))?;
+            out!(
+                "wrote {} records, {} true steps, {:.1} m, to {}",
+                sim.records.len(),
+                sim.truth.steps.len(),
+                sim.truth.distance_m,
+                out.display()
+            );
+        } else {
+            write_recording(&sim, out, format, platform)?;
+        }
     }
     if let Some(path) = events {
         let platform = match platform {
@@ -650,6 +703,90 @@ fn simulate(
             path.display()
         );
     }
+    Ok(())
+}
+
+/// Writes a simulated walk as an app's recording: one file at `out`, or for a folder format the
+/// recording's folder inside the directory `out` (created; refused when it exists and is not
+/// empty).
+fn write_recording(
+    sim: &Simulation,
+    out: &Path,
+    format: FormatArg,
+    platform: PlatformArg,
+) -> Result<(), String> {
+    use pdr::sim::formats;
+    let platform = match (format, platform) {
+        (FormatArg::SensorLoggerIos, _) | (_, PlatformArg::Ios) => pdr::io::import::Platform::Ios,
+        _ => pdr::io::import::Platform::Android,
+    };
+    let f = format.format();
+    let rec = formats::write(sim, f, platform);
+    let shown = out.display();
+    let written = if formats::is_folder(f) {
+        match std::fs::read_dir(out) {
+            Ok(mut entries) => {
+                if entries.next().is_some() {
+                    return Err(format!(
+                        "{shown}: exists and is not empty; a folder format needs a new or empty \
+                         directory"
+                    ));
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(format!("{shown}: {e}")),
+        }
+        std::fs::create_dir_all(out).map_err(|e| format!("{shown}: {e}"))?;
+        for (name, bytes) in &rec.files {
+            let path = out.join(name);
+            if let Some(dir) = path.parent() {
+                std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            }
+            std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        let top = rec
+            .files
+            .first()
+            .and_then(|(n, _)| n.split('/').next())
+            .unwrap_or("");
+        format!("{} files in {}/", rec.files.len(), out.join(top).display())
+    } else {
+        let bytes = rec.files.first().map_or(&[][..], |f| f.1.as_slice());
+        std::fs::write(out, bytes).map_err(|e| format!("{shown}: {e}"))?;
+        shown.to_string()
+    };
+    let imu = sim
+        .records
+        .iter()
+        .filter(|r| matches!(r, Record::Imu(_)))
+        .count();
+    let fixes = sim
+        .records
+        .iter()
+        .filter(|r| matches!(r, Record::Gnss(_)))
+        .count();
+    let flavour = match f {
+        pdr::io::import::Format::SensorLogger | pdr::io::import::Format::SensorLoggerJson => {
+            format!(" ({})", format!("{platform:?}").to_lowercase())
+        }
+        _ => String::new(),
+    };
+    let fixes = match f {
+        pdr::io::import::Format::OxfordSteps
+        | pdr::io::import::Format::MsIndoor
+        | pdr::io::import::Format::XioFoot
+            if fixes > 0 =>
+        {
+            format!("no fixes (the format has none; the walk has {fixes})")
+        }
+        _ => format!("{fixes} fixes"),
+    };
+    out!(
+        "wrote {}{flavour}: {imu} IMU samples, {fixes}, {} true steps, {:.1} m, to {written}",
+        f.as_str(),
+        sim.truth.steps.len(),
+        sim.truth.distance_m,
+    );
     Ok(())
 }
 
