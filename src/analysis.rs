@@ -203,6 +203,12 @@ impl Analysis {
             .map(|(lat, lon, h)| crate::engine::geo::LocalFrame::new(lat, lon, h))
     }
 
+    /// The log has steps and not one of them has a heading (an accelerometer only): there is
+    /// no track to draw.
+    pub fn has_steps_without_any_heading(&self) -> bool {
+        !self.steps.is_empty() && self.steps.iter().all(|s| s.heading_rad.is_none())
+    }
+
     /// Where step `i` is drawn on the map: its fused position when the fusion has the step,
     /// else the PDR track's (shifted into the fixes' frame).
     pub fn step_position(&self, i: usize) -> Option<(f64, f64)> {

@@ -75,6 +75,15 @@ fn bounds(points: impl Iterator<Item = (f64, f64)>) -> (f64, f64, f64, f64) {
     )
 }
 
+/// An axis label with `decimals` decimals, never "-0".
+pub(crate) fn tick(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    match s.strip_prefix('-') {
+        Some(abs) if abs.bytes().all(|b| b == b'0' || b == b'.') => abs.to_string(),
+        _ => s,
+    }
+}
+
 /// Widens bounds on one axis, about their centre, so that one metre spans the same number of
 /// pixels on both axes of a `w` × `h` area.
 fn to_equal_scale((x0, x1, y0, y1): (f64, f64, f64, f64), w: f64, h: f64) -> (f64, f64, f64, f64) {
@@ -95,7 +104,14 @@ fn equal_aspect(points: impl Iterator<Item = (f64, f64)>, w: f64, h: f64) -> (f6
     if !x0.is_finite() {
         (x0, x1, y0, y1) = (-10.0, 10.0, -10.0, 10.0);
     }
-    let pad = 0.06 * (x1 - x0).max(y1 - y0).max(10.0);
+    // At least 10 m across (a walk's first step, or a log whose steps have no heading), so the
+    // labels and the scale bar stay readable.
+    let widen = |a: f64, b: f64| {
+        let grow = (10.0 - (b - a)).max(0.0) / 2.0;
+        (a - grow, b + grow)
+    };
+    ((x0, x1), (y0, y1)) = (widen(x0, x1), widen(y0, y1));
+    let pad = 0.06 * (x1 - x0).max(y1 - y0);
     to_equal_scale((x0 - pad, x1 + pad, y0 - pad, y1 + pad), w, h)
 }
 
@@ -172,8 +188,8 @@ pub(crate) fn map_chart_in<'a, DB: DrawingBackend>(
         .label_style(font)
         .x_labels(6)
         .y_labels(6)
-        .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&|v| format!("{v:.0}"))
+        .x_label_formatter(&|v| tick(*v, 0))
+        .y_label_formatter(&|v| tick(*v, 0))
         .draw()?;
     Ok(chart)
 }
@@ -838,6 +854,21 @@ pub(crate) mod raster {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ticks_never_read_minus_zero() {
+        assert_eq!(tick(-0.3, 0), "0");
+        assert_eq!(tick(-0.04, 1), "0.0");
+        assert_eq!(tick(-0.6, 0), "-1");
+        assert_eq!(tick(2.25, 1), "2.2");
+    }
+
+    #[test]
+    fn a_map_of_one_point_spans_ten_metres() {
+        let (x0, x1, y0, y1) = equal_aspect([(3.0, 4.0)].into_iter(), 400.0, 300.0);
+        assert!(x1 - x0 >= 10.0 && y1 - y0 >= 10.0, "{x0} {x1} {y0} {y1}");
+        assert!(((x0 + x1) / 2.0 - 3.0).abs() < 1e-9 && ((y0 + y1) / 2.0 - 4.0).abs() < 1e-9);
+    }
 
     #[test]
     fn scale_bar_is_nice() {

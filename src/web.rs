@@ -842,8 +842,10 @@ impl AnalysisView {
         })
     }
 
-    /// `{source, format, steps, samples, t0, t1, fixes, truth_waypoints, truth_steps, warnings,
-    /// score}`; `score` is the bench's result (`pdr eval --json` for this log).
+    /// `{source, format, steps, samples, t0, t1, fixes, truth_waypoints, truth_steps,
+    /// steps_without_heading, step_lengths_m, warnings, score}`; `score` is the bench's result
+    /// (`pdr eval --json` for this log); the track's distance counts only the steps with a
+    /// heading, `step_lengths_m` all of them.
     pub fn summary(&self) -> Result<JsValue, JsError> {
         let a = &self.a;
         let score: serde_json::Value =
@@ -858,6 +860,8 @@ impl AnalysisView {
             "fixes": a.fixes.len(),
             "truth_waypoints": a.truth_path.len(),
             "truth_steps": a.truth_steps.len(),
+            "steps_without_heading": a.steps.iter().filter(|s| s.heading_rad.is_none()).count(),
+            "step_lengths_m": a.steps.iter().map(|s| s.length_m).sum::<f64>(),
             "warnings": a.warnings,
             "score": score,
         });

@@ -243,6 +243,10 @@ function summaryHtml(s) {
     ['Steps', `${s.steps}` + (sc.truth_steps != null ? ` (true ${sc.truth_steps}, error ${fmt(sc.step_error_pct)} %${sc.step_error_debounced_pct != null ? `; ${fmt(sc.step_error_debounced_pct)} % against debounced truth` : ''})` : '')],
     ['Distance', `${fmt(sc.distance_m)} m in ${fmt(sc.duration_s / 60)} min`],
   ];
+  if (s.steps_without_heading) {
+    rows.push(['No heading', `${s.steps_without_heading} of ${s.steps} steps (${fmt(s.step_lengths_m)} m of steps in all): `
+      + (s.steps_without_heading === s.steps ? 'the log has no gyroscope, magnetometer or orientation, so the track cannot be drawn' : 'left out of the track')]);
+  }
   if (sc.waypoint_error_m) rows.push(['Waypoints', `error p75 ${fmt(sc.waypoint_error_m.p75)} m, max ${fmt(sc.waypoint_error_m.max)} m over ${sc.waypoints} waypoints`]);
   if (sc.loop_closure_m != null) rows.push(['Loop closure', `${fmt(sc.loop_closure_m)} m`]);
   for (const [k, name] of [['gnss_error_m', 'GNSS alone'], ['fused_error_m', 'Fused'], ['smoothed_error_m', 'Smoothed']]) {

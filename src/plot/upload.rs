@@ -1,7 +1,7 @@
 //! Upload mode's plots of an [`Analysis`]: the map (zoomable), the time-aligned diagnostics,
 //! and the horizontal-acceleration ellipse of one stride (Basso 2016 Fig. 5).
 
-use super::{legend, map_chart_in, north_and_scale, start_end, Mark, Theme};
+use super::{legend, map_chart_in, north_and_scale, start_end, tick, Mark, Theme};
 use crate::analysis::Analysis;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -143,6 +143,19 @@ pub fn draw_map<DB: DrawingBackend>(
     legend(area, &chart, &entries, theme, scale)?;
     north_and_scale(area, &chart, theme, scale)?;
     let (rx, ry) = chart.plotting_area().get_pixel_range();
+    if a.has_steps_without_any_heading() {
+        let font = ("sans-serif", 13.0 * scale)
+            .into_font()
+            .color(&theme.foreground);
+        area.draw(&Text::new(
+            format!(
+                "No heading in this log (no gyroscope, magnetometer or orientation): its {} steps cannot be placed.",
+                a.steps.len()
+            ),
+            (rx.start + px(12.0) as i32, (ry.start + ry.end) / 2 + px(24.0) as i32),
+            font,
+        ))?;
+    }
     let (xr, yr) = (
         chart.plotting_area().get_x_range(),
         chart.plotting_area().get_y_range(),
@@ -403,9 +416,16 @@ pub fn draw_plot<DB: DrawingBackend>(
             .draw()?;
     }
     let (columns, rows) = chart.plotting_area().get_pixel_range();
-    if matches!(plot, Plot::Gnss | Plot::Fusion) && a.fixes.is_empty() {
+    let note = match plot {
+        Plot::Gnss | Plot::Fusion if a.fixes.is_empty() => Some("no GNSS fixes in this log"),
+        Plot::Heading if a.has_steps_without_any_heading() => {
+            Some("no heading in this log (no gyroscope, magnetometer or orientation)")
+        }
+        _ => None,
+    };
+    if let Some(note) = note {
         area.draw(&Text::new(
-            "no GNSS fixes in this log",
+            note,
             (
                 columns.start + px(12.0) as i32,
                 rows.start + px(12.0) as i32,
@@ -630,6 +650,7 @@ pub fn draw_ellipse<DB: DrawingBackend>(
     let (w, h) = body.dim_in_pixel();
     let side = w.min(h);
     let square = body.margin(0, 0, (w - side) / 2, (w - side) / 2);
+    let decimals = if r < 5.0 { 1 } else { 0 };
     let mut chart = ChartBuilder::on(&square)
         .margin(px(6.0))
         .x_label_area_size(px(22.0))
@@ -640,16 +661,24 @@ pub fn draw_ellipse<DB: DrawingBackend>(
         .light_line_style(TRANSPARENT)
         .bold_line_style(theme.grid)
         .axis_style(theme.foreground)
-        .label_style(font)
+        .label_style(font.clone())
         .x_labels(5)
         .y_labels(5)
-        .x_label_formatter(&|v| format!("{v:.0} E"))
-        .y_label_formatter(&|v| format!("{v:.0} N"))
+        .x_label_formatter(&|v| format!("{} E", tick(*v, decimals)))
+        .y_label_formatter(&|v| format!("{} N", tick(*v, decimals)))
         .draw()?;
     chart.draw_series(LineSeries::new(
         pts.iter().copied(),
         ShapeStyle::from(&theme.track).stroke_width(px(1.5)),
     ))?;
+    if pts.is_empty() || a.has_steps_without_any_heading() {
+        let (columns, rows) = chart.plotting_area().get_pixel_range();
+        area.draw(&Text::new(
+            "no horizontal acceleration (no heading)",
+            (columns.start + px(8.0) as i32, rows.start + px(8.0) as i32),
+            font.clone(),
+        ))?;
+    }
     if let Some(hd) = step.heading_rad {
         let (s, c) = libm::sincos(hd);
         let tip = (0.9 * r * s, 0.9 * r * c);

@@ -113,37 +113,69 @@ async function canvases(page, k) {
   }), k);
 }
 
-test('a generated log and a file of every format: progress, the native step count, non-blank plots, hover', async () => {
-  const walk = path.join(tmp, 'city.pdrlog');
-  execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', walk]);
-  const files = [walk, ...['walk.pdrlog', 'get_sensor_data.txt', 'gnss_logger.txt', 'ms_indoor.txt', 'sensor_logger.json', 'xio_foot.csv']
-    .map((f) => path.join(FIXTURES, f))];
+/** Writes the demo walk (or `scenario`) in `format` (`pdr simulate --format`) under `tmp`. */
+function simulated(format, scenario = 'demo') {
+  const out = path.join(tmp, `${scenario}-${format}${['sensor-logger', 'sensor-logger-ios', 'phyphox', 'oxford'].includes(format) ? '' : '.log'}`);
+  if (!existsSync(out)) execFileSync(BIN, ['simulate', '--scenario', scenario, '--format', format, '--out', out]);
+  return out;
+}
+
+/** Hovers step `i` of result `k` on its map; returns the step line and the step picked. */
+async function hover(page, k, i) {
+  await page.locator(`.log-result[data-index="${k}"] canvas.map`).scrollIntoViewIfNeeded();
+  const [x, y] = await page.evaluate(([k, i]) => window.__pdrUpload.stepPixel(k, i), [k, i]);
+  await page.mouse.move(x, y);
+  await page.waitForFunction((k) => document.querySelector(`.log-result[data-index="${k}"] .stepinfo`).dataset.step, k);
+  const picked = Number(await page.getAttribute(`.log-result[data-index="${k}"] .stepinfo`, 'data-step'));
+  // Where the walk crosses itself another step may lie under the pointer: it must be that close.
+  const [px, py] = await page.evaluate(([k, i]) => window.__pdrUpload.stepPixel(k, i), [k, picked]);
+  assert.ok(Math.hypot(px - x, py - y) <= 12, `hovered step ${i} at (${x}, ${y}), picked ${picked} at (${px}, ${py})`);
+  return { info: await page.textContent(`.log-result[data-index="${k}"] .stepinfo`), picked };
+}
+
+/** Every plot of result `k` is drawn, and hovering its middle step shows that step's values. */
+async function checkResult(page, k, steps, { heading = true } = {}) {
+  for (const c of await canvases(page, k)) assert.ok(c.n > 0.01 * c.total, `log ${k}: ${c.what} looks blank: ${c.n} of ${c.total}`);
+  const { info } = await hover(page, k, Math.floor(steps / 2));
+  // A log with an accelerometer only (Oxford) has steps and lengths but no heading.
+  const h = heading ? '\\d+°' : '–';
+  assert.match(info, new RegExp(`^Step \\d+: t = [\\d.]+ s · length \\d\\.\\d\\d m · frequency \\d\\.\\d\\d Hz · heading ${h} \\(single step ${h}\\) · (walking|running|still)$`));
+}
+
+test('a generated log and a walk in every single-file format: progress, the native step count, non-blank plots, hover', async () => {
+  const city = path.join(tmp, 'city.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', city]);
+  // The demo walk (3.5 min, 362 steps) as each app writes it, plus the fixtures' damaged lines.
+  const files = [city, ...['pdr-log', 'sensor-logger-json', 'gnss-logger', 'get-sensor-data', 'ms-indoor', 'xio'].map((f) => simulated(f)),
+    ...['get_sensor_data.txt', 'gnss_logger.txt', 'sensor_logger.json'].map((f) => path.join(FIXTURES, f))];
   const { context, page, errors } = await open();
   const r = await upload(page, files);
   assert.ok(r.progress, 'no progress was shown');
   assert.equal(await page.evaluate(() => window.__pdrUpload.progress_max), 1, 'the progress bar did not complete');
-  assert.match(await page.textContent('#upload-status'), new RegExp(`^${files.length} recordings loaded from [\\d.]+ [kM]B in [\\d.]+ s$`));
+  assert.match(await page.textContent('#upload-status'), new RegExp(`^${files.length} recordings loaded from [\\d.]+ MB in [\\d.]+ s$`));
   assert.deepEqual(r.errors, []);
   assert.equal(r.logs.length, files.length);
-  for (const l of r.logs) {
+  console.log(`uploaded ${files.length} files: ${r.logs.map((l) => `${l.a.source} ${l.a.format} ${l.a.steps} steps`).join('; ')}`);
+  const formats = new Set();
+  for (const [k, l] of r.logs.entries()) {
     const file = files.find((f) => path.basename(f) === l.a.source);
     assert.equal(l.a.steps, nativeSteps(file), `${l.a.source}: steps differ from pdr run`);
+    if (!file.startsWith(FIXTURES)) {
+      assert.ok(l.a.steps > 300, `${l.a.source}: only ${l.a.steps} steps`);
+      formats.add(l.a.format);
+      await checkResult(page, k, l.a.steps);
+    }
   }
-  console.log(`uploaded ${files.length} files: ${r.logs.map((l) => `${l.a.source} ${l.a.format} ${l.a.steps} steps`).join('; ')}`);
-  const city = r.logs.findIndex((l) => l.a.source === 'city.pdrlog');
-  for (const c of await canvases(page, city)) assert.ok(c.n > 0.01 * c.total, `${c.what} looks blank: ${c.n} of ${c.total}`);
-  // Hovering a step shows its values.
-  const [x, y] = await page.evaluate((k) => window.__pdrUpload.stepPixel(k, 500), city);
-  await page.locator(`.log-result[data-index="${city}"] canvas.map`).scrollIntoViewIfNeeded();
-  const [x2, y2] = await page.evaluate((k) => window.__pdrUpload.stepPixel(k, 500), city);
-  await page.mouse.move(x2, y2);
-  await page.waitForFunction((k) => document.querySelector(`.log-result[data-index="${k}"] .stepinfo`).dataset.step, city);
-  const info = await page.textContent(`.log-result[data-index="${city}"] .stepinfo`);
-  assert.match(info, /^Step \d+: t = [\d.]+ s · length 0\.\d\d m · frequency \d\.\d\d Hz · heading \d+°/);
-  const picked = Number(await page.getAttribute(`.log-result[data-index="${city}"] .stepinfo`, 'data-step'));
-  assert.ok(Math.abs(picked - 500) <= 3, `hovered step ${picked}, expected about 500 (${x},${y})`);
+  assert.deepEqual([...formats].sort(), ['get-sensor-data', 'gnss-logger', 'ms-indoor', 'pdr-log', 'sensor-logger-json', 'xio-foot']);
+  // The truth the formats carry is scored beside the track.
+  const summary = (name) => page.textContent(`.log-result:has(h3:text-is("${name}")) .summary`);
+  assert.match(await summary('demo-ms-indoor.log'), /Waypointserror p75 [\d.]+ m, max [\d.]+ m over 22 waypoints/);
+  assert.match(await summary('demo-get-sensor-data.log'), /Waypointserror p75 [\d.]+ m, max [\d.]+ m over 22 waypoints/);
+  const k = r.logs.findIndex((l) => l.a.source === 'city.pdrlog');
+  const { picked } = await hover(page, k, 500);
+  assert.ok(Math.abs(picked - 500) <= 3, `hovered step ${picked}, expected about 500`);
   assert.deepEqual(errors, []);
-  await page.locator(`.log-result[data-index="${city}"]`).screenshot({ path: path.join(ARTIFACTS, 'upload-desktop.png') });
+  await page.locator(`.log-result[data-index="${k}"]`).screenshot({ path: path.join(ARTIFACTS, 'upload-desktop.png') });
   await context.close();
 });
 
@@ -186,8 +218,27 @@ test('phone: tapping a plot picks the step at that time, a pinch zooms the time 
   await context.close();
 });
 
-test('folders: Sensor Logger (Android and iOS), phyphox and Oxford folders load as one log each', async () => {
+test('folders: the demo walk as Sensor Logger (Android and iOS), phyphox and Oxford folders, and the fixtures', async () => {
   const { context, page, errors } = await open();
+  for (const format of ['sensor-logger', 'sensor-logger-ios', 'phyphox', 'oxford']) {
+    const dir = simulated(format);
+    const r = await upload(page, dir, { folder: true });
+    assert.deepEqual(r.errors, [], format);
+    assert.equal(r.logs.length, 1, `${format}: ${r.logs.length} logs`);
+    assert.equal(r.logs[0].a.steps, nativeSteps(dir), format);
+    assert.ok(r.logs[0].a.steps > 300, `${format}: only ${r.logs[0].a.steps} steps`);
+    await checkResult(page, 0, r.logs[0].a.steps, { heading: format !== 'oxford' });
+    console.log(`${format} folder: ${r.logs[0].a.source} ${r.logs[0].a.format} ${r.logs[0].a.steps} steps`);
+    if (format === 'oxford') {
+      // The true steps (foot contacts) are scored: the same error as pdr eval.
+      const e = JSON.parse(execFileSync(BIN, ['eval', '--json', dir], { encoding: 'utf8' })).logs[0];
+      assert.equal(r.logs[0].a.score.truth_steps, e.truth_steps);
+      assert.match(await page.textContent('.log-result .summary'), new RegExp(`\\(true ${e.truth_steps}, error ${e.step_error_pct.toFixed(1)} %`));
+      // An accelerometer only: no heading, said on the map, the heading plot and the figures.
+      assert.match(await page.textContent('.log-result .summary'), /No heading\d+ of \d+ steps \([\d.]+ m of steps in all\): the log has no gyroscope/);
+      await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-oxford-desktop.png') });
+    }
+  }
   for (const dir of ['sensor_logger_android', 'sensor_logger_ios', 'phyphox', 'phyphox_semicolon', 'oxford/Pixel_Test_Hard_FrontPocket_1']) {
     const r = await upload(page, path.join(FIXTURES, dir), { folder: true });
     assert.deepEqual(r.errors, [], dir);
@@ -217,9 +268,9 @@ test('a corrupt file beside a good one: the banner names the file and line, the 
 test('drag and drop: files and a zip dropped together load like the picker', async () => {
   const walk = path.join(tmp, 'dropped.pdrlog');
   execFileSync(BIN, ['simulate', '--scenario', 'demo', '--out', walk]);
-  const folder = path.join(FIXTURES, 'sensor_logger_android');
+  const folder = simulated('sensor-logger');
   const archive = path.join(tmp, 'Recording.zip');
-  writeFileSync(archive, zip(filesUnder(folder, 'Recording 2026-11-23/')));
+  writeFileSync(archive, zip(filesUnder(folder)));
   const { context, page, errors } = await open();
   const files = [walk, archive].map((f) => ({ name: path.basename(f), b64: readFileSync(f).toString('base64') }));
   const dt = await page.evaluateHandle((files) => {
@@ -234,7 +285,8 @@ test('drag and drop: files and a zip dropped together load like the picker', asy
   const logs = await page.evaluate(() => window.__pdrUpload.logs.map((l) => ({ source: l.a.source, format: l.a.format, steps: l.a.steps })));
   logs.sort((x, y) => (x.source < y.source ? 1 : -1));
   console.log(`dropped: ${logs.map((l) => `${l.source} (${l.format}) ${l.steps} steps`).join('; ')}`);
-  assert.deepEqual(logs.map((l) => l.source), ['dropped.pdrlog', 'Recording.zip/Recording 2026-11-23']);
+  assert.deepEqual(logs.map((l) => l.source), ['dropped.pdrlog', 'Recording.zip/2026-01-01_00-00-00']);
+  assert.ok(logs[1].steps > 300, `the zip gave ${logs[1].steps} steps`);
   assert.equal(logs[0].steps, nativeSteps(walk));
   assert.equal(logs[1].steps, nativeSteps(archive));
   assert.equal(logs[1].steps, nativeSteps(folder), 'the zip reads differently from its folder');
