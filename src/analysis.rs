@@ -85,10 +85,20 @@ pub fn analyse(
     let total = log.records.len();
     let mut tr = Trace::default();
     let n = log.imu_samples();
-    for v in [&mut tr.up, &mut tr.pll, &mut tr.sigma] {
-        v.reserve(n);
+    // Every signal at its final size at once: growing by doubling would copy each and, in wasm,
+    // raise the memory's high-water mark by up to their size again.
+    for v in [
+        &mut tr.up,
+        &mut tr.pll,
+        &mut tr.sigma,
+        &mut tr.device_heading_deg,
+        &mut tr.east,
+        &mut tr.north,
+    ] {
+        v.reserve_exact(n);
     }
-    tr.t.reserve(n);
+    tr.t.reserve_exact(n);
+    tr.motion.reserve_exact(n);
     let mut errors = Vec::new();
     let mut refused = 0;
     let deg = 180.0 / std::f64::consts::PI;
