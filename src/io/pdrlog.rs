@@ -147,7 +147,8 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
         message,
     };
     let mut out = Parsed::default();
-    out.records.reserve(records);
+    // An estimate too large to allocate is ignored: the records then grow as they are read.
+    let _ = out.records.try_reserve(records);
     let mut fatal = None;
     let mut saw_header = false;
     let skip = |out: &mut Parsed, e: ParseError| {

@@ -232,6 +232,22 @@ fn opt(row: &dyn Fields, key: &str) -> Result<Option<f64>, ParseError> {
 }
 
 impl Raw {
+    /// Makes room for `n` samples of `kind` at once, so that a long recording's streams are not
+    /// grown by doubling (which copies them and, in wasm, leaves the memory up to twice their
+    /// size).
+    /// An estimate too large to allocate is ignored (the stream then grows as it is read).
+    fn reserve(&mut self, kind: Kind, n: usize) {
+        let _ = match kind {
+            Kind::Total => self.total.try_reserve_exact(n),
+            Kind::Accel => self.accel.try_reserve_exact(n),
+            Kind::Gravity => self.gravity.try_reserve_exact(n),
+            Kind::Gyro => self.gyro.try_reserve_exact(n),
+            Kind::Mag => self.mag.try_reserve_exact(n),
+            Kind::Orientation => self.orientation.try_reserve_exact(n),
+            Kind::Metadata | Kind::Location => Ok(()),
+        };
+    }
+
     fn metadata(&mut self, row: &dyn Fields) {
         if let Some(p) = row.value("platform") {
             let p = p.trim().to_lowercase();
@@ -661,6 +677,9 @@ pub fn read_dir(
                 continue;
             };
             let label = set.label(name);
+            if let (Some(size), Ok(head)) = (set.size(name), set.head(name)) {
+                raw.reserve(kind, crate::io::pdrlog::estimate_records(&head, size));
+            }
             let r = set
                 .open(name)
                 .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
