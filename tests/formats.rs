@@ -222,28 +222,9 @@ fn case(name: &str) -> Case {
     }
 }
 
-fn sim_imu(sim: &Simulation) -> Vec<&ImuSample> {
-    sim.records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Imu(s) => Some(s),
-            _ => None,
-        })
-        .collect()
-}
-
-fn sim_fixes(sim: &Simulation) -> Vec<&GnssFix> {
-    sim.records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Gnss(f) => Some(f),
-            _ => None,
-        })
-        .collect()
-}
-
-fn log_imu(log: &Log) -> Vec<ImuSample> {
-    log.records
+/// The IMU samples of a list of records.
+fn imu(records: &[Record]) -> Vec<ImuSample> {
+    records
         .iter()
         .filter_map(|r| match r {
             Record::Imu(s) => Some(*s),
@@ -252,8 +233,9 @@ fn log_imu(log: &Log) -> Vec<ImuSample> {
         .collect()
 }
 
-fn log_fixes(log: &Log) -> Vec<GnssFix> {
-    log.records
+/// The fixes of a list of records.
+fn fixes(records: &[Record]) -> Vec<GnssFix> {
+    records
         .iter()
         .filter_map(|r| match r {
             Record::Gnss(f) => Some(*f),
@@ -321,8 +303,8 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
     let off = rec.clock_offset_s;
 
     // IMU: one record per simulated sample, values to the written precision.
-    let want = sim_imu(sim);
-    let got = log_imu(&log);
+    let want = imu(&sim.records);
+    let got = imu(&log.records);
     assert_eq!(got.len(), want.len(), "{name}: IMU samples");
     let mut worst = [0.0f64; 5];
     for (i, (g, w)) in got.iter().zip(&want).enumerate() {
@@ -375,8 +357,8 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
     }
 
     // Fixes: every one, where the format carries them.
-    let want_fixes = sim_fixes(sim);
-    let got_fixes = log_fixes(&log);
+    let want_fixes = fixes(&sim.records);
+    let got_fixes = fixes(&log.records);
     if c.gnss {
         assert_eq!(got_fixes.len(), want_fixes.len(), "{name}: fixes");
         for (g, w) in got_fixes.iter().zip(&want_fixes) {
@@ -514,7 +496,7 @@ fn sensor_logger_json_ios() {
     let log = import_one(&rec);
     assert!(log.warnings.is_empty(), "{:#?}", log.warnings);
     assert_eq!(log.platform, Some(Platform::Ios));
-    let (got, want) = (log_imu(&log), sim_imu(sim));
+    let (got, want) = (imu(&log.records), imu(&sim.records));
     assert_eq!(got.len(), want.len());
     for (g, w) in got.iter().zip(&want) {
         assert!((g.accel - w.accel).amax() < 1e-9);
