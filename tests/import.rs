@@ -158,11 +158,13 @@ fn sensor_logger_android_folder() {
     // (0.35 sin 0.4, 0, 0), gravity (0.31, 1.27, 9.72).
     let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
     assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
-    assert!(
-        s[0].gyro.is_none(),
-        "the first gyroscope sample comes 2 ms later"
+    // The first gyroscope sample comes 2 ms later and reaches the first record, where the
+    // engine picks its attitude source.
+    assert_eq!(
+        s[0].gyro, s[1].gyro,
+        "the first gyroscope sample is not carried back"
     );
-    assert!(s[1..].iter().all(|x| x.gyro.is_some()));
+    assert!(s.iter().all(|x| x.gyro.is_some()));
     assert!(s[5].mag.is_some());
     assert!(s[0].orientation.is_some());
     // Location: one fix of three has a negative accuracy.
@@ -345,8 +347,11 @@ fn sensor_logger_json() {
     assert!(close(s[0].t, 1698745673.473, 1e-6));
     let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
     assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
-    assert!(s[0].gyro.is_none(), "gyro comes 2 ms later");
-    assert!(s[1].gyro.is_some());
+    // The gyroscope comes 2 ms later and reaches the first record.
+    assert!(
+        s[0].gyro.is_some() && s[1].gyro.is_some(),
+        "gyro not carried back"
+    );
     assert!(s[0].orientation.unwrap().angle() < 1e-12);
     assert_eq!(fixes(&log).len(), 1);
     // The `n/a` element: field `z` named, line of the element.
@@ -494,7 +499,13 @@ fn get_sensor_data() {
         assert!(close(w[1].t - w[0].t, 0.02, 1e-9), "{} {}", w[0].t, w[1].t);
     }
     assert!(close(s[0].t, 0.064, 1e-9), "{}", s[0].t);
-    assert!(s[0].gyro.is_none() && s[1].gyro.is_some());
+    // The gyroscope and the AHRS begin after the accelerometer: their first samples reach the
+    // first record, so the engine takes the OS attitude (it took gravity alone before).
+    assert!(s[0].gyro.is_some() && s[0].orientation.is_some());
+    assert_eq!(
+        pdr::engine::OrientationSource::Auto.resolve(&s[0]),
+        pdr::engine::OrientationSource::Os
+    );
     // AHRS rotation vector (0, 0, sin 15°) → 30° about up.
     let q = s[1].orientation.unwrap();
     assert!(close(q.angle(), 30f64.to_radians(), 1e-4), "{}", q.angle());
@@ -936,4 +947,53 @@ fn two_gigabytes_of_junk_behind_a_real_header() {
             (b - a) >> 20
         );
     }
+}
+
+#[test]
+fn streams_that_begin_after_the_accelerometer_reach_its_first_samples() {
+    use nalgebra::UnitQuaternion;
+    use pdr::engine::OrientationSource;
+    use pdr::io::import::{Streams, HOLD_S};
+    let imu = |s: Streams| {
+        s.into_records()
+            .into_iter()
+            .filter_map(|r| match r {
+                Record::Imu(s) => Some(s),
+                _ => None,
+            })
+            .collect::<Vec<_>>()
+    };
+    let mut s = Streams::default();
+    for k in 0..300 {
+        let t = k as f64 * 0.01;
+        s.accel.push((t, Vector3::new(0.0, 0.0, 9.81)));
+        if k >= 3 {
+            s.gyro.push((t + 0.001, Vector3::new(0.1, 0.0, 0.0)));
+        }
+        if k >= 5 {
+            s.orientation.push((t + 0.002, UnitQuaternion::identity()));
+        }
+    }
+    // The accelerometer began 52 ms before the orientation: every accelerometer sample is kept,
+    // and the first carry the streams' first samples, so the engine uses the OS attitude (it
+    // took gravity alone for the whole log before).
+    let r = imu(s.clone());
+    assert_eq!(r.len(), 300);
+    assert_eq!(r[0].t, 0.0);
+    assert!(r
+        .iter()
+        .all(|x| x.gyro.is_some() && x.orientation.is_some()));
+    assert_eq!(
+        OrientationSource::Auto.resolve(&r[0]),
+        OrientationSource::Os
+    );
+    // A stream that begins more than HOLD_S later is not carried back.
+    let mut late = s;
+    late.orientation.retain(|o| o.0 > HOLD_S + 0.1);
+    let r = imu(late);
+    assert!(r[0].orientation.is_none() && r[0].gyro.is_some());
+    assert_eq!(
+        OrientationSource::Auto.resolve(&r[0]),
+        OrientationSource::MADGWICK
+    );
 }

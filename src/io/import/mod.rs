@@ -15,7 +15,9 @@
 //! - Orientation: the unit quaternion taking device vectors to East-North-Up.
 //! - Sensors on separate clocks and rates are merged in time order by [`Streams::into_records`]:
 //!   one IMU record per accelerometer sample, carrying the latest gyroscope, magnetometer and
-//!   orientation samples not older than [`HOLD_S`]. Nothing is resampled.
+//!   orientation samples not older than [`HOLD_S`] (before a stream's first sample, that sample
+//!   when it comes within [`HOLD_S`]: the engine picks its attitude source from the first
+//!   record). Nothing is resampled.
 //!
 //! # Errors
 //! A log that cannot be read at all gives a [`ParseError`] naming the file, line and column. A bad
@@ -302,7 +304,15 @@ impl<'a, T: Copy> Hold<'a, T> {
         while self.next < self.items.len() && self.items[self.next].0 <= t {
             self.next += 1;
         }
-        let (ti, v) = *self.items.get(self.next.checked_sub(1)?)?;
+        // Before the stream's first sample, that sample when it comes within HOLD_S: the
+        // engine picks its attitude source from the first IMU record (the OS orientation, else
+        // the gyroscope, else gravity alone), and a stream that begins a few samples after the
+        // accelerometer would otherwise be ignored for the whole log.
+        let Some(k) = self.next.checked_sub(1) else {
+            let &(t1, v) = self.items.first()?;
+            return (t1 - t <= HOLD_S).then_some(v);
+        };
+        let (ti, v) = self.items[k];
         (t - ti <= HOLD_S).then_some(v)
     }
 }
