@@ -163,7 +163,7 @@ function onWorker(m) {
     l.views[m.tag]?.free();
     l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
     show(l, m.tag, m.label);
-    Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, memory_mb: m.memory_mb });
+    Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
   } else if (m.type === 'pdrlog') {
     save(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`, 'text/plain');
   } else if (m.type === 'done') {
