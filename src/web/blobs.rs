@@ -41,6 +41,33 @@ struct BlobFile {
     pos: u64,
     reader: Rc<FileReaderSync>,
     progress: Rc<Progress>,
+    release: Rc<Release>,
+}
+
+/// Frees each slice's buffer as soon as its bytes are copied. `FileReaderSync` returns a new
+/// buffer per read, and the garbage collector frees them only in a major collection, which a
+/// worker busy in one long call rarely gets: reading a 99 MB file grew the page's process by
+/// 70–104 MB of dead slices. A buffer transferred with `postMessage` to a port whose other end
+/// is closed is freed at once (the process then grows by 7 MB).
+struct Release {
+    port: Option<web_sys::MessagePort>,
+}
+
+impl Release {
+    fn new() -> Release {
+        let port = web_sys::MessageChannel::new().ok().map(|c| {
+            c.port2().close();
+            c.port1()
+        });
+        Release { port }
+    }
+
+    fn free(&self, buffer: &js_sys::ArrayBuffer) {
+        if let Some(port) = &self.port {
+            let _ =
+                port.post_message_with_transferable(&JsValue::NULL, &js_sys::Array::of1(buffer));
+        }
+    }
 }
 
 fn js_error(e: JsValue) -> io::Error {
@@ -68,6 +95,7 @@ impl Read for BlobFile {
         let bytes = js_sys::Uint8Array::new(&buffer);
         let got = (bytes.length() as usize).min(n);
         bytes.subarray(0, got as u32).copy_to(&mut buf[..got]);
+        self.release.free(&buffer);
         self.pos += got as u64;
         self.progress.add(got);
         Ok(got)
@@ -93,6 +121,7 @@ pub struct BlobSet {
     names: Vec<String>,
     reader: Rc<FileReaderSync>,
     progress: Rc<Progress>,
+    release: Rc<Release>,
 }
 
 impl BlobSet {
@@ -111,6 +140,7 @@ impl BlobSet {
                 reported: Cell::new(0),
                 callback: progress,
             }),
+            release: Rc::new(Release::new()),
         })
     }
 
@@ -127,6 +157,7 @@ impl BlobSet {
             pos: 0,
             reader: Rc::clone(&self.reader),
             progress: Rc::clone(&self.progress),
+            release: Rc::clone(&self.release),
         })
     }
 }
