@@ -222,6 +222,34 @@ fn case(name: &str) -> Case {
     }
 }
 
+/// Checks one optional value of sample `i` of recording `name`: when the format `carried` it,
+/// present in both and within `tol` (the error by `err`, the worst kept in `worst`); otherwise
+/// absent from what was read back.
+#[allow(clippy::too_many_arguments)]
+fn check_value<T: std::fmt::Debug + Copy>(
+    (name, i): (&str, usize),
+    what: &str,
+    carried: bool,
+    got: Option<T>,
+    want: Option<T>,
+    err: impl Fn(T, T) -> f64,
+    tol: f64,
+    worst: &mut f64,
+) {
+    match (got, want) {
+        (Some(a), Some(b)) if carried => {
+            let e = err(a, b);
+            *worst = worst.max(e);
+            assert!(
+                e <= tol,
+                "{name}: sample {i} {what} {a:?} vs {b:?}, off by {e}"
+            );
+        }
+        (None, _) if !carried => {}
+        (a, b) => panic!("{name}: sample {i} {what} {a:?} vs {b:?}"),
+    }
+}
+
 /// The IMU samples of a list of records.
 fn imu(records: &[Record]) -> Vec<ImuSample> {
     records
@@ -324,36 +352,38 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
             g.accel,
             w.accel
         );
-        match (g.gyro, w.gyro) {
-            (Some(a), Some(b)) if c.gyro => {
-                let e = (a - b).amax();
-                worst[2] = worst[2].max(e);
-                assert!(e <= tol.gyro, "{name}: sample {i} gyro {a:?} vs {b:?}");
-            }
-            (None, _) if !c.gyro => {}
-            (a, b) => panic!("{name}: sample {i} gyro {a:?} vs {b:?}"),
-        }
-        match (g.mag, w.mag) {
-            (Some(a), Some(b)) if c.mag => {
-                let e = (a - b).amax();
-                worst[3] = worst[3].max(e);
-                assert!(e <= tol.mag, "{name}: sample {i} mag {a:?} vs {b:?}");
-            }
-            (None, _) if !c.mag => {}
-            (a, b) => panic!("{name}: sample {i} mag {a:?} vs {b:?}"),
-        }
-        match (g.orientation, w.orientation) {
-            (Some(a), Some(b)) if c.attitude == Attitude::Os => {
-                let e = a.angle_to(&b);
-                worst[4] = worst[4].max(e);
-                assert!(
-                    e <= tol.q_rad,
-                    "{name}: sample {i} orientation off by {e} rad"
-                );
-            }
-            (None, _) if c.attitude != Attitude::Os => {}
-            (a, b) => panic!("{name}: sample {i} orientation {a:?} vs {b:?}"),
-        }
+        let at = (name, i);
+        check_value(
+            at,
+            "gyro",
+            c.gyro,
+            g.gyro,
+            w.gyro,
+            |a, b| (a - b).amax(),
+            tol.gyro,
+            &mut worst[2],
+        );
+        check_value(
+            at,
+            "mag",
+            c.mag,
+            g.mag,
+            w.mag,
+            |a, b| (a - b).amax(),
+            tol.mag,
+            &mut worst[3],
+        );
+        let os = c.attitude == Attitude::Os;
+        check_value(
+            at,
+            "orientation",
+            os,
+            g.orientation,
+            w.orientation,
+            |a, b| a.angle_to(&b),
+            tol.q_rad,
+            &mut worst[4],
+        );
     }
 
     // Fixes: every one, where the format carries them.

@@ -54,6 +54,7 @@
 //! Output is deterministic: the same simulation gives the same bytes, natively and in wasm.
 
 use super::{GnssSim, Simulation};
+use crate::engine::math::OnePole;
 use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
 use crate::io::import::{Format, Platform, G0};
@@ -307,21 +308,24 @@ fn ios_attitude(q: &UnitQuaternion<f64>) -> UnitQuaternion<f64> {
 /// OS attitude when the sample has one (the simulator's attitude is exact in tilt), else from a
 /// one-second low-pass of the accelerometer.
 fn gravity(imu: &[&ImuSample]) -> Vec<Vector3<f64>> {
-    let mut lp: Option<(f64, Vector3<f64>)> = None;
+    let mut lp = [OnePole::new(1.0); 3];
+    let mut last_t: Option<f64> = None;
     imu.iter()
         .map(|s| {
-            let g = match s.orientation {
-                Some(q) => q.inverse() * Vector3::new(0.0, 0.0, G0),
-                None => match lp {
-                    Some((t, v)) => {
-                        let dt = (s.t - t).clamp(0.0, 1.0);
-                        v + (s.accel - v) * (dt / (1.0 + dt))
+            let dt = last_t.map_or(0.0, |t| (s.t - t).clamp(0.0, 1.0));
+            last_t = Some(s.t);
+            match s.orientation {
+                Some(q) => {
+                    let g = q.inverse() * Vector3::new(0.0, 0.0, G0);
+                    // The low-pass goes on from the attitude's gravity.
+                    for (f, v) in lp.iter_mut().zip(g.iter()) {
+                        f.reset();
+                        f.update(*v, 0.0);
                     }
-                    None => s.accel,
-                },
-            };
-            lp = Some((s.t, g));
-            g
+                    g
+                }
+                None => Vector3::from_fn(|k, _| lp[k].update(s.accel[k], dt)),
+            }
         })
         .collect()
 }
