@@ -7,8 +7,10 @@
 //! It is serialised ([`Analysis::to_bytes`], bincode) to cross from the worker to the page:
 //! signals are `f32` (plenty for a plot), times `f64` (Unix seconds need it).
 
-use crate::engine::pipeline::{Pipeline, PipelineConfig, Record, Replay, StepRecord};
+use crate::engine::pipeline::{Pipeline, PipelineConfig, StepRecord};
+use crate::engine::replay::replay_observed;
 use crate::engine::types::ConfigError;
+use crate::engine::types::Record;
 use crate::io::import::Log;
 
 /// The per-sample signals, one entry per IMU sample the engine accepted.
@@ -81,7 +83,6 @@ pub fn analyse(
     cfg: &PipelineConfig,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Analysis, ConfigError> {
-    let mut pipeline = Pipeline::new(cfg.clone())?;
     let total = log.records.len();
     let mut tr = Trace::default();
     let n = log.imu_samples();
@@ -99,49 +100,31 @@ pub fn analyse(
     }
     tr.t.reserve_exact(n);
     tr.motion.reserve_exact(n);
-    let mut errors = Vec::new();
-    let mut refused = 0;
     let deg = 180.0 / std::f64::consts::PI;
-    for (i, r) in log.records.iter().enumerate() {
-        if i % PROGRESS_EVERY == 0 {
-            progress(i, total);
+    progress(0, total);
+    let mut observe = |pipeline: &Pipeline, i: usize, r: &Record, accepted: bool| {
+        if let (Record::Imu(s), true) = (r, accepted) {
+            let (up, e, north) = pipeline.last_nav().unwrap_or((f64::NAN, 0.0, 0.0));
+            tr.t.push(s.t);
+            tr.up.push(up as f32);
+            tr.pll
+                .push(pipeline.pll_output().map_or(f32::NAN, |p| p as f32));
+            tr.sigma.push(pipeline.vertical_stats().1 as f32);
+            tr.motion.push(pipeline.motion_state() as u8);
+            tr.device_heading_deg
+                .push(pipeline.attitude().map_or(f32::NAN, |q| {
+                    let top = q * nalgebra::Vector3::y();
+                    (libm::atan2(top.x, top.y) * deg).rem_euclid(360.0) as f32
+                }));
+            tr.east.push(e as f32);
+            tr.north.push(north as f32);
         }
-        let res = match r {
-            Record::Imu(s) => pipeline.push_imu(s).map(|_| ()).map(|()| {
-                let (up, e, north) = pipeline.last_nav().unwrap_or((f64::NAN, 0.0, 0.0));
-                tr.t.push(s.t);
-                tr.up.push(up as f32);
-                tr.pll
-                    .push(pipeline.pll_output().map_or(f32::NAN, |p| p as f32));
-                tr.sigma.push(pipeline.vertical_stats().1 as f32);
-                tr.motion.push(pipeline.motion_state() as u8);
-                tr.device_heading_deg
-                    .push(pipeline.attitude().map_or(f32::NAN, |q| {
-                        let top = q * nalgebra::Vector3::y();
-                        (libm::atan2(top.x, top.y) * deg).rem_euclid(360.0) as f32
-                    }));
-                tr.east.push(e as f32);
-                tr.north.push(north as f32);
-            }),
-            Record::Gnss(f) => pipeline.push_gnss(f),
-            Record::Gap(t0, t1) => {
-                pipeline.mark_gap(*t0, *t1);
-                Ok(())
-            }
-        };
-        if let Err(e) = res {
-            refused += 1;
-            if errors.len() < 100 {
-                errors.push((i, e));
-            }
+        if (i + 1) % PROGRESS_EVERY == 0 && i + 1 < total {
+            progress(i + 1, total);
         }
-    }
-    progress(total, total);
-    let run = Replay {
-        pipeline,
-        errors,
-        refused,
     };
+    let run = replay_observed(cfg.clone(), &log.records, &mut observe)?;
+    progress(total, total);
     let score = crate::eval::score(log, &run);
     let p = &run.pipeline;
     let frame = p.frame();

@@ -23,7 +23,9 @@
 //! alpha grows counter-clockwise, so the compass heading of the top is 360° − α).
 
 use crate::engine::orientation::{OrientationSource, HOLD_S};
-use crate::engine::pipeline::{Pipeline, PipelineConfig, Record};
+use crate::engine::pipeline::{Pipeline, PipelineConfig};
+use crate::engine::replay::feed;
+use crate::engine::types::Record;
 use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError};
 pub use crate::io::import::Platform;
 use nalgebra::{UnitQuaternion, Vector3};
@@ -174,6 +176,58 @@ pub struct GapMark {
     pub north_m: f64,
 }
 
+/// What the live view keeps of the samples as they pass: the scrolling signal and the gaps.
+#[derive(Debug, Clone, Default)]
+struct View {
+    last_t: Option<f64>,
+    gaps_seen: u64,
+    gap_marks: Vec<GapMark>,
+    scope: VecDeque<ScopeSample>,
+}
+
+impl View {
+    /// Notes a record the pipeline accepted: a gap the engine counted (a `gap` record, or a
+    /// pause it found in the samples themselves), and each sample's vertical acceleration and
+    /// PLL output for the scrolling view.
+    fn observe(&mut self, p: &Pipeline, r: &Record) {
+        let t = match *r {
+            Record::Imu(s) => s.t,
+            Record::Gap(_, t1) => t1,
+            Record::Gnss(_) => return,
+        };
+        let gaps = p.diagnostics().gaps;
+        if gaps > self.gaps_seen {
+            let t0 = match *r {
+                Record::Gap(t0, _) => t0,
+                _ => self.last_t.unwrap_or(t),
+            };
+            self.gaps_seen = gaps;
+            let (east_m, north_m) = p
+                .track()
+                .last()
+                .map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
+            self.gap_marks.push(GapMark {
+                t0,
+                t1: t,
+                east_m,
+                north_m,
+            });
+        }
+        let Record::Imu(_) = r else { return };
+        self.last_t = Some(t);
+        if let Some(up) = p.vertical_accel() {
+            self.scope.push_back(ScopeSample {
+                t,
+                up,
+                pll: p.pll_output(),
+            });
+        }
+        while self.scope.front().is_some_and(|x| x.t < t - SCOPE_S) {
+            self.scope.pop_front();
+        }
+    }
+}
+
 /// What the live page shows.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Readouts {
@@ -238,10 +292,7 @@ pub struct LiveSession {
     absolute: bool,
     first_event: Option<f64>,
     waited: u64,
-    last_t: Option<f64>,
-    gaps_seen: u64,
-    gap_marks: Vec<GapMark>,
-    scope: VecDeque<ScopeSample>,
+    view: View,
     log: String,
     recent: VecDeque<f64>,
     refused: u64,
@@ -272,11 +323,8 @@ impl LiveSession {
             absolute: false,
             first_event: None,
             waited: 0,
-            last_t: None,
-            gaps_seen: 0,
-            gap_marks: Vec::new(),
+            view: View::default(),
             smoothed: (0, Vec::new()),
-            scope: VecDeque::new(),
             log: crate::io::pdrlog::preamble(),
             recent: VecDeque::new(),
             refused: 0,
@@ -297,18 +345,20 @@ impl LiveSession {
             .map_err(|e| e.to_string())?;
         let mut s = Self::new(cfg, platform, origin_ms).map_err(|e| e.to_string())?;
         s.log.clear();
-        for r in &parsed.records {
-            match r {
-                Record::Imu(i) => {
-                    s.absolute |= i.orientation.is_some();
-                    let _ = s.use_sample(i, false);
+        s.absolute = parsed
+            .records
+            .iter()
+            .any(|r| matches!(r, Record::Imu(i) if i.orientation.is_some()));
+        let view = &mut s.view;
+        feed(
+            &mut s.pipeline,
+            &parsed.records,
+            &mut |p: &Pipeline, _, r: &Record, accepted| {
+                if accepted {
+                    view.observe(p, r);
                 }
-                Record::Gnss(f) => {
-                    let _ = s.pipeline.push_gnss(f);
-                }
-                Record::Gap(t0, t1) => s.gap_at(*t0, *t1, false),
-            }
-        }
+            },
+        );
         Ok(s)
     }
 
@@ -319,12 +369,12 @@ impl LiveSession {
 
     /// The vertical acceleration and PLL output of the last [`SCOPE_S`] seconds.
     pub fn scope(&self) -> &VecDeque<ScopeSample> {
-        &self.scope
+        &self.view.scope
     }
 
     /// Where the input stopped.
     pub fn gap_marks(&self) -> &[GapMark] {
-        &self.gap_marks
+        &self.view.gap_marks
     }
 
     fn refuse(&mut self, e: LiveError) -> LiveError {
@@ -397,7 +447,7 @@ impl LiveSession {
             orientation,
         };
         let n = self
-            .use_sample(&s, true)
+            .use_record(&Record::Imu(s))
             .map_err(|e| self.refuse(LiveError::Engine(e)))?;
         if orientation.is_some() {
             self.attitude_written_at = Some(m.t);
@@ -409,46 +459,12 @@ impl LiveSession {
         Ok(n)
     }
 
-    /// One sample through the engine, the scrolling view, the gap marks and (if `record`) the
-    /// recording.
-    fn use_sample(&mut self, s: &ImuSample, record: bool) -> Result<usize, InputError> {
-        let n = self.pipeline.push_imu(s)?.len();
-        if record {
-            self.log
-                .push_str(&crate::io::pdrlog::line(&Record::Imu(*s)));
-        }
-        let gaps = self.pipeline.diagnostics().gaps;
-        if gaps > self.gaps_seen {
-            // The engine found a pause in the samples themselves.
-            self.note_gap(self.last_t.unwrap_or(s.t), s.t);
-        }
-        self.last_t = Some(s.t);
-        if let Some(up) = self.pipeline.vertical_accel() {
-            self.scope.push_back(ScopeSample {
-                t: s.t,
-                up,
-                pll: self.pipeline.pll_output(),
-            });
-        }
-        while self.scope.front().is_some_and(|x| x.t < s.t - SCOPE_S) {
-            self.scope.pop_front();
-        }
+    /// One record through the engine, the live view and the recording.
+    fn use_record(&mut self, r: &Record) -> Result<usize, InputError> {
+        let n = self.pipeline.push(r)?.len();
+        self.log.push_str(&crate::io::pdrlog::line(r));
+        self.view.observe(&self.pipeline, r);
         Ok(n)
-    }
-
-    fn note_gap(&mut self, t0: f64, t1: f64) {
-        self.gaps_seen = self.pipeline.diagnostics().gaps;
-        let (east_m, north_m) = self
-            .pipeline
-            .track()
-            .last()
-            .map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
-        self.gap_marks.push(GapMark {
-            t0,
-            t1,
-            east_m,
-            north_m,
-        });
     }
 
     /// Feeds a `deviceorientation` or `deviceorientationabsolute` event (degrees). Relative
@@ -503,11 +519,8 @@ impl LiveSession {
             t: self.seconds(f.t * 1e3),
             ..*f
         };
-        self.pipeline
-            .push_gnss(&f)
+        self.use_record(&Record::Gnss(f))
             .map_err(|e| self.refuse(LiveError::Engine(e)))?;
-        self.log
-            .push_str(&crate::io::pdrlog::line(&Record::Gnss(f)));
         Ok(())
     }
 
@@ -516,19 +529,10 @@ impl LiveSession {
     pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
         let t0 = self
             .seconds(t0_ms)
-            .max(self.last_t.unwrap_or(f64::NEG_INFINITY));
-        self.gap_at(t0, self.seconds(t1_ms), true);
-    }
-
-    fn gap_at(&mut self, t0: f64, t1: f64, record: bool) {
-        if !(t1 > t0 && t0.is_finite() && t1.is_finite()) {
-            return;
-        }
-        self.pipeline.mark_gap(t0, t1);
-        self.note_gap(t0, t1);
-        if record {
-            self.log
-                .push_str(&crate::io::pdrlog::line(&Record::Gap(t0, t1)));
+            .max(self.view.last_t.unwrap_or(f64::NEG_INFINITY));
+        let t1 = self.seconds(t1_ms);
+        if t1 > t0 && t0.is_finite() && t1.is_finite() {
+            let _ = self.use_record(&Record::Gap(t0, t1));
         }
     }
 
@@ -686,6 +690,7 @@ impl LiveSession {
                     .collect()
             }),
             gaps: self
+                .view
                 .gap_marks
                 .iter()
                 .map(|g| shift(g.east_m, g.north_m))
@@ -697,7 +702,7 @@ impl LiveSession {
     /// The scrolling view's data: (t, vertical acceleration, PLL output) of the last
     /// [`SCOPE_S`], the step times among them, and the newest time.
     pub fn scope_data(&self) -> (Vec<crate::plot::ScopePoint>, Vec<f64>, f64) {
-        let samples: Vec<_> = self.scope.iter().map(|s| (s.t, s.up, s.pll)).collect();
+        let samples: Vec<_> = self.view.scope.iter().map(|s| (s.t, s.up, s.pll)).collect();
         let now = samples.last().map_or(0.0, |s| s.0);
         let steps = self
             .pipeline

@@ -34,7 +34,9 @@ use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
 use super::pll::{Candidate, Pll, PllConfig};
+pub use super::replay::{replay, Replay}; // TODO(restructure): callers import from `replay`
 use super::step_length::StepLengthModel;
+pub use super::types::Record;
 use super::types::{positive, ConfigError, GnssFix, ImuSample, InputError};
 use std::collections::VecDeque;
 
@@ -302,6 +304,20 @@ impl Pipeline {
     /// The configuration.
     pub fn config(&self) -> &PipelineConfig {
         &self.cfg
+    }
+
+    /// Feeds one record of a log: the one entry every caller uses, live or replayed. Returns the
+    /// steps it completed (usually none, sometimes several when the onset look-back releases
+    /// held steps). A refused record leaves the state untouched.
+    pub fn push(&mut self, r: &Record) -> Result<&[StepRecord], InputError> {
+        match r {
+            Record::Imu(s) => self.push_imu(s),
+            Record::Gnss(f) => self.push_gnss(f).map(|()| &[][..]),
+            Record::Gap(t0, t1) => {
+                self.mark_gap(*t0, *t1);
+                Ok(&[])
+            }
+        }
     }
 
     /// Feeds one IMU sample. Returns the steps this sample completed (usually none, sometimes
@@ -731,59 +747,4 @@ impl Pipeline {
             Detector::Peak(_) => None,
         }
     }
-}
-
-/// One record of a log, in time order.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Record {
-    /// An inertial sample.
-    Imu(ImuSample),
-    /// A GNSS fix.
-    Gnss(GnssFix),
-    /// The recorder noticed that input stopped between two times (s).
-    Gap(f64, f64),
-}
-
-/// The result of replaying a log.
-pub struct Replay {
-    /// The pipeline after the last record, holding the track and the diagnostics.
-    pub pipeline: Pipeline,
-    /// The first [`REPLAY_ERRORS_KEPT`] records refused, with their index in the input.
-    pub errors: Vec<(usize, InputError)>,
-    /// How many records were refused in all.
-    pub refused: u64,
-}
-
-/// How many refused records [`replay`] keeps for reporting (all are counted).
-pub const REPLAY_ERRORS_KEPT: usize = 100;
-
-/// Replays records through a new pipeline: a loop over the same calls live input uses.
-pub fn replay<'a>(
-    cfg: PipelineConfig,
-    records: impl IntoIterator<Item = &'a Record>,
-) -> Result<Replay, ConfigError> {
-    let mut pipeline = Pipeline::new(cfg)?;
-    let mut errors = Vec::new();
-    let mut refused = 0;
-    for (i, r) in records.into_iter().enumerate() {
-        let res = match r {
-            Record::Imu(s) => pipeline.push_imu(s).map(|_| ()),
-            Record::Gnss(f) => pipeline.push_gnss(f),
-            Record::Gap(t0, t1) => {
-                pipeline.mark_gap(*t0, *t1);
-                Ok(())
-            }
-        };
-        if let Err(e) = res {
-            refused += 1;
-            if errors.len() < REPLAY_ERRORS_KEPT {
-                errors.push((i, e));
-            }
-        }
-    }
-    Ok(Replay {
-        pipeline,
-        errors,
-        refused,
-    })
 }

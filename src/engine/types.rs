@@ -114,6 +114,17 @@ impl GnssFix {
     }
 }
 
+/// One record of a log, in time order: what the pipeline is fed ([`crate::engine::Pipeline::push`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Record {
+    /// An inertial sample.
+    Imu(ImuSample),
+    /// A GNSS fix.
+    Gnss(GnssFix),
+    /// The recorder noticed that input stopped between two times (s).
+    Gap(f64, f64),
+}
+
 fn all_finite<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {
     it.all(|v| v.is_finite())
 }
