@@ -27,12 +27,11 @@ fn main() {
     if std::env::var("ORACLE").is_ok() {
         sc.walker = pdr::sim::Walker::default();
         sc.sensors.os_yaw_bias_deg = 0.0;
-        if let Some(f) = &mut cfg.fusion {
-            f.scale0_sd = 1e-4;
-            f.bias0_sd_deg = 0.01;
-            f.scale_rw = 1e-9;
-            f.bias_rw_deg = 1e-9;
-        }
+        let f = &mut cfg.fusion;
+        f.scale0_sd = 1e-4;
+        f.bias0_sd_deg = 0.01;
+        f.scale_rw = 1e-9;
+        f.bias_rw_deg = 1e-9;
     }
     let sim = sc.generate();
     let r = replay(cfg.clone(), &sim.records).unwrap();

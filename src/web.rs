@@ -243,14 +243,12 @@ fn live_config(
         "best" => {}
         "energy-saving" => {
             use crate::engine::fusion::{GnssMode, DEFAULT_PERIOD_S, DEFAULT_WINDOW_S};
-            if let Some(f) = &mut c.fusion {
-                f.mode = GnssMode::EnergySaving {
-                    period_s: period_s.unwrap_or(DEFAULT_PERIOD_S),
-                    window_s: window_s.unwrap_or(DEFAULT_WINDOW_S),
-                };
-            }
+            c.fusion.mode = GnssMode::EnergySaving {
+                period_s: period_s.unwrap_or(DEFAULT_PERIOD_S),
+                window_s: window_s.unwrap_or(DEFAULT_WINDOW_S),
+            };
         }
-        "off" => c.fusion = None,
+        "off" => c.fusion.mode = crate::engine::fusion::GnssMode::Off,
         other => return Err(JsError::new(&format!("unknown GNSS mode `{other}`"))),
     }
     c.validate().map_err(|e| JsError::new(&e.to_string()))?;

@@ -18,7 +18,7 @@ fn run(sim: &Simulation, cfg: PipelineConfig) -> Pipeline {
 
 fn energy_saving() -> PipelineConfig {
     let mut cfg = PipelineConfig::default();
-    cfg.fusion.as_mut().unwrap().mode = GnssMode::ENERGY_SAVING;
+    cfg.fusion.mode = GnssMode::ENERGY_SAVING;
     cfg
 }
 
@@ -226,7 +226,7 @@ fn fixes_while_standing_update_the_position() {
     // The same walk with the update only at steps (the paper's trigger): the minute's fixes
     // but the newest are dropped.
     let mut steps_only = PipelineConfig::default();
-    steps_only.fusion.as_mut().unwrap().standing_after_s = 1e9;
+    steps_only.fusion.standing_after_s = 1e9;
     let c0 = run(&sim, steps_only).diagnostics().fix_counts.unwrap();
     println!("standing a minute: sd {sd_before:.2} -> {sd:.2} m, error {err:.2} m, {c:?}; at steps only {c0:?}");
     assert!(

@@ -320,7 +320,7 @@ fn live_smoothed_track_equals_the_smoother_at_any_time() {
     use pdr::engine::fusion::GnssMode;
     let sim = scenarios::gnss_city_walk().generate();
     let mut cfg = PipelineConfig::default();
-    cfg.fusion.as_mut().unwrap().mode = GnssMode::ENERGY_SAVING;
+    cfg.fusion.mode = GnssMode::ENERGY_SAVING;
     let mut live = LiveSession::new(cfg, Platform::Android, 0.0).unwrap();
     let mut checks = 0;
     for (i, r) in sim.records.iter().enumerate() {

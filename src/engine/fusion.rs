@@ -67,6 +67,9 @@ pub enum GnssMode {
         #[serde(default = "default_window_s")]
         window_s: f64,
     },
+    /// No fusion: the fixes are kept for display, and the first one is the track's geodetic
+    /// origin.
+    Off,
 }
 
 /// Energy saving's default period, s (Basso 2021 §3.1.2 chooses 60 s).

@@ -26,7 +26,7 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
-use super::fusion::{declination_for, FixCounts, FusedStep, Fusion, FusionConfig};
+use super::fusion::{declination_for, FixCounts, FusedStep, Fusion, FusionConfig, GnssMode};
 use super::geo::LocalFrame;
 use super::heading::{self, HeadingConfig, NavSample, StepWindow};
 use super::math::{circular_mean2, wrap_2pi, wrap_pi};
@@ -82,8 +82,9 @@ pub struct PipelineConfig {
     /// correlation. Oxford, when chosen: 1.63 % without this test, 1.37 % with 0, 1.48 % with
     /// 0.1, 2.27 % with 0.5 (the first cycles of a walk follow the oscillator loosely).
     pub onset_coherence_min: f64,
-    /// GNSS/PDR fusion ([`crate::engine::fusion`]); `None` keeps the fixes for display only.
-    pub fusion: Option<FusionConfig>,
+    /// GNSS/PDR fusion ([`crate::engine::fusion`]); its mode `off` keeps the fixes for display
+    /// only.
+    pub fusion: FusionConfig,
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
@@ -99,7 +100,7 @@ impl Default for PipelineConfig {
             step_length: StepLengthModel::default(),
             onset_lookback_s: 3.0,
             onset_coherence_min: 0.0,
-            fusion: Some(FusionConfig::default()),
+            fusion: FusionConfig::default(),
             gap_s: 0.5,
         }
     }
@@ -127,9 +128,7 @@ impl PipelineConfig {
         }
         self.heading.validate()?;
         self.step_length.validate()?;
-        if let Some(f) = &self.fusion {
-            f.validate()?;
-        }
+        self.fusion.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -637,14 +636,12 @@ impl Pipeline {
         self.fixes.push(*f);
         self.diag.gnss_fixes += 1;
         // The origin is the first fix good enough for the filter (any fix without fusion).
-        let usable = self
-            .cfg
-            .fusion
-            .as_ref()
-            .map_or(true, |c| f.h_accuracy_m <= c.max_accuracy_m);
+        let fusion_on = self.cfg.fusion.mode != GnssMode::Off;
+        let usable = !fusion_on || f.h_accuracy_m <= self.cfg.fusion.max_accuracy_m;
         if self.frame.is_none() && usable {
             let frame = LocalFrame::new(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(0.0));
-            if let Some(cfg) = self.cfg.fusion {
+            if fusion_on {
+                let cfg = self.cfg.fusion;
                 let (d, note) = declination_for(&cfg, &frame, f.t);
                 self.diag.declination_deg = Some(d.to_degrees());
                 self.diag.declination_note = note;

@@ -111,11 +111,9 @@ impl Methods {
         match self.gnss {
             GnssArg::Best => {}
             GnssArg::EnergySaving => {
-                if let Some(f) = &mut c.fusion {
-                    f.mode = pdr::engine::fusion::GnssMode::ENERGY_SAVING;
-                }
+                c.fusion.mode = pdr::engine::fusion::GnssMode::ENERGY_SAVING;
             }
-            GnssArg::Off => c.fusion = None,
+            GnssArg::Off => c.fusion.mode = pdr::engine::fusion::GnssMode::Off,
         }
         c
     }
