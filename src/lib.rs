@@ -2,6 +2,7 @@
 //!
 //! Layers point down only:
 //! - [`engine`]: pure maths and state (no files, no browsers). Basso 2016 and 2021.
+//! - [`settings`]: the one front door for the engine's configuration.
 //! - [`sim`]: a gait simulator producing phone-in-pocket IMU streams with known truth.
 //! - [`io`]: the project's own log format, the import of other formats, track exports.
 //! - [`live`]: browser sensor events into engine records (the platforms' quirks, in one place).
@@ -26,6 +27,7 @@ pub mod eval;
 pub mod io;
 pub mod live;
 pub mod plot;
+pub mod settings;
 pub mod sim;
 
 #[cfg(target_arch = "wasm32")]

@@ -43,20 +43,34 @@ pub enum OrientationSource {
     Madgwick {
         /// Gradient-descent gain β (Madgwick 2010 eq. 50 suggests √(3/4)·gyro error; 0.1 is the
         /// reference implementation's default).
+        #[serde(default = "default_beta")]
         beta: f64,
     },
     /// Gravity from a low-pass filter of the accelerometer with time constant `tau_s`.
     GravityLowPass {
         /// Time constant of the gravity filter, seconds.
+        #[serde(default = "default_tau_s")]
         tau_s: f64,
     },
 }
 
+const fn default_beta() -> f64 {
+    0.1
+}
+
+const fn default_tau_s() -> f64 {
+    1.0
+}
+
 impl OrientationSource {
     /// Default Madgwick configuration.
-    pub const MADGWICK: OrientationSource = OrientationSource::Madgwick { beta: 0.1 };
+    pub const MADGWICK: OrientationSource = OrientationSource::Madgwick {
+        beta: default_beta(),
+    };
     /// Default gravity low-pass configuration (1 s: well below the ~1.8 Hz gait).
-    pub const GRAVITY: OrientationSource = OrientationSource::GravityLowPass { tau_s: 1.0 };
+    pub const GRAVITY: OrientationSource = OrientationSource::GravityLowPass {
+        tau_s: default_tau_s(),
+    };
 
     /// Checks the parameters.
     pub fn validate(&self) -> Result<(), ConfigError> {

@@ -50,6 +50,7 @@ impl Line {
 
 /// A user's piecewise-linear step-length profile.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct StepLengthProfile {
     /// Walking line.
     pub walking: Line,
