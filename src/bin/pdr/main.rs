@@ -28,6 +28,8 @@ mod run;
 #[cfg(not(target_arch = "wasm32"))]
 mod serve;
 #[cfg(not(target_arch = "wasm32"))]
+mod simcheck;
+#[cfg(not(target_arch = "wasm32"))]
 mod simulate;
 
 #[cfg(not(target_arch = "wasm32"))]
