@@ -1,4 +1,6 @@
-//! The command-line interface: replay logs, benchmark the engine, serve the web app.
+//! The command line: clap's definitions of `pdr` and its subcommands, and `main`, which hands each
+//! subcommand to its own module (`run`, `eval`, `simulate`, `simcheck`, `bench`, `demo`, `serve`).
+//! May import: clap, the `pdr` library and the subcommands' modules.
 
 use crate::{bench, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
