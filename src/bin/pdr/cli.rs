@@ -1,15 +1,15 @@
-//! The command-line interface: replay logs, benchmark the engine, serve the web app.
+//! The command line: clap's definitions of `pdr` and its subcommands, and `main`, which hands each
+//! subcommand to its own module (`run`, `eval`, `simulate`, `simcheck`, `bench`, `demo`, `serve`).
+//! May import: clap, the `pdr` library and the subcommands' modules.
 
-use crate::serve;
+use crate::{bench, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
 use pdr::engine::heading::HeadingMethod;
-use pdr::engine::pipeline::{replay, PipelineConfig, Record, StepDetectorConfig};
+use pdr::engine::pipeline::{PipelineConfig, StepDetectorConfig};
 use pdr::engine::{OrientationSource, StepLengthModel};
-use pdr::io::{export, pdrlog};
-use pdr::sim::{scenarios, Simulation};
-use std::path::{Path, PathBuf};
+use pdr::sim::scenarios;
+use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 #[derive(Parser)]
 #[command(
@@ -138,7 +138,7 @@ enum ScenarioArg {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
-enum PlatformArg {
+pub enum PlatformArg {
     /// Chromium's conventions (specification sign, `interval` in ms).
     Android,
     /// Safari's (acceleration negated, `interval` in s).
@@ -146,7 +146,7 @@ enum PlatformArg {
 }
 
 #[derive(Clone, Copy, PartialEq, ValueEnum)]
-enum FormatArg {
+pub enum FormatArg {
     /// The project's own log (one file).
     PdrLog,
     /// Sensor Logger's CSV folder, Android (or iOS with `--platform ios`).
@@ -167,23 +167,6 @@ enum FormatArg {
     MsIndoor,
     /// x-io Gait-Tracking CSV.
     Xio,
-}
-
-impl FormatArg {
-    fn format(self) -> pdr::io::import::Format {
-        use pdr::io::import::Format;
-        match self {
-            FormatArg::PdrLog => Format::PdrLog,
-            FormatArg::SensorLogger | FormatArg::SensorLoggerIos => Format::SensorLogger,
-            FormatArg::SensorLoggerJson => Format::SensorLoggerJson,
-            FormatArg::Phyphox => Format::Phyphox,
-            FormatArg::GnssLogger => Format::GnssLogger,
-            FormatArg::GetSensorData => Format::GetSensorData,
-            FormatArg::Oxford => Format::OxfordSteps,
-            FormatArg::MsIndoor => Format::MsIndoor,
-            FormatArg::Xio => Format::XioFoot,
-        }
-    }
 }
 
 #[derive(Subcommand)]
@@ -304,16 +287,16 @@ pub fn main() -> ExitCode {
             geojson,
             fused,
             methods,
-        } => run(
+        } => run::run(
             &file,
-            Outputs {
+            run::Outputs {
                 track: track.as_deref(),
                 geojson: geojson.as_deref(),
                 fused: fused.as_deref(),
             },
             methods.config(),
         ),
-        Cmd::Demo { json } => demo(json),
+        Cmd::Demo { json } => demo::demo(json),
         Cmd::Simulate {
             scenario,
             out,
@@ -336,14 +319,14 @@ pub fn main() -> ExitCode {
                 }
                 ScenarioArg::Long => scenarios::long_walk(minutes),
             };
-            simulate(sc, out.as_deref(), format, events.as_deref(), platform)
+            simulate::simulate(sc, out.as_deref(), format, events.as_deref(), platform)
         }
         Cmd::Simcheck => {
-            simcheck();
+            simcheck::simcheck();
             Ok(())
         }
         Cmd::Bench { minutes, repeats } => {
-            bench(minutes, repeats);
+            bench::bench(minutes, repeats);
             Ok(())
         }
         Cmd::Eval {
@@ -351,7 +334,7 @@ pub fn main() -> ExitCode {
             json,
             sets,
             show_config,
-        } => eval(&paths, json, &sets, show_config),
+        } => eval::eval(&paths, json, &sets, show_config),
         Cmd::Serve {
             root,
             http_port,
@@ -371,628 +354,4 @@ pub fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
-}
-
-fn eval(paths: &[PathBuf], json: bool, sets: &[String], show_config: bool) -> Result<(), String> {
-    use pdr::eval::{evaluate, summarise, LogResult, Report};
-    use pdr::io::import::{import_all, DirSet};
-    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), sets)?;
-    if show_config {
-        out!(
-            "{}",
-            serde_json::to_string_pretty(&cfg).map_err(|e| e.to_string())?
-        );
-        return Ok(());
-    }
-    let mut logs = Vec::new();
-    for path in paths {
-        let label = path.display().to_string();
-        let mut set = match DirSet::new(path) {
-            Ok(s) => s,
-            Err(e) => {
-                logs.push(LogResult::failed(&label, "", e.to_string()));
-                continue;
-            }
-        };
-        let found = import_all(&mut set);
-        if found.is_empty() {
-            logs.push(LogResult::failed(&label, "", "no recognisable log".into()));
-        }
-        for r in found {
-            logs.push(match r {
-                Ok(log) => evaluate(&log, &cfg),
-                Err(e) => LogResult::failed(&e.file, "", e.to_string()),
-            });
-        }
-    }
-    let summary = summarise(&logs);
-    let report = Report { logs, summary };
-    if json {
-        out!(
-            "{}",
-            serde_json::to_string(&report).map_err(|e| e.to_string())?
-        );
-        return Ok(());
-    }
-    print_report(&report);
-    Ok(())
-}
-
-fn print_report(report: &pdr::eval::Report) {
-    let opt = |v: Option<f64>, prec: usize| v.map_or("-".to_string(), |x| format!("{x:.prec$}"));
-    out!(
-        "{:<44} {:<15} {:>8} {:>7} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
-        "log",
-        "format",
-        "samples",
-        "dur s",
-        "steps",
-        "truth",
-        "err %",
-        "wps",
-        "p75 m",
-        "final m",
-        "loop m"
-    );
-    for l in &report.logs {
-        let mut path = l.path.clone();
-        if path.chars().count() > 44 {
-            path = format!(
-                "…{}",
-                path.chars()
-                    .rev()
-                    .take(43)
-                    .collect::<Vec<_>>()
-                    .into_iter()
-                    .rev()
-                    .collect::<String>()
-            );
-        }
-        if let Some(e) = &l.error {
-            out!("{path:<44} {:<15} error: {e}", l.format);
-            continue;
-        }
-        out!(
-            "{path:<44} {:<15} {:>8} {:>7.1} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
-            l.format,
-            l.samples,
-            l.duration_s,
-            l.steps,
-            l.truth_steps.map_or("-".into(), |t| t.to_string()),
-            opt(l.step_error_pct, 2),
-            l.waypoints,
-            opt(l.waypoint_error_m.map(|w| w.p75), 1),
-            opt(l.waypoint_error_m.map(|w| w.r#final), 1),
-            opt(l.loop_closure_m, 1),
-        );
-    }
-    for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
-        out!(
-            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m",
-            l.path.rsplit('/').next().unwrap_or(&l.path),
-            opt(l.gnss_error_m.map(|e| e.p75), 2),
-            opt(l.fused_error_m.map(|e| e.p75), 2),
-            opt(l.smoothed_error_m.map(|e| e.p75), 2)
-        );
-    }
-    let s = &report.summary;
-    if !s.step_mae_by_group.is_empty() {
-        out!();
-        for (g, v) in &s.step_mae_by_group {
-            out!(
-                "{g:<16} {:>3} logs  step MAE {:>5.2} %  (debounced truth {} %)",
-                v.logs,
-                v.mae_pct,
-                opt(v.mae_debounced_pct, 2)
-            );
-        }
-    }
-    out!(
-        "\n{} logs, {} failed; step MAE {} % (debounced truth {} %); waypoint p75 {} m ({} % of the path walked)",
-        s.logs,
-        s.failed,
-        opt(s.step_mae_pct, 2),
-        opt(s.step_mae_debounced_pct, 2),
-        opt(s.waypoint_p75_m, 2),
-        opt(s.waypoint_p75_pct, 1)
-    );
-}
-
-fn run(file: &Path, outputs: Outputs, cfg: PipelineConfig) -> Result<(), String> {
-    let name = file.display().to_string();
-    let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
-    let mut logs = pdr::io::import::import_all(&mut set);
-    let parsed = match logs.len() {
-        0 => return Err(format!("{name}: no recognisable log (see README, Import)")),
-        1 => logs.pop().expect("one log").map_err(|e| e.to_string())?,
-        n => {
-            return Err(format!(
-                "{name} holds {n} logs; give one of them, or use `pdr eval`"
-            ))
-        }
-    };
-    let shown = parsed.warnings.len().min(10);
-    for e in &parsed.warnings[..shown] {
-        eprintln!("warning: {e} (line skipped)");
-    }
-    if parsed.skipped > shown as u64 {
-        eprintln!(
-            "warning: {} more lines skipped",
-            parsed.skipped - shown as u64
-        );
-    }
-    let r = replay(cfg, &parsed.records).map_err(|e| e.to_string())?;
-    for (i, e) in r.errors.iter().take(10) {
-        eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
-    }
-    if r.refused > 10 {
-        eprintln!("warning: {name}: {} more records refused", r.refused - 10);
-    }
-    let p = &r.pipeline;
-    let d = p.diagnostics();
-    let track = p.track();
-    let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
-    out!("file          {name}");
-    out!("format        {}", parsed.format.as_str());
-    out!(
-        "records       {} ({} lines skipped, {} records refused)",
-        parsed.records.len(),
-        parsed.skipped,
-        r.refused
-    );
-    out!("orientation   {:?}", d.orientation);
-    out!("duration      {:.1} s", t1 - t0);
-    out!("steps         {}", track.len());
-    out!("distance      {:.1} m", d.distance_m);
-    if let Some(last) = track.last() {
-        out!("final east    {:.1} m", last.east_m);
-        out!("final north   {:.1} m", last.north_m);
-    }
-    out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
-    if d.steps_without_heading > 0 {
-        out!(
-            "no heading    {} steps (orientation source gives no heading)",
-            d.steps_without_heading
-        );
-    }
-    if let Some(fr) = p.frame() {
-        out!(
-            "origin        {:.7}, {:.7} (first usable GNSS fix)",
-            fr.lat0_deg,
-            fr.lon0_deg
-        );
-    }
-    let fused = p.fused();
-    let smoothed = p.smoothed();
-    if let (Some(c), Some(last)) = (d.fix_counts, fused.last()) {
-        out!(
-            "fused         {} steps; fixes used {}, gated {}, too inaccurate {}, stale {}, receiver off {}, resets {}",
-            fused.len(),
-            c.used,
-            c.gated,
-            c.too_inaccurate,
-            c.stale,
-            c.receiver_off,
-            c.resets
-        );
-        out!(
-            "corrections   step length × {:.3}, heading {:+.1}° (declination {:+.2}°{})",
-            last.scale,
-            last.bias_rad.to_degrees(),
-            d.declination_deg.unwrap_or(0.0),
-            d.declination_note
-                .as_deref()
-                .map_or(String::new(), |n| format!("; {n}"))
-        );
-        if let Some((on, span)) = d.gnss_on_s {
-            out!("gnss on       {on:.0} s of {span:.0} s");
-        }
-    }
-    if let Some(out) = outputs.track {
-        std::fs::write(out, export::track_csv(track, p.frame()))
-            .map_err(|e| format!("{}: {e}", out.display()))?;
-        out!("track         {}", out.display());
-    }
-    if let Some(out) = outputs.geojson {
-        let mut doc = export::track_geojson(track, p.frame());
-        if let (Some(fr), Some(features)) = (p.frame(), doc["features"].as_array_mut()) {
-            features.extend(export::fusion_features(p.fixes(), fused, &smoothed, fr));
-        }
-        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
-        std::fs::write(out, text).map_err(|e| format!("{}: {e}", out.display()))?;
-        out!("geojson       {}", out.display());
-    }
-    if let Some(out) = outputs.fused {
-        let fr = p
-            .frame()
-            .ok_or_else(|| format!("{name}: no usable GNSS fix, so no fused track to write"))?;
-        std::fs::write(out, export::fused_csv(fused, &smoothed, fr))
-            .map_err(|e| format!("{}: {e}", out.display()))?;
-        out!("fused track   {}", out.display());
-    }
-    Ok(())
-}
-
-/// Where `pdr run` writes its files.
-struct Outputs<'a> {
-    track: Option<&'a Path>,
-    geojson: Option<&'a Path>,
-    fused: Option<&'a Path>,
-}
-
-fn demo(json: bool) -> Result<(), String> {
-    let s = pdr::demo::run_demo();
-    let f = pdr::demo::run_fusion_demo();
-    if json {
-        let mut v = serde_json::to_value(&s).map_err(|e| e.to_string())?;
-        v["fusion"] = serde_json::to_value(&f).map_err(|e| e.to_string())?;
-        out!("{v}");
-    } else {
-        out!(
-            "steps {} (truth {}), distance {:.1} m (truth {:.1} m), end error {:.2} m",
-            s.steps,
-            s.truth_steps,
-            s.distance_m,
-            s.truth_distance_m,
-            s.end_error_m
-        );
-        out!(
-            "GNSS walk: p75 error GNSS {:.2} m, PDR {:.2} m, fused {:.2} m, smoothed {:.2} m; step length × {:.3}, heading {:+.1}°",
-            f.gnss_p75_m,
-            f.pdr_p75_m,
-            f.fused_p75_m,
-            f.smoothed_p75_m,
-            f.scale,
-            f.heading_correction_deg
-        );
-    }
-    Ok(())
-}
-
-fn simulate(
-    sc: pdr::sim::Scenario,
-    out: Option<&Path>,
-    format: FormatArg,
-    events: Option<&Path>,
-    platform: PlatformArg,
-) -> Result<(), String> {
-    let sim = sc.generate();
-    let write = |path: &Path, text: String| {
-        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
-    };
-    if let Some(out) = out {
-        if format == FormatArg::PdrLog {
-            write(out, pdrlog::to_string(&sim.records))?;
-            out!(
-                "wrote {} records, {} true steps, {:.1} m, to {}",
-                sim.records.len(),
-                sim.truth.steps.len(),
-                sim.truth.distance_m,
-                out.display()
-            );
-        } else {
-            write_recording(&sim, out, format, platform)?;
-        }
-    }
-    if let Some(path) = events {
-        let platform = match platform {
-            PlatformArg::Android => pdr::live::Platform::Android,
-            PlatformArg::Ios => pdr::live::Platform::Ios,
-        };
-        let events = pdr::live::browser_events(&sim.records, platform);
-        // The true path every half second or so, on the events' clock (ms), east and north (m).
-        let mut truth_path: Vec<[f64; 3]> = Vec::new();
-        for &(t, e, n) in &sim.truth.path {
-            if truth_path.last().map_or(true, |p| t * 1e3 - p[0] >= 500.0) {
-                truth_path.push([t * 1e3, e, n]);
-            }
-        }
-        let doc = serde_json::json!({
-            "truth_steps": sim.truth.steps.len(),
-            "distance_m": sim.truth.distance_m,
-            "platform": format!("{platform:?}").to_lowercase(),
-            "path": truth_path,
-            "events": events,
-        });
-        write(path, doc.to_string())?;
-        out!(
-            "wrote {} browser events to {}",
-            events.len(),
-            path.display()
-        );
-    }
-    Ok(())
-}
-
-/// Writes a simulated walk as an app's recording: one file at `out`, or for a folder format the
-/// recording's folder inside the directory `out` (created; refused when it exists and is not
-/// empty).
-fn write_recording(
-    sim: &Simulation,
-    out: &Path,
-    format: FormatArg,
-    platform: PlatformArg,
-) -> Result<(), String> {
-    use pdr::sim::formats;
-    let platform = match (format, platform) {
-        (FormatArg::SensorLoggerIos, _) | (_, PlatformArg::Ios) => pdr::io::import::Platform::Ios,
-        _ => pdr::io::import::Platform::Android,
-    };
-    let f = format.format();
-    let rec = formats::write(sim, f, platform);
-    let shown = out.display();
-    let written = if formats::is_folder(f) {
-        match std::fs::read_dir(out) {
-            Ok(mut entries) => {
-                if entries.next().is_some() {
-                    return Err(format!(
-                        "{shown}: exists and is not empty; a folder format needs a new or empty \
-                         directory"
-                    ));
-                }
-            }
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-            Err(e) => return Err(format!("{shown}: {e}")),
-        }
-        std::fs::create_dir_all(out).map_err(|e| format!("{shown}: {e}"))?;
-        for (name, bytes) in &rec.files {
-            let path = out.join(name);
-            if let Some(dir) = path.parent() {
-                std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-            }
-            std::fs::write(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-        }
-        let top = rec
-            .files
-            .first()
-            .and_then(|(n, _)| n.split('/').next())
-            .unwrap_or("");
-        format!("{} files in {}/", rec.files.len(), out.join(top).display())
-    } else {
-        let bytes = rec.files.first().map_or(&[][..], |f| f.1.as_slice());
-        std::fs::write(out, bytes).map_err(|e| format!("{shown}: {e}"))?;
-        shown.to_string()
-    };
-    let imu = sim
-        .records
-        .iter()
-        .filter(|r| matches!(r, Record::Imu(_)))
-        .count();
-    let fixes = sim
-        .records
-        .iter()
-        .filter(|r| matches!(r, Record::Gnss(_)))
-        .count();
-    let flavour = match f {
-        pdr::io::import::Format::SensorLogger | pdr::io::import::Format::SensorLoggerJson => {
-            format!(" ({})", format!("{platform:?}").to_lowercase())
-        }
-        _ => String::new(),
-    };
-    let fixes = match f {
-        pdr::io::import::Format::OxfordSteps
-        | pdr::io::import::Format::MsIndoor
-        | pdr::io::import::Format::XioFoot
-            if fixes > 0 =>
-        {
-            format!("no fixes (the format has none; the walk has {fixes})")
-        }
-        _ => format!("{fixes} fixes"),
-    };
-    out!(
-        "wrote {}{flavour}: {imu} IMU samples, {fixes}, {} true steps, {:.1} m, to {written}",
-        f.as_str(),
-        sim.truth.steps.len(),
-        sim.truth.distance_m,
-    );
-    Ok(())
-}
-
-/// Heading error statistics (mean absolute, degrees) of the used heading against the truth.
-fn heading_err(sim: &Simulation, track: &[pdr::engine::StepRecord]) -> f64 {
-    let mut errs = Vec::new();
-    for s in track.iter().skip(2) {
-        let Some(h) = s.heading_rad else { continue };
-        let nearest = sim
-            .truth
-            .steps
-            .iter()
-            .min_by(|a, b| (a.t - s.t).abs().total_cmp(&(b.t - s.t).abs()));
-        if let Some(tr) = nearest {
-            errs.push(
-                pdr::engine::math::wrap_pi(h - tr.heading_rad)
-                    .abs()
-                    .to_degrees(),
-            );
-        }
-    }
-    errs.iter().sum::<f64>() / errs.len().max(1) as f64
-}
-
-fn simcheck() {
-    let methods = [
-        ("tip-to-tail 2016", HeadingMethod::TipToTail2016),
-        ("closed form 2021", HeadingMethod::ClosedForm2021),
-        ("PCA 2 s", HeadingMethod::Pca),
-    ];
-    out!("Step counts (PLL vs peak detector), count error against truth:");
-    let mut cases: Vec<(String, Simulation)> = Vec::new();
-    for f in [1.5, 1.8, 2.2] {
-        cases.push((
-            format!("walk {f} Hz 70 s"),
-            scenarios::straight_walk(f, 70.0).generate(),
-        ));
-    }
-    for f in [2.7, 3.4, 4.2] {
-        cases.push((
-            format!("run {f} Hz 35 s"),
-            scenarios::straight_run(f, 35.0).generate(),
-        ));
-    }
-    cases.push(("demo walk".into(), scenarios::demo_walk().generate()));
-    for (label, sim) in &cases {
-        let pll = replay(PipelineConfig::default(), &sim.records)
-            .unwrap()
-            .pipeline
-            .track()
-            .len();
-        let peak_cfg = PipelineConfig {
-            detector: StepDetectorConfig::Peak(Default::default()),
-            ..Default::default()
-        };
-        let peak = replay(peak_cfg, &sim.records)
-            .unwrap()
-            .pipeline
-            .track()
-            .len();
-        let truth = sim.truth.observed_steps();
-        out!(
-            "  {label:<20} truth {truth:>4}  PLL {pll:>4} ({:+})  peak {peak:>4} ({:+})",
-            pll as i64 - truth as i64,
-            peak as i64 - truth as i64
-        );
-    }
-    out!("Heading, mean absolute error of the used (averaged) heading, straight 1.8 Hz walks:");
-    for (name, m) in methods {
-        let mut row = Vec::new();
-        for yaw in [0.0, 90.0, 180.0, 270.0] {
-            let mut sc = scenarios::straight_walk(1.8, 40.0);
-            sc.pocket_yaw_deg = yaw;
-            sc.start_heading_deg = 60.0;
-            let sim = sc.generate();
-            let r = replay(PipelineConfig::with_heading(m), &sim.records).unwrap();
-            row.push(format!(
-                "yaw {yaw:>3}°: {:.2}°",
-                heading_err(&sim, r.pipeline.track())
-            ));
-        }
-        out!("  {name:<18} {}", row.join("  "));
-    }
-    out!("Square 4 × 25 m, loop-closure error:");
-    let sim = scenarios::square(25.0).generate();
-    for (name, m) in methods {
-        for (oname, o) in [
-            ("OS", OrientationSource::Os),
-            ("Madgwick", OrientationSource::MADGWICK),
-        ] {
-            let cfg = PipelineConfig {
-                orientation: o,
-                ..PipelineConfig::with_heading(m)
-            };
-            let r = replay(cfg, &sim.records).unwrap();
-            let last = r.pipeline.track().last().copied();
-            let c = last.map_or(f64::NAN, |l| libm::hypot(l.east_m, l.north_m));
-            out!(
-                "  {name:<18} {oname:<9} {c:.2} m ({:.2} % of {:.0} m)",
-                100.0 * c / sim.truth.distance_m,
-                sim.truth.distance_m
-            );
-        }
-    }
-}
-
-fn bench(minutes: f64, repeats: usize) {
-    let t = Instant::now();
-    let sim = scenarios::long_walk(minutes).generate();
-    let n = sim.records.len();
-    out!(
-        "simulated {n} IMU samples ({minutes} min at 100 Hz) in {:.2} s",
-        t.elapsed().as_secs_f64()
-    );
-    let configs = [
-        (
-            "default: OS orientation, PLL, tip-to-tail 2016",
-            PipelineConfig::default(),
-        ),
-        (
-            "OS, PLL, closed form 2021",
-            PipelineConfig::with_heading(HeadingMethod::ClosedForm2021),
-        ),
-        (
-            "OS, PLL, PCA",
-            PipelineConfig::with_heading(HeadingMethod::Pca),
-        ),
-        (
-            "Madgwick (MARG), PLL, tip-to-tail",
-            PipelineConfig {
-                orientation: OrientationSource::MADGWICK,
-                ..Default::default()
-            },
-        ),
-        (
-            "gravity low-pass, PLL (no heading)",
-            PipelineConfig {
-                orientation: OrientationSource::GRAVITY,
-                ..Default::default()
-            },
-        ),
-        (
-            "OS, peak detector, tip-to-tail",
-            PipelineConfig {
-                detector: StepDetectorConfig::Peak(Default::default()),
-                ..Default::default()
-            },
-        ),
-    ];
-    let imu: Vec<Record> = sim.records;
-    for (name, cfg) in configs {
-        let mut best = f64::INFINITY;
-        let mut steps = 0;
-        for _ in 0..repeats.max(1) {
-            let t = Instant::now();
-            let r = replay(cfg.clone(), &imu).unwrap();
-            best = best.min(t.elapsed().as_secs_f64());
-            steps = r.pipeline.track().len();
-        }
-        out!(
-            "{:>7.2} M samples/s  {name}  ({steps} steps)",
-            n as f64 / best / 1e6
-        );
-    }
-    bench_parse(&imu, repeats);
-}
-
-/// Import throughput: a pdr-log of at least 60 MB, built from the simulated walk, read through
-/// the import layer (format detection, streaming parse, records) from memory.
-fn bench_parse(records: &[Record], repeats: usize) {
-    let mut text = pdrlog::preamble();
-    let lines: Vec<String> = records.iter().map(pdrlog::line).collect();
-    let span = match (records.first(), records.last()) {
-        (Some(Record::Imu(a)), Some(Record::Imu(b))) => b.t - a.t + 0.01,
-        _ => 0.0,
-    };
-    let mut copy = 0;
-    'fill: loop {
-        // Later copies continue the clock, so the log stays in time order.
-        for (r, l) in records.iter().zip(&lines) {
-            if text.len() >= 60_000_000 {
-                break 'fill;
-            }
-            match r {
-                Record::Imu(s) if copy > 0 => {
-                    let mut s = *s;
-                    s.t += span * copy as f64;
-                    text.push_str(&pdrlog::line(&Record::Imu(s)));
-                }
-                _ => text.push_str(l),
-            }
-        }
-        copy += 1;
-    }
-    let bytes = text.into_bytes();
-    let mb = bytes.len() as f64 / 1e6;
-    let mut set = pdr::io::import::MemSet::new(vec![("bench.pdrlog".into(), bytes)]);
-    let mut best = f64::INFINITY;
-    let mut n = 0;
-    for _ in 0..repeats.clamp(1, 3) {
-        let t = Instant::now();
-        let logs = pdr::io::import::import_all(&mut set);
-        best = best.min(t.elapsed().as_secs_f64());
-        n = logs.iter().flatten().map(|l| l.records.len()).sum();
-    }
-    out!(
-        "{:>7.2} s  to import a {mb:.1} MB pdr-log ({n} records, {:.0} MB/s)",
-        best,
-        mb / best
-    );
 }

@@ -1,5 +1,6 @@
 //! The `pdr` command-line tool. It is native only: built for wasm32 (as `cargo test --target
 //! wasm32-unknown-unknown` does for every target) it is an empty program.
+//! Here: the `out!` macro and the modules; `cli` parses the command line and dispatches.
 
 /// `println!` that ends the program quietly when standard output is closed (`pdr … | head`)
 /// instead of panicking, as command-line tools do.
@@ -18,9 +19,21 @@ macro_rules! out {
 }
 
 #[cfg(not(target_arch = "wasm32"))]
+mod bench;
+#[cfg(not(target_arch = "wasm32"))]
 mod cli;
 #[cfg(not(target_arch = "wasm32"))]
+mod demo;
+#[cfg(not(target_arch = "wasm32"))]
+mod eval;
+#[cfg(not(target_arch = "wasm32"))]
+mod run;
+#[cfg(not(target_arch = "wasm32"))]
 mod serve;
+#[cfg(not(target_arch = "wasm32"))]
+mod simcheck;
+#[cfg(not(target_arch = "wasm32"))]
+mod simulate;
 
 #[cfg(not(target_arch = "wasm32"))]
 fn main() -> std::process::ExitCode {

@@ -1,4 +1,5 @@
 //! `pdr serve`: the development server.
+//! May import: std and the server crates; not the `pdr` library, nor the other subcommands.
 //!
 //! Serves a static folder (the built site) over plain HTTP on localhost and over HTTPS on all
 //! interfaces, so that a phone on the same network can open it: browsers expose DeviceMotion and

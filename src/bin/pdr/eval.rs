@@ -1,0 +1,136 @@
+//! `pdr eval`: runs the engine on every log under the paths, scores it against the logs' truth
+//! and prints a table or one JSON object.
+//! May import: the `pdr` library; nothing of the other subcommands.
+
+use pdr::engine::pipeline::PipelineConfig;
+use std::path::PathBuf;
+
+pub fn eval(
+    paths: &[PathBuf],
+    json: bool,
+    sets: &[String],
+    show_config: bool,
+) -> Result<(), String> {
+    use pdr::eval::{evaluate, summarise, LogResult, Report};
+    use pdr::io::import::{import_all, DirSet};
+    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), sets)?;
+    if show_config {
+        out!(
+            "{}",
+            serde_json::to_string_pretty(&cfg).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    let mut logs = Vec::new();
+    for path in paths {
+        let label = path.display().to_string();
+        let mut set = match DirSet::new(path) {
+            Ok(s) => s,
+            Err(e) => {
+                logs.push(LogResult::failed(&label, "", e.to_string()));
+                continue;
+            }
+        };
+        let found = import_all(&mut set);
+        if found.is_empty() {
+            logs.push(LogResult::failed(&label, "", "no recognisable log".into()));
+        }
+        for r in found {
+            logs.push(match r {
+                Ok(log) => evaluate(&log, &cfg),
+                Err(e) => LogResult::failed(&e.file, "", e.to_string()),
+            });
+        }
+    }
+    let summary = summarise(&logs);
+    let report = Report { logs, summary };
+    if json {
+        out!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+        return Ok(());
+    }
+    print_report(&report);
+    Ok(())
+}
+
+fn print_report(report: &pdr::eval::Report) {
+    let opt = |v: Option<f64>, prec: usize| v.map_or("-".to_string(), |x| format!("{x:.prec$}"));
+    out!(
+        "{:<44} {:<15} {:>8} {:>7} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
+        "log",
+        "format",
+        "samples",
+        "dur s",
+        "steps",
+        "truth",
+        "err %",
+        "wps",
+        "p75 m",
+        "final m",
+        "loop m"
+    );
+    for l in &report.logs {
+        let mut path = l.path.clone();
+        if path.chars().count() > 44 {
+            path = format!(
+                "…{}",
+                path.chars()
+                    .rev()
+                    .take(43)
+                    .collect::<Vec<_>>()
+                    .into_iter()
+                    .rev()
+                    .collect::<String>()
+            );
+        }
+        if let Some(e) = &l.error {
+            out!("{path:<44} {:<15} error: {e}", l.format);
+            continue;
+        }
+        out!(
+            "{path:<44} {:<15} {:>8} {:>7.1} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
+            l.format,
+            l.samples,
+            l.duration_s,
+            l.steps,
+            l.truth_steps.map_or("-".into(), |t| t.to_string()),
+            opt(l.step_error_pct, 2),
+            l.waypoints,
+            opt(l.waypoint_error_m.map(|w| w.p75), 1),
+            opt(l.waypoint_error_m.map(|w| w.r#final), 1),
+            opt(l.loop_closure_m, 1),
+        );
+    }
+    for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
+        out!(
+            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m",
+            l.path.rsplit('/').next().unwrap_or(&l.path),
+            opt(l.gnss_error_m.map(|e| e.p75), 2),
+            opt(l.fused_error_m.map(|e| e.p75), 2),
+            opt(l.smoothed_error_m.map(|e| e.p75), 2)
+        );
+    }
+    let s = &report.summary;
+    if !s.step_mae_by_group.is_empty() {
+        out!();
+        for (g, v) in &s.step_mae_by_group {
+            out!(
+                "{g:<16} {:>3} logs  step MAE {:>5.2} %  (debounced truth {} %)",
+                v.logs,
+                v.mae_pct,
+                opt(v.mae_debounced_pct, 2)
+            );
+        }
+    }
+    out!(
+        "\n{} logs, {} failed; step MAE {} % (debounced truth {} %); waypoint p75 {} m ({} % of the path walked)",
+        s.logs,
+        s.failed,
+        opt(s.step_mae_pct, 2),
+        opt(s.step_mae_debounced_pct, 2),
+        opt(s.waypoint_p75_m, 2),
+        opt(s.waypoint_p75_pct, 1)
+    );
+}

@@ -1,0 +1,128 @@
+//! `pdr run`: replays one log of any format, prints a summary and writes the track files.
+//! May import: the `pdr` library; nothing of the other subcommands.
+
+use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::io::export;
+use std::path::Path;
+
+pub fn run(file: &Path, outputs: Outputs, cfg: PipelineConfig) -> Result<(), String> {
+    let name = file.display().to_string();
+    let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
+    let mut logs = pdr::io::import::import_all(&mut set);
+    let parsed = match logs.len() {
+        0 => return Err(format!("{name}: no recognisable log (see README, Import)")),
+        1 => logs.pop().expect("one log").map_err(|e| e.to_string())?,
+        n => {
+            return Err(format!(
+                "{name} holds {n} logs; give one of them, or use `pdr eval`"
+            ))
+        }
+    };
+    let shown = parsed.warnings.len().min(10);
+    for e in &parsed.warnings[..shown] {
+        eprintln!("warning: {e} (line skipped)");
+    }
+    if parsed.skipped > shown as u64 {
+        eprintln!(
+            "warning: {} more lines skipped",
+            parsed.skipped - shown as u64
+        );
+    }
+    let r = replay(cfg, &parsed.records).map_err(|e| e.to_string())?;
+    for (i, e) in r.errors.iter().take(10) {
+        eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
+    }
+    if r.refused > 10 {
+        eprintln!("warning: {name}: {} more records refused", r.refused - 10);
+    }
+    let p = &r.pipeline;
+    let d = p.diagnostics();
+    let track = p.track();
+    let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
+    out!("file          {name}");
+    out!("format        {}", parsed.format.as_str());
+    out!(
+        "records       {} ({} lines skipped, {} records refused)",
+        parsed.records.len(),
+        parsed.skipped,
+        r.refused
+    );
+    out!("orientation   {:?}", d.orientation);
+    out!("duration      {:.1} s", t1 - t0);
+    out!("steps         {}", track.len());
+    out!("distance      {:.1} m", d.distance_m);
+    if let Some(last) = track.last() {
+        out!("final east    {:.1} m", last.east_m);
+        out!("final north   {:.1} m", last.north_m);
+    }
+    out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
+    if d.steps_without_heading > 0 {
+        out!(
+            "no heading    {} steps (orientation source gives no heading)",
+            d.steps_without_heading
+        );
+    }
+    if let Some(fr) = p.frame() {
+        out!(
+            "origin        {:.7}, {:.7} (first usable GNSS fix)",
+            fr.lat0_deg,
+            fr.lon0_deg
+        );
+    }
+    let fused = p.fused();
+    let smoothed = p.smoothed();
+    if let (Some(c), Some(last)) = (d.fix_counts, fused.last()) {
+        out!(
+            "fused         {} steps; fixes used {}, gated {}, too inaccurate {}, stale {}, receiver off {}, resets {}",
+            fused.len(),
+            c.used,
+            c.gated,
+            c.too_inaccurate,
+            c.stale,
+            c.receiver_off,
+            c.resets
+        );
+        out!(
+            "corrections   step length × {:.3}, heading {:+.1}° (declination {:+.2}°{})",
+            last.scale,
+            last.bias_rad.to_degrees(),
+            d.declination_deg.unwrap_or(0.0),
+            d.declination_note
+                .as_deref()
+                .map_or(String::new(), |n| format!("; {n}"))
+        );
+        if let Some((on, span)) = d.gnss_on_s {
+            out!("gnss on       {on:.0} s of {span:.0} s");
+        }
+    }
+    if let Some(out) = outputs.track {
+        std::fs::write(out, export::track_csv(track, p.frame()))
+            .map_err(|e| format!("{}: {e}", out.display()))?;
+        out!("track         {}", out.display());
+    }
+    if let Some(out) = outputs.geojson {
+        let mut doc = export::track_geojson(track, p.frame());
+        if let (Some(fr), Some(features)) = (p.frame(), doc["features"].as_array_mut()) {
+            features.extend(export::fusion_features(p.fixes(), fused, &smoothed, fr));
+        }
+        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
+        std::fs::write(out, text).map_err(|e| format!("{}: {e}", out.display()))?;
+        out!("geojson       {}", out.display());
+    }
+    if let Some(out) = outputs.fused {
+        let fr = p
+            .frame()
+            .ok_or_else(|| format!("{name}: no usable GNSS fix, so no fused track to write"))?;
+        std::fs::write(out, export::fused_csv(fused, &smoothed, fr))
+            .map_err(|e| format!("{}: {e}", out.display()))?;
+        out!("fused track   {}", out.display());
+    }
+    Ok(())
+}
+
+/// Where `pdr run` writes its files.
+pub struct Outputs<'a> {
+    pub track: Option<&'a Path>,
+    pub geojson: Option<&'a Path>,
+    pub fused: Option<&'a Path>,
+}
