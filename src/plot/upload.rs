@@ -1,37 +1,11 @@
 //! Upload mode's plots of an [`Analysis`]: the map (zoomable), the time-aligned diagnostics,
 //! and the horizontal-acceleration ellipse of one stride (Basso 2016 Fig. 5).
 
+pub use super::MapFrame;
 use super::{legend, map_chart_in, north_and_scale, start_end, tick, Mark, Theme};
 use crate::analysis::Analysis;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-
-/// Where a map was drawn: the plotting area in pixels and the metres it shows, to turn a
-/// pointer position into metres (hover, zoom, pan).
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
-pub struct MapFrame {
-    /// Plotting area, pixels: left, right, top, bottom.
-    pub px: (i32, i32, i32, i32),
-    /// Metres shown: min east, max east, min north, max north.
-    pub m: (f64, f64, f64, f64),
-}
-
-impl MapFrame {
-    /// The point (east, north) under pixel (x, y).
-    pub fn to_metres(&self, x: f64, y: f64) -> (f64, f64) {
-        let (l, r, t, b) = self.px;
-        let (e0, e1, n0, n1) = self.m;
-        (
-            e0 + (x - l as f64) / (r - l).max(1) as f64 * (e1 - e0),
-            n1 - (y - t as f64) / (b - t).max(1) as f64 * (n1 - n0),
-        )
-    }
-
-    /// Metres per pixel.
-    pub fn metres_per_px(&self) -> f64 {
-        (self.m.1 - self.m.0) / (self.px.1 - self.px.0).max(1) as f64
-    }
-}
 
 /// The PDR track's points in the map's frame (the fixes' frame when there are fixes).
 pub fn pdr_points(a: &Analysis) -> Vec<(f64, f64)> {
