@@ -20,7 +20,6 @@ pub mod upload;
 pub(crate) mod raster;
 
 pub use calibration::draw_calibration;
-pub(crate) use frame::{legend, map_chart_in, north_and_scale, start_end, tick, Mark};
 pub use frame::{scale_bar_length, MapFrame};
 pub use fusion::{draw_fusion, FusionView};
 pub use live::{draw_live, LiveView};
