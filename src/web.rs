@@ -913,30 +913,14 @@ impl AnalysisView {
 
     /// The step nearest to canvas pixel (x, y) on the last map, within `radius` pixels.
     pub fn pick(&self, x: f64, y: f64, radius: f64) -> Option<usize> {
-        let f = self.frame.get();
-        let (e, n) = f.to_metres(x, y);
-        let r = radius * f.metres_per_px();
-        (0..self.a.steps.len())
-            .filter_map(|i| {
-                self.a
-                    .step_position(i)
-                    .map(|p| (i, libm::hypot(p.0 - e, p.1 - n)))
-            })
-            .filter(|(_, d)| *d <= r)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(i, _)| i)
+        crate::plot::upload::pick_step(&self.a, &self.frame.get(), x, y, radius)
     }
 
     /// Canvas pixel `[x, y]` of step `i` on the last map drawn.
     pub fn step_pixel(&self, i: usize) -> Option<Vec<f64>> {
         let (e, n) = self.a.step_position(i)?;
-        let f = self.frame.get();
-        let (l, r, t, b) = f.px;
-        let (e0, e1, n0, n1) = f.m;
-        Some(vec![
-            l as f64 + (e - e0) / (e1 - e0) * (r - l) as f64,
-            t as f64 + (n1 - n) / (n1 - n0) * (b - t) as f64,
-        ])
+        let (x, y) = self.frame.get().to_pixel(e, n);
+        Some(vec![x, y])
     }
 
     /// The step nearest to time `t` (s, the log's clock).

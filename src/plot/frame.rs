@@ -293,6 +293,16 @@ impl MapFrame {
     pub fn metres_per_px(&self) -> f64 {
         (self.m.1 - self.m.0) / (self.px.1 - self.px.0).max(1) as f64
     }
+
+    /// The pixel (x, y) of the point (east, north).
+    pub fn to_pixel(&self, e: f64, n: f64) -> (f64, f64) {
+        let (l, r, t, b) = self.px;
+        let (e0, e1, n0, n1) = self.m;
+        (
+            l as f64 + (e - e0) / (e1 - e0) * (r - l) as f64,
+            t as f64 + (n1 - n) / (n1 - n0) * (b - t) as f64,
+        )
+    }
 }
 
 #[cfg(test)]
@@ -312,6 +322,28 @@ mod tests {
         let (x0, x1, y0, y1) = equal_aspect([(3.0, 4.0)].into_iter(), 400.0, 300.0);
         assert!(x1 - x0 >= 10.0 && y1 - y0 >= 10.0, "{x0} {x1} {y0} {y1}");
         assert!(((x0 + x1) / 2.0 - 3.0).abs() < 1e-9 && ((y0 + y1) / 2.0 - 4.0).abs() < 1e-9);
+    }
+
+    /// A 400 × 300 pixel plotting area at (40, 10) showing 200 m × 150 m.
+    const FRAME: MapFrame = MapFrame {
+        px: (40, 440, 10, 310),
+        m: (-100.0, 100.0, -50.0, 100.0),
+    };
+
+    #[test]
+    fn pixels_and_metres_are_inverse() {
+        assert_eq!(FRAME.to_metres(40.0, 10.0), (-100.0, 100.0));
+        assert_eq!(FRAME.to_metres(440.0, 310.0), (100.0, -50.0));
+        assert_eq!(FRAME.to_pixel(0.0, 0.0), (240.0, 210.0));
+        assert_eq!(FRAME.metres_per_px(), 0.5);
+        for (x, y) in [(0.0, 0.0), (123.25, 77.5), (440.0, 310.0), (-20.0, 500.0)] {
+            let (e, n) = FRAME.to_metres(x, y);
+            let (x1, y1) = FRAME.to_pixel(e, n);
+            assert!(
+                (x1 - x).abs() < 1e-9 && (y1 - y).abs() < 1e-9,
+                "{x} {y}: {x1} {y1}"
+            );
+        }
     }
 
     #[test]

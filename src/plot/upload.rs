@@ -11,7 +11,7 @@ mod plots;
 
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
-pub use map::{draw_map, pdr_points};
+pub use map::{draw_map, pdr_points, pick_step};
 pub use plots::{draw_plot, Plot};
 
 #[cfg(test)]

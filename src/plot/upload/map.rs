@@ -15,6 +15,20 @@ pub fn pdr_points(a: &Analysis) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The step nearest to pixel (x, y) on a map drawn in `frame`, within `radius` pixels.
+pub fn pick_step(a: &Analysis, frame: &MapFrame, x: f64, y: f64, radius: f64) -> Option<usize> {
+    let (e, n) = frame.to_metres(x, y);
+    let r = radius * frame.metres_per_px();
+    (0..a.steps.len())
+        .filter_map(|i| {
+            a.step_position(i)
+                .map(|p| (i, libm::hypot(p.0 - e, p.1 - n)))
+        })
+        .filter(|(_, d)| *d <= r)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, _)| i)
+}
+
 /// Draws the map of an analysis: the PDR track, the fixes with accuracy circles, the fused and
 /// smoothed tracks, the truth, start and end, the `highlight`ed step, a legend, a north arrow
 /// and a scale bar; `bounds` zooms (None fits everything). Returns where it drew.
@@ -138,4 +152,42 @@ pub fn draw_map<DB: DrawingBackend>(
         px: (rx.start, rx.end, ry.start, ry.end),
         m: (xr.start, xr.end, yr.start, yr.end),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn picks_the_step_under_the_pointer() {
+        let mut log = crate::io::import::Log::new("demo.pdrlog", crate::io::import::Format::PdrLog);
+        log.records = crate::sim::scenarios::demo_walk().generate().records;
+        let a = crate::analysis::analyse(&log, &Default::default(), &mut |_, _| {}).unwrap();
+        // 1 m per pixel about the walk.
+        let frame = MapFrame {
+            px: (0, 400, 0, 300),
+            m: (-200.0, 200.0, -150.0, 150.0),
+        };
+        let mpp = frame.metres_per_px();
+        for i in [0, a.steps.len() / 2, a.steps.len() - 1] {
+            let (e, n) = a.step_position(i).unwrap();
+            let (x, y) = frame.to_pixel(e, n);
+            let picked = pick_step(&a, &frame, x, y, 12.0).unwrap();
+            let p = a.step_position(picked).unwrap();
+            assert!(
+                libm::hypot(p.0 - e, p.1 - n) < 1e-9,
+                "step {i}: picked {picked}"
+            );
+            // Off by 5 pixels, the pick is the nearest step, within the radius.
+            let picked = pick_step(&a, &frame, x + 5.0, y, 12.0).unwrap();
+            let (pe, pn) = a.step_position(picked).unwrap();
+            let d = libm::hypot(pe - (e + 5.0 * mpp), pn - n);
+            assert!(
+                d <= 5.0 * mpp + 1e-9 && d <= 12.0 * mpp,
+                "step {i}: {picked} at {d} m"
+            );
+        }
+        // Nothing within 12 pixels of a corner far from the walk.
+        assert_eq!(pick_step(&a, &frame, 0.0, 0.0, 12.0), None);
+    }
 }
