@@ -923,6 +923,37 @@ impl AnalysisView {
         Some(vec![x, y])
     }
 
+    /// The wheel turned by `delta_y` (the wheel event's) at canvas pixel (x, y) of the last map:
+    /// the bounds `[min_e, max_e, min_n, max_n]` zoomed about that point, for [`Self::draw_map`].
+    pub fn map_wheel(&self, x: f64, y: f64, delta_y: f64) -> Vec<f64> {
+        let f = crate::plot::wheel_factor(delta_y);
+        let (e0, e1, n0, n1) = self.frame.get().zoomed(x, y, f);
+        vec![e0, e1, n0, n1]
+    }
+
+    /// A pinch on the last map: one pointer moved from canvas pixel (prev_x, prev_y) to (x, y)
+    /// while the other stays at (other_x, other_y). The bounds zoomed about their middle, or
+    /// nothing when two of the points coincide.
+    pub fn map_pinch(
+        &self,
+        prev_x: f64,
+        prev_y: f64,
+        x: f64,
+        y: f64,
+        other_x: f64,
+        other_y: f64,
+    ) -> Option<Vec<f64>> {
+        let f = self.frame.get();
+        let (e0, e1, n0, n1) = f.pinched((prev_x, prev_y), (x, y), (other_x, other_y))?;
+        Some(vec![e0, e1, n0, n1])
+    }
+
+    /// A drag of (dx, dy) canvas pixels on the last map: the bounds panned with the pointer.
+    pub fn map_pan(&self, dx: f64, dy: f64) -> Vec<f64> {
+        let (e0, e1, n0, n1) = self.frame.get().panned(dx, dy);
+        vec![e0, e1, n0, n1]
+    }
+
     /// The step nearest to time `t` (s, the log's clock).
     pub fn step_near_time(&self, t: f64) -> Option<usize> {
         self.a.step_near_time(t)

@@ -348,14 +348,13 @@ function wireMap(l, tag, cv) {
     const dpr = cv.width / r.width;
     return [(e.clientX - r.left) * dpr, (e.clientY - r.top) * dpr, dpr];
   };
-  const zoom = (x, y, factor) => {
-    const v = l.views[tag];
-    const [e0, e1, n0, n1] = v.map_view();
-    const [e, n] = v.to_metres(x, y);
-    l.bounds = [e - (e - e0) * factor, e + (e1 - e) * factor, n - (n - n0) * factor, n + (n1 - n) * factor];
+  // New bounds from the engine (none when a pinch has nothing to zoom by), then redraw.
+  const setBounds = (bounds) => {
+    if (!bounds) return;
+    l.bounds = bounds;
     drawAll(l);
   };
-  cv.addEventListener('wheel', (e) => { e.preventDefault(); const [x, y] = pos(e); zoom(x, y, e.deltaY > 0 ? 1.25 : 0.8); }, { passive: false });
+  cv.addEventListener('wheel', (e) => { e.preventDefault(); const [x, y] = pos(e); setBounds(l.views[tag].map_wheel(x, y, e.deltaY)); }, { passive: false });
   cv.addEventListener('dblclick', () => { l.bounds = null; drawAll(l); });
   cv.addEventListener('pointerdown', (e) => {
     cv.setPointerCapture(e.pointerId);
@@ -377,16 +376,10 @@ function wireMap(l, tag, cv) {
     if (pointers.size === 2) {
       const [a, b] = [...pointers.values()];
       const other = a === p ? b : a;
-      const d0 = Math.hypot(prev[0] - other[0], prev[1] - other[1]);
-      const d1 = Math.hypot(p[0] - other[0], p[1] - other[1]);
-      if (d0 > 0 && d1 > 0) zoom((p[0] + other[0]) / 2, (p[1] + other[1]) / 2, d0 / d1);
+      setBounds(v.map_pinch(prev[0], prev[1], p[0], p[1], other[0], other[1]));
     } else if (pointers.size === 1 && Math.hypot(p[0] - prev[0], p[1] - prev[1]) > 0.5) {
       drag.moved = true;
-      const [e0, e1, n0, n1, mpp] = v.map_view();
-      const de = (p[0] - prev[0]) * mpp;
-      const dn = (p[1] - prev[1]) * mpp;
-      l.bounds = [e0 - de, e1 - de, n0 + dn, n1 + dn];
-      drawAll(l);
+      setBounds(v.map_pan(p[0] - prev[0], p[1] - prev[1]));
     }
   });
   const up = (e) => {

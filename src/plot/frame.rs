@@ -268,6 +268,16 @@ pub(crate) fn legend<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The zoom factor of one turn of the wheel (`delta_y` as the browser's wheel event gives it):
+/// out by 1.25 when it turns down, else in by 0.8.
+pub fn wheel_factor(delta_y: f64) -> f64 {
+    if delta_y > 0.0 {
+        1.25
+    } else {
+        0.8
+    }
+}
+
 /// Where a map was drawn: the plotting area in pixels and the metres it shows, to turn a
 /// pointer position into metres (hover, zoom, pan).
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -302,6 +312,43 @@ impl MapFrame {
             l as f64 + (e - e0) / (e1 - e0) * (r - l) as f64,
             t as f64 + (n1 - n) / (n1 - n0) * (b - t) as f64,
         )
+    }
+
+    /// The bounds (min_e, max_e, min_n, max_n) zoomed by `factor` (above 1 out, below 1 in)
+    /// about the point under pixel (x, y), which stays under it.
+    pub fn zoomed(&self, x: f64, y: f64, factor: f64) -> (f64, f64, f64, f64) {
+        let (e0, e1, n0, n1) = self.m;
+        let (e, n) = self.to_metres(x, y);
+        (
+            e - (e - e0) * factor,
+            e + (e1 - e) * factor,
+            n - (n - n0) * factor,
+            n + (n1 - n) * factor,
+        )
+    }
+
+    /// A pinch: one pointer moved from pixel `prev` to `now` while the other stays at `other`.
+    /// The bounds zoomed about the pointers' middle by the ratio of their distances, or None
+    /// when two of the points coincide.
+    pub fn pinched(
+        &self,
+        prev: (f64, f64),
+        now: (f64, f64),
+        other: (f64, f64),
+    ) -> Option<(f64, f64, f64, f64)> {
+        let d0 = libm::hypot(prev.0 - other.0, prev.1 - other.1);
+        let d1 = libm::hypot(now.0 - other.0, now.1 - other.1);
+        (d0 > 0.0 && d1 > 0.0)
+            .then(|| self.zoomed((now.0 + other.0) / 2.0, (now.1 + other.1) / 2.0, d0 / d1))
+    }
+
+    /// The bounds after a drag of (dx, dy) pixels: the map follows the pointer.
+    pub fn panned(&self, dx: f64, dy: f64) -> (f64, f64, f64, f64) {
+        let (e0, e1, n0, n1) = self.m;
+        let mpp = self.metres_per_px();
+        let de = dx * mpp;
+        let dn = dy * mpp;
+        (e0 - de, e1 - de, n0 + dn, n1 + dn)
     }
 }
 
@@ -344,6 +391,62 @@ mod tests {
                 "{x} {y}: {x1} {y1}"
             );
         }
+    }
+
+    // The expected bounds are what the page's own JavaScript computed for the same gestures.
+    #[test]
+    fn wheel_zooms_about_the_pointer() {
+        assert_eq!(wheel_factor(100.0), 1.25);
+        assert_eq!(wheel_factor(-100.0), 0.8);
+        assert_eq!(
+            FRAME.zoomed(140.0, 60.0, 1.25),
+            (-112.5, 137.5, -81.25, 106.25)
+        );
+        assert_eq!(FRAME.zoomed(140.0, 60.0, 0.8), (-90.0, 70.0, -25.0, 95.0));
+        assert_eq!(
+            FRAME.zoomed(373.5, 222.25, 0.8),
+            (-66.65, 93.35, -41.225, 78.775)
+        );
+        // The point under the pointer stays under it.
+        let (x0, x1, y0, y1) = FRAME.zoomed(373.5, 222.25, 0.8);
+        let zoomed = MapFrame {
+            m: (x0, x1, y0, y1),
+            ..FRAME
+        };
+        let (a, b) = (
+            FRAME.to_metres(373.5, 222.25),
+            zoomed.to_metres(373.5, 222.25),
+        );
+        assert!((a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9);
+    }
+
+    #[test]
+    fn pinch_zooms_about_the_middle() {
+        let apart = FRAME.pinched((100.0, 100.0), (80.0, 90.0), (300.0, 200.0));
+        let js = (
+            -93.18181818181817,
+            88.63636363636363,
+            -42.5,
+            93.86363636363636,
+        );
+        let (a, b) = (apart.unwrap(), js);
+        for (x, y) in [(a.0, b.0), (a.1, b.1), (a.2, b.2), (a.3, b.3)] {
+            assert!((x - y).abs() < 1e-12, "{a:?} {b:?}");
+        }
+        assert_eq!(
+            FRAME.pinched((100.0, 120.0), (160.0, 200.0), (400.0, 520.0)),
+            Some((-130.0, 120.0, -43.75, 143.75))
+        );
+        assert_eq!(
+            FRAME.pinched((300.0, 200.0), (80.0, 90.0), (300.0, 200.0)),
+            None
+        );
+    }
+
+    #[test]
+    fn drag_pans_with_the_pointer() {
+        assert_eq!(FRAME.panned(30.0, -10.0), (-115.0, 85.0, -55.0, 95.0));
+        assert_eq!(FRAME.panned(-0.75, 1.5), (-99.625, 100.375, -49.25, 100.75));
     }
 
     #[test]

@@ -20,7 +20,7 @@ pub mod upload;
 pub(crate) mod raster;
 
 pub use calibration::draw_calibration;
-pub use frame::{scale_bar_length, MapFrame};
+pub use frame::{scale_bar_length, wheel_factor, MapFrame};
 pub use fusion::{draw_fusion, FusionView};
 pub use live::{draw_live, LiveView};
 pub use scope::{draw_scope, ScopePoint};
