@@ -1002,6 +1002,63 @@ impl AnalysisView {
         .map(|(left, right)| vec![f64::from(left), f64::from(right)])
     }
 
+    /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.
+    /// `span` is the `[t0, t1]` shown, `full` the whole log's, `axis` the `[left, right]` of the
+    /// time axis (the columns [`Self::draw_plot`] returned, divided by the pixel ratio).
+    pub fn axis_time_at(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        x: f64,
+    ) -> Result<f64, JsError> {
+        Ok(Self::time_axis(span, full, axis)?.time_at(x))
+    }
+
+    /// The wheel turned by `delta_y` at CSS pixel `x` of a plot: the next `[t0, t1]`, zoomed
+    /// about the pointer.
+    pub fn axis_wheel(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        x: f64,
+        delta_y: f64,
+    ) -> Result<Vec<f64>, JsError> {
+        let k = crate::plot::wheel_factor(delta_y);
+        let (t0, t1) = Self::time_axis(span, full, axis)?.zoomed_at(x, k);
+        Ok(vec![t0, t1])
+    }
+
+    /// A pinch on a plot: one finger moved from CSS pixel `prev` to `x` while the other stays at
+    /// `other`. The next `[t0, t1]`, or nothing while the fingers are too close.
+    pub fn axis_pinch(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        prev: f64,
+        x: f64,
+        other: f64,
+    ) -> Result<Option<Vec<f64>>, JsError> {
+        let next = Self::time_axis(span, full, axis)?.pinched(prev, x, other);
+        Ok(next.map(|(t0, t1)| vec![t0, t1]))
+    }
+
+    /// A drag on a plot from CSS pixel `from` to `x`, `span` being the one shown when the drag
+    /// began: the next `[t0, t1]`.
+    pub fn axis_pan(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        from: f64,
+        x: f64,
+    ) -> Result<Vec<f64>, JsError> {
+        let (t0, t1) = Self::time_axis(span, full, axis)?.panned(from, x);
+        Ok(vec![t0, t1])
+    }
+
     /// Draws the stride ellipse ending at step `k`.
     pub fn draw_ellipse(
         &self,
@@ -1028,5 +1085,27 @@ impl AnalysisView {
     /// One row per step, CSV.
     pub fn steps_csv(&self) -> String {
         crate::io::export::track_csv(&self.a.steps, self.a.frame().as_ref())
+    }
+}
+
+impl AnalysisView {
+    /// The plots' time axis from the page's `span`, `full` and `axis`, two numbers each.
+    fn time_axis(
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+    ) -> Result<crate::plot::upload::TimeAxis, JsError> {
+        let pair = |v: &[f64], name: &str| match *v {
+            [a, b] => Ok((a, b)),
+            _ => Err(JsError::new(&format!(
+                "`{name}` needs two numbers, not {}",
+                v.len()
+            ))),
+        };
+        Ok(crate::plot::upload::TimeAxis {
+            span: pair(span, "span")?,
+            full: pair(full, "full")?,
+            px: pair(axis, "axis")?,
+        })
     }
 }

@@ -402,23 +402,19 @@ function wirePlots(l) {
     cv.dataset.wired = '1';
     const pointers = new Map(); // pointerId → clientX
     let drag = null;
-    // The fraction of the time axis at a client x, from where the engine drew the axis.
-    const fraction = (x) => {
-      const r = cv.getBoundingClientRect();
-      const [left, right] = cv.axis ?? [0, r.width];
-      return (x - r.left - left) / Math.max(right - left, 1);
-    };
-    const timeAt = (x) => l.span[0] + Math.min(1, Math.max(0, fraction(x))) * (l.span[1] - l.span[0]);
-    // Zooms by `k` keeping time `t` at the fraction `f` of the axis.
-    const zoom = (t, f, k) => {
-      const span = Math.min(l.full[1] - l.full[0], Math.max(1, (l.span[1] - l.span[0]) * k));
-      const t0 = Math.min(Math.max(l.full[0], t - f * span), l.full[1] - span);
-      l.span = [t0, t0 + span];
+    // A client x in CSS pixels from the canvas's left edge, and where the engine drew the axis.
+    const at = (x) => x - cv.getBoundingClientRect().left;
+    const axis = () => cv.axis ?? [0, cv.getBoundingClientRect().width];
+    const timeAt = (x) => l.views.a.axis_time_at(l.span, l.full, axis(), at(x));
+    // A new span from the engine (none when a pinch has nothing to zoom by), then redraw.
+    const setSpan = (span) => {
+      if (!span) return;
+      l.span = span;
       drawPlots(l);
     };
     cv.addEventListener('wheel', (e) => {
       e.preventDefault();
-      zoom(timeAt(e.clientX), Math.min(1, Math.max(0, fraction(e.clientX))), e.deltaY > 0 ? 1.25 : 0.8);
+      setSpan(l.views.a.axis_wheel(l.span, l.full, axis(), at(e.clientX), e.deltaY));
     }, { passive: false });
     cv.addEventListener('dblclick', () => { l.span = [...l.full]; drawPlots(l); });
     cv.addEventListener('pointerdown', (e) => {
@@ -431,23 +427,15 @@ function wirePlots(l) {
       const prev = pointers.get(e.pointerId);
       pointers.set(e.pointerId, e.clientX);
       if (pointers.size === 2) {
-        // Pinch: the time under the two fingers' middle stays put; the span scales with their
-        // distance.
+        // Pinch (see TimeAxis::pinched).
         const other = [...pointers.entries()].find(([id]) => id !== e.pointerId)[1];
-        const d0 = Math.abs(prev - other);
-        const d1 = Math.abs(e.clientX - other);
-        const mid = (prev + other) / 2;
-        if (d0 > 4 && d1 > 4) zoom(timeAt(mid), Math.min(1, Math.max(0, fraction((e.clientX + other) / 2))), d0 / d1);
+        setSpan(l.views.a.axis_pinch(l.span, l.full, axis(), at(prev), at(e.clientX), at(other)));
         return;
       }
       if (!drag) return;
       if (Math.abs(e.clientX - drag.x) > 3) drag.moved = true;
       if (!drag.moved) return;
-      const w = drag.span[1] - drag.span[0];
-      const dt = -(fraction(e.clientX) - fraction(drag.x)) * w;
-      const t0 = Math.min(Math.max(l.full[0], drag.span[0] + dt), l.full[1] - w);
-      l.span = [t0, t0 + w];
-      drawPlots(l);
+      setSpan(l.views.a.axis_pan(drag.span, l.full, axis(), at(drag.x), at(e.clientX)));
     });
     const up = (e) => {
       pointers.delete(e.pointerId);

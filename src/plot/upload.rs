@@ -12,7 +12,7 @@ mod plots;
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
 pub use map::{draw_map, pdr_points, pick_step};
-pub use plots::{draw_plot, Plot};
+pub use plots::{draw_plot, Plot, TimeAxis};
 
 #[cfg(test)]
 mod tests {
