@@ -1,6 +1,6 @@
 //! Live mode's map: the walk so far, the current position and heading, fixes, gaps.
-//! Imports: the map frame only (plot never imports `web`, `live` or `eval`; the test below
-//! feeds a simulated walk through `crate::live` to get a live map to draw).
+//! Imports: the map frame and the theme; never `web`, `live` or `eval` (only the test below
+//! feeds a simulated walk through `crate::live`, to have a live map to draw).
 
 use super::frame::{legend, map_chart, north_and_scale, Mark};
 use super::theme::Theme;

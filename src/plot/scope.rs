@@ -1,5 +1,5 @@
 //! Live mode's scrolling scope: vertical acceleration, the PLL output and the detected steps.
-//! Imports: the theme and plotters only (plot never imports `web`, `live` or `eval`).
+//! Imports: the theme; never `web`, `live` or `eval`.
 
 use super::theme::Theme;
 use plotters::coord::Shift;

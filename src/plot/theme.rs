@@ -1,5 +1,5 @@
 //! The colour schemes every plot draws with.
-//! Imports: plotters only.
+//! Imports: plotters' colours only; never `web`, `live` or `eval`.
 
 use plotters::prelude::*;
 

@@ -1,4 +1,4 @@
-//! Upload mode's diagnostics plots of an [`Analysis`], all against one time axis.
+//! Upload mode's diagnostics plots of an [`Analysis`] on one time axis, and its zoom and pan.
 //! Imports: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
 
 use crate::analysis::Analysis;
