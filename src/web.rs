@@ -911,30 +911,45 @@ impl AnalysisView {
 
     /// The step nearest to canvas pixel (x, y) on the last map, within `radius` pixels.
     pub fn pick(&self, x: f64, y: f64, radius: f64) -> Option<usize> {
-        let f = self.frame.get();
-        let (e, n) = f.to_metres(x, y);
-        let r = radius * f.metres_per_px();
-        (0..self.a.steps.len())
-            .filter_map(|i| {
-                self.a
-                    .step_position(i)
-                    .map(|p| (i, libm::hypot(p.0 - e, p.1 - n)))
-            })
-            .filter(|(_, d)| *d <= r)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(i, _)| i)
+        crate::plot::upload::pick_step(&self.a, &self.frame.get(), x, y, radius)
     }
 
     /// Canvas pixel `[x, y]` of step `i` on the last map drawn.
     pub fn step_pixel(&self, i: usize) -> Option<Vec<f64>> {
         let (e, n) = self.a.step_position(i)?;
+        let (x, y) = self.frame.get().to_pixel(e, n);
+        Some(vec![x, y])
+    }
+
+    /// The wheel turned by `delta_y` (the wheel event's) at canvas pixel (x, y) of the last map:
+    /// the bounds `[min_e, max_e, min_n, max_n]` zoomed about that point, for [`Self::draw_map`].
+    pub fn map_wheel(&self, x: f64, y: f64, delta_y: f64) -> Vec<f64> {
+        let f = crate::plot::wheel_factor(delta_y);
+        let (e0, e1, n0, n1) = self.frame.get().zoomed(x, y, f);
+        vec![e0, e1, n0, n1]
+    }
+
+    /// A pinch on the last map: one pointer moved from canvas pixel (prev_x, prev_y) to (x, y)
+    /// while the other stays at (other_x, other_y). The bounds zoomed about their middle, or
+    /// nothing when two of the points coincide.
+    pub fn map_pinch(
+        &self,
+        prev_x: f64,
+        prev_y: f64,
+        x: f64,
+        y: f64,
+        other_x: f64,
+        other_y: f64,
+    ) -> Option<Vec<f64>> {
         let f = self.frame.get();
-        let (l, r, t, b) = f.px;
-        let (e0, e1, n0, n1) = f.m;
-        Some(vec![
-            l as f64 + (e - e0) / (e1 - e0) * (r - l) as f64,
-            t as f64 + (n1 - n) / (n1 - n0) * (b - t) as f64,
-        ])
+        let (e0, e1, n0, n1) = f.pinched((prev_x, prev_y), (x, y), (other_x, other_y))?;
+        Some(vec![e0, e1, n0, n1])
+    }
+
+    /// A drag of (dx, dy) canvas pixels on the last map: the bounds panned with the pointer.
+    pub fn map_pan(&self, dx: f64, dy: f64) -> Vec<f64> {
+        let (e0, e1, n0, n1) = self.frame.get().panned(dx, dy);
+        vec![e0, e1, n0, n1]
     }
 
     /// The step nearest to time `t` (s, the log's clock).
@@ -985,6 +1000,63 @@ impl AnalysisView {
         .map(|(left, right)| vec![f64::from(left), f64::from(right)])
     }
 
+    /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.
+    /// `span` is the `[t0, t1]` shown, `full` the whole log's, `axis` the `[left, right]` of the
+    /// time axis (the columns [`Self::draw_plot`] returned, divided by the pixel ratio).
+    pub fn axis_time_at(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        x: f64,
+    ) -> Result<f64, JsError> {
+        Ok(Self::time_axis(span, full, axis)?.time_at(x))
+    }
+
+    /// The wheel turned by `delta_y` at CSS pixel `x` of a plot: the next `[t0, t1]`, zoomed
+    /// about the pointer.
+    pub fn axis_wheel(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        x: f64,
+        delta_y: f64,
+    ) -> Result<Vec<f64>, JsError> {
+        let k = crate::plot::wheel_factor(delta_y);
+        let (t0, t1) = Self::time_axis(span, full, axis)?.zoomed_at(x, k);
+        Ok(vec![t0, t1])
+    }
+
+    /// A pinch on a plot: one finger moved from CSS pixel `prev` to `x` while the other stays at
+    /// `other`. The next `[t0, t1]`, or nothing while the fingers are too close.
+    pub fn axis_pinch(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        prev: f64,
+        x: f64,
+        other: f64,
+    ) -> Result<Option<Vec<f64>>, JsError> {
+        let next = Self::time_axis(span, full, axis)?.pinched(prev, x, other);
+        Ok(next.map(|(t0, t1)| vec![t0, t1]))
+    }
+
+    /// A drag on a plot from CSS pixel `from` to `x`, `span` being the one shown when the drag
+    /// began: the next `[t0, t1]`.
+    pub fn axis_pan(
+        &self,
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+        from: f64,
+        x: f64,
+    ) -> Result<Vec<f64>, JsError> {
+        let (t0, t1) = Self::time_axis(span, full, axis)?.panned(from, x);
+        Ok(vec![t0, t1])
+    }
+
     /// Draws the stride ellipse ending at step `k`.
     pub fn draw_ellipse(
         &self,
@@ -1011,5 +1083,27 @@ impl AnalysisView {
     /// One row per step, CSV.
     pub fn steps_csv(&self) -> String {
         crate::io::export::track_csv(&self.a.steps, self.a.frame().as_ref())
+    }
+}
+
+impl AnalysisView {
+    /// The plots' time axis from the page's `span`, `full` and `axis`, two numbers each.
+    fn time_axis(
+        span: &[f64],
+        full: &[f64],
+        axis: &[f64],
+    ) -> Result<crate::plot::upload::TimeAxis, JsError> {
+        let pair = |v: &[f64], name: &str| match *v {
+            [a, b] => Ok((a, b)),
+            _ => Err(JsError::new(&format!(
+                "`{name}` needs two numbers, not {}",
+                v.len()
+            ))),
+        };
+        Ok(crate::plot::upload::TimeAxis {
+            span: pair(span, "span")?,
+            full: pair(full, "full")?,
+            px: pair(axis, "axis")?,
+        })
     }
 }

@@ -348,14 +348,13 @@ function wireMap(l, tag, cv) {
     const dpr = cv.width / r.width;
     return [(e.clientX - r.left) * dpr, (e.clientY - r.top) * dpr, dpr];
   };
-  const zoom = (x, y, factor) => {
-    const v = l.views[tag];
-    const [e0, e1, n0, n1] = v.map_view();
-    const [e, n] = v.to_metres(x, y);
-    l.bounds = [e - (e - e0) * factor, e + (e1 - e) * factor, n - (n - n0) * factor, n + (n1 - n) * factor];
+  // New bounds from the engine (none when a pinch has nothing to zoom by), then redraw.
+  const setBounds = (bounds) => {
+    if (!bounds) return;
+    l.bounds = bounds;
     drawAll(l);
   };
-  cv.addEventListener('wheel', (e) => { e.preventDefault(); const [x, y] = pos(e); zoom(x, y, e.deltaY > 0 ? 1.25 : 0.8); }, { passive: false });
+  cv.addEventListener('wheel', (e) => { e.preventDefault(); const [x, y] = pos(e); setBounds(l.views[tag].map_wheel(x, y, e.deltaY)); }, { passive: false });
   cv.addEventListener('dblclick', () => { l.bounds = null; drawAll(l); });
   cv.addEventListener('pointerdown', (e) => {
     cv.setPointerCapture(e.pointerId);
@@ -377,16 +376,10 @@ function wireMap(l, tag, cv) {
     if (pointers.size === 2) {
       const [a, b] = [...pointers.values()];
       const other = a === p ? b : a;
-      const d0 = Math.hypot(prev[0] - other[0], prev[1] - other[1]);
-      const d1 = Math.hypot(p[0] - other[0], p[1] - other[1]);
-      if (d0 > 0 && d1 > 0) zoom((p[0] + other[0]) / 2, (p[1] + other[1]) / 2, d0 / d1);
+      setBounds(v.map_pinch(prev[0], prev[1], p[0], p[1], other[0], other[1]));
     } else if (pointers.size === 1 && Math.hypot(p[0] - prev[0], p[1] - prev[1]) > 0.5) {
       drag.moved = true;
-      const [e0, e1, n0, n1, mpp] = v.map_view();
-      const de = (p[0] - prev[0]) * mpp;
-      const dn = (p[1] - prev[1]) * mpp;
-      l.bounds = [e0 - de, e1 - de, n0 + dn, n1 + dn];
-      drawAll(l);
+      setBounds(v.map_pan(p[0] - prev[0], p[1] - prev[1]));
     }
   });
   const up = (e) => {
@@ -409,23 +402,19 @@ function wirePlots(l) {
     cv.dataset.wired = '1';
     const pointers = new Map(); // pointerId → clientX
     let drag = null;
-    // The fraction of the time axis at a client x, from where the engine drew the axis.
-    const fraction = (x) => {
-      const r = cv.getBoundingClientRect();
-      const [left, right] = cv.axis ?? [0, r.width];
-      return (x - r.left - left) / Math.max(right - left, 1);
-    };
-    const timeAt = (x) => l.span[0] + Math.min(1, Math.max(0, fraction(x))) * (l.span[1] - l.span[0]);
-    // Zooms by `k` keeping time `t` at the fraction `f` of the axis.
-    const zoom = (t, f, k) => {
-      const span = Math.min(l.full[1] - l.full[0], Math.max(1, (l.span[1] - l.span[0]) * k));
-      const t0 = Math.min(Math.max(l.full[0], t - f * span), l.full[1] - span);
-      l.span = [t0, t0 + span];
+    // A client x in CSS pixels from the canvas's left edge, and where the engine drew the axis.
+    const at = (x) => x - cv.getBoundingClientRect().left;
+    const axis = () => cv.axis ?? [0, cv.getBoundingClientRect().width];
+    const timeAt = (x) => l.views.a.axis_time_at(l.span, l.full, axis(), at(x));
+    // A new span from the engine (none when a pinch has nothing to zoom by), then redraw.
+    const setSpan = (span) => {
+      if (!span) return;
+      l.span = span;
       drawPlots(l);
     };
     cv.addEventListener('wheel', (e) => {
       e.preventDefault();
-      zoom(timeAt(e.clientX), Math.min(1, Math.max(0, fraction(e.clientX))), e.deltaY > 0 ? 1.25 : 0.8);
+      setSpan(l.views.a.axis_wheel(l.span, l.full, axis(), at(e.clientX), e.deltaY));
     }, { passive: false });
     cv.addEventListener('dblclick', () => { l.span = [...l.full]; drawPlots(l); });
     cv.addEventListener('pointerdown', (e) => {
@@ -438,23 +427,15 @@ function wirePlots(l) {
       const prev = pointers.get(e.pointerId);
       pointers.set(e.pointerId, e.clientX);
       if (pointers.size === 2) {
-        // Pinch: the time under the two fingers' middle stays put; the span scales with their
-        // distance.
+        // Pinch (see TimeAxis::pinched).
         const other = [...pointers.entries()].find(([id]) => id !== e.pointerId)[1];
-        const d0 = Math.abs(prev - other);
-        const d1 = Math.abs(e.clientX - other);
-        const mid = (prev + other) / 2;
-        if (d0 > 4 && d1 > 4) zoom(timeAt(mid), Math.min(1, Math.max(0, fraction((e.clientX + other) / 2))), d0 / d1);
+        setSpan(l.views.a.axis_pinch(l.span, l.full, axis(), at(prev), at(e.clientX), at(other)));
         return;
       }
       if (!drag) return;
       if (Math.abs(e.clientX - drag.x) > 3) drag.moved = true;
       if (!drag.moved) return;
-      const w = drag.span[1] - drag.span[0];
-      const dt = -(fraction(e.clientX) - fraction(drag.x)) * w;
-      const t0 = Math.min(Math.max(l.full[0], drag.span[0] + dt), l.full[1] - w);
-      l.span = [t0, t0 + w];
-      drawPlots(l);
+      setSpan(l.views.a.axis_pan(drag.span, l.full, axis(), at(drag.x), at(e.clientX)));
     });
     const up = (e) => {
       pointers.delete(e.pointerId);

@@ -1,0 +1,231 @@
+//! Live mode's map: the walk so far, the current position and heading, fixes, gaps.
+//! Imports: the map frame and the theme; never `web`, `live` or `eval` (only the test below
+//! feeds a simulated walk through `crate::live`, to have a live map to draw).
+
+use super::frame::{legend, map_chart, north_and_scale, Mark};
+use super::theme::Theme;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// What [`draw_live`] draws: positions in metres in one local frame (the first fix's when
+/// there are fixes, else the walk's start).
+pub struct LiveView<'a> {
+    /// The PDR track, from the start.
+    pub pdr: &'a [(f64, f64)],
+    /// The fused track (empty without fixes).
+    pub fused: &'a [(f64, f64)],
+    /// The smoothed track: the walk so far, each fix's correction carried back.
+    pub smoothed: &'a [(f64, f64)],
+    /// GNSS fixes as received: east, north, reported accuracy, m.
+    pub fixes: &'a [(f64, f64, f64)],
+    /// Where the input stopped (page hidden, sensors paused).
+    pub gaps: &'a [(f64, f64)],
+    /// The current heading, rad from north, drawn as an arrow at the current position.
+    pub heading_rad: Option<f64>,
+}
+
+/// The live map: the track so far with its start, the current position and heading, every fix
+/// with its accuracy circle, the fused and smoothed tracks, gaps, a legend, a north arrow and a
+/// scale bar.
+pub fn draw_live<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    view: &LiveView<'_>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let fused = !view.fused.is_empty();
+    // The main line: the fused track when there is one.
+    let main = if fused { view.fused } else { view.pdr };
+    let pts = view
+        .pdr
+        .iter()
+        .chain(view.fused)
+        .chain(view.smoothed)
+        .copied()
+        .chain(view.fixes.iter().map(|&(e, n, _)| (e, n)));
+    let mut chart = map_chart(area, pts, theme, scale)?;
+    let ring = ShapeStyle::from(&theme.gnss.mix(0.45)).stroke_width(px(1.0));
+    // The newest fixes' circles (a long walk has thousands).
+    let circles: Vec<Circle<(f64, f64), u32>> = view
+        .fixes
+        .iter()
+        .rev()
+        .take(300)
+        .map(|&(e, n, acc)| {
+            let a = chart.backend_coord(&(e, n));
+            let b = chart.backend_coord(&(e + acc, n));
+            Circle::new((e, n), (b.0 - a.0).unsigned_abs().max(1), ring)
+        })
+        .collect();
+    chart.draw_series(circles)?;
+    chart.draw_series(
+        view.fixes
+            .iter()
+            .map(|&(e, n, _)| Circle::new((e, n), px(2.5), theme.gnss.filled())),
+    )?;
+    if fused {
+        chart.draw_series(LineSeries::new(
+            view.pdr.iter().copied(),
+            ShapeStyle::from(&theme.pdr).stroke_width(px(2.0)),
+        ))?;
+    }
+    if !view.smoothed.is_empty() {
+        chart.draw_series(LineSeries::new(
+            view.smoothed.iter().copied(),
+            ShapeStyle::from(&theme.smoothed).stroke_width(px(2.5)),
+        ))?;
+    }
+    chart.draw_series(LineSeries::new(
+        main.iter().copied(),
+        ShapeStyle::from(&theme.track).stroke_width(px(3.0)),
+    ))?;
+    let gap_style = ShapeStyle::from(&theme.end).stroke_width(px(2.0));
+    chart.draw_series(
+        view.gaps
+            .iter()
+            .map(|&p| Circle::new(p, px(7.0), gap_style)),
+    )?;
+    if let Some(&a) = main.first() {
+        chart.draw_series([Circle::new(a, px(6.0), theme.start.filled())])?;
+    }
+    if let Some(&b) = main.last() {
+        let at = chart.backend_coord(&b);
+        if let Some(h) = view.heading_rad {
+            let len = f64::from(px(22.0));
+            let tip = (
+                at.0 + (len * libm::sin(h)).round() as i32,
+                at.1 - (len * libm::cos(h)).round() as i32,
+            );
+            area.draw(&PathElement::new(
+                vec![at, tip],
+                ShapeStyle::from(&theme.end).stroke_width(px(3.0)),
+            ))?;
+        }
+        area.draw(&Circle::new(at, px(7.0), theme.end.filled()))?;
+        area.draw(&Circle::new(
+            at,
+            px(7.0),
+            ShapeStyle::from(&theme.background).stroke_width(px(2.0)),
+        ))?;
+    }
+    let mut entries = Vec::new();
+    if fused {
+        entries.push(("fused", Mark::Line(theme.track)));
+        if !view.smoothed.is_empty() {
+            entries.push(("smoothed", Mark::Line(theme.smoothed)));
+        }
+        entries.push(("PDR only", Mark::Line(theme.pdr)));
+    }
+    if !view.fixes.is_empty() {
+        entries.push(("GNSS fixes", Mark::Dot(theme.gnss)));
+    }
+    if !view.gaps.is_empty() {
+        entries.push(("gap in input", Mark::Ring(theme.end)));
+    }
+    if !entries.is_empty() {
+        legend(area, &chart, &entries, theme, scale)?;
+    }
+    north_and_scale(area, &chart, theme, scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plot::draw_scope;
+    use crate::plot::raster::Raster;
+
+    #[test]
+    fn draws_the_live_map_and_scope() {
+        use crate::engine::pipeline::Record;
+        use crate::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
+        let sim = crate::sim::scenarios::straight_walk(1.8, 30.0).generate();
+        let mut live = LiveSession::new(
+            crate::engine::PipelineConfig::default(),
+            Platform::Android,
+            0.0,
+        )
+        .unwrap();
+        for ev in browser_events(&sim.records, Platform::Android) {
+            match ev {
+                BrowserEvent::Orientation {
+                    t,
+                    alpha,
+                    beta,
+                    gamma,
+                } => live.push_orientation(t, alpha, beta, gamma, true),
+                BrowserEvent::Motion { t, x, y, z, .. } if !(12e3..16e3).contains(&t) => {
+                    live.push_motion(&MotionEvent {
+                        time_stamp_ms: t,
+                        accel: Some([x, y, z]),
+                        rotation_rate_deg_s: None,
+                        interval: None,
+                    })
+                    .unwrap();
+                }
+                _ => {}
+            }
+        }
+        assert!(sim.records.iter().any(|r| matches!(r, Record::Imu(_))));
+        let d = live.map_data();
+        assert_eq!(d.gaps.len(), 1, "the 4 s without events is a gap");
+        let (w, h) = (400u32, 400u32);
+        let px = std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); (w * h) as usize]));
+        let area = Raster {
+            w,
+            h,
+            px: px.clone(),
+        }
+        .into_drawing_area();
+        let view = LiveView {
+            pdr: &d.pdr,
+            fused: &d.fused,
+            smoothed: &d.smoothed,
+            fixes: &d.fixes,
+            gaps: &d.gaps,
+            heading_rad: d.heading_rad,
+        };
+        draw_live(&area, &view, &Theme::LIGHT, 1.0).unwrap();
+        let t = Theme::LIGHT;
+        let count = |c: RGBColor| {
+            px.borrow()
+                .iter()
+                .filter(|p| **p == (c.0, c.1, c.2))
+                .count()
+        };
+        assert!(count(t.track) > 200, "track {}", count(t.track));
+        assert!(count(t.start) > 20 && count(t.end) > 40);
+        let (samples, steps, now) = live.scope_data();
+        assert!(steps.len() >= 10 && steps.iter().all(|&s| s > now - 10.0));
+        let area = Raster {
+            w: 600,
+            h: 200,
+            px: std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); 600 * 200])),
+        };
+        let shared = area.px.clone();
+        draw_scope(
+            &area.into_drawing_area(),
+            &samples,
+            &steps,
+            now,
+            10.0,
+            &t,
+            1.0,
+        )
+        .unwrap();
+        let n = |c: RGBColor| {
+            shared
+                .borrow()
+                .iter()
+                .filter(|p| **p == (c.0, c.1, c.2))
+                .count()
+        };
+        assert!(
+            n(t.track) > 500 && n(t.gnss) > 300 && n(t.end) > 10 * 100,
+            "{} {} {}",
+            n(t.track),
+            n(t.gnss),
+            n(t.end)
+        );
+    }
+}

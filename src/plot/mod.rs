@@ -1,0 +1,28 @@
+//! Drawing, generic over the plotters
+//! [`DrawingBackend`](plotters::prelude::DrawingBackend), so the same code draws on a browser
+//! canvas and, in tests, into a bitmap.
+//!
+//! One file per drawing: [`Theme`] (`theme`), the map frame every map shares and [`MapFrame`]
+//! (`frame`), the demo's track (`track`), the fusion map (`fusion`), the live map (`live`), the
+//! live scope (`scope`), the calibration chart (`calibration`) and upload mode's plots
+//! ([`upload`]). Plot imports `engine` and `analysis` only, never `web`, `live` or `eval`.
+
+mod calibration;
+mod frame;
+mod fusion;
+mod live;
+mod scope;
+mod theme;
+mod track;
+pub mod upload;
+
+#[cfg(test)]
+pub(crate) mod raster;
+
+pub use calibration::draw_calibration;
+pub use frame::{scale_bar_length, wheel_factor, MapFrame};
+pub use fusion::{draw_fusion, FusionView};
+pub use live::{draw_live, LiveView};
+pub use scope::{draw_scope, ScopePoint};
+pub use theme::Theme;
+pub use track::draw_track;

@@ -1,0 +1,112 @@
+//! Live mode's scrolling scope: vertical acceleration, the PLL output and the detected steps.
+//! Imports: the theme; never `web`, `live` or `eval`.
+
+use super::theme::Theme;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// A sample of the scrolling view: time (s), vertical acceleration (m/s²), PLL output.
+pub type ScopePoint = (f64, f64, Option<f64>);
+
+/// The scrolling view of the last `span_s` seconds up to `now`: vertical acceleration (left
+/// axis, m/s²), the PLL output cos φ (right axis) and the detected steps (vertical marks).
+/// Samples further apart than 0.5 s (a gap) are not joined.
+pub fn draw_scope<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    samples: &[ScopePoint],
+    steps: &[f64],
+    now: f64,
+    span_s: f64,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    area.fill(&theme.background)?;
+    let font = ("sans-serif", 12.0 * scale)
+        .into_font()
+        .color(&theme.foreground);
+    let amp = samples
+        .iter()
+        .map(|s| s.1.abs())
+        .fold(2.0_f64, f64::max)
+        .min(40.0)
+        * 1.1;
+    let mut chart = ChartBuilder::on(area)
+        .margin(px(8.0))
+        .margin_top(px(22.0))
+        .x_label_area_size(px(24.0))
+        .y_label_area_size(px(34.0))
+        .right_y_label_area_size(px(30.0))
+        .build_cartesian_2d(-span_s..0.0, -amp..amp)?
+        .set_secondary_coord(-span_s..0.0, -1.25..1.25);
+    chart
+        .configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(theme.grid)
+        .axis_style(theme.foreground)
+        .label_style(font.clone())
+        .x_labels(6)
+        .y_labels(5)
+        .x_label_formatter(&|v| format!("{v:.0} s"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    chart
+        .configure_secondary_axes()
+        .axis_style(theme.foreground)
+        .label_style(font.clone())
+        .y_labels(3)
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    let rel = |t: f64| t - now;
+    let visible = |t: f64| rel(t) >= -span_s && rel(t) <= 0.0;
+    let step_style = ShapeStyle::from(&theme.end).stroke_width(px(1.5));
+    chart.draw_series(
+        steps
+            .iter()
+            .filter(|&&t| visible(t))
+            .map(|&t| PathElement::new(vec![(rel(t), -amp), (rel(t), amp)], step_style)),
+    )?;
+    // Runs of samples without a gap.
+    let mut runs: Vec<&[ScopePoint]> = Vec::new();
+    let mut from = 0;
+    for i in 1..=samples.len() {
+        if i == samples.len() || samples[i].0 - samples[i - 1].0 > 0.5 {
+            runs.push(&samples[from..i]);
+            from = i;
+        }
+    }
+    let pll_style = ShapeStyle::from(&theme.gnss).stroke_width(px(1.5));
+    let acc_style = ShapeStyle::from(&theme.track).stroke_width(px(2.0));
+    for run in runs {
+        let pll: Vec<(f64, f64)> = run
+            .iter()
+            .filter(|s| visible(s.0))
+            .filter_map(|s| s.2.map(|p| (rel(s.0), p)))
+            .collect();
+        chart.draw_secondary_series(LineSeries::new(pll, pll_style))?;
+        chart.draw_series(LineSeries::new(
+            run.iter().filter(|s| visible(s.0)).map(|s| (rel(s.0), s.1)),
+            acc_style,
+        ))?;
+    }
+    // Key, above the plot.
+    let (x0, y0) = (px(40.0) as i32, px(4.0) as i32);
+    let mut x = x0;
+    for (label, colour) in [
+        ("vertical acc., m/s²", theme.track),
+        ("PLL cos φ, right", theme.gnss),
+        ("steps", theme.end),
+    ] {
+        area.draw(&PathElement::new(
+            vec![
+                (x, y0 + px(8.0) as i32),
+                (x + px(16.0) as i32, y0 + px(8.0) as i32),
+            ],
+            ShapeStyle::from(&colour).stroke_width(px(3.0)),
+        ))?;
+        area.draw(&Text::new(label, (x + px(20.0) as i32, y0), font.clone()))?;
+        let (w, _) = area.estimate_text_size(label, &font)?;
+        x += px(32.0) as i32 + w as i32;
+    }
+    Ok(())
+}

@@ -1,0 +1,193 @@
+//! Upload mode's map of an [`Analysis`]: tracks, fixes, truth, the highlighted step.
+//! Imports: `analysis` and the map frame; never `web`, `live` or `eval`.
+
+use crate::analysis::Analysis;
+use crate::plot::frame::{legend, map_chart_in, north_and_scale, start_end, MapFrame, Mark};
+use crate::plot::theme::Theme;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// The PDR track's points in the map's frame (the fixes' frame when there are fixes).
+pub fn pdr_points(a: &Analysis) -> Vec<(f64, f64)> {
+    let (oe, on) = a.pdr_offset;
+    std::iter::once((oe, on))
+        .chain(a.steps.iter().map(|s| (s.east_m + oe, s.north_m + on)))
+        .collect()
+}
+
+/// The step nearest to pixel (x, y) on a map drawn in `frame`, within `radius` pixels.
+pub fn pick_step(a: &Analysis, frame: &MapFrame, x: f64, y: f64, radius: f64) -> Option<usize> {
+    let (e, n) = frame.to_metres(x, y);
+    let r = radius * frame.metres_per_px();
+    (0..a.steps.len())
+        .filter_map(|i| {
+            a.step_position(i)
+                .map(|p| (i, libm::hypot(p.0 - e, p.1 - n)))
+        })
+        .filter(|(_, d)| *d <= r)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(i, _)| i)
+}
+
+/// Draws the map of an analysis: the PDR track, the fixes with accuracy circles, the fused and
+/// smoothed tracks, the truth, start and end, the `highlight`ed step, a legend, a north arrow
+/// and a scale bar; `bounds` zooms (None fits everything). Returns where it drew.
+pub fn draw_map<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    a: &Analysis,
+    bounds: Option<(f64, f64, f64, f64)>,
+    highlight: Option<usize>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<MapFrame, DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let pdr = pdr_points(a);
+    let (oe, on) = a.pdr_offset;
+    let truth: Vec<(f64, f64)> = a.truth_path.iter().map(|p| (p.0 + oe, p.1 + on)).collect();
+    let fused: Vec<(f64, f64)> = a.fused.iter().map(|f| (f[1], f[2])).collect();
+    let smoothed: Vec<(f64, f64)> = a.smoothed.iter().map(|f| (f[1], f[2])).collect();
+    let pts = pdr
+        .iter()
+        .chain(&fused)
+        .chain(&truth)
+        .copied()
+        .chain(a.fixes.iter().map(|f| (f[1], f[2])));
+    let mut chart = map_chart_in(area, pts, bounds, theme, scale)?;
+    let ring = ShapeStyle::from(&theme.gnss.mix(0.35)).stroke_width(px(1.0));
+    let step = (a.fixes.len() / 300).max(1);
+    let circles: Vec<Circle<(f64, f64), u32>> = a
+        .fixes
+        .iter()
+        .step_by(step)
+        .map(|f| {
+            let p0 = chart.backend_coord(&(f[1], f[2]));
+            let p1 = chart.backend_coord(&(f[1] + f[3], f[2]));
+            Circle::new((f[1], f[2]), (p1.0 - p0.0).unsigned_abs().max(1), ring)
+        })
+        .collect();
+    chart.draw_series(circles)?;
+    chart.draw_series(
+        a.fixes
+            .iter()
+            .map(|f| Circle::new((f[1], f[2]), px(2.0), theme.gnss.filled())),
+    )?;
+    if !truth.is_empty() {
+        chart.draw_series(LineSeries::new(
+            truth.iter().copied(),
+            ShapeStyle::from(&theme.reference).stroke_width(px(2.0)),
+        ))?;
+        chart.draw_series(
+            truth
+                .iter()
+                .map(|&p| Circle::new(p, px(3.0), theme.reference.filled())),
+        )?;
+    }
+    let pdr_colour = if fused.is_empty() {
+        theme.track
+    } else {
+        theme.pdr
+    };
+    chart.draw_series(LineSeries::new(
+        pdr.iter().copied(),
+        ShapeStyle::from(&pdr_colour).stroke_width(px(2.5)),
+    ))?;
+    for (path, colour) in [(&smoothed, theme.smoothed), (&fused, theme.track)] {
+        chart.draw_series(LineSeries::new(
+            path.iter().copied(),
+            ShapeStyle::from(&colour).stroke_width(px(2.5)),
+        ))?;
+    }
+    start_end(
+        &mut chart,
+        if fused.is_empty() { &pdr } else { &fused },
+        theme,
+        scale,
+    )?;
+    if let Some(p) = highlight.and_then(|i| a.step_position(i)) {
+        chart.draw_series([Circle::new(
+            p,
+            px(8.0),
+            ShapeStyle::from(&theme.foreground).stroke_width(px(2.5)),
+        )])?;
+    }
+    let mut entries = vec![(
+        if fused.is_empty() {
+            "PDR track"
+        } else {
+            "PDR only"
+        },
+        Mark::Line(pdr_colour),
+    )];
+    if !fused.is_empty() {
+        entries.push(("fused", Mark::Line(theme.track)));
+        entries.push(("smoothed", Mark::Line(theme.smoothed)));
+    }
+    if !a.fixes.is_empty() {
+        entries.push(("GNSS fixes", Mark::Dot(theme.gnss)));
+    }
+    if !truth.is_empty() {
+        entries.push(("truth (aligned)", Mark::Line(theme.reference)));
+    }
+    legend(area, &chart, &entries, theme, scale)?;
+    north_and_scale(area, &chart, theme, scale)?;
+    let (rx, ry) = chart.plotting_area().get_pixel_range();
+    if a.has_steps_without_any_heading() {
+        let font = ("sans-serif", 13.0 * scale)
+            .into_font()
+            .color(&theme.foreground);
+        area.draw(&Text::new(
+            format!(
+                "No heading in this log (no gyroscope, magnetometer or orientation): its {} steps cannot be placed.",
+                a.steps.len()
+            ),
+            (rx.start + px(12.0) as i32, (ry.start + ry.end) / 2 + px(24.0) as i32),
+            font,
+        ))?;
+    }
+    let (xr, yr) = (
+        chart.plotting_area().get_x_range(),
+        chart.plotting_area().get_y_range(),
+    );
+    Ok(MapFrame {
+        px: (rx.start, rx.end, ry.start, ry.end),
+        m: (xr.start, xr.end, yr.start, yr.end),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn picks_the_step_under_the_pointer() {
+        let mut log = crate::io::import::Log::new("demo.pdrlog", crate::io::import::Format::PdrLog);
+        log.records = crate::sim::scenarios::demo_walk().generate().records;
+        let a = crate::analysis::analyse(&log, &Default::default(), &mut |_, _| {}).unwrap();
+        // 1 m per pixel about the walk.
+        let frame = MapFrame {
+            px: (0, 400, 0, 300),
+            m: (-200.0, 200.0, -150.0, 150.0),
+        };
+        let mpp = frame.metres_per_px();
+        for i in [0, a.steps.len() / 2, a.steps.len() - 1] {
+            let (e, n) = a.step_position(i).unwrap();
+            let (x, y) = frame.to_pixel(e, n);
+            let picked = pick_step(&a, &frame, x, y, 12.0).unwrap();
+            let p = a.step_position(picked).unwrap();
+            assert!(
+                libm::hypot(p.0 - e, p.1 - n) < 1e-9,
+                "step {i}: picked {picked}"
+            );
+            // Off by 5 pixels, the pick is the nearest step, within the radius.
+            let picked = pick_step(&a, &frame, x + 5.0, y, 12.0).unwrap();
+            let (pe, pn) = a.step_position(picked).unwrap();
+            let d = libm::hypot(pe - (e + 5.0 * mpp), pn - n);
+            assert!(
+                d <= 5.0 * mpp + 1e-9 && d <= 12.0 * mpp,
+                "step {i}: {picked} at {d} m"
+            );
+        }
+        // Nothing within 12 pixels of a corner far from the walk.
+        assert_eq!(pick_step(&a, &frame, 0.0, 0.0, 12.0), None);
+    }
+}

@@ -1,0 +1,586 @@
+//! Upload mode's diagnostics plots of an [`Analysis`] on one time axis, and its zoom and pan.
+//! Imports: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
+
+use crate::analysis::Analysis;
+use crate::plot::theme::Theme;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// The diagnostics plots, all against the same time axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plot {
+    /// Vertical acceleration, PLL output, detected (and true) steps.
+    Accel,
+    /// σ of the vertical acceleration with the thresholds and the motion state.
+    Sigma,
+    /// Per-step heading: single-step, two-step average, and the device's heading.
+    Heading,
+    /// Step frequency and step length per step.
+    Steps,
+    /// GNSS accuracy and the innovations of the fixes offered to the filter.
+    Gnss,
+    /// The fusion's estimated step-length scale and heading correction (Basso 2021 §2.2.5's
+    /// systematic errors) per step.
+    Fusion,
+}
+
+impl Plot {
+    /// From its name in the page.
+    pub fn parse(name: &str) -> Option<Plot> {
+        Some(match name {
+            "accel" => Plot::Accel,
+            "sigma" => Plot::Sigma,
+            "heading" => Plot::Heading,
+            "steps" => Plot::Steps,
+            "gnss" => Plot::Gnss,
+            "fusion" => Plot::Fusion,
+            _ => return None,
+        })
+    }
+}
+
+/// Min and max of `v` per pixel column between `t0` and `t1`, as a zig-zag line: a long signal
+/// drawn at any zoom without losing its peaks.
+fn envelope(
+    t: &[f64],
+    v: &[f32],
+    t0: f64,
+    t1: f64,
+    cols: usize,
+    origin: f64,
+) -> Vec<Vec<(f64, f64)>> {
+    let i0 = t.partition_point(|&x| x < t0);
+    let i1 = t.partition_point(|&x| x <= t1);
+    let mut runs = Vec::new();
+    let mut run: Vec<(f64, f64)> = Vec::new();
+    if i1 <= i0 {
+        return runs;
+    }
+    let n = i1 - i0;
+    if n <= 2 * cols {
+        let mut last = f64::NEG_INFINITY;
+        for i in i0..i1 {
+            if t[i] - last > 0.5 && !run.is_empty() {
+                runs.push(std::mem::take(&mut run));
+            }
+            last = t[i];
+            if v[i].is_finite() {
+                run.push((t[i] - origin, f64::from(v[i])));
+            }
+        }
+    } else {
+        let width = (t1 - t0) / cols as f64;
+        let mut i = i0;
+        let mut last = f64::NEG_INFINITY;
+        for c in 0..cols {
+            let end = t0 + (c + 1) as f64 * width;
+            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+            let start = i;
+            while i < i1 && t[i] <= end {
+                if v[i].is_finite() {
+                    lo = lo.min(v[i]);
+                    hi = hi.max(v[i]);
+                }
+                i += 1;
+            }
+            if i == start || !lo.is_finite() {
+                continue;
+            }
+            if t[start] - last > 0.5 + width && !run.is_empty() {
+                runs.push(std::mem::take(&mut run));
+            }
+            last = t[i - 1];
+            let tc = t0 + (c as f64 + 0.5) * width - origin;
+            run.push((tc, f64::from(lo)));
+            run.push((tc, f64::from(hi)));
+        }
+    }
+    if !run.is_empty() {
+        runs.push(run);
+    }
+    runs
+}
+
+/// Draws one diagnostics plot between `t0` and `t1` (s, the log's clock), with a cursor at a
+/// time when given. The time axis is in seconds from the log's first sample. Returns the
+/// pixel columns where `t0` and `t1` fall, for the page to map a pointer to a time.
+pub fn draw_plot<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    a: &Analysis,
+    plot: Plot,
+    (t0, t1): (f64, f64),
+    cursor: Option<f64>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(i32, i32), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    area.fill(&theme.background)?;
+    let font = ("sans-serif", 12.0 * scale)
+        .into_font()
+        .color(&theme.foreground);
+    let origin = a.trace.t.first().copied().unwrap_or(0.0);
+    let (x0, x1) = (t0 - origin, t1 - origin);
+    let cols = (area.dim_in_pixel().0 as usize).max(10);
+    let tr = &a.trace;
+    let steps_in: Vec<&crate::engine::pipeline::StepRecord> =
+        a.steps.iter().filter(|s| s.t >= t0 && s.t <= t1).collect();
+    #[allow(clippy::type_complexity)]
+    let (title, y_label, (y0, y1), right): (
+        &str,
+        &str,
+        (f64, f64),
+        Option<(&str, (f64, f64))>,
+    ) = match plot {
+        Plot::Accel => {
+            let amp = envelope(&tr.t, &tr.up, t0, t1, cols, 0.0)
+                .iter()
+                .flatten()
+                .fold(2.0_f64, |m, p| m.max(p.1.abs()))
+                .min(40.0)
+                * 1.1;
+            (
+                "vertical acceleration (m/s²), PLL cos φ (right), steps (red), true steps (grey)",
+                "m/s²",
+                (-amp, amp),
+                Some(("cos φ", (-1.25, 1.25))),
+            )
+        }
+        Plot::Sigma => {
+            let top = envelope(&tr.t, &tr.sigma, t0, t1, cols, 0.0)
+                .iter()
+                .flatten()
+                .fold(a.sigma_thresholds.1 * 1.3, |m, p| m.max(p.1))
+                * 1.1;
+            (
+                "σ of vertical acceleration (m/s²), thresholds, motion: still / walk / run",
+                "m/s²",
+                (0.0, top),
+                None,
+            )
+        }
+        Plot::Heading => (
+            "heading (°): single step (dots), two-step average (line), device (grey)",
+            "°",
+            (0.0, 360.0),
+            None,
+        ),
+        Plot::Steps => {
+            let top = steps_in.iter().fold(3.0_f64, |m, s| m.max(s.freq_hz)) * 1.1;
+            let len = steps_in.iter().fold(1.0_f64, |m, s| m.max(s.length_m)) * 1.1;
+            (
+                "step frequency (Hz, blue), step length (m, orange, right)",
+                "Hz",
+                (0.0, top),
+                Some(("m", (0.0, len))),
+            )
+        }
+        Plot::Gnss => {
+            let top = a
+                .fixes
+                .iter()
+                .filter(|f| f[0] >= t0 && f[0] <= t1)
+                .fold(10.0_f64, |m, f| m.max(f[3]).max(0.0))
+                .min(200.0)
+                * 1.1;
+            (
+                "GNSS accuracy (m, dots), innovation (m, rings)",
+                "m",
+                (0.0, top),
+                None,
+            )
+        }
+        Plot::Fusion => {
+            // Each axis spans what the filter estimated and its neutral value (1, 0°), the
+            // scale in the upper half and the correction in the lower, so they do not overlap.
+            let (mut k, mut b) = ((1.0_f64, 1.0_f64), (0.0_f64, 0.0_f64));
+            for f in a.fused.iter().filter(|f| f[0] >= t0 && f[0] <= t1) {
+                k = (k.0.min(f[3]), k.1.max(f[3]));
+                let d = f[4].to_degrees();
+                b = (b.0.min(d), b.1.max(d));
+            }
+            let ks = (k.1 - k.0).max(0.02);
+            let bs = (b.1 - b.0).max(2.0);
+            (
+                "fusion: step-length scale (blue, left), heading correction (°, orange, right)",
+                "",
+                (k.0 - 1.3 * ks, k.1 + 0.2 * ks),
+                Some(("°", (b.0 - 0.2 * bs, b.1 + 1.3 * bs))),
+            )
+        }
+    };
+    let lines = draw_title(area, title, &font, scale)?;
+    let body = area.margin(px(5.0 + 15.0 * lines as f64), 0, 0, 0);
+    let mut builder = ChartBuilder::on(&body);
+    // The same label areas on every plot, with a right axis or not, so that their time axes
+    // line up on the page.
+    builder
+        .margin(px(6.0))
+        .x_label_area_size(px(22.0))
+        .y_label_area_size(px(40.0))
+        .right_y_label_area_size(px(40.0));
+    let (r0, r1) = right.map_or((0.0, 1.0), |r| r.1);
+    let mut chart = builder
+        .build_cartesian_2d(x0..x1, y0..y1)?
+        .set_secondary_coord(x0..x1, r0..r1);
+    chart
+        .configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(theme.grid)
+        .axis_style(theme.foreground)
+        .label_style(font.clone())
+        .x_labels(8)
+        .y_labels(5)
+        .x_label_formatter(&|v| {
+            if x1 - x0 < 20.0 {
+                format!("{v:.1} s")
+            } else {
+                format!("{v:.0} s")
+            }
+        })
+        .y_label_formatter(&|v| match y_label {
+            "°" => format!("{v:.0}°"),
+            "" => format!("{v:.2}"),
+            _ => format!("{v:.0}"),
+        })
+        .draw()?;
+    if right.is_some() {
+        chart
+            .configure_secondary_axes()
+            .axis_style(theme.foreground)
+            .label_style(font.clone())
+            .y_labels(5)
+            .y_label_formatter(&|v| match right {
+                Some(("°", _)) => format!("{v:.0}°"),
+                _ => format!("{v:.2}"),
+            })
+            .draw()?;
+    }
+    let (columns, rows) = chart.plotting_area().get_pixel_range();
+    let note = match plot {
+        Plot::Gnss | Plot::Fusion if a.fixes.is_empty() => Some("no GNSS fixes in this log"),
+        Plot::Heading if a.has_steps_without_any_heading() => {
+            Some("no heading in this log (no gyroscope, magnetometer or orientation)")
+        }
+        _ => None,
+    };
+    if let Some(note) = note {
+        area.draw(&Text::new(
+            note,
+            (
+                columns.start + px(12.0) as i32,
+                rows.start + px(12.0) as i32,
+            ),
+            font.clone(),
+        ))?;
+    }
+    let columns = (columns.start, columns.end);
+    let line = |c: RGBColor, w: f64| ShapeStyle::from(&c).stroke_width(px(w));
+    let rel = |t: f64| t - origin;
+    match plot {
+        Plot::Accel => {
+            chart.draw_series(steps_in.iter().map(|s| {
+                PathElement::new(vec![(rel(s.t), y0), (rel(s.t), y1)], line(theme.end, 1.0))
+            }))?;
+            chart.draw_series(
+                a.truth_steps
+                    .iter()
+                    .filter(|&&t| t >= t0 && t <= t1)
+                    .map(|&t| {
+                        PathElement::new(
+                            vec![(rel(t), y0), (rel(t), y0 + 0.15 * (y1 - y0))],
+                            line(theme.reference, 2.0),
+                        )
+                    }),
+            )?;
+            for run in envelope(&tr.t, &tr.pll, t0, t1, cols, origin) {
+                chart.draw_secondary_series(LineSeries::new(run, line(theme.gnss, 1.0)))?;
+            }
+            for run in envelope(&tr.t, &tr.up, t0, t1, cols, origin) {
+                chart.draw_series(LineSeries::new(run, line(theme.track, 1.5)))?;
+            }
+        }
+        Plot::Sigma => {
+            // Motion state as a band along the bottom.
+            let band = 0.06 * (y1 - y0);
+            let i0 = tr.t.partition_point(|&x| x < t0);
+            let i1 = tr.t.partition_point(|&x| x <= t1);
+            let every = ((i1 - i0) / cols).max(1);
+            chart.draw_series((i0..i1).step_by(every).filter_map(|i| {
+                let c = match tr.motion[i] {
+                    1 => theme.start,
+                    2 => theme.end,
+                    _ => return None,
+                };
+                let t = rel(tr.t[i]);
+                let w = (tr.t[(i + every).min(i1 - 1)] - tr.t[i]).max(0.01);
+                Some(Rectangle::new([(t, y0), (t + w, y0 + band)], c.filled()))
+            }))?;
+            for (v, c) in [
+                (a.sigma_thresholds.0, theme.start),
+                (a.sigma_thresholds.1, theme.end),
+            ] {
+                chart.draw_series(LineSeries::new([(x0, v), (x1, v)], line(c, 1.0)))?;
+            }
+            for run in envelope(&tr.t, &tr.sigma, t0, t1, cols, origin) {
+                chart.draw_series(LineSeries::new(run, line(theme.track, 1.5)))?;
+            }
+        }
+        Plot::Heading => {
+            let wrap = |r: f64| r.to_degrees().rem_euclid(360.0);
+            for run in envelope(&tr.t, &tr.device_heading_deg, t0, t1, cols, origin) {
+                // Not joined across the 0°/360° wrap.
+                chart.draw_series(
+                    run.iter()
+                        .map(|&p| Circle::new(p, px(0.8), theme.reference.filled())),
+                )?;
+            }
+            chart.draw_series(steps_in.iter().filter_map(|s| {
+                s.step_heading_rad
+                    .map(|h| Circle::new((rel(s.t), wrap(h)), px(2.0), theme.gnss.filled()))
+            }))?;
+            let mut segment: Vec<(f64, f64)> = Vec::new();
+            let mut segs = Vec::new();
+            for s in &steps_in {
+                let Some(h) = s.heading_rad else { continue };
+                let p = (rel(s.t), wrap(h));
+                if segment
+                    .last()
+                    .is_some_and(|l: &(f64, f64)| (l.1 - p.1).abs() > 180.0)
+                {
+                    segs.push(std::mem::take(&mut segment));
+                }
+                segment.push(p);
+            }
+            segs.push(segment);
+            for seg in segs {
+                chart.draw_series(LineSeries::new(seg, line(theme.track, 2.0)))?;
+            }
+        }
+        Plot::Steps => {
+            chart.draw_series(
+                steps_in
+                    .iter()
+                    .map(|s| Circle::new((rel(s.t), s.freq_hz), px(2.0), theme.track.filled())),
+            )?;
+            chart.draw_secondary_series(
+                steps_in
+                    .iter()
+                    .map(|s| Circle::new((rel(s.t), s.length_m), px(2.0), theme.gnss.filled())),
+            )?;
+        }
+        Plot::Gnss => {
+            chart.draw_series(
+                a.fixes
+                    .iter()
+                    .filter(|f| f[0] >= t0 && f[0] <= t1)
+                    .map(|f| Circle::new((rel(f[0]), f[3].min(y1)), px(2.0), theme.gnss.filled())),
+            )?;
+            chart.draw_series(
+                a.innovations
+                    .iter()
+                    .filter(|i| i[0] >= t0 && i[0] <= t1)
+                    .map(|i| {
+                        Circle::new(
+                            (rel(i[0]), libm::hypot(i[1], i[2]).min(y1)),
+                            px(3.0),
+                            line(theme.pdr, 1.0),
+                        )
+                    }),
+            )?;
+        }
+        Plot::Fusion => {
+            let fused_in = || a.fused.iter().filter(|f| f[0] >= t0 && f[0] <= t1);
+            chart.draw_series(LineSeries::new(
+                [(x0, 1.0), (x1, 1.0)],
+                line(theme.grid, 1.0),
+            ))?;
+            chart.draw_series(LineSeries::new(
+                fused_in().map(|f| (rel(f[0]), f[3])),
+                line(theme.track, 2.0),
+            ))?;
+            chart.draw_secondary_series(fused_in().map(|f| {
+                Circle::new((rel(f[0]), f[4].to_degrees()), px(1.5), theme.gnss.filled())
+            }))?;
+        }
+    }
+    if let Some(c) = cursor.filter(|c| *c >= t0 && *c <= t1) {
+        chart.draw_series([PathElement::new(
+            vec![(rel(c), y0), (rel(c), y1)],
+            line(theme.foreground, 1.0),
+        )])?;
+    }
+    Ok(columns)
+}
+
+/// Draws a plot's title at its top left, on two lines when one is too narrow (a phone), broken
+/// after a comma. Returns the number of lines.
+pub(super) fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    font: &TextStyle,
+    scale: f64,
+) -> Result<usize, DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let width = area.dim_in_pixel().0.saturating_sub(px(16.0));
+    let fits = |t: &str| {
+        area.estimate_text_size(t, font)
+            .is_ok_and(|(w, _)| w <= width)
+    };
+    let breaks: Vec<usize> = title.match_indices(", ").map(|(i, _)| i).collect();
+    let lines: Vec<&str> = match breaks.into_iter().rev().find(|&i| fits(&title[..=i])) {
+        Some(i) if !fits(title) => vec![&title[..=i], &title[i + 2..]],
+        _ => vec![title],
+    };
+    for (k, line) in lines.iter().enumerate() {
+        area.draw(&Text::new(
+            *line,
+            (px(8.0) as i32, px(4.0 + 15.0 * k as f64) as i32),
+            font.clone(),
+        ))?;
+    }
+    Ok(lines.len())
+}
+
+/// The diagnostics plots' shared time axis as the page shows it: the span drawn, the whole log,
+/// and where the axis lies. Wheel, pinch and drag give the next span to draw.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeAxis {
+    /// The span shown, s (the log's clock): first, last.
+    pub span: (f64, f64),
+    /// The whole log, s: zoom and pan stay inside it.
+    pub full: (f64, f64),
+    /// Where the axis lies, pixels from the canvas's left edge (in the pointer's pixels): the
+    /// columns [`draw_plot`] returns, left and right.
+    pub px: (f64, f64),
+}
+
+impl TimeAxis {
+    /// The fraction of the time axis at pixel `x`, from where the plot drew the axis (below 0
+    /// left of it, above 1 right of it).
+    pub fn fraction(&self, x: f64) -> f64 {
+        (x - self.px.0) / (self.px.1 - self.px.0).max(1.0)
+    }
+
+    /// The time (s) at pixel `x`, within the span shown.
+    pub fn time_at(&self, x: f64) -> f64 {
+        self.span.0 + self.fraction(x).clamp(0.0, 1.0) * (self.span.1 - self.span.0)
+    }
+
+    /// The span zoomed by `k` (above 1 out, below 1 in) keeping time `t` at the fraction `f` of
+    /// the axis: at least 1 s, at most the whole log, and inside it.
+    pub fn zoom(&self, t: f64, f: f64, k: f64) -> (f64, f64) {
+        let span = (self.full.1 - self.full.0).min(((self.span.1 - self.span.0) * k).max(1.0));
+        let t0 = (t - f * span).max(self.full.0).min(self.full.1 - span);
+        (t0, t0 + span)
+    }
+
+    /// The span zoomed by `k` about the pointer at pixel `x` (the wheel).
+    pub fn zoomed_at(&self, x: f64, k: f64) -> (f64, f64) {
+        self.zoom(self.time_at(x), self.fraction(x).clamp(0.0, 1.0), k)
+    }
+
+    /// Pinch: one finger moved from pixel `prev` to `x` while the other stays at `other`. The
+    /// time under the two fingers' middle stays put; the span scales with their distance. None
+    /// while the fingers are within 4 pixels of each other.
+    pub fn pinched(&self, prev: f64, x: f64, other: f64) -> Option<(f64, f64)> {
+        let d0 = (prev - other).abs();
+        let d1 = (x - other).abs();
+        let mid = (prev + other) / 2.0;
+        (d0 > 4.0 && d1 > 4.0).then(|| {
+            self.zoom(
+                self.time_at(mid),
+                self.fraction((x + other) / 2.0).clamp(0.0, 1.0),
+                d0 / d1,
+            )
+        })
+    }
+
+    /// A drag from pixel `from` to `x`: this span (the one shown when the drag began) moved with
+    /// the pointer, inside the whole log.
+    pub fn panned(&self, from: f64, x: f64) -> (f64, f64) {
+        let w = self.span.1 - self.span.0;
+        let dt = -(self.fraction(x) - self.fraction(from)) * w;
+        let t0 = (self.span.0 + dt).max(self.full.0).min(self.full.1 - w);
+        (t0, t0 + w)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 100 s of a 400 s log on an axis from pixel 46 to 554 of a canvas whose left edge is at
+    /// client x 8 (pixel 292 is client x 300). The expected spans are what the page's own
+    /// JavaScript computed for the same gestures.
+    fn axis(span: (f64, f64)) -> TimeAxis {
+        TimeAxis {
+            span,
+            full: (1000.0, 1400.0),
+            px: (46.0, 554.0),
+        }
+    }
+
+    #[test]
+    fn maps_pixels_to_times() {
+        let a = axis((1100.0, 1200.0));
+        assert_eq!(a.fraction(292.0), 0.484251968503937);
+        assert_eq!(a.time_at(292.0), 1148.4251968503936);
+        assert_eq!(a.time_at(12.0), 1100.0);
+        assert_eq!(a.time_at(592.0), 1200.0);
+    }
+
+    #[test]
+    fn wheel_zooms_about_the_pointer_within_the_log() {
+        let wheel = |span, x, delta_y| axis(span).zoomed_at(x, crate::plot::wheel_factor(delta_y));
+        assert_eq!(
+            wheel((1100.0, 1200.0), 292.0, 100.0),
+            (1087.8937007874015, 1212.8937007874015)
+        );
+        assert_eq!(
+            wheel((1100.0, 1200.0), 292.0, -100.0),
+            (1109.6850393700786, 1189.6850393700786)
+        );
+        assert_eq!(wheel((1000.0, 1400.0), 292.0, 100.0), (1000.0, 1400.0));
+        // Never below 1 s.
+        assert_eq!(
+            wheel((1100.0, 1101.2), 292.0, -100.0),
+            (1100.0968503937008, 1101.0968503937008)
+        );
+        assert_eq!(wheel((1000.0, 1100.0), 12.0, 100.0), (1000.0, 1125.0));
+        assert_eq!(
+            wheel((1300.0, 1390.0), 492.0, 100.0),
+            (1280.246062992126, 1392.746062992126)
+        );
+    }
+
+    #[test]
+    fn pinch_scales_the_span_about_the_fingers() {
+        let a = axis((1100.0, 1200.0));
+        assert_eq!(
+            a.pinched(192.0, 172.0, 392.0),
+            Some((1106.1918396564065, 1197.1009305654975))
+        );
+        assert_eq!(
+            a.pinched(192.0, 252.0, 392.0),
+            Some((1070.8098987626545, 1213.6670416197974))
+        );
+        assert_eq!(a.pinched(394.0, 372.0, 392.0), None);
+    }
+
+    #[test]
+    fn drag_pans_within_the_log() {
+        assert_eq!(
+            axis((1100.0, 1200.0)).panned(292.0, 242.0),
+            (1109.8425196850394, 1209.8425196850394)
+        );
+        assert_eq!(
+            axis((1100.0, 1200.0)).panned(92.0, 532.0),
+            (1013.3858267716536, 1113.3858267716537)
+        );
+        assert_eq!(
+            axis((1010.0, 1110.0)).panned(292.0, 532.0),
+            (1000.0, 1100.0)
+        );
+        assert_eq!(axis((1300.0, 1390.0)).panned(532.0, 52.0), (1310.0, 1400.0));
+    }
+}
