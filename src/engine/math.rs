@@ -125,6 +125,11 @@ impl OnePole {
     }
 }
 
+/// The symmetric part (P + Pᵀ)/2 of a covariance: keeps rounding from making it asymmetric.
+pub fn symmetric(p: nalgebra::Matrix4<f64>) -> nalgebra::Matrix4<f64> {
+    (p + p.transpose()) * 0.5
+}
+
 #[cfg(test)]
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {

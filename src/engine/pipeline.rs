@@ -26,7 +26,9 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
-use super::fusion::{declination_for, FixCounts, FusedStep, Fusion, FusionConfig, GnssMode};
+use super::fusion::{
+    declination_for, FixCounts, FixInput, FusedStep, Fusion, FusionConfig, GnssMode, StepInput,
+};
 use super::geo::LocalFrame;
 use super::heading::{self, HeadingConfig, NavSample, StepWindow};
 use super::math::{circular_mean2, wrap_2pi, wrap_pi};
@@ -588,7 +590,11 @@ impl Pipeline {
             },
         });
         if let Some(f) = &mut self.fusion {
-            f.step(c.t, length, heading_used);
+            f.push_step(&StepInput {
+                t: c.t,
+                length_m: length,
+                heading_rad: heading_used,
+            });
         }
         self.diag.steps += 1;
         self.t_km2 = cont;
@@ -652,7 +658,13 @@ impl Pipeline {
         if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
             let (e, n) = frame.en_of_fix(f);
             let still = self.motion.state() == Motion::Still;
-            fusion.offer_fix(f.t, e, n, f.h_accuracy_m, still);
+            fusion.push_fix(&FixInput {
+                t: f.t,
+                east_m: e,
+                north_m: n,
+                accuracy_m: f.h_accuracy_m,
+                still,
+            });
         }
         Ok(())
     }
