@@ -65,7 +65,7 @@ fn main() {
             let s = ImuSample::accel_only(v[0] * 1e-9, nalgebra::Vector3::new(v[2], v[3], v[4]));
             let dt = last_t.map_or(0.0, |l| s.t - l);
             last_t = Some(s.t);
-            let up = o.update(&s, dt).unwrap().up;
+            let up = o.push(&s, dt).unwrap().up;
             m.push(s.t, up);
             p.push(s.t, dt, up);
             let t1 = *next.get_or_insert(s.t + 4.0);

@@ -3,7 +3,8 @@
 //! One file per method of the papers:
 //! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass.
 //! - [`motion`]: σ_z motion detection (Basso 2016 §II.B).
-//! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison.
+//! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
+//!   [`detector`]: what both are fed and find.
 //! - [`heading::tip_to_tail`]: Basso 2016 Algorithm 1; [`heading::closed_form`]: Basso 2021
 //!   eqs. 6–22; [`heading::pca`]: the PCA baseline.
 //! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg.
@@ -15,6 +16,7 @@
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
 
 pub mod calibration;
+pub mod detector;
 pub mod fusion;
 pub mod geo;
 pub mod heading;

@@ -133,6 +133,19 @@ impl MotionConfig {
     }
 }
 
+/// The detector's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct MotionDiagnostics {
+    /// The state.
+    pub state: Motion,
+    /// σ_z over the window, m/s².
+    pub sigma_z: f64,
+    /// μ_z over the window, m/s².
+    pub mean_z: f64,
+    /// The cadence of the periodic gait in the window, Hz ([`MotionDetector::cadence_hz`]).
+    pub cadence_hz: Option<f64>,
+}
+
 /// The running detector.
 #[derive(Debug, Clone)]
 pub struct MotionDetector {
@@ -264,6 +277,16 @@ impl MotionDetector {
     /// Current state.
     pub fn state(&self) -> Motion {
         self.state
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> MotionDiagnostics {
+        MotionDiagnostics {
+            state: self.state,
+            sigma_z: self.sigma,
+            mean_z: self.mean,
+            cadence_hz: self.cadence_hz(),
+        }
     }
 }
 

@@ -105,7 +105,17 @@ pub struct NavAccel {
 
 /// The running orientation estimator.
 pub struct Orientation {
+    source: OrientationSource,
     kind: Kind,
+}
+
+/// The estimator's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct OrientationDiagnostics {
+    /// The source in use.
+    pub source: OrientationSource,
+    /// Whether it gives horizontal axes (and so a heading).
+    pub has_heading: bool,
 }
 
 enum Kind {
@@ -168,7 +178,15 @@ impl Orientation {
             },
             _ => Kind::Os { last: None },
         };
-        Orientation { kind }
+        Orientation { source, kind }
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> OrientationDiagnostics {
+        OrientationDiagnostics {
+            source: self.source,
+            has_heading: self.has_heading(),
+        }
     }
 
     /// Whether a sample at time `t` without an attitude of its own can use the last OS
@@ -201,9 +219,9 @@ impl Orientation {
         }
     }
 
-    /// Feeds one sample taken `dt` seconds after the previous one and returns its acceleration in
-    /// the navigation frame.
-    pub fn update(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
+    /// Feeds one sample taken `dt` seconds after the previous one (0 after a gap) and returns
+    /// its acceleration in the navigation frame.
+    pub fn push(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
         let q = match &mut self.kind {
             Kind::Os { last } => match (s.orientation, *last) {
                 (Some(q), _) => {
@@ -315,7 +333,7 @@ mod tests {
             orientation: None,
         };
         for i in 0..200 {
-            o.update(
+            o.push(
                 &ImuSample {
                     t: i as f64 * 0.01,
                     ..s
@@ -341,7 +359,7 @@ mod tests {
         for i in 0..500 {
             let t = i as f64 * 0.01;
             let s = ImuSample::accel_only(t, Vector3::new(0.0, G0, 0.0));
-            last = Some(o.update(&s, 0.01).unwrap());
+            last = Some(o.push(&s, 0.01).unwrap());
         }
         let n = last.unwrap();
         assert!(n.up.abs() < 1e-9 && n.horizontal.is_none());

@@ -6,8 +6,8 @@
 //! least [`PeakConfig::min_interval_s`] after the previous step and its rise from the preceding
 //! trough reaches 2√2·`cycle_rms_min` (the peak-to-peak of a sinusoid of that RMS).
 
+use super::detector::{Candidate, DetectorInput};
 use super::math::OnePole;
-use super::pll::Candidate;
 use super::types::{positive, ConfigError};
 
 /// Settings of the peak detector.
@@ -43,10 +43,16 @@ impl PeakConfig {
     }
 }
 
-/// The peak detector's running state.
+/// The peak detector: its settings and its running state.
 #[derive(Debug, Clone)]
 pub struct PeakDetector {
     cfg: PeakConfig,
+    s: PeakState,
+}
+
+/// The running state, apart from the settings: a restart is a fresh state.
+#[derive(Debug, Clone)]
+struct PeakState {
     lp: [OnePole; 2],
     prev: Option<(f64, f64)>,
     rising: bool,
@@ -55,11 +61,9 @@ pub struct PeakDetector {
     period: f64,
 }
 
-impl PeakDetector {
-    /// A new detector.
-    pub fn new(cfg: PeakConfig) -> Self {
-        PeakDetector {
-            cfg,
+impl PeakState {
+    fn new(cfg: &PeakConfig) -> Self {
+        PeakState {
             lp: [OnePole::with_cutoff_hz(cfg.lpf_hz); 2],
             prev: None,
             rising: false,
@@ -68,49 +72,84 @@ impl PeakDetector {
             period: 1.0 / 1.8,
         }
     }
+}
+
+/// The detector's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PeakDiagnostics {
+    /// Interval between the last two steps (clamped to 0.2–1.5 s), s.
+    pub period_s: f64,
+    /// Time of the last step, s.
+    pub last_step_t: Option<f64>,
+}
+
+impl PeakDetector {
+    /// A new detector.
+    pub fn new(cfg: PeakConfig) -> Self {
+        PeakDetector {
+            s: PeakState::new(&cfg),
+            cfg,
+        }
+    }
 
     /// The settings.
     pub fn config(&self) -> &PeakConfig {
         &self.cfg
     }
 
-    /// Forgets the signal history (after a gap).
+    /// Starts afresh: the running state of a new detector, the settings kept.
+    pub fn restart(&mut self) {
+        self.s = PeakState::new(&self.cfg);
+    }
+
+    /// Forgets the signal history (after a gap), keeping the step period.
     pub fn reset(&mut self) {
-        *self = PeakDetector {
-            period: self.period,
-            ..PeakDetector::new(self.cfg)
+        self.s = PeakState {
+            period: self.s.period,
+            ..PeakState::new(&self.cfg)
         };
     }
 
-    /// Feeds one vertical-acceleration sample; same contract as [`super::pll::Pll::push`].
-    pub fn push(&mut self, t: f64, dt: f64, a: f64) -> Option<Candidate> {
-        let y = self.lp[0].update(a, dt);
-        let y = self.lp[1].update(y, dt);
+    /// The current values.
+    pub fn diagnostics(&self) -> PeakDiagnostics {
+        PeakDiagnostics {
+            period_s: self.s.period,
+            last_step_t: self.s.last_step,
+        }
+    }
+
+    /// Feeds one vertical-acceleration sample (it uses the time and the acceleration alone);
+    /// same contract as [`super::pll::Pll::push`].
+    pub fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
+        let (t, dt, a) = (x.t, x.dt, x.up);
+        let y = self.s.lp[0].update(a, dt);
+        let y = self.s.lp[1].update(y, dt);
         let mut out = None;
-        if let Some((tp, yp)) = self.prev {
-            if y < yp && self.rising {
+        if let Some((tp, yp)) = self.s.prev {
+            if y < yp && self.s.rising {
                 // (tp, yp) was a local maximum.
-                let rise = yp - self.trough;
+                let rise = yp - self.s.trough;
                 let spaced = self
+                    .s
                     .last_step
                     .map_or(true, |ls| tp - ls >= self.cfg.min_interval_s);
                 if spaced && rise >= 2.0 * std::f64::consts::SQRT_2 * self.cfg.cycle_rms_min {
-                    if let Some(ls) = self.last_step {
-                        self.period = (tp - ls).clamp(0.2, 1.5);
+                    if let Some(ls) = self.s.last_step {
+                        self.s.period = (tp - ls).clamp(0.2, 1.5);
                     }
-                    self.last_step = Some(tp);
+                    self.s.last_step = Some(tp);
                     out = Some(Candidate {
                         t: tp,
-                        period_s: self.period,
+                        period_s: self.s.period,
                         coherence: 1.0,
                     });
-                    self.trough = f64::INFINITY;
+                    self.s.trough = f64::INFINITY;
                 }
             }
-            self.rising = y > yp;
+            self.s.rising = y > yp;
         }
-        self.trough = self.trough.min(y);
-        self.prev = Some((t, y));
+        self.s.trough = self.s.trough.min(y);
+        self.s.prev = Some((t, y));
         out
     }
 }

@@ -26,18 +26,17 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
-use super::fusion::{
-    declination_for, FixCounts, FixInput, FusedStep, Fusion, FusionConfig, GnssMode, StepInput,
-};
+use super::detector::{Candidate, DetectorInput};
+use super::fusion::GnssMode;
+use super::fusion::{self, declination_for, FixCounts, FixInput, FusedStep, Fusion, FusionConfig};
 use super::geo::LocalFrame;
-use super::heading::{self, HeadingConfig, NavSample, StepWindow};
-use super::math::{circular_mean2, wrap_2pi, wrap_pi};
+use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
-use super::pll::{Candidate, Pll, PllConfig};
+use super::pll::{Pll, PllConfig};
 pub use super::replay::{replay, Replay}; // TODO(restructure): callers import from `replay`
-use super::step_length::StepLengthModel;
+use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 pub use super::types::Record;
 use super::types::{positive, ConfigError, GnssFix, ImuSample, InputError};
 use std::collections::VecDeque;
@@ -207,7 +206,8 @@ pub struct Diagnostics {
     pub gnss_on_s: Option<(f64, f64)>,
 }
 
-// One per pipeline, used on every sample: kept inline rather than boxed.
+/// The step detector the configuration chose. One per pipeline, used on every sample: kept
+/// inline rather than boxed.
 #[allow(clippy::large_enum_variant)]
 enum Detector {
     Pll(Pll),
@@ -215,20 +215,41 @@ enum Detector {
 }
 
 impl Detector {
-    /// Feeds one vertical-acceleration sample with the motion detector's window mean and
-    /// deviation, state and cadence (the peak detector uses the sample alone).
-    fn push(
-        &mut self,
-        t: f64,
-        dt: f64,
-        up: f64,
-        (mu, sigma): (f64, f64),
-        state: Motion,
-        cadence: Option<f64>,
-    ) -> Option<Candidate> {
+    fn new(cfg: StepDetectorConfig) -> Self {
+        match cfg {
+            StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
+            StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
+        }
+    }
+
+    fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
         match self {
-            Detector::Pll(p) => p.push(t, dt, up, mu, sigma, state, cadence),
-            Detector::Peak(p) => p.push(t, dt, up),
+            Detector::Pll(p) => p.push(x),
+            Detector::Peak(p) => p.push(x),
+        }
+    }
+
+    /// Starts afresh on a gait already under way: the PLL at the motion detector's cadence with
+    /// its phase fitted to `samples` (time, vertical acceleration) about their mean `mean`; the
+    /// peak detector empty.
+    fn restart(&mut self, cadence_hz: Option<f64>, samples: &[(f64, f64)], mean: f64) {
+        match self {
+            Detector::Pll(p) => {
+                p.restart();
+                if let Some(f) = cadence_hz {
+                    p.start_on(f, samples, mean);
+                }
+            }
+            Detector::Peak(p) => p.restart(),
+        }
+    }
+
+    /// After a gap: the PLL's oscillator restarts at a peak; the peak detector forgets the
+    /// signal.
+    fn gap(&mut self) {
+        match self {
+            Detector::Pll(p) => p.reset_phase(),
+            Detector::Peak(p) => p.reset(),
         }
     }
 }
@@ -247,14 +268,9 @@ pub struct Pipeline {
     // Step history of the current bout.
     t_km1: Option<f64>,
     t_km2: Option<f64>,
-    last_step_heading: Option<f64>,
-    last_heading: Option<f64>,
+    heading: Heading,
+    step_length: StepLength,
     attitude: Option<nalgebra::UnitQuaternion<f64>>,
-    // Device yaw integrated from the attitude increments about the vertical, compass radians,
-    // unwrapped; and its value at the previous step.
-    yaw: f64,
-    last_yaw: Option<f64>,
-    yaw_offset: heading::YawOffset,
     pos: (f64, f64),
     steps: Vec<StepRecord>,
     fixes: Vec<GnssFix>,
@@ -267,10 +283,6 @@ impl Pipeline {
     /// A pipeline with a validated configuration.
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
-        let detector = match cfg.detector {
-            StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
-            StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
-        };
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             history_s: cfg
@@ -278,21 +290,18 @@ impl Pipeline {
                 .history_s()
                 .max(cfg.motion.window_s + 2.0)
                 .max(cfg.onset_lookback_s + 0.5),
+            detector: Detector::new(cfg.detector),
+            heading: Heading::new(cfg.heading),
+            step_length: StepLength::new(cfg.step_length.clone()),
             cfg,
             orientation: None,
-            detector,
             buf: VecDeque::new(),
             last_t: None,
             last_gnss_t: None,
             prev_state: Motion::Still,
             t_km1: None,
             t_km2: None,
-            last_step_heading: None,
-            last_heading: None,
             attitude: None,
-            yaw: 0.0,
-            last_yaw: None,
-            yaw_offset: heading::YawOffset::default(),
             pos: (0.0, 0.0),
             steps: Vec::new(),
             fixes: Vec::new(),
@@ -346,15 +355,8 @@ impl Pipeline {
             self.diag.orientation = Some(src);
             Orientation::new(src)
         });
-        let nav = orientation.update(s, dt)?;
-        if self.cfg.heading.yaw_aid.is_some_and(|a| a.learn_offset) {
-            if let (Some(q), Some(p)) = (&nav.attitude, &self.attitude) {
-                // World-frame increment q·p⁻¹; for a small rotation its vertical component is
-                // half the yaw change (counter-clockwise, so subtracted for a compass angle).
-                let d = q * p.inverse();
-                self.yaw -= 2.0 * d.k * d.w.signum();
-            }
-        }
+        let nav = orientation.push(s, dt)?;
+        self.heading.push_attitude(nav.attitude);
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
@@ -367,15 +369,16 @@ impl Pipeline {
         while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
             self.buf.pop_front();
         }
-        let (mu, sigma) = (self.motion.mean(), self.motion.sigma());
-        let cand = self.detector.push(
-            s.t,
+        let m = self.motion.diagnostics();
+        let cand = self.detector.push(&DetectorInput {
+            t: s.t,
             dt,
-            nav.up,
-            (mu, sigma),
-            state,
-            self.motion.cadence_hz(),
-        );
+            up: nav.up,
+            mean: m.mean_z,
+            sigma: m.sigma_z,
+            motion: state,
+            cadence_hz: m.cadence_hz,
+        });
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
@@ -407,24 +410,22 @@ impl Pipeline {
             .filter(|x| x.t >= since)
             .map(|x| (x.t, x.up))
             .collect();
-        let (mu, sigma) = (self.motion.mean(), self.motion.sigma());
-        let cadence = self.motion.cadence_hz();
-        match &mut self.detector {
-            Detector::Pll(p) => {
-                let mut fresh = Pll::new(*p.config());
-                if let Some(f) = cadence {
-                    fresh.start_on(f, &samples, mu);
-                }
-                *p = fresh;
-            }
-            Detector::Peak(p) => *p = PeakDetector::new(*p.config()),
-        }
+        let m = self.motion.diagnostics();
+        self.detector.restart(m.cadence_hz, &samples, m.mean_z);
         let mut out = Vec::new();
         let mut last = None;
         for &(ts, up) in &samples {
             let dt = last.map_or(0.0, |l| ts - l);
             last = Some(ts);
-            out.extend(self.detector.push(ts, dt, up, (mu, sigma), state, cadence));
+            out.extend(self.detector.push(&DetectorInput {
+                t: ts,
+                dt,
+                up,
+                mean: m.mean_z,
+                sigma: m.sigma_z,
+                motion: state,
+                cadence_hz: m.cadence_hz,
+            }));
         }
         // The gait began after the last step that does not follow its rhythm.
         let first = out
@@ -473,10 +474,7 @@ impl Pipeline {
         self.diag.gap_time_s += dt;
         self.motion.clear_window();
         self.buf.clear();
-        match &mut self.detector {
-            Detector::Pll(p) => p.reset_phase(),
-            Detector::Peak(p) => p.reset(),
-        }
+        self.detector.gap();
         self.end_bout();
     }
 
@@ -486,8 +484,7 @@ impl Pipeline {
         }
         self.t_km1 = None;
         self.t_km2 = None;
-        self.last_step_heading = None;
-        self.last_yaw = None;
+        self.heading.end_bout();
     }
 
     /// Tells the engine that the input stopped between `t0` and `t1` (page hidden, sensor
@@ -520,52 +517,20 @@ impl Pipeline {
             .orientation
             .as_ref()
             .is_some_and(Orientation::has_heading);
-        let theta = if has_heading {
-            heading::single_step(&self.cfg.heading, &self.buf, w)
-        } else {
-            None
-        };
-        let averaged = match (theta, self.last_step_heading) {
-            (Some(th), Some(prev)) if self.cfg.heading.average_two && cont.is_some() => {
-                Some(circular_mean2(prev, th))
-            }
-            (th, _) => th,
-        };
-        let aided = match &self.cfg.heading.yaw_aid {
-            Some(aid) if has_heading && self.attitude.is_some() => {
-                let yaw = self.yaw;
-                let prev = self.last_yaw.replace(yaw).filter(|_| cont.is_some());
-                let reading = self
-                    .attitude
-                    .as_ref()
-                    .is_some_and(|q| heading::reading_pose(q, aid));
-                if reading {
-                    // Held flat in front, screen up: the top of the phone is the way forward.
-                    self.attitude.as_ref().and_then(heading::device_twist)
-                } else if !aid.learn_offset {
-                    None
-                } else {
-                    // Two-step mean, as A-HE, so the sway of a pocket cancels.
-                    let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
-                    // Only straight steps teach the offset: in a turn θ̄ (a stride average of
-                    // the acceleration) lags the yaw.
-                    let straight =
-                        prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
-                    if let (Some(th), true) = (averaged, straight) {
-                        self.yaw_offset.update(aid, wrap_pi(th - psi));
-                    }
-                    self.yaw_offset.get().map(|d| wrap_2pi(psi + d))
-                }
-            }
-            _ => None,
-        };
-        let heading_used = aided.or(averaged).or(self.last_heading);
+        let h = self.heading.push(&heading::StepInput {
+            buf: &self.buf,
+            window: w,
+            continued: cont.is_some(),
+            has_heading,
+        });
+        let heading_used = h.used;
         let freq = 1.0 / period;
-        let p2p = match self.cfg.step_length {
-            StepLengthModel::Weinberg { .. } => self.peak_to_peak(t_km1, c.t),
-            _ => 0.0,
-        };
-        let length = self.cfg.step_length.length(freq, p2p);
+        let length = self.step_length.push(&StepLengthInput {
+            freq_hz: freq,
+            buf: &self.buf,
+            t0: t_km1,
+            t1: c.t,
+        });
         match heading_used {
             Some(h) => {
                 let (sh, ch) = libm::sincos(h);
@@ -580,7 +545,7 @@ impl Pipeline {
             east_m: self.pos.0,
             north_m: self.pos.1,
             heading_rad: heading_used,
-            step_heading_rad: theta,
+            step_heading_rad: h.single,
             length_m: length,
             freq_hz: freq,
             motion: if state.is_moving() {
@@ -590,7 +555,7 @@ impl Pipeline {
             },
         });
         if let Some(f) = &mut self.fusion {
-            f.push_step(&StepInput {
+            f.push_step(&fusion::StepInput {
                 t: c.t,
                 length_m: length,
                 heading_rad: heading_used,
@@ -599,31 +564,6 @@ impl Pipeline {
         self.diag.steps += 1;
         self.t_km2 = cont;
         self.t_km1 = Some(c.t);
-        if theta.is_some() {
-            self.last_step_heading = theta;
-        }
-        if heading_used.is_some() {
-            self.last_heading = heading_used;
-        }
-    }
-
-    fn peak_to_peak(&self, t0: f64, t1: f64) -> f64 {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for s in self
-            .buf
-            .iter()
-            .rev()
-            .take_while(|s| s.t >= t0)
-            .filter(|s| s.t <= t1)
-        {
-            lo = lo.min(s.up);
-            hi = hi.max(s.up);
-        }
-        if hi >= lo {
-            hi - lo
-        } else {
-            0.0
-        }
     }
 
     /// Feeds one GNSS fix. The first accepted fix becomes the geodetic origin of the track.

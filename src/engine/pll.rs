@@ -51,9 +51,10 @@
 //! the RMS of the input over the cycle must reach [`PllConfig::cycle_rms_min`]. While the person is
 //! still the loop idles in the walking band, and when there is nothing to follow its integrator
 //! relaxes to the free-running frequency. When the motion detector confirms a gait, the pipeline
-//! starts a fresh loop on the cadence found ([`Pll::start_on`]) and replays the last seconds
+//! restarts the loop on the cadence found ([`Pll::restart`], [`Pll::start_on`]) and replays the last seconds
 //! through it (the onset look-back, see [`crate::engine::pipeline`]).
 
+use super::detector::{Candidate, DetectorInput};
 use super::math::OnePole;
 use super::motion::Motion;
 use super::types::{positive, ConfigError};
@@ -161,25 +162,33 @@ impl PllConfig {
     }
 }
 
-/// A step candidate from a detector: its time, and the detector's period estimate for it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Candidate {
-    /// Step time, seconds.
-    pub t: f64,
-    /// The detector's current period estimate, seconds.
-    pub period_s: f64,
-    /// How well the step's cycle of vertical acceleration follows the detector's rhythm: for
-    /// the PLL the correlation of the input with the oscillator output cos φ over the cycle
-    /// (1 for a sinusoid in phase, ≈ 0 for noise); 1 for the peak detector.
-    pub coherence: f64,
+/// The loop's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PllDiagnostics {
+    /// Tracked step frequency, Hz ([`Pll::frequency`]).
+    pub freq_hz: f64,
+    /// Oscillator output cos φ.
+    pub output: f64,
+    /// Lock indicator ([`Pll::lock_indicator`]).
+    pub lock_indicator: f64,
+    /// Whether the loop is considered locked.
+    pub locked: bool,
+    /// Oscillator phase in [0, 2π).
+    pub phase: f64,
 }
 
-/// The PLL's running state.
+/// The PLL: its settings, the loop gains derived from them once, and its running state.
 #[derive(Debug, Clone)]
 pub struct Pll {
     cfg: PllConfig,
     kp: f64,
     ki: f64,
+    s: PllState,
+}
+
+/// The loop's running state, apart from its settings: a restart is a fresh state.
+#[derive(Debug, Clone)]
+struct PllState {
     phase: f64,
     freq: f64,
     integ: f64,
@@ -207,18 +216,10 @@ pub struct Pll {
     band_val: (f64, f64, f64),
 }
 
-impl Pll {
-    /// A loop at the walking free-running frequency.
-    pub fn new(cfg: PllConfig) -> Self {
-        // K_d ≈ A/2 with the normalised amplitude A = √2.
-        let kd = std::f64::consts::FRAC_1_SQRT_2;
-        let wn = TAU * cfg.natural_hz;
-        let kp = 2.0 * cfg.damping * wn / (TAU * kd);
-        let ki = wn * wn / (TAU * kd);
-        Pll {
-            cfg,
-            kp,
-            ki,
+impl PllState {
+    /// At the walking free-running frequency, phase 0.
+    fn new(cfg: &PllConfig) -> Self {
+        PllState {
             phase: 0.0,
             freq: cfg.free_running_walk_hz,
             integ: cfg.free_running_walk_hz,
@@ -238,6 +239,23 @@ impl Pll {
             n_cross: 0,
             band_key: None,
             band_val: (0.0, 0.0, 0.0),
+        }
+    }
+}
+
+impl Pll {
+    /// A loop at the walking free-running frequency.
+    pub fn new(cfg: PllConfig) -> Self {
+        // K_d ≈ A/2 with the normalised amplitude A = √2.
+        let kd = std::f64::consts::FRAC_1_SQRT_2;
+        let wn = TAU * cfg.natural_hz;
+        let kp = 2.0 * cfg.damping * wn / (TAU * kd);
+        let ki = wn * wn / (TAU * kd);
+        Pll {
+            s: PllState::new(&cfg),
+            cfg,
+            kp,
+            ki,
         }
     }
 
@@ -286,38 +304,38 @@ impl Pll {
         // Input ≈ A cos(w(t − t0) − ψ) with ψ = atan2(s, c); the oscillator is cos φ.
         let phase = crate::engine::math::wrap_2pi(-libm::atan2(s, c));
         self.reset_phase();
-        self.phase = phase;
-        self.phasor = libm::sincos(phase);
-        self.integ = freq_hz;
-        self.freq = freq_hz;
+        self.s.phase = phase;
+        self.s.phasor = libm::sincos(phase);
+        self.s.integ = freq_hz;
+        self.s.freq = freq_hz;
     }
 
     /// Restarts the oscillator at a peak at time of the next sample (after a gap).
     pub fn reset_phase(&mut self) {
-        self.phase = 0.0;
-        self.phasor = (0.0, 1.0);
-        self.cycle_sq = 0.0;
-        self.cycle_dt = 0.0;
-        self.cycle_xc = 0.0;
-        self.cycle_cc = 0.0;
-        self.peak_max = f64::NEG_INFINITY;
-        self.prev_cycles = [(0.0, false); 2];
-        self.pending = None;
-        self.loop_lpf.reset();
-        self.n_cross = 0;
+        self.s.phase = 0.0;
+        self.s.phasor = (0.0, 1.0);
+        self.s.cycle_sq = 0.0;
+        self.s.cycle_dt = 0.0;
+        self.s.cycle_xc = 0.0;
+        self.s.cycle_cc = 0.0;
+        self.s.peak_max = f64::NEG_INFINITY;
+        self.s.prev_cycles = [(0.0, false); 2];
+        self.s.pending = None;
+        self.s.loop_lpf.reset();
+        self.s.n_cross = 0;
     }
 
     /// Frequency from the last upward zero crossings of the input, when they are regular.
     fn crossing_frequency(&mut self, t: f64, x: f64) -> Option<f64> {
         if x < -0.3 {
-            self.armed = true;
-        } else if x > 0.3 && self.armed {
-            self.armed = false;
-            self.crossings.rotate_left(1);
-            self.crossings[3] = t;
-            self.n_cross = (self.n_cross + 1).min(4);
-            if self.n_cross == 4 {
-                let c = &self.crossings;
+            self.s.armed = true;
+        } else if x > 0.3 && self.s.armed {
+            self.s.armed = false;
+            self.s.crossings.rotate_left(1);
+            self.s.crossings[3] = t;
+            self.s.n_cross = (self.s.n_cross + 1).min(4);
+            if self.s.n_cross == 4 {
+                let c = &self.s.crossings;
                 let span = c[3] - c[0];
                 let regular = (1..4).all(|i| ((c[i] - c[i - 1]) * 3.0 / span - 1.0).abs() < 0.2);
                 if regular && span > 0.0 {
@@ -328,83 +346,81 @@ impl Pll {
         None
     }
 
-    /// Feeds one vertical-acceleration sample `a` (m/s²) taken `dt` s after the previous one,
-    /// with the motion detector's window mean `mu` and deviation `sigma`, state `motion` and
-    /// cadence estimate `cadence` (Hz).
-    pub fn push(
-        &mut self,
-        t: f64,
-        dt: f64,
-        a: f64,
-        mu: f64,
-        sigma: f64,
-        motion: Motion,
-        cadence: Option<f64>,
-    ) -> Option<Candidate> {
-        if self.band_key != Some((motion, cadence)) {
-            self.band_key = Some((motion, cadence));
-            self.band_val = self.band(motion, cadence);
+    /// Feeds one vertical-acceleration sample with the motion detector's view of it.
+    pub fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
+        let DetectorInput {
+            t,
+            dt,
+            up: a,
+            mean: mu,
+            sigma,
+            motion,
+            cadence_hz: cadence,
+        } = *x;
+        if self.s.band_key != Some((motion, cadence)) {
+            self.s.band_key = Some((motion, cadence));
+            self.s.band_val = self.band(motion, cadence);
         }
-        let (lo, hi, free) = self.band_val;
+        let (lo, hi, free) = self.s.band_val;
         // A change of band (walking ↔ running) clamps the estimate into the new band, so the
         // loop keeps its lock across the transition.
-        self.integ = self.integ.clamp(lo, hi);
+        self.s.integ = self.s.integ.clamp(lo, hi);
         if motion == Motion::Still && sigma < 0.5 * self.cfg.cycle_rms_min {
             // Nothing to follow: relax towards the free-running frequency (time constant 2 s).
-            self.integ += dt / (2.0 + dt) * (free - self.integ);
+            self.s.integ += dt / (2.0 + dt) * (free - self.s.integ);
         }
         // Controlled oscillator.
-        let prev = self.phase;
-        self.phase += TAU * self.freq * dt;
+        let prev = self.s.phase;
+        self.s.phase += TAU * self.s.freq * dt;
         let mut out = None;
         let d = a - mu;
         // A peak of the oscillator (φ crossing 2π) is a step candidate at the time interpolated
         // inside the sample interval.
-        let wrapped = self.phase >= TAU;
+        let wrapped = self.s.phase >= TAU;
         if wrapped {
-            let frac = if self.phase > prev {
-                (TAU - prev) / (self.phase - prev)
+            let frac = if self.s.phase > prev {
+                (TAU - prev) / (self.s.phase - prev)
             } else {
                 1.0
             };
-            self.pending = Some((t - dt + frac * dt, 1.0 / self.integ));
-            self.phase -= TAU * (self.phase / TAU).floor();
+            self.s.pending = Some((t - dt + frac * dt, 1.0 / self.s.integ));
+            self.s.phase -= TAU * (self.s.phase / TAU).floor();
         }
         // The step's cycle runs from the trough before its peak to the trough after it (φ from
         // −π to π), so it is judged half a period after the peak, when φ crosses π.
         let from = if wrapped { prev - TAU } else { prev };
-        if from < PI && self.phase >= PI {
-            let frac = (PI - from) / (self.phase - from);
-            let sq = self.cycle_sq + d * d * dt * frac;
-            let rms = libm::sqrt(sq / (self.cycle_dt + dt * frac).max(1e-9));
-            if let Some((t_peak, period_s)) = self.pending.take() {
-                let (same_leg, same_leg_counted) = self.prev_cycles[1];
+        if from < PI && self.s.phase >= PI {
+            let frac = (PI - from) / (self.s.phase - from);
+            let sq = self.s.cycle_sq + d * d * dt * frac;
+            let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
+            if let Some((t_peak, period_s)) = self.s.pending.take() {
+                let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
                 let counts = rms >= self.cfg.cycle_rms_min
                     && (rms >= self.cfg.cycle_rms_rel * sigma
                         || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg))
-                    && self.peak_max >= self.cfg.peak_share_min * rms;
-                self.prev_cycles = [(rms, counts), self.prev_cycles[0]];
+                    && self.s.peak_max >= self.cfg.peak_share_min * rms;
+                self.s.prev_cycles = [(rms, counts), self.s.prev_cycles[0]];
                 if counts {
-                    let den = self.cycle_cc * sq;
+                    let den = self.s.cycle_cc * sq;
                     out = Some(Candidate {
                         t: t_peak,
                         period_s,
                         coherence: if den > 0.0 {
-                            self.cycle_xc / libm::sqrt(den)
+                            self.s.cycle_xc / libm::sqrt(den)
                         } else {
                             0.0
                         },
                     });
                 }
             }
-            self.cycle_xc = 0.0;
-            self.cycle_cc = 0.0;
-            self.peak_max = f64::NEG_INFINITY;
-            self.cycle_sq = d * d * dt * (1.0 - frac);
-            self.cycle_dt = dt * (1.0 - frac);
+            self.s.cycle_xc = 0.0;
+            self.s.cycle_cc = 0.0;
+            self.s.peak_max = f64::NEG_INFINITY;
+            self.s.cycle_sq = d * d * dt * (1.0 - frac);
+            self.s.cycle_dt = dt * (1.0 - frac);
         } else {
-            self.cycle_sq += d * d * dt;
-            self.cycle_dt += dt;
+            self.s.cycle_sq += d * d * dt;
+            self.s.cycle_dt += dt;
         }
         // Phase detector on the normalised input. The floor keeps noise small while still.
         let x = (d / sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
@@ -413,30 +429,30 @@ impl Pll {
         // input cycles disagree with it by more than its lock-in range, re-seed the integrator.
         if let Some(fz) = self.crossing_frequency(t, x) {
             let lock_in = 2.0 * self.cfg.damping * self.cfg.natural_hz;
-            if !self.locked() && (fz - self.integ).abs() > lock_in && fz >= lo && fz <= hi {
-                self.integ = fz;
+            if !self.locked() && (fz - self.s.integ).abs() > lock_in && fz >= lo && fz <= hi {
+                self.s.integ = fz;
             }
         }
         // Oscillator phasor: rotated by the phase increment; re-anchored at every wrap.
         if wrapped {
-            self.phasor = libm::sincos(self.phase);
+            self.s.phasor = libm::sincos(self.s.phase);
         } else {
-            let (ds, dc) = crate::engine::math::sincos_increment(self.phase - prev);
-            let (s0, c0) = self.phasor;
-            self.phasor = (s0 * dc + c0 * ds, c0 * dc - s0 * ds);
+            let (ds, dc) = crate::engine::math::sincos_increment(self.s.phase - prev);
+            let (s0, c0) = self.s.phasor;
+            self.s.phasor = (s0 * dc + c0 * ds, c0 * dc - s0 * ds);
         }
-        let (s, c) = self.phasor;
-        self.output = c;
-        self.cycle_xc += d * c * dt;
-        self.cycle_cc += c * c * dt;
+        let (s, c) = self.s.phasor;
+        self.s.output = c;
+        self.s.cycle_xc += d * c * dt;
+        self.s.cycle_cc += c * c * dt;
         if c > 0.0 {
             // Within a quarter period of the oscillator's peak.
-            self.peak_max = self.peak_max.max(d);
+            self.s.peak_max = self.s.peak_max.max(d);
         }
-        let e = self.loop_lpf.update(-x * s, dt);
-        self.lock.update(x * c, dt);
-        self.integ = (self.integ + self.ki * e * dt).clamp(lo, hi);
-        self.freq = (self.integ + self.kp * e).clamp(lo, hi);
+        let e = self.s.loop_lpf.update(-x * s, dt);
+        self.s.lock.update(x * c, dt);
+        self.s.integ = (self.s.integ + self.ki * e * dt).clamp(lo, hi);
+        self.s.freq = (self.s.integ + self.kp * e).clamp(lo, hi);
         out
     }
 
@@ -445,20 +461,36 @@ impl Pll {
         &self.cfg
     }
 
+    /// Starts afresh: the running state of a new loop, the settings kept.
+    pub fn restart(&mut self) {
+        self.s = PllState::new(&self.cfg);
+    }
+
+    /// The loop's current values.
+    pub fn diagnostics(&self) -> PllDiagnostics {
+        PllDiagnostics {
+            freq_hz: self.frequency(),
+            output: self.output(),
+            lock_indicator: self.lock_indicator(),
+            locked: self.locked(),
+            phase: self.phase(),
+        }
+    }
+
     /// Tracked step frequency, Hz: the integrator of the loop filter, which is the oscillator
     /// frequency without the proportional term's ripple.
     pub fn frequency(&self) -> f64 {
-        self.integ
+        self.s.integ
     }
 
     /// Oscillator output cos φ.
     pub fn output(&self) -> f64 {
-        self.output
+        self.s.output
     }
 
     /// Lock indicator: low-passed in-phase product (≈0.7 locked, ≈0 unlocked).
     pub fn lock_indicator(&self) -> f64 {
-        self.lock.value().unwrap_or(0.0)
+        self.s.lock.value().unwrap_or(0.0)
     }
 
     /// Whether the loop is considered locked (indicator above 0.35).
@@ -468,7 +500,7 @@ impl Pll {
 
     /// Oscillator phase in [0, 2π), 0 at the output peak.
     pub fn phase(&self) -> f64 {
-        self.phase
+        self.s.phase
     }
 }
 
@@ -484,17 +516,16 @@ mod tests {
         for i in 1..steps {
             let t = i as f64 / rate;
             let a = 3.0 * (TAU * f_in * t).cos();
-            if p.push(
+            let x = DetectorInput {
                 t,
-                1.0 / rate,
-                a,
-                0.0,
-                3.0 / 2f64.sqrt(),
-                Motion::Walking,
-                None,
-            )
-            .is_some()
-            {
+                dt: 1.0 / rate,
+                up: a,
+                mean: 0.0,
+                sigma: 3.0 / 2f64.sqrt(),
+                motion: Motion::Walking,
+                cadence_hz: None,
+            };
+            if p.push(&x).is_some() {
                 n += 1;
             }
         }

@@ -26,7 +26,9 @@
 //! Between the bands the line is chosen by frequency, switching at the midpoint of the gap
 //! (2.45 Hz by default); outside the bands each line is extrapolated, then clamped.
 
+use super::heading::NavSample;
 use super::types::{positive, ConfigError};
+use std::collections::VecDeque;
 
 /// One line SL = a·f + b, valid over [f_lo, f_hi].
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -160,14 +162,92 @@ impl StepLengthModel {
             StepLengthModel::Weinberg { k } => positive("step_length.k", *k),
         }
     }
+}
 
-    /// Step length, m, from the step frequency (Hz) and the vertical peak-to-peak (m/s²).
-    pub fn length(&self, freq_hz: f64, peak_to_peak: f64) -> f64 {
-        match self {
-            StepLengthModel::Frequency(p) => p.length(freq_hz),
+/// Weinberg's step length, m: K·(a_max − a_min)^¼ of the vertical acceleration's peak-to-peak
+/// over the step (m/s²), clamped to 0.2–2.5 m.
+pub fn weinberg(k: f64, peak_to_peak: f64) -> f64 {
+    (k * libm::sqrt(libm::sqrt(peak_to_peak.max(0.0)))).clamp(0.2, 2.5)
+}
+
+/// Weinberg's input: the peak-to-peak of the vertical acceleration between `t0` and `t1`, m/s²
+/// (0 without a sample there).
+pub fn peak_to_peak(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> f64 {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for s in buf
+        .iter()
+        .rev()
+        .take_while(|s| s.t >= t0)
+        .filter(|s| s.t <= t1)
+    {
+        lo = lo.min(s.up);
+        hi = hi.max(s.up);
+    }
+    if hi >= lo {
+        hi - lo
+    } else {
+        0.0
+    }
+}
+
+/// What the step-length stage is given at each step.
+#[derive(Debug, Clone, Copy)]
+pub struct StepLengthInput<'a> {
+    /// The step frequency f_k = 1/T_k, Hz.
+    pub freq_hz: f64,
+    /// The recent samples in the navigation frame (Weinberg's amplitude is taken from them).
+    pub buf: &'a VecDeque<NavSample>,
+    /// The start of the step, s.
+    pub t0: f64,
+    /// The end of the step, s.
+    pub t1: f64,
+}
+
+/// The step-length stage's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct StepLengthDiagnostics {
+    /// The last step's length, m.
+    pub last_m: Option<f64>,
+}
+
+/// The step-length stage: the configured model at each step. The models keep nothing from step
+/// to step, so every step gets a length (there is no `None` to return).
+#[derive(Debug, Clone)]
+pub struct StepLength {
+    model: StepLengthModel,
+    last_m: Option<f64>,
+}
+
+impl StepLength {
+    /// A stage with a validated model.
+    pub fn new(model: StepLengthModel) -> Self {
+        StepLength {
+            model,
+            last_m: None,
+        }
+    }
+
+    /// The model.
+    pub fn config(&self) -> &StepLengthModel {
+        &self.model
+    }
+
+    /// The length of one step, m.
+    pub fn push(&mut self, step: &StepLengthInput) -> f64 {
+        let m = match &self.model {
+            StepLengthModel::Frequency(p) => p.length(step.freq_hz),
             StepLengthModel::Weinberg { k } => {
-                (k * libm::sqrt(libm::sqrt(peak_to_peak.max(0.0)))).clamp(0.2, 2.5)
+                weinberg(*k, peak_to_peak(step.buf, step.t0, step.t1))
             }
+        };
+        self.last_m = Some(m);
+        m
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> StepLengthDiagnostics {
+        StepLengthDiagnostics {
+            last_m: self.last_m,
         }
     }
 }

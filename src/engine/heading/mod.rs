@@ -27,7 +27,11 @@
 pub mod closed_form;
 pub mod pca;
 pub mod tip_to_tail;
+pub mod yaw_aid;
 
+pub use yaw_aid::{device_twist, reading_pose, YawAid, YawOffset};
+
+use super::math::{circular_mean2, wrap_2pi, wrap_pi};
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
 use std::f64::consts::TAU;
@@ -89,54 +93,6 @@ pub struct HeadingConfig {
     pub yaw_aid: Option<YawAid>,
 }
 
-/// Yaw-aided heading: our addition to the papers, measured on the Microsoft indoor traces.
-///
-/// Basso's methods find the direction of walking afresh at every step from the acceleration, for
-/// a phone in a trouser pocket, where the device's own yaw says nothing about where the walker
-/// goes. A phone held flat in front of the body to read the screen is different: the top of the
-/// phone *is* the way forward, and the acceleration methods are poor there (the hand damps the
-/// pelvis motion; on the 24 hand-held Microsoft walks tip-to-tail headings are off by 20–40° per
-/// segment with occasional 180° flips). So:
-/// - **Reading pose** (screen up, tilted less than [`YawAid::reading_tilt_deg`] from level): the
-///   step's heading is the device's yaw ψ, the twist of the attitude about the vertical,
-///   2·atan2(q_z, q_w) (swing–twist decomposition; [`device_twist`]). Measured: waypoint p75
-///   5.9 m against 8.7 m for tip-to-tail alone.
-/// - **Otherwise**, by default, the papers' acceleration heading. With
-///   [`YawAid::learn_offset`] the engine instead walks along ψ̄ + δ: ψ integrated from the
-///   attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on
-///   straight steps ([`YawAid::straight_deg`]) as a circular exponential mean over
-///   [`YawAid::steps`] steps with an outlier gate ([`YawOffset`]). It is off by default because on
-///   simulated pockets it made straight walks worse (tip-to-tail 0.5° → 7° mean error): the
-///   device yaw sampled at the step instants carries the thigh's sway, which two steps do not
-///   cancel exactly.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
-pub struct YawAid {
-    /// Time constant of the offset estimate, steps.
-    pub steps: f64,
-    /// Outlier gate, degrees.
-    pub gate_deg: f64,
-    /// Largest yaw change from the previous step for the step to update the offset, degrees.
-    pub straight_deg: f64,
-    /// Largest tilt of the screen from facing up for the reading pose, degrees; `0` disables it.
-    pub reading_tilt_deg: f64,
-    /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ (off by default: on
-    /// simulated pockets it made straight walks worse, see the module notes).
-    pub learn_offset: bool,
-}
-
-impl Default for YawAid {
-    fn default() -> Self {
-        YawAid {
-            steps: 10.0,
-            gate_deg: 60.0,
-            straight_deg: 10.0,
-            reading_tilt_deg: 35.0,
-            learn_offset: false,
-        }
-    }
-}
-
 impl Default for HeadingConfig {
     fn default() -> Self {
         HeadingConfig {
@@ -165,64 +121,6 @@ impl HeadingConfig {
         // Two strides of the slowest walking (2 × 2 × 1/1.2 Hz) or the PCA window, plus the
         // motion detector's look-back.
         (4.0f64).max(self.pca_window_s) + 2.0
-    }
-}
-
-/// The device's yaw: the twist of the device → ENU attitude about the vertical, compass radians
-/// (clockwise from north, like every heading here), or `None` when ill-conditioned (see
-/// [`YawAid`]).
-pub fn device_twist(q: &nalgebra::UnitQuaternion<f64>) -> Option<f64> {
-    let (w, z) = (q.w, q.k);
-    if w * w + z * z < 0.1 {
-        return None;
-    }
-    // 2·atan2(z, w) is counter-clockwise about up; a compass heading turns the other way.
-    Some(crate::engine::math::wrap_2pi(-2.0 * libm::atan2(z, w)))
-}
-
-/// Whether the phone is in the reading pose: screen up, tilted less than
-/// [`YawAid::reading_tilt_deg`] from level.
-pub fn reading_pose(q: &nalgebra::UnitQuaternion<f64>, aid: &YawAid) -> bool {
-    let up = (q * nalgebra::Vector3::z()).z;
-    up > libm::cos(aid.reading_tilt_deg.to_radians())
-}
-
-/// The running estimate of δ, the angle from the device's yaw to the direction of walking.
-#[derive(Debug, Clone, Default)]
-pub struct YawOffset {
-    sum: (f64, f64),
-    n: f64,
-    rejected: f64,
-}
-
-impl YawOffset {
-    /// The estimate, radians, once a step has been seen.
-    pub fn get(&self) -> Option<f64> {
-        (self.n > 0.0 && (self.sum.0 != 0.0 || self.sum.1 != 0.0))
-            .then(|| libm::atan2(self.sum.1, self.sum.0))
-    }
-
-    /// Feeds one step's δ = θ̄ − ψ̄.
-    pub fn update(&mut self, cfg: &YawAid, delta: f64) {
-        if let Some(cur) = self.get() {
-            let off = crate::engine::math::wrap_pi(delta - cur).abs();
-            if self.n >= cfg.steps && off > cfg.gate_deg.to_radians() {
-                self.rejected += 1.0;
-                if self.rejected >= cfg.steps {
-                    *self = YawOffset::default();
-                } else {
-                    return;
-                }
-            }
-        }
-        self.rejected = 0.0;
-        self.n += 1.0;
-        let k = 1.0 / self.n.min(cfg.steps);
-        let (s, c) = libm::sincos(delta);
-        self.sum = (
-            self.sum.0 + k * (c - self.sum.0),
-            self.sum.1 + k * (s - self.sum.1),
-        );
     }
 }
 
@@ -319,6 +217,158 @@ pub struct StepWindow {
     pub t_k: f64,
 }
 
+/// What the heading stage is given at each step.
+#[derive(Debug, Clone, Copy)]
+pub struct StepInput<'a> {
+    /// The recent samples in the navigation frame.
+    pub buf: &'a VecDeque<NavSample>,
+    /// The step's boundaries.
+    pub window: StepWindow,
+    /// The step continues the previous one (no cycle skipped, no stop between them).
+    pub continued: bool,
+    /// The orientation source gives horizontal axes referenced to a heading.
+    pub has_heading: bool,
+}
+
+/// One step's heading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepHeading {
+    /// The heading the step is walked along, rad from north: the yaw aid's, else the (averaged)
+    /// acceleration heading, else the last heading known.
+    pub used: Option<f64>,
+    /// The single-step direction θ_k before averaging, rad from north.
+    pub single: Option<f64>,
+}
+
+/// The heading stage's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct HeadingDiagnostics {
+    /// The heading of the last step, rad from north.
+    pub last_rad: Option<f64>,
+    /// The learnt offset δ from the device's yaw to the direction of walking, rad.
+    pub yaw_offset_rad: Option<f64>,
+}
+
+/// The heading stage: the configured method at each step, the two-step average (A-HE) and the
+/// yaw aid ([`YawAid`]), with what they remember from step to step.
+#[derive(Debug, Clone)]
+pub struct Heading {
+    cfg: HeadingConfig,
+    last_single: Option<f64>,
+    last_used: Option<f64>,
+    attitude: Option<nalgebra::UnitQuaternion<f64>>,
+    // Device yaw integrated from the attitude increments about the vertical, compass radians,
+    // unwrapped; and its value at the previous step.
+    yaw: f64,
+    last_yaw: Option<f64>,
+    yaw_offset: YawOffset,
+}
+
+impl Heading {
+    /// A stage with validated settings.
+    pub fn new(cfg: HeadingConfig) -> Self {
+        Heading {
+            cfg,
+            last_single: None,
+            last_used: None,
+            attitude: None,
+            yaw: 0.0,
+            last_yaw: None,
+            yaw_offset: YawOffset::default(),
+        }
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &HeadingConfig {
+        &self.cfg
+    }
+
+    /// Each sample's device → ENU attitude, when the orientation source has one. With
+    /// [`YawAid::learn_offset`] the device's yaw is integrated from its increments.
+    pub fn push_attitude(&mut self, q: Option<nalgebra::UnitQuaternion<f64>>) {
+        if self.cfg.yaw_aid.is_some_and(|a| a.learn_offset) {
+            if let (Some(q), Some(p)) = (&q, &self.attitude) {
+                // World-frame increment q·p⁻¹; for a small rotation its vertical component is
+                // half the yaw change (counter-clockwise, so subtracted for a compass angle).
+                let d = q * p.inverse();
+                self.yaw -= 2.0 * d.k * d.w.signum();
+            }
+        }
+        self.attitude = q;
+    }
+
+    /// The heading of one step.
+    pub fn push(&mut self, step: &StepInput) -> StepHeading {
+        let StepInput {
+            buf,
+            window,
+            continued,
+            has_heading,
+        } = *step;
+        let theta = if has_heading {
+            single_step(&self.cfg, buf, window)
+        } else {
+            None
+        };
+        let averaged = match (theta, self.last_single) {
+            (Some(th), Some(prev)) if self.cfg.average_two && continued => {
+                Some(circular_mean2(prev, th))
+            }
+            (th, _) => th,
+        };
+        let aided = match &self.cfg.yaw_aid {
+            Some(aid) if has_heading && self.attitude.is_some() => {
+                let yaw = self.yaw;
+                let prev = self.last_yaw.replace(yaw).filter(|_| continued);
+                let reading = self.attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
+                if reading {
+                    // Held flat in front, screen up: the top of the phone is the way forward.
+                    self.attitude.as_ref().and_then(device_twist)
+                } else if !aid.learn_offset {
+                    None
+                } else {
+                    // Two-step mean, as A-HE, so the sway of a pocket cancels.
+                    let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
+                    // Only straight steps teach the offset: in a turn θ̄ (a stride average of
+                    // the acceleration) lags the yaw.
+                    let straight =
+                        prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
+                    if let (Some(th), true) = (averaged, straight) {
+                        self.yaw_offset.update(aid, wrap_pi(th - psi));
+                    }
+                    self.yaw_offset.get().map(|d| wrap_2pi(psi + d))
+                }
+            }
+            _ => None,
+        };
+        let used = aided.or(averaged).or(self.last_used);
+        if theta.is_some() {
+            self.last_single = theta;
+        }
+        if used.is_some() {
+            self.last_used = used;
+        }
+        StepHeading {
+            used,
+            single: theta,
+        }
+    }
+
+    /// The end of a bout (a stop or a gap): the next step is not averaged with the last one.
+    pub fn end_bout(&mut self) {
+        self.last_single = None;
+        self.last_yaw = None;
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> HeadingDiagnostics {
+        HeadingDiagnostics {
+            last_rad: self.last_used,
+            yaw_offset_rad: self.yaw_offset.get(),
+        }
+    }
+}
+
 /// Single-step heading (before any averaging) by the configured method, radians from north.
 pub fn single_step(cfg: &HeadingConfig, buf: &VecDeque<NavSample>, w: StepWindow) -> Option<f64> {
     match cfg.method {
@@ -332,7 +382,6 @@ pub fn single_step(cfg: &HeadingConfig, buf: &VecDeque<NavSample>, w: StepWindow
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
-    use std::f64::consts::PI;
 
     #[test]
     fn fourier_recovers_coefficients_on_irregular_samples() {
@@ -363,40 +412,6 @@ mod tests {
             "{h:?}"
         );
         assert!(close(h[1].alpha[2], 2.0), "{h:?}");
-    }
-
-    #[test]
-    fn device_twist_is_the_compass_heading_of_the_top_of_a_flat_phone() {
-        use nalgebra::{UnitQuaternion, Vector3};
-        // Flat, face up, top (device y) turned to the east: a rotation of −90° about up.
-        let q = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), -std::f64::consts::FRAC_PI_2);
-        let top = q * Vector3::y();
-        assert!((top - Vector3::x()).norm() < 1e-12);
-        let psi = device_twist(&q).unwrap();
-        assert!((psi - std::f64::consts::FRAC_PI_2).abs() < 1e-12, "{psi}");
-        assert!(reading_pose(&q, &YawAid::default()));
-        // Upright in a pocket: not the reading pose; upside down: no twist at all.
-        let upright = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.5);
-        assert!(!reading_pose(&upright, &YawAid::default()));
-        let flipped = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 3.1);
-        assert_eq!(device_twist(&flipped), None);
-    }
-
-    #[test]
-    fn yaw_offset_ignores_a_flip_and_follows_a_moved_phone() {
-        let aid = YawAid::default();
-        let mut o = YawOffset::default();
-        for i in 0..30 {
-            // 0.5 rad with one 180° flip among them.
-            let d = if i == 12 { 0.5 + PI } else { 0.5 };
-            o.update(&aid, d);
-        }
-        assert!((o.get().unwrap() - 0.5).abs() < 1e-9, "{:?}", o.get());
-        // The phone moves to another pocket: δ jumps by 2 rad and stays there.
-        for _ in 0..25 {
-            o.update(&aid, 2.5);
-        }
-        assert!((o.get().unwrap() - 2.5).abs() < 0.05, "{:?}", o.get());
     }
 
     #[test]

@@ -1,0 +1,38 @@
+//! What every step detector is fed per sample ([`DetectorInput`]) and what it finds
+//! ([`Candidate`]): the PLL ([`crate::engine::pll`]) and the peak counter
+//! ([`crate::engine::peak`]) have the same contract, so the pipeline can run either.
+//! May import: the rest of `engine`.
+
+use super::motion::Motion;
+
+/// One vertical-acceleration sample with the motion detector's view of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DetectorInput {
+    /// Time, s.
+    pub t: f64,
+    /// Time since the previous sample, s (0 after a gap).
+    pub dt: f64,
+    /// Vertical linear acceleration, m/s², up positive.
+    pub up: f64,
+    /// Mean of the vertical acceleration over the motion detector's window, m/s².
+    pub mean: f64,
+    /// Its standard deviation σ_z, m/s².
+    pub sigma: f64,
+    /// The motion state.
+    pub motion: Motion,
+    /// The cadence of the periodic gait the motion detector sees, Hz.
+    pub cadence_hz: Option<f64>,
+}
+
+/// A step candidate from a detector: its time, and the detector's period estimate for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Candidate {
+    /// Step time, seconds.
+    pub t: f64,
+    /// The detector's current period estimate, seconds.
+    pub period_s: f64,
+    /// How well the step's cycle of vertical acceleration follows the detector's rhythm: for
+    /// the PLL the correlation of the input with the oscillator output cos φ over the cycle
+    /// (1 for a sinusoid in phase, ≈ 0 for noise); 1 for the peak detector.
+    pub coherence: f64,
+}
