@@ -138,10 +138,7 @@ pub fn analyse(
             .collect()
     });
     let fused = p.fused();
-    let pdr_offset = fused.first().map_or((0.0, 0.0), |f| {
-        let at = crate::eval::position_at(p.track(), f.t);
-        (f.east_m - at.0, f.north_m - at.1)
-    });
+    let pdr_offset = p.pdr_offset();
     let mut warnings: Vec<String> = log.warnings.iter().map(|e| e.to_string()).collect();
     if log.skipped > warnings.len() as u64 {
         warnings.push(format!("{} lines skipped in all", log.skipped));

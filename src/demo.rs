@@ -129,10 +129,7 @@ pub fn run_fusion_demo() -> FusionDemoSummary {
     let smoothed = p.smoothed();
     // The PDR track starts at the walk's start, which the engine only knows through the fixes:
     // it is drawn from the smoothed estimate of that point.
-    let start = smoothed.first().map_or((0.0, 0.0), |s| {
-        let at = crate::eval::position_at(p.track(), s.t);
-        (s.east_m - at.0, s.north_m - at.1)
-    });
+    let start = crate::engine::pipeline::offset_onto(p.track(), smoothed.first());
     let pdr: Vec<(f64, f64, f64)> = p
         .track()
         .iter()

@@ -18,7 +18,7 @@
 //! step it is the origin, after the last step the last position.
 
 use crate::engine::fusion::FusedStep;
-use crate::engine::pipeline::{replay, Pipeline, PipelineConfig, StepRecord};
+use crate::engine::pipeline::{position_at, replay, Pipeline, PipelineConfig, StepRecord};
 use crate::io::import::{Log, Waypoint};
 use serde::Serialize;
 
@@ -324,25 +324,6 @@ fn interpolate(points: &[(f64, f64, f64)], t: f64, reach: f64) -> Option<(f64, f
         (Some(a), _) if t - a.0 <= reach => Some((a.1, a.2)),
         (_, Some(b)) if b.0 - t <= reach && prev.is_some() => Some((b.1, b.2)),
         _ => None,
-    }
-}
-
-/// The estimated position (east, north) at time `t`, interpolated between steps.
-pub fn position_at(track: &[StepRecord], t: f64) -> (f64, f64) {
-    let i = track.partition_point(|s| s.t <= t);
-    let (prev_t, prev) = match i.checked_sub(1) {
-        Some(k) => (track[k].t, (track[k].east_m, track[k].north_m)),
-        None => return (0.0, 0.0),
-    };
-    match track.get(i) {
-        Some(next) if next.t > prev_t => {
-            let w = (t - prev_t) / (next.t - prev_t);
-            (
-                prev.0 + w * (next.east_m - prev.0),
-                prev.1 + w * (next.north_m - prev.1),
-            )
-        }
-        _ => prev,
     }
 }
 

@@ -668,10 +668,7 @@ impl LiveSession {
         );
         let track = p.track();
         let fused: Vec<(f64, f64)> = p.fused().iter().map(|f| (f.east_m, f.north_m)).collect();
-        let offset = p.fused().first().map_or((0.0, 0.0), |f| {
-            let at = crate::eval::position_at(track, f.t);
-            (f.east_m - at.0, f.north_m - at.1)
-        });
+        let offset = p.pdr_offset();
         let shift = |e: f64, n: f64| (e + offset.0, n + offset.1);
         MapData {
             pdr: std::iter::once((0.0, 0.0))
@@ -701,7 +698,8 @@ impl LiveSession {
 
     /// The scrolling view's data: (t, vertical acceleration, PLL output) of the last
     /// [`SCOPE_S`], the step times among them, and the newest time.
-    pub fn scope_data(&self) -> (Vec<crate::plot::ScopePoint>, Vec<f64>, f64) {
+    #[allow(clippy::type_complexity)]
+    pub fn scope_data(&self) -> (Vec<(f64, f64, Option<f64>)>, Vec<f64>, f64) {
         let samples: Vec<_> = self.view.scope.iter().map(|s| (s.t, s.up, s.pll)).collect();
         let now = samples.last().map_or(0.0, |s| s.0);
         let steps = self

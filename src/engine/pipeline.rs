@@ -28,7 +28,8 @@
 
 use super::detector::{Candidate, DetectorInput};
 use super::fusion::GnssMode;
-use super::fusion::{self, declination_for, FixCounts, FixInput, FusedStep, Fusion, FusionConfig};
+use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
+use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
 use super::motion::{Motion, MotionConfig, MotionDetector};
@@ -156,8 +157,36 @@ pub struct StepRecord {
     pub motion: Motion,
 }
 
+/// The estimated position (east, north) at time `t`, interpolated between steps.
+pub fn position_at(track: &[StepRecord], t: f64) -> (f64, f64) {
+    let i = track.partition_point(|s| s.t <= t);
+    let (prev_t, prev) = match i.checked_sub(1) {
+        Some(k) => (track[k].t, (track[k].east_m, track[k].north_m)),
+        None => return (0.0, 0.0),
+    };
+    match track.get(i) {
+        Some(next) if next.t > prev_t => {
+            let w = (t - prev_t) / (next.t - prev_t);
+            (
+                prev.0 + w * (next.east_m - prev.0),
+                prev.1 + w * (next.north_m - prev.1),
+            )
+        }
+        _ => prev,
+    }
+}
+
+/// The shift that draws a PDR track in the frame of the fixes: the position of a fused (or
+/// smoothed) step minus the track's position at its time; zero without one.
+pub fn offset_onto(track: &[StepRecord], anchor: Option<&FusedStep>) -> (f64, f64) {
+    anchor.map_or((0.0, 0.0), |f| {
+        let at = position_at(track, f.t);
+        (f.east_m - at.0, f.north_m - at.1)
+    })
+}
+
 /// Counters and current values; read-only.
-#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
 pub struct Diagnostics {
     /// IMU samples accepted.
     pub samples: u64,
@@ -198,7 +227,7 @@ pub struct Diagnostics {
     /// Magnetic declination applied by the fusion, degrees.
     pub declination_deg: Option<f64>,
     /// Why the declination may be off (no date, no model).
-    pub declination_note: Option<String>,
+    pub declination_note: Option<DeclinationNote>,
     /// What happened to the fixes in the fusion.
     pub fix_counts: Option<FixCounts>,
     /// Time the GNSS receiver was (or would have been) on, from the first fix to the last
@@ -625,6 +654,12 @@ impl Pipeline {
         self.fusion.as_ref().map_or(&[], |f| f.steps())
     }
 
+    /// What to add to the PDR track to draw it in the frame of the fixes: the fused estimate at
+    /// the first fused step minus the track's position then (zero without fusion).
+    pub fn pdr_offset(&self) -> (f64, f64) {
+        offset_onto(&self.steps, self.fused().first())
+    }
+
     /// The fused track smoothed backwards over the whole log (Rauch–Tung–Striebel).
     pub fn smoothed(&self) -> Vec<FusedStep> {
         self.fusion.as_ref().map_or_else(Vec::new, Fusion::smoothed)
@@ -649,17 +684,20 @@ impl Pipeline {
 
     /// Counters and current values.
     pub fn diagnostics(&self) -> Diagnostics {
-        let mut d = self.diag.clone();
-        d.motion = self.orientation.as_ref().map(|_| self.motion.state());
-        d.sigma_z = self.motion.sigma();
-        d.cadence_hz = self.motion.cadence_hz();
+        let mut d = self.diag;
+        let m = self.motion.diagnostics();
+        d.motion = self.orientation.as_ref().map(|_| m.state);
+        d.sigma_z = m.sigma_z;
+        d.cadence_hz = m.cadence_hz;
         if let Some(f) = &self.fusion {
-            d.fix_counts = Some(f.counts());
-            d.gnss_on_s = f.gnss_on_s();
+            let f = f.diagnostics();
+            d.fix_counts = Some(f.counts);
+            d.gnss_on_s = f.gnss_on_s;
         }
         if let Detector::Pll(p) = &self.detector {
-            d.pll_freq_hz = Some(p.frequency());
-            d.pll_locked = Some(p.locked());
+            let p = p.diagnostics();
+            d.pll_freq_hz = Some(p.freq_hz);
+            d.pll_locked = Some(p.locked);
         }
         d
     }

@@ -88,7 +88,6 @@ pub fn run(file: &Path, outputs: Outputs, cfg: PipelineConfig) -> Result<(), Str
             last.bias_rad.to_degrees(),
             d.declination_deg.unwrap_or(0.0),
             d.declination_note
-                .as_deref()
                 .map_or(String::new(), |n| format!("; {n}"))
         );
         if let Some((on, span)) = d.gnss_on_s {

@@ -39,13 +39,45 @@ pub fn wmm_declination_deg(
     d.is_finite().then_some((d, inside && unix_s.is_some()))
 }
 
+/// Why the declination applied may be off.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DeclinationNote {
+    /// The World Magnetic Model's value without a known date in 2020–2029 (degrees).
+    NoDate {
+        /// The declination used, degrees.
+        deg: f64,
+    },
+    /// The model gave none: headings are used as they are.
+    Unavailable,
+}
+
+impl std::fmt::Display for DeclinationNote {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DeclinationNote::NoDate { deg } => write!(
+                f,
+                "declination {deg:.2}° from the World Magnetic Model without a known date in 2020–2029"
+            ),
+            DeclinationNote::Unavailable => {
+                write!(f, "declination unavailable; headings used as they are")
+            }
+        }
+    }
+}
+
+impl serde::Serialize for DeclinationNote {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
+    }
+}
+
 /// The declination a configuration asks for at a frame's origin, radians, and a note when the
 /// model was used without a known date.
 pub fn declination_for(
     cfg: &FusionConfig,
     frame: &LocalFrame,
     fix_t: f64,
-) -> (f64, Option<String>) {
+) -> (f64, Option<DeclinationNote>) {
     match cfg.declination {
         Declination::None => (0.0, None),
         Declination::Fixed { deg } => (deg.to_radians(), None),
@@ -58,13 +90,8 @@ pub fn declination_for(
             };
             match wmm_declination_deg(frame.lat0_deg, frame.lon0_deg, frame.h0_m, date) {
                 Some((d, true)) => (d.to_radians(), None),
-                Some((d, false)) => (
-                    d.to_radians(),
-                    Some(format!(
-                        "declination {d:.2}° from the World Magnetic Model without a known date in 2020–2029"
-                    )),
-                ),
-                None => (0.0, Some("declination unavailable; headings used as they are".into())),
+                Some((d, false)) => (d.to_radians(), Some(DeclinationNote::NoDate { deg: d })),
+                None => (0.0, Some(DeclinationNote::Unavailable)),
             }
         }
     }

@@ -64,6 +64,6 @@ pub mod smoother;
 pub use config::{
     Declination, FusionConfig, GnssMode, ACCURACY_PER_SIGMA, DEFAULT_PERIOD_S, DEFAULT_WINDOW_S,
 };
-pub use declination::{declination_for, wmm_declination_deg};
+pub use declination::{declination_for, wmm_declination_deg, DeclinationNote};
 pub use filter::{FixInput, Fusion, FusionDiagnostics, StepInput};
 pub use output::{FixCounts, FixOutcome, FusedStep};
