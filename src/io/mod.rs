@@ -3,6 +3,7 @@
 
 pub mod export;
 pub mod import;
+pub mod lines;
 pub mod pdrlog;
 
 use std::fmt;
@@ -36,3 +37,31 @@ impl fmt::Display for ParseError {
 }
 
 impl std::error::Error for ParseError {}
+
+/// A parse error for one field of one line.
+pub fn field_error(
+    file: &str,
+    line: u64,
+    column: usize,
+    field: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column: Some(column),
+        field: Some(field.to_string()),
+        message: message.into(),
+    }
+}
+
+/// An error about a whole file.
+pub fn file_error(file: &str, line: u64, message: impl Into<String>) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column: None,
+        field: None,
+        message: message.into(),
+    }
+}

@@ -1,11 +1,12 @@
 //! The evaluation data sets of `../shared/data`, read directly: Oxford Step Counter trace
 //! folders, Microsoft Indoor Location Competition 2.0 traces and the x-io foot-mounted CSVs.
 
-use super::common::{add_warnings, each_line, set_records, Warnings};
+use super::common::{add_warnings, set_records, Warnings};
 use super::{
     field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams, TrueStep,
     Waypoint, G0,
 };
+use crate::io::lines::each_line;
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::io::BufRead;

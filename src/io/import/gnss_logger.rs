@@ -17,9 +17,10 @@
 //! `OrientationDeg` holds `SensorManager.getOrientation` angles in degrees: yaw (azimuth,
 //! clockwise from magnetic north), pitch and roll. See [`orientation_quaternion`].
 
-use super::common::{add_warnings, each_line, not_a_number, set_records, warn_count, Warnings};
+use super::common::{add_warnings, not_a_number, set_records, warn_count, Warnings};
 use super::{field_error, file_error, number, Format, Log, Platform, Streams};
 use crate::engine::types::GnssFix;
+use crate::io::lines::each_line;
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::collections::HashMap;

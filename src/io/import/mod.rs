@@ -31,7 +31,8 @@ pub mod gnss_logger;
 pub mod phyphox;
 pub mod sensor_logger;
 
-pub use common::MAX_LINE;
+pub use super::lines::{MAX_LINE, MAX_WARNINGS};
+pub use super::{field_error, file_error};
 pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
 
 use super::ParseError;
@@ -46,9 +47,6 @@ pub const G0: f64 = 9.80665;
 /// accelerometer samples, s. Longer than one period of the slowest stream we read (a 10 Hz
 /// orientation), shorter than a step.
 pub const HOLD_S: f64 = 0.2;
-
-/// Most warnings kept per log; further bad lines are only counted.
-pub const MAX_WARNINGS: usize = 100;
 
 /// The formats we read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -372,34 +370,6 @@ pub fn number(s: &str) -> Option<f64> {
     None
 }
 
-/// A parse error for one field of one line.
-pub fn field_error(
-    file: &str,
-    line: u64,
-    column: usize,
-    field: &str,
-    message: impl Into<String>,
-) -> ParseError {
-    ParseError {
-        file: file.to_string(),
-        line,
-        column: Some(column),
-        field: Some(field.to_string()),
-        message: message.into(),
-    }
-}
-
-/// An error about a whole file.
-pub fn file_error(file: &str, line: u64, message: impl Into<String>) -> ParseError {
-    ParseError {
-        file: file.to_string(),
-        line,
-        column: None,
-        field: None,
-        message: message.into(),
-    }
-}
-
 /// Reads every recognisable log in a file set. Unrecognised files are ignored; the result is
 /// empty when nothing was recognised. A log that fails to read is an `Err` in the list, and
 /// never stops the others.
@@ -458,7 +428,7 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
         };
         let label = set.label(name);
         let records = match (format, set.size(name)) {
-            (Format::PdrLog, Some(size)) => crate::io::pdrlog::estimate_records(&head, size),
+            (Format::PdrLog, Some(size)) => crate::io::lines::estimate_records(&head, size),
             _ => 0,
         };
         let r = match set.open(name) {

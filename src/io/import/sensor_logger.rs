@@ -678,7 +678,7 @@ pub fn read_dir(
             };
             let label = set.label(name);
             if let (Some(size), Ok(head)) = (set.size(name), set.head(name)) {
-                raw.reserve(kind, crate::io::pdrlog::estimate_records(&head, size));
+                raw.reserve(kind, crate::io::lines::estimate_records(&head, size));
             }
             let r = set
                 .open(name)
