@@ -55,9 +55,10 @@
 
 use super::{GnssSim, Simulation};
 use crate::engine::math::OnePole;
+use crate::engine::orientation::G0;
 use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
-use crate::io::import::{Format, Platform, G0};
+use crate::io::import::{Format, Platform};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::fmt::Write as _;
 

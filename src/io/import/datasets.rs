@@ -4,8 +4,9 @@
 use super::common::{add_warnings, set_records, Warnings};
 use super::{
     field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams, TrueStep,
-    Waypoint, G0,
+    Waypoint,
 };
+use crate::engine::orientation::G0;
 use crate::io::lines::each_line;
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};

@@ -41,12 +41,14 @@ use crate::engine::types::{GnssFix, ImuSample};
 use nalgebra::{UnitQuaternion, Vector3};
 
 /// Standard gravity, m/s² (for sources that give acceleration in g).
-pub const G0: f64 = 9.80665;
+#[doc(inline)]
+pub use crate::engine::orientation::G0;
 
 /// Longest a gyroscope, magnetometer or orientation sample is carried forward to later
 /// accelerometer samples, s. Longer than one period of the slowest stream we read (a 10 Hz
-/// orientation), shorter than a step.
-pub const HOLD_S: f64 = 0.2;
+/// orientation), shorter than a step. The engine holds the OS attitude as long.
+#[doc(inline)]
+pub use crate::engine::orientation::HOLD_S;
 
 /// The formats we read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]

@@ -43,7 +43,7 @@ use super::common::{
     Warnings,
 };
 use super::{field_error, file_error, fileset, number, FileSet, Format, Log, Platform, Streams};
-use super::{G0, HOLD_S};
+use crate::engine::orientation::{G0, HOLD_S};
 use crate::engine::types::GnssFix;
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
