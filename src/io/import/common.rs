@@ -212,6 +212,27 @@ impl<R: BufRead> Table<R> {
     }
 }
 
+/// Parses fields `[from, from + N)` of a split line as numbers, naming the first bad one.
+pub(crate) fn numbers<const N: usize>(
+    fields: &[&str],
+    from: usize,
+    names: [&str; N],
+    file: &str,
+    line: u64,
+) -> Result<[f64; N], ParseError> {
+    let mut out = [0.0; N];
+    for (k, name) in names.iter().enumerate() {
+        let col = from + k;
+        let s = fields
+            .get(col)
+            .ok_or_else(|| field_error(file, line, col + 1, name, "missing"))?;
+        out[k] = number(s).ok_or_else(|| {
+            field_error(file, line, col + 1, name, format!("not a number: {s:?}"))
+        })?;
+    }
+    Ok(out)
+}
+
 /// Parses field `col` of a record as a number, naming the column on failure.
 pub(crate) fn cell(
     rec: &csv::StringRecord,

@@ -24,12 +24,14 @@
 //! line inside a readable log is skipped and kept in [`Log::warnings`]; every good line is kept.
 
 pub(crate) mod common;
-pub mod datasets;
 pub mod fileset;
 pub mod get_sensor_data;
 pub mod gnss_logger;
+pub mod ms_indoor;
+pub mod oxford;
 pub mod phyphox;
 pub mod sensor_logger;
+pub mod xio;
 
 pub use super::lines::{MAX_LINE, MAX_WARNINGS};
 pub use super::{field_error, file_error};
@@ -386,13 +388,13 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
     for dir in dirs {
         let in_dir = |f: &str| names.iter().any(|n| n.as_str() == format!("{dir}{f}"));
         let read = if in_dir("accelerometer.csv") && in_dir("stepcounter.csv") {
-            Some(datasets::read_oxford(set, dir))
+            Some(oxford::read_oxford(set, dir))
         } else {
             None
         };
         if let Some(r) = read {
             for (i, n) in names.iter().enumerate() {
-                if fileset::parent(n) == dir && datasets::OXFORD_FILES.contains(&fileset::base(n)) {
+                if fileset::parent(n) == dir && oxford::OXFORD_FILES.contains(&fileset::base(n)) {
                     used[i] = true;
                 }
             }
@@ -446,8 +448,8 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
                     log.skipped += extra;
                     log
                 }),
-                Format::MsIndoor => datasets::read_ms_indoor(reader, &label),
-                Format::XioFoot => datasets::read_xio(reader, &label),
+                Format::MsIndoor => ms_indoor::read_ms_indoor(reader, &label),
+                Format::XioFoot => xio::read_xio(reader, &label),
                 Format::SensorLoggerJson => sensor_logger::read_json(reader, &label),
                 Format::GnssLogger => gnss_logger::read(reader, &label),
                 Format::GetSensorData => get_sensor_data::read(reader, &label),
