@@ -1,5 +1,8 @@
 //! Files: the project's own log format ([`pdrlog`]), the formats other apps record ([`import`])
-//! and track exports ([`export`]).
+//! and track exports ([`export`]). May import: `engine` only; `sim` and the layers above import
+//! `io`, never the reverse.
+//!
+//! Inside `io`, [`lines`] (bounded line reading) is below [`pdrlog`], which is below [`import`].
 
 pub mod export;
 pub mod import;

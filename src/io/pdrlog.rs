@@ -1,4 +1,6 @@
 //! The project's own recording format, `pdr-log`, version 1.
+//! May import: `engine` and [`lines`](super::lines); not `import`, which reads pdr-logs through
+//! this module (its tests also use a `sim` walk).
 //!
 //! A UTF-8 text file, one record per sensor event, so a recorder can append to it and a reader
 //! can stream it. The first line is the version tag `# pdr-log 1`. Other lines starting with `#`

@@ -1,4 +1,5 @@
 //! A gait simulator: phone-in-pocket IMU streams with known truth.
+//! May import: `engine` and `io`.
 //!
 //! # Model
 //! The walker follows a script of [`Segment`]s (still, handled, walking, running), each with a

@@ -1,4 +1,5 @@
 //! Text helpers shared by the readers: bounded lines, CSV fields, numbers, capped warnings.
+//! May import: `engine` and `io`.
 //!
 //! Every reader goes through [`each_line`] or [`Table`], which never hold more than
 //! [`MAX_LINE`](crate::io::lines::MAX_LINE) bytes of one line, and through [`Warnings`], which

@@ -1,5 +1,5 @@
 //! GetSensorData (the Android app of the IPIN competitions) `.txt`: semicolon-separated records,
-//! comment lines starting with `%`.
+//! comment lines starting with `%`. May import: `engine` and `io`.
 //!
 //! Read:
 //! - `ACCE;AppTs;SensorTs;Acc_X;Acc_Y;Acc_Z;Accuracy` (m/s², gravity included, Android axes),

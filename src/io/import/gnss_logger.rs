@@ -1,5 +1,7 @@
-//! Google GnssLogger `.txt`: comma-separated records of several kinds in one file. `# ` header
-//! lines declare the columns of each kind (`# Accel,utcTimeMillis,elapsedRealtimeNanos,
+//! Google GnssLogger `.txt`: comma-separated records of several kinds in one file.
+//! May import: `engine` and `io`.
+//!
+//! `# ` header lines declare the columns of each kind (`# Accel,utcTimeMillis,elapsedRealtimeNanos,
 //! AccelXMps2,…`); data lines start with the kind (`Accel,…`). Columns are found by these
 //! declared names; a kind used without a declaration gets the layout of GnssLogger v3.
 //!

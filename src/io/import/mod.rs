@@ -1,4 +1,5 @@
 //! Import: the recordings people make, read into the engine's own records.
+//! May import: `engine` and `io` (a [`pdrlog`](crate::io::pdrlog) is one of the formats it reads).
 //!
 //! One layer for the CLI, the upload page (in wasm) and the tests. The input is a [`FileSet`]: a
 //! folder, a zip archive, or files held in memory. [`import_all`] finds every recognisable log in

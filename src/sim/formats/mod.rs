@@ -1,4 +1,5 @@
 //! A simulated walk written in every format the import reads, as the recording app writes it.
+//! May import: `engine` and `io`.
 //!
 //! [`write`] turns a [`Simulation`] into the files an app (or a data set) would have produced for
 //! the same walk: file and folder names, header lines, column names and order, units, clocks,

@@ -1,5 +1,5 @@
 //! Sensor Logger (Android and iOS app by Kelvin Choi): a folder or zip of per-sensor CSVs, or
-//! the app's JSON export.
+//! the app's JSON export. May import: `engine` and `io`.
 //!
 //! # Files
 //! `Accelerometer.csv` (gravity removed), `Gravity.csv`, `TotalAcceleration.csv` (Android only,
