@@ -1,4 +1,5 @@
 //! Track exports: per-step CSV and GeoJSON.
+//! May import: `engine` only (its tests also run the demo walk).
 //!
 //! CSV columns (stable; other tools read them): `t_s,east_m,north_m,heading_deg,length_m,freq_hz,
 //! motion`, then `lat,lon` when the track has a geodetic origin (the first GNSS fix). `t_s` is the

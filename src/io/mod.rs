@@ -1,8 +1,12 @@
 //! Files: the project's own log format ([`pdrlog`]), the formats other apps record ([`import`])
-//! and track exports ([`export`]).
+//! and track exports ([`export`]). May import: `engine` only; `sim` and the layers above import
+//! `io`, never the reverse.
+//!
+//! Inside `io`, [`lines`] (bounded line reading) is below [`pdrlog`], which is below [`import`].
 
 pub mod export;
 pub mod import;
+pub mod lines;
 pub mod pdrlog;
 
 use std::fmt;
@@ -36,3 +40,31 @@ impl fmt::Display for ParseError {
 }
 
 impl std::error::Error for ParseError {}
+
+/// A parse error for one field of one line.
+pub fn field_error(
+    file: &str,
+    line: u64,
+    column: usize,
+    field: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column: Some(column),
+        field: Some(field.to_string()),
+        message: message.into(),
+    }
+}
+
+/// An error about a whole file.
+pub fn file_error(file: &str, line: u64, message: impl Into<String>) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column: None,
+        field: None,
+        message: message.into(),
+    }
+}

@@ -1,4 +1,6 @@
 //! The project's own recording format, `pdr-log`, version 1.
+//! May import: `engine` and [`lines`](super::lines); not `import`, which reads pdr-logs through
+//! this module (its tests also use a `sim` walk).
 //!
 //! A UTF-8 text file, one record per sensor event, so a recorder can append to it and a reader
 //! can stream it. The first line is the version tag `# pdr-log 1`. Other lines starting with `#`
@@ -24,10 +26,10 @@
 //! skipped; every good line before and after it is kept. A missing or unknown version tag is
 //! fatal.
 
+use super::lines::{try_each_line, MAX_WARNINGS};
 use super::ParseError;
 use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
-use crate::io::import::common::try_each_line;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::fmt::Write as _;
 use std::io::BufRead;
@@ -122,7 +124,7 @@ pub fn to_string(records: &[Record]) -> String {
 pub struct Parsed {
     /// Records in file order.
     pub records: Vec<Record>,
-    /// The first [`crate::io::import::MAX_WARNINGS`] lines that were skipped.
+    /// The first [`MAX_WARNINGS`] lines that were skipped.
     pub errors: Vec<ParseError>,
     /// How many lines were skipped in all (`errors` may hold one more entry: the notice that
     /// records were put back in time order).
@@ -130,7 +132,7 @@ pub struct Parsed {
 }
 
 /// Reads a pdr-log stream. `file` names the source in errors. Lines are bounded
-/// ([`crate::io::import::MAX_LINE`]), so a file of any size is read in memory proportional to
+/// ([`crate::io::lines::MAX_LINE`]), so a file of any size is read in memory proportional to
 /// its records.
 pub fn read(input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
     read_sized(input, file, 0)
@@ -153,7 +155,7 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
     let mut saw_header = false;
     let skip = |out: &mut Parsed, e: ParseError| {
         out.skipped += 1;
-        if out.errors.len() < crate::io::import::MAX_WARNINGS {
+        if out.errors.len() < MAX_WARNINGS {
             out.errors.push(e);
         }
     };
@@ -365,22 +367,6 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
         }),
         _ => Record::Gap(req(1)?, req(2)?),
     })
-}
-
-/// The number of records a pdr-log of `size` bytes holds, estimated from its first bytes
-/// (`head`): the size over the mean length of the record lines there, plus 2 %.
-pub fn estimate_records(head: &str, size: u64) -> usize {
-    let (mut n, mut bytes) = (0usize, 0usize);
-    for l in head.lines().skip(1) {
-        if !l.starts_with('#') && !l.is_empty() {
-            n += 1;
-            bytes += l.len() + 1;
-        }
-    }
-    if n < 3 {
-        return 0;
-    }
-    (size as f64 * n as f64 / bytes as f64 * 1.02) as usize
 }
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
 //! Named scenarios used by the tests, the benchmark and the demo page.
+//! May import: `engine` and `io`.
 
 use super::{GnssSim, Scenario, Segment, Walker};
 

@@ -1,15 +1,16 @@
 //! Text helpers shared by the readers: bounded lines, CSV fields, numbers, capped warnings.
+//! May import: `engine` and `io`.
 //!
 //! Every reader goes through [`each_line`] or [`Table`], which never hold more than
-//! [`MAX_LINE`] bytes of one line, and through [`Warnings`], which keeps the first
-//! [`MAX_WARNINGS`] skipped lines and only counts the rest. So a file of any size, even binary
-//! junk without a line end, is read in bounded memory (besides the samples it yields).
+//! [`MAX_LINE`](crate::io::lines::MAX_LINE) bytes of one line, and through [`Warnings`], which
+//! keeps the first [`MAX_WARNINGS`] skipped lines and only counts the rest. So a file of any size,
+//! even binary junk without a line end, is read in bounded memory (besides the samples it yields).
 
-use super::{field_error, file_error, number, Log, Streams, MAX_WARNINGS};
+use super::{field_error, file_error, number, Log, Streams};
+use crate::io::lines::{each_line, read_line_capped, MAX_WARNINGS};
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
-use std::io::{self, BufRead};
-use std::ops::ControlFlow;
+use std::io::BufRead;
 
 /// Skipped lines of one file or log: the first [`MAX_WARNINGS`] kept, all counted.
 #[derive(Debug, Default)]
@@ -44,100 +45,6 @@ impl Warnings {
     /// The first warning kept.
     pub fn first(&self) -> Option<&ParseError> {
         self.kept.first()
-    }
-}
-
-/// Longest line kept, bytes. A longer line (binary junk, a file without line ends) is skipped
-/// with a warning instead of being held in memory.
-pub const MAX_LINE: usize = 1 << 16;
-
-/// Reads one line without its `\n` into `buf`. `Ok(None)` at the end of input; `Ok(Some(true))`
-/// when the line was longer than [`MAX_LINE`] (then `buf` is empty).
-fn read_line_capped(r: &mut impl BufRead, buf: &mut Vec<u8>) -> io::Result<Option<bool>> {
-    buf.clear();
-    let mut any = false;
-    let mut long = false;
-    loop {
-        let (used, done) = {
-            let avail = match r.fill_buf() {
-                Ok(a) => a,
-                Err(e) if e.kind() == io::ErrorKind::Interrupted => continue,
-                Err(e) => return Err(e),
-            };
-            if avail.is_empty() {
-                return Ok(any.then_some(long));
-            }
-            any = true;
-            let (chunk, used, done) = match memchr::memchr(b'\n', avail) {
-                Some(i) => (&avail[..i], i + 1, true),
-                None => (avail, avail.len(), false),
-            };
-            if !long {
-                if buf.len() + chunk.len() > MAX_LINE {
-                    long = true;
-                    buf.clear();
-                } else {
-                    buf.extend_from_slice(chunk);
-                }
-            }
-            (used, done)
-        };
-        r.consume(used);
-        if done {
-            return Ok(Some(long));
-        }
-    }
-}
-
-/// Calls `f(line_number, line)` for every line, leniently: a line that is not UTF-8 text or is
-/// longer than [`MAX_LINE`] is passed as an error naming the file and line, and reading goes on.
-/// `\r` line ends and a byte-order mark on the first line are removed. Only a read failure of
-/// the input itself is fatal.
-pub(crate) fn each_line(
-    r: impl BufRead,
-    file: &str,
-    mut f: impl FnMut(u64, Result<&str, ParseError>),
-) -> Result<(), ParseError> {
-    try_each_line(r, file, |n, l| {
-        f(n, l);
-        ControlFlow::Continue(())
-    })
-}
-
-/// [`each_line`] that stops when `f` says so.
-pub(crate) fn try_each_line(
-    mut r: impl BufRead,
-    file: &str,
-    mut f: impl FnMut(u64, Result<&str, ParseError>) -> ControlFlow<()>,
-) -> Result<(), ParseError> {
-    let mut buf = Vec::with_capacity(256);
-    let mut n = 0u64;
-    loop {
-        let long = read_line_capped(&mut r, &mut buf)
-            .map_err(|e| file_error(file, n + 1, format!("cannot read: {e}")))?;
-        let Some(long) = long else {
-            return Ok(());
-        };
-        n += 1;
-        let flow = if long {
-            f(n, Err(file_error(file, n, "line too long: not a text log")))
-        } else {
-            match std::str::from_utf8(&buf) {
-                Ok(s) => {
-                    let s = s.trim_end_matches('\r');
-                    let s = if n == 1 {
-                        s.trim_start_matches('\u{feff}')
-                    } else {
-                        s
-                    };
-                    f(n, Ok(s))
-                }
-                Err(_) => f(n, Err(file_error(file, n, "not UTF-8 text"))),
-            }
-        };
-        if flow.is_break() {
-            return Ok(());
-        }
     }
 }
 
@@ -223,7 +130,7 @@ pub(crate) fn split_into(line: &str, delimiter: u8, rec: &mut csv::StringRecord)
 }
 
 /// A CSV file with a header line, read record by record (one record per line, lines bounded
-/// by [`MAX_LINE`]).
+/// by [`MAX_LINE`](crate::io::lines::MAX_LINE)).
 pub(crate) struct Table<R: BufRead> {
     /// The header fields, trimmed, quotes removed.
     pub header: Vec<String>,
@@ -304,6 +211,27 @@ impl<R: BufRead> Table<R> {
             }
         })
     }
+}
+
+/// Parses fields `[from, from + N)` of a split line as numbers, naming the first bad one.
+pub(crate) fn numbers<const N: usize>(
+    fields: &[&str],
+    from: usize,
+    names: [&str; N],
+    file: &str,
+    line: u64,
+) -> Result<[f64; N], ParseError> {
+    let mut out = [0.0; N];
+    for (k, name) in names.iter().enumerate() {
+        let col = from + k;
+        let s = fields
+            .get(col)
+            .ok_or_else(|| field_error(file, line, col + 1, name, "missing"))?;
+        out[k] = number(s).ok_or_else(|| {
+            field_error(file, line, col + 1, name, format!("not a number: {s:?}"))
+        })?;
+    }
+    Ok(out)
 }
 
 /// Parses field `col` of a record as a number, naming the column on failure.
@@ -421,16 +349,6 @@ mod tests {
         assert_eq!(detect_delimiter("Time (s)\tAcceleration x (m/s^2)"), b'\t');
         assert_eq!(detect_delimiter("\"a;b\",c,d"), b',');
         assert_eq!(detect_delimiter("time"), b',');
-    }
-
-    #[test]
-    fn lines_are_lenient() {
-        let text = b"a\r\n\xff\xfe\nb\n";
-        let mut got = Vec::new();
-        each_line(&text[..], "f", |n, l| got.push((n, l.map(str::to_string)))).unwrap();
-        assert_eq!(got[0], (1, Ok("a".to_string())));
-        assert!(got[1].1.is_err());
-        assert_eq!(got[2], (3, Ok("b".to_string())));
     }
 
     #[test]

@@ -1,4 +1,5 @@
 //! Where the files of a recording come from: a folder, a zip archive, or memory (uploads).
+//! May import: `engine` and `io`.
 
 use std::io::{self, BufRead, BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};

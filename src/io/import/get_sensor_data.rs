@@ -1,5 +1,5 @@
 //! GetSensorData (the Android app of the IPIN competitions) `.txt`: semicolon-separated records,
-//! comment lines starting with `%`.
+//! comment lines starting with `%`. May import: `engine` and `io`.
 //!
 //! Read:
 //! - `ACCE;AppTs;SensorTs;Acc_X;Acc_Y;Acc_Z;Accuracy` (m/s², gravity included, Android axes),
@@ -30,11 +30,12 @@
 //! sensor falls back to `AppTs`, with a warning.
 
 use super::common::{
-    add_warnings, drop_non_finite, each_line, not_a_number, rotation_vector, warn_count, Warnings,
+    add_warnings, drop_non_finite, not_a_number, rotation_vector, warn_count, Warnings,
 };
 use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
 use crate::engine::geo::LocalFrame;
 use crate::engine::types::GnssFix;
+use crate::io::lines::each_line;
 use crate::io::ParseError;
 use nalgebra::{UnitQuaternion, Vector3};
 use std::collections::HashSet;

@@ -1,5 +1,7 @@
-//! Google GnssLogger `.txt`: comma-separated records of several kinds in one file. `# ` header
-//! lines declare the columns of each kind (`# Accel,utcTimeMillis,elapsedRealtimeNanos,
+//! Google GnssLogger `.txt`: comma-separated records of several kinds in one file.
+//! May import: `engine` and `io`.
+//!
+//! `# ` header lines declare the columns of each kind (`# Accel,utcTimeMillis,elapsedRealtimeNanos,
 //! AccelXMps2,…`); data lines start with the kind (`Accel,…`). Columns are found by these
 //! declared names; a kind used without a declaration gets the layout of GnssLogger v3.
 //!
@@ -17,9 +19,10 @@
 //! `OrientationDeg` holds `SensorManager.getOrientation` angles in degrees: yaw (azimuth,
 //! clockwise from magnetic north), pitch and roll. See [`orientation_quaternion`].
 
-use super::common::{add_warnings, each_line, not_a_number, set_records, warn_count, Warnings};
+use super::common::{add_warnings, not_a_number, set_records, warn_count, Warnings};
 use super::{field_error, file_error, number, Format, Log, Platform, Streams};
 use crate::engine::types::GnssFix;
+use crate::io::lines::each_line;
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::collections::HashMap;

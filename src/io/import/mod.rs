@@ -1,4 +1,5 @@
 //! Import: the recordings people make, read into the engine's own records.
+//! May import: `engine` and `io` (a [`pdrlog`](crate::io::pdrlog) is one of the formats it reads).
 //!
 //! One layer for the CLI, the upload page (in wasm) and the tests. The input is a [`FileSet`]: a
 //! folder, a zip archive, or files held in memory. [`import_all`] finds every recognisable log in
@@ -24,14 +25,17 @@
 //! line inside a readable log is skipped and kept in [`Log::warnings`]; every good line is kept.
 
 pub(crate) mod common;
-pub mod datasets;
 pub mod fileset;
 pub mod get_sensor_data;
 pub mod gnss_logger;
+pub mod ms_indoor;
+pub mod oxford;
 pub mod phyphox;
 pub mod sensor_logger;
+pub mod xio;
 
-pub use common::MAX_LINE;
+pub use super::lines::{MAX_LINE, MAX_WARNINGS};
+pub use super::{field_error, file_error};
 pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
 
 use super::ParseError;
@@ -40,15 +44,14 @@ use crate::engine::types::{GnssFix, ImuSample};
 use nalgebra::{UnitQuaternion, Vector3};
 
 /// Standard gravity, m/s² (for sources that give acceleration in g).
-pub const G0: f64 = 9.80665;
+#[doc(inline)]
+pub use crate::engine::orientation::G0;
 
 /// Longest a gyroscope, magnetometer or orientation sample is carried forward to later
 /// accelerometer samples, s. Longer than one period of the slowest stream we read (a 10 Hz
-/// orientation), shorter than a step.
-pub const HOLD_S: f64 = 0.2;
-
-/// Most warnings kept per log; further bad lines are only counted.
-pub const MAX_WARNINGS: usize = 100;
+/// orientation), shorter than a step. The engine holds the OS attitude as long.
+#[doc(inline)]
+pub use crate::engine::orientation::HOLD_S;
 
 /// The formats we read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -372,34 +375,6 @@ pub fn number(s: &str) -> Option<f64> {
     None
 }
 
-/// A parse error for one field of one line.
-pub fn field_error(
-    file: &str,
-    line: u64,
-    column: usize,
-    field: &str,
-    message: impl Into<String>,
-) -> ParseError {
-    ParseError {
-        file: file.to_string(),
-        line,
-        column: Some(column),
-        field: Some(field.to_string()),
-        message: message.into(),
-    }
-}
-
-/// An error about a whole file.
-pub fn file_error(file: &str, line: u64, message: impl Into<String>) -> ParseError {
-    ParseError {
-        file: file.to_string(),
-        line,
-        column: None,
-        field: None,
-        message: message.into(),
-    }
-}
-
 /// Reads every recognisable log in a file set. Unrecognised files are ignored; the result is
 /// empty when nothing was recognised. A log that fails to read is an `Err` in the list, and
 /// never stops the others.
@@ -414,13 +389,13 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
     for dir in dirs {
         let in_dir = |f: &str| names.iter().any(|n| n.as_str() == format!("{dir}{f}"));
         let read = if in_dir("accelerometer.csv") && in_dir("stepcounter.csv") {
-            Some(datasets::read_oxford(set, dir))
+            Some(oxford::read_oxford(set, dir))
         } else {
             None
         };
         if let Some(r) = read {
             for (i, n) in names.iter().enumerate() {
-                if fileset::parent(n) == dir && datasets::OXFORD_FILES.contains(&fileset::base(n)) {
+                if fileset::parent(n) == dir && oxford::OXFORD_FILES.contains(&fileset::base(n)) {
                     used[i] = true;
                 }
             }
@@ -458,7 +433,7 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
         };
         let label = set.label(name);
         let records = match (format, set.size(name)) {
-            (Format::PdrLog, Some(size)) => crate::io::pdrlog::estimate_records(&head, size),
+            (Format::PdrLog, Some(size)) => crate::io::lines::estimate_records(&head, size),
             _ => 0,
         };
         let r = match set.open(name) {
@@ -474,8 +449,8 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
                     log.skipped += extra;
                     log
                 }),
-                Format::MsIndoor => datasets::read_ms_indoor(reader, &label),
-                Format::XioFoot => datasets::read_xio(reader, &label),
+                Format::MsIndoor => ms_indoor::read_ms_indoor(reader, &label),
+                Format::XioFoot => xio::read_xio(reader, &label),
                 Format::SensorLoggerJson => sensor_logger::read_json(reader, &label),
                 Format::GnssLogger => gnss_logger::read(reader, &label),
                 Format::GetSensorData => get_sensor_data::read(reader, &label),

@@ -1,6 +1,6 @@
 //! phyphox CSV export: a folder or zip with one CSV per sensor (`Accelerometer.csv`,
 //! `Gyroscope.csv`, `Magnetometer.csv`, `Location.csv`, or `Raw Data.csv` for single-sensor
-//! experiments) and usually a `meta/` folder.
+//! experiments) and usually a `meta/` folder. May import: `engine` and `io`.
 //!
 //! Headers name the quantity and unit, e.g. `"Time (s)","Acceleration x (m/s^2)",…`,
 //! `"Gyroscope x (rad/s)"`, `"Magnetic field x (µT)"`, and for location `"Latitude (°)"`,

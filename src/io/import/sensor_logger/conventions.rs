@@ -1,0 +1,266 @@
+//! Sensor Logger's iOS and Android conventions: which platform a recording came from, and its
+//! units, signs and frames turned into the import's one convention. May import: `engine` and `io`.
+
+use super::Raw;
+use crate::engine::orientation::{G0, HOLD_S};
+use crate::io::import::common::{add_warnings, drop_non_finite, warn_count};
+use crate::io::import::{file_error, Log, Platform, Streams};
+use crate::io::ParseError;
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+
+impl Raw {
+    /// Settles units, signs and frames and builds the log.
+    pub(super) fn finish(
+        mut self,
+        mut log: Log,
+        source_for_errors: &str,
+    ) -> Result<Log, ParseError> {
+        for v in [
+            &mut self.accel,
+            &mut self.gravity,
+            &mut self.total,
+            &mut self.gyro,
+            &mut self.mag,
+        ] {
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        }
+        self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let accel_file = if self.accel_file.is_empty() {
+            source_for_errors.to_string()
+        } else {
+            self.accel_file.clone()
+        };
+        if self.total.is_empty() && self.accel.is_empty() {
+            return Err(file_error(
+                &accel_file,
+                0,
+                "no accelerometer samples (Accelerometer or TotalAcceleration)",
+            ));
+        }
+        if self.total.is_empty() && self.gravity.is_empty() {
+            let gravity_problem = self
+                .warnings
+                .find(|w| w.column.is_none() && w.file.to_lowercase().ends_with("gravity.csv"));
+            if let Some(e) = gravity_problem {
+                return Err(e.clone());
+            }
+            return Err(file_error(
+                &accel_file,
+                0,
+                "Accelerometer has gravity removed, and there is no Gravity or TotalAcceleration \
+                 to restore it",
+            ));
+        }
+        // Units: g or m/s², from the size of gravity.
+        let reference = if self.gravity.is_empty() {
+            &self.total
+        } else {
+            &self.gravity
+        };
+        let mean_norm =
+            reference.iter().map(|(_, v)| v.norm()).sum::<f64>() / reference.len().max(1) as f64;
+        let scale = if mean_norm < 3.0 { G0 } else { 1.0 };
+        let platform = decide_platform(
+            self.platform,
+            !self.total.is_empty(),
+            scale != 1.0,
+            &self.gravity,
+            &self.orientation,
+            reference,
+        );
+        log.platform = platform;
+        // Conventions of the values as written.
+        let ios_frames = platform == Some(Platform::Ios) && !self.standardised;
+        let sign = if ios_frames { -scale } else { scale };
+        let mut s = Streams::default();
+        let mut unpaired = 0u64;
+        if !self.total.is_empty() {
+            s.accel = self.total.iter().map(|&(t, v)| (t, v * sign)).collect();
+        } else {
+            let g = &self.gravity;
+            let mut j = 0usize;
+            for &(t, a) in &self.accel {
+                while j + 1 < g.len() && g[j + 1].0 <= t {
+                    j += 1;
+                }
+                let best = [j, j + 1]
+                    .into_iter()
+                    .filter(|&k| k < g.len())
+                    .min_by(|&p, &q| (g[p].0 - t).abs().total_cmp(&(g[q].0 - t).abs()));
+                match best {
+                    Some(k) if (g[k].0 - t).abs() <= HOLD_S => {
+                        s.accel.push((t, (a + g[k].1) * sign));
+                    }
+                    _ => unpaired += 1,
+                }
+            }
+        }
+        s.gyro = std::mem::take(&mut self.gyro);
+        s.mag = std::mem::take(&mut self.mag);
+        let to_enu = if ios_frames {
+            // Rz(+90°): Core Motion's (north, west, up) reference → (east, north, up).
+            let h = std::f64::consts::FRAC_1_SQRT_2;
+            UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h))
+        } else {
+            UnitQuaternion::identity()
+        };
+        s.orientation = self
+            .orientation
+            .iter()
+            .map(|&(t, q)| (t, to_enu * q))
+            .collect();
+        s.fixes = std::mem::take(&mut self.fixes);
+        let dropped = drop_non_finite(&mut s);
+        if s.accel.is_empty() {
+            return Err(file_error(
+                &accel_file,
+                0,
+                "no usable accelerometer samples (no gravity sample within 0.2 s of any)",
+            ));
+        }
+        log.records = s.into_records();
+        add_warnings(&mut log, std::mem::take(&mut self.warnings));
+        warn_count(
+            &mut log,
+            unpaired,
+            file_error(
+                &accel_file,
+                0,
+                format!(
+                    "{unpaired} accelerometer sample(s) without a gravity sample within {HOLD_S} s, \
+                     skipped"
+                ),
+            ),
+        );
+        warn_count(
+            &mut log,
+            dropped,
+            file_error(
+                source_for_errors,
+                0,
+                format!("{dropped} sample(s) overflowed to a non-finite value, skipped"),
+            ),
+        );
+        Ok(log)
+    }
+}
+
+/// Decides the platform of a Sensor Logger recording, in this order:
+/// 1. `platform` in `Metadata.csv` (`ios` or `android`) when given;
+/// 2. a `TotalAcceleration.csv` exists: Android (iOS has no such file);
+/// 3. acceleration in g (mean |gravity| < 3): iOS (Android always writes m/s²);
+/// 4. gravity and orientation both present: gravity turned into the reference frame by the
+///    orientation points up on Android (the reading is the reaction to gravity) and down on iOS
+///    (Core Motion's gravity vector), in both cases whatever the pose, because both reference
+///    frames have z up. The mean of the vertical component of the unit gravity vector decides
+///    when it exceeds 0.5 in size;
+/// 5. otherwise [`Platform::guess`] on the mean gravity (or total acceleration): the sign on the
+///    axis with the largest mean, positive meaning Android. This last rule fails for a phone
+///    carried upside down, which rules 1–4 do not depend on.
+///
+/// `None` only when nothing is left to decide from.
+pub fn decide_platform(
+    metadata: Option<Platform>,
+    has_total: bool,
+    in_g: bool,
+    gravity: &[(f64, Vector3<f64>)],
+    orientation: &[(f64, UnitQuaternion<f64>)],
+    reference: &[(f64, Vector3<f64>)],
+) -> Option<Platform> {
+    if metadata.is_some() {
+        return metadata;
+    }
+    if has_total {
+        return Some(Platform::Android);
+    }
+    if in_g {
+        return Some(Platform::Ios);
+    }
+    if !gravity.is_empty() && !orientation.is_empty() {
+        let (mut sum, mut n) = (0.0, 0usize);
+        let mut j = 0usize;
+        for &(t, g) in gravity {
+            while j + 1 < orientation.len() && orientation[j + 1].0 <= t {
+                j += 1;
+            }
+            let best = [j, j + 1]
+                .into_iter()
+                .filter(|&k| k < orientation.len())
+                .min_by(|&p, &q| {
+                    (orientation[p].0 - t)
+                        .abs()
+                        .total_cmp(&(orientation[q].0 - t).abs())
+                });
+            let norm = g.norm();
+            if let Some(k) = best {
+                if (orientation[k].0 - t).abs() <= HOLD_S && norm > 0.0 && norm.is_finite() {
+                    sum += (orientation[k].1 * g).z / norm;
+                    n += 1;
+                }
+            }
+        }
+        if n > 0 {
+            let mean = sum / n as f64;
+            if mean > 0.5 {
+                return Some(Platform::Android);
+            }
+            if mean < -0.5 {
+                return Some(Platform::Ios);
+            }
+        }
+    }
+    if reference.is_empty() {
+        return None;
+    }
+    let mean = reference
+        .iter()
+        .fold(Vector3::zeros(), |acc, (_, v)| acc + v)
+        / reference.len() as f64;
+    Platform::guess(mean)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ios_attitude_to_enu() {
+        // Face up, top pointing north: the device's x (right) points east, which is −y of
+        // Core Motion's (north, west, up) frame, so the attitude is a −90° turn about z.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let q_ios = UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, -h));
+        let top = q_ios * Vector3::y();
+        assert!(
+            (top - Vector3::x()).norm() < 1e-12,
+            "top points to ref x = north"
+        );
+        let to_enu = UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h));
+        let q = to_enu * q_ios;
+        assert!(q.angle() < 1e-12, "device frame = ENU: {q:?}");
+    }
+
+    #[test]
+    fn platform_from_gravity_and_orientation() {
+        // A phone upside down in a pocket (top pointing down): Android gravity reads −9.8 on y,
+        // which the axis rule would take for iOS; the orientation settles it.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        // Device → ENU: top (y) pointing down = rotation of −90° about x.
+        let q = UnitQuaternion::new_unchecked(Quaternion::new(h, -h, 0.0, 0.0));
+        let g = [(0.0, Vector3::new(0.0, -9.8, 0.0))];
+        let o = [(0.0, q)];
+        assert_eq!(
+            decide_platform(None, false, false, &g, &o, &g),
+            Some(Platform::Android)
+        );
+        let g_ios = [(0.0, Vector3::new(0.0, 9.8, 0.0))];
+        assert_eq!(
+            decide_platform(None, false, false, &g_ios, &o, &g_ios),
+            Some(Platform::Ios)
+        );
+        assert_eq!(
+            decide_platform(None, false, false, &g, &[], &g),
+            Some(Platform::Ios),
+            "the axis rule alone gets this pose wrong"
+        );
+    }
+}

@@ -1,0 +1,116 @@
+//! phyphox's CSV export of a simulated walk, as [`crate::io::import::phyphox`] reads it.
+//! May import: `engine` and `io`.
+
+use super::{civil, sci9, system_time, Item, Walk};
+use crate::engine::types::ImuSample;
+use nalgebra::Vector3;
+use std::fmt::Write as _;
+
+impl Walk<'_> {
+    /// phyphox's CSV export of a multi-sensor experiment: `Accelerometer.csv` ("Acceleration
+    /// with g", m/s², Android sign on both platforms), `Gyroscope.csv`, `Magnetometer.csv`,
+    /// `Location.csv` and `meta/`; time in seconds since the start; every number in
+    /// `0.000000000E0` form. An unknown velocity or direction is left empty (phyphox itself
+    /// writes `NaN` there; the reader takes both as unknown, and nothing here writes NaN).
+    pub(super) fn phyphox(&self) -> Vec<(String, Vec<u8>)> {
+        let imu = self.imu();
+        let fixes = self.fixes();
+        let dir = format!("Walk {}", self.name('-', ' ', '-'));
+        let mut files = Vec::new();
+        let mut table = |name: &str,
+                         unit: &str,
+                         q: &str,
+                         abs: &str,
+                         get: &dyn Fn(&ImuSample) -> Option<Vector3<f64>>| {
+            if !imu.iter().any(|s| get(s).is_some()) {
+                return;
+            }
+            let mut text = format!(
+                "\"Time (s)\",\"{q} x ({unit})\",\"{q} y ({unit})\",\"{q} z ({unit})\",\"{abs} ({unit})\"\n"
+            );
+            for s in &imu {
+                if let Some(v) = get(s) {
+                    let _ = writeln!(
+                        text,
+                        "{},{},{},{},{}",
+                        sci9(self.rel(s.t)),
+                        sci9(v.x),
+                        sci9(v.y),
+                        sci9(v.z),
+                        sci9(v.norm())
+                    );
+                }
+            }
+            files.push((format!("{dir}/{name}"), text.into_bytes()));
+        };
+        table(
+            "Accelerometer.csv",
+            "m/s^2",
+            "Acceleration",
+            "Absolute acceleration",
+            &|s| Some(s.accel),
+        );
+        table("Gyroscope.csv", "rad/s", "Gyroscope", "Absolute", &|s| {
+            s.gyro
+        });
+        table(
+            "Magnetometer.csv",
+            "µT",
+            "Magnetic field",
+            "Absolute field",
+            &|s| s.mag,
+        );
+        if !fixes.is_empty() {
+            let mut text = String::from(
+                "\"Time (s)\",\"Latitude (°)\",\"Longitude (°)\",\"Height (m)\",\"Velocity (m/s)\",\
+                 \"Direction (°)\",\"Horizontal Accuracy (m)\",\"Vertical Accuracy (m)\"\n",
+            );
+            let opt = |v: Option<f64>| v.map_or(String::new(), sci9);
+            for f in &fixes {
+                let _ = writeln!(
+                    text,
+                    "{},{},{},{},{},{},{},{}",
+                    sci9(self.rel(f.t)),
+                    sci9(f.lat_deg),
+                    sci9(f.lon_deg),
+                    opt(f.altitude_m),
+                    opt(f.speed_mps),
+                    opt(f.bearing_deg),
+                    sci9(f.h_accuracy_m),
+                    sci9(1.5 * f.h_accuracy_m)
+                );
+            }
+            files.push((format!("{dir}/Location.csv"), text.into_bytes()));
+        }
+        let device = "\"property\",\"value\"\n\"version\",\"1.1.16\"\n\"build\",\"1011608\"\n\
+                      \"fileFormat\",\"1.18\"\n\"deviceModel\",\"pdr simulator\"\n\
+                      \"deviceBrand\",\"pdr\"\n\"deviceBoard\",\"sim\"\n\"deviceManufacturer\",\"pdr\"\n";
+        files.push((format!("{dir}/meta/device.csv"), device.as_bytes().to_vec()));
+        let end = self.items.last().map_or(self.start, |i| match i {
+            Item::Imu(s) => s.t,
+            Item::Fix(f) => f.t,
+        });
+        let stamp = |t: f64| {
+            let ms = self.unix_ms(t);
+            let (y, mo, d, h, mi, s, _) = civil(ms.div_euclid(1000));
+            (
+                system_time(ms),
+                format!(
+                    "{y:04}-{mo:02}-{d:02} {h:02}:{mi:02}:{s:02}.{:03} UTC+00:00",
+                    ms.rem_euclid(1000)
+                ),
+            )
+        };
+        let (s0, s0_text) = stamp(self.start);
+        let (s1, s1_text) = stamp(end);
+        let time = format!(
+            "\"event\",\"experiment time\",\"system time\",\"system time text\"\n\
+             \"START\",{},{s0},\"{s0_text}\"\n\"PAUSE\",{},{s1},\"{s1_text}\"\n",
+            sci9(0.0),
+            sci9(self.rel(end)),
+        );
+        files.push((format!("{dir}/meta/time.csv"), time.into_bytes()));
+        files.sort();
+        files
+    }
+}
