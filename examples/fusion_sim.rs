@@ -5,7 +5,7 @@
 //! `cargo run --release --example fusion_sim [-- KEY=VALUE…]` (overrides as `pdr eval --set`).
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 use pdr::engine::fusion::FusedStep;
-use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::engine::pipeline::replay;
 use pdr::sim::scenarios;
 
 fn p75(mut v: Vec<f64>) -> f64 {
@@ -15,7 +15,10 @@ fn p75(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), &args).unwrap();
+    let cfg = pdr::settings::Settings::new()
+        .with_args(&args)
+        .and_then(|s| s.config())
+        .unwrap();
     let mut sc = scenarios::gnss_city_walk();
     if let Ok(seed) = std::env::var("SEED") {
         sc.seed = seed.parse().unwrap();

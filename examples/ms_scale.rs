@@ -1,13 +1,16 @@
 //! Per Microsoft indoor trace: walked distance between the first and last waypoint, estimated
 //! against the waypoint polyline (scale), steps and mean step length, waypoint p75 error.
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
-use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::engine::pipeline::replay;
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), &args).unwrap();
+    let cfg = pdr::settings::Settings::new()
+        .with_args(&args)
+        .and_then(|s| s.config())
+        .unwrap();
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ms-indoor");
     let Ok(mut set) = DirSet::new(&root) else {
         println!("skipped: {} not found", root.display());

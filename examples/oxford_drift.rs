@@ -4,7 +4,7 @@
 //! unmatched count (extra step) is printed with the engine's state at that time.
 //!
 //! `cargo run --release --example oxford_drift -- TRACE [--set KEY=VALUE…]`
-use pdr::engine::pipeline::{Pipeline, PipelineConfig, Record};
+use pdr::engine::pipeline::{Pipeline, Record};
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;
 
@@ -27,7 +27,10 @@ fn main() {
         return;
     };
     let log = import_all(&mut set).into_iter().next().unwrap().unwrap();
-    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), &sets).unwrap();
+    let cfg = pdr::settings::Settings::new()
+        .with_args(&sets)
+        .and_then(|s| s.config())
+        .unwrap();
     let mut p = Pipeline::new(cfg).unwrap();
     let mut states = Vec::new();
     let mut next = 0.0;

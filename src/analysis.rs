@@ -11,6 +11,7 @@ use crate::engine::pipeline::{Pipeline, PipelineConfig, StepRecord};
 use crate::engine::replay::replay_observed;
 use crate::engine::types::ConfigError;
 use crate::engine::types::Record;
+use crate::eval::LogResult;
 use crate::io::import::Log;
 
 /// The per-sample signals, one entry per IMU sample the engine accepted.
@@ -47,8 +48,8 @@ pub struct Analysis {
     pub format: String,
     /// Lines the reader skipped, with the first reasons.
     pub warnings: Vec<String>,
-    /// The evaluation bench's result for this log, JSON (the same object as `pdr eval --json`).
-    pub score_json: String,
+    /// The evaluation bench's result for this log (the same object as `pdr eval --json`).
+    pub score: LogResult,
     /// The steps.
     pub steps: Vec<StepRecord>,
     /// The per-sample signals.
@@ -72,6 +73,26 @@ pub struct Analysis {
     /// The motion detector's σ thresholds: still below, running above (m/s²).
     pub sigma_thresholds: (f64, f64),
 }
+
+/// Why an analysis cannot cross from the worker to the page.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AnalysisError {
+    /// It could not be written as bytes.
+    Encode(String),
+    /// The bytes are not an analysis.
+    Decode(String),
+}
+
+impl std::fmt::Display for AnalysisError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            AnalysisError::Encode(e) => write!(f, "the analysis cannot be written: {e}"),
+            AnalysisError::Decode(e) => write!(f, "unreadable analysis: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for AnalysisError {}
 
 /// How often [`analyse`] reports progress, records.
 pub const PROGRESS_EVERY: usize = 65_536;
@@ -150,7 +171,7 @@ pub fn analyse(
         source: log.source.clone(),
         format: log.format.as_str().to_string(),
         warnings,
-        score_json: serde_json::to_string(&score).unwrap_or_default(),
+        score,
         steps: p.track().to_vec(),
         trace: tr,
         fixes,
@@ -178,13 +199,13 @@ pub fn analyse(
 impl Analysis {
     /// The analysis as bytes (bincode: compact, and NaN survives), for the trip from the worker
     /// to the page.
-    pub fn to_bytes(&self) -> Vec<u8> {
-        bincode::serialize(self).unwrap_or_default()
+    pub fn to_bytes(&self) -> Result<Vec<u8>, AnalysisError> {
+        bincode::serialize(self).map_err(|e| AnalysisError::Encode(e.to_string()))
     }
 
     /// Reads [`Analysis::to_bytes`].
-    pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
-        bincode::deserialize(bytes).map_err(|e| format!("unreadable analysis: {e}"))
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, AnalysisError> {
+        bincode::deserialize(bytes).map_err(|e| AnalysisError::Decode(e.to_string()))
     }
 
     /// The local frame of the fixes, for geodetic exports.

@@ -76,10 +76,14 @@ pub struct FusionDemoSummary {
     pub fused_p75_m: f64,
     /// Of the smoothed track, m.
     pub smoothed_p75_m: f64,
-    /// Step-length scale found (truth 1/1.1 = 0.909).
+    /// Step-length scale found.
     pub scale: f64,
-    /// Heading correction found, degrees (truth −8).
+    /// The true scale ([`scenarios::GNSS_CITY_LENGTH_FACTOR`]).
+    pub true_scale: f64,
+    /// Heading correction found, degrees.
     pub heading_correction_deg: f64,
+    /// The true correction, degrees ([`scenarios::GNSS_CITY_HEADING_BIAS_DEG`]).
+    pub true_heading_correction_deg: f64,
     /// Magnetic declination applied, degrees.
     pub declination_deg: f64,
     /// The true path.
@@ -156,7 +160,9 @@ pub fn run_fusion_demo() -> FusionDemoSummary {
         fused_p75_m: errors(fused),
         smoothed_p75_m: errors(&smoothed),
         scale: last.map_or(1.0, |l| l.scale),
+        true_scale: 1.0 / scenarios::GNSS_CITY_LENGTH_FACTOR,
         heading_correction_deg: last.map_or(0.0, |l| l.bias_rad.to_degrees()),
+        true_heading_correction_deg: -scenarios::GNSS_CITY_HEADING_BIAS_DEG,
         declination_deg: p.diagnostics().declination_deg.unwrap_or(0.0),
         truth: sim
             .truth

@@ -20,13 +20,13 @@
 use crate::engine::fusion::FusedStep;
 use crate::engine::pipeline::{position_at, replay, Pipeline, PipelineConfig, StepRecord};
 use crate::io::import::{Log, Waypoint};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// Waypoints nearer the start than this along the true path are left out of the percentages, m.
 pub const MIN_PATH_FOR_PCT_M: f64 = 20.0;
 
 /// Summary of waypoint errors in metres.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MetresSummary {
     /// Mean, m.
     pub mean: f64,
@@ -39,7 +39,7 @@ pub struct MetresSummary {
 }
 
 /// Summary of waypoint errors as a percentage of the path walked so far.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct PctSummary {
     /// Mean, %.
     pub mean: f64,
@@ -50,7 +50,7 @@ pub struct PctSummary {
 }
 
 /// Summary of absolute errors in metres.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ErrorSummary {
     /// Mean, m.
     pub mean: f64,
@@ -71,7 +71,7 @@ impl ErrorSummary {
 }
 
 /// One log's result. The field names are stable: other tools read them.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LogResult {
     /// Where the log came from.
     pub path: String,
@@ -187,7 +187,7 @@ pub struct Summary {
 }
 
 /// Step-count figures of one group of logs.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct GroupSteps {
     /// Logs in the group with step truth.
     pub logs: u64,
@@ -477,54 +477,6 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
     }
 }
 
-/// Applies `key=value` overrides to a configuration: `key` is a dotted path into the
-/// configuration's JSON form (`heading.method`, `detector.kind`, `motion.still_max`), `value` is
-/// JSON (`0.5`, `true`, `{"kind":"peak"}`) or else taken as a string (`closed_form2021`). The
-/// result is validated. Setting a `kind` replaces the enclosing object by that variant with its
-/// default values.
-pub fn apply_overrides(cfg: &PipelineConfig, sets: &[String]) -> Result<PipelineConfig, String> {
-    let mut v = serde_json::to_value(cfg).map_err(|e| e.to_string())?;
-    for s in sets {
-        let (key, value) = s
-            .split_once('=')
-            .ok_or_else(|| format!("--set {s:?}: expected KEY=VALUE"))?;
-        let value: serde_json::Value = serde_json::from_str(value)
-            .unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
-        let path: Vec<&str> = key.split('.').collect();
-        let (last, parents) = path.split_last().expect("split gives one item");
-        let mut node = &mut v;
-        for p in parents {
-            node = node.get_mut(*p).ok_or_else(|| {
-                format!("--set {key}: no setting `{p}` (see `pdr eval --show-config`)")
-            })?;
-        }
-        let obj = node.as_object_mut().ok_or_else(|| {
-            format!(
-                "--set {key}: `{}` is not a group of settings",
-                parents.join(".")
-            )
-        })?;
-        let kind = *last == "kind";
-        if kind {
-            obj.clear();
-        } else if !obj.contains_key(*last) {
-            return Err(format!(
-                "--set {key}: no setting `{last}` (see `pdr eval --show-config`)"
-            ));
-        }
-        obj.insert(last.to_string(), value);
-        if kind {
-            // The new kind's settings, at their defaults, so that later --set can change them.
-            let filled: PipelineConfig =
-                serde_json::from_value(v).map_err(|e| format!("--set {key}: {e}"))?;
-            v = serde_json::to_value(&filled).map_err(|e| e.to_string())?;
-        }
-    }
-    let out: PipelineConfig = serde_json::from_value(v).map_err(|e| format!("--set: {e}"))?;
-    out.validate().map_err(|e| format!("--set: {e}"))?;
-    Ok(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -595,45 +547,5 @@ mod tests {
         assert_eq!(percentile(&[1.0, 2.0, 3.0, 4.0, 5.0], 75.0), 4.0);
         assert_eq!(percentile(&[0.0, 10.0], 75.0), 7.5);
         assert_eq!(percentile(&[3.0], 75.0), 3.0);
-    }
-
-    #[test]
-    fn overrides_name_bad_keys_and_switch_variants() {
-        let base = PipelineConfig::default();
-        let c = apply_overrides(&base, &["heading.method=closed_form2021".into()]).unwrap();
-        assert_eq!(
-            c.heading.method,
-            crate::engine::heading::HeadingMethod::ClosedForm2021
-        );
-        let c = apply_overrides(&base, &["detector.kind=peak".into()]).unwrap();
-        assert!(matches!(
-            c.detector,
-            crate::engine::pipeline::StepDetectorConfig::Peak(_)
-        ));
-        // A new kind's own settings can be set after it.
-        let c = apply_overrides(
-            &base,
-            &[
-                "detector.kind=peak".into(),
-                "detector.min_interval_s=0.3".into(),
-            ],
-        )
-        .unwrap();
-        let crate::engine::pipeline::StepDetectorConfig::Peak(p) = c.detector else {
-            panic!("not the peak detector: {:?}", c.detector)
-        };
-        assert_eq!(p.min_interval_s, 0.3);
-        // A kind whose setting has no default of its own in the base config (Weinberg's K).
-        let c = apply_overrides(&base, &["step_length.kind=weinberg".into()]).unwrap();
-        assert_eq!(
-            c.step_length,
-            crate::engine::StepLengthModel::Weinberg {
-                k: crate::engine::step_length::WEINBERG_K
-            }
-        );
-        let e = apply_overrides(&base, &["motion.nope=1".into()]).unwrap_err();
-        assert!(e.contains("nope"), "{e}");
-        let e = apply_overrides(&base, &["motion.still_max=-1".into()]).unwrap_err();
-        assert!(e.contains("still_max"), "{e}");
     }
 }

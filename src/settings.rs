@@ -244,8 +244,8 @@ impl Choice {
     }
 }
 
-/// The choices offered by name (the page's selects, the CLI's flags). Every other setting is
-/// reached by its path (`--set`).
+/// The choices offered by name (the page's selects, the CLI's flags), each with the
+/// configuration's default first. Every other setting is reached by its path (`--set`).
 pub const CHOICES: &[Choice] = &[
     Choice {
         key: "detector.kind",
@@ -372,11 +372,11 @@ mod tests {
                 assert_eq!(got, value, "{}", c.key);
             }
         }
-        // And the defaults are among them.
+        // And each default comes first (the page's selects start on it).
         let v = serde_json::to_value(PipelineConfig::default()).unwrap();
         for c in CHOICES {
             let got = c.key.split('.').try_fold(&v, |n, p| n.get(p)).unwrap();
-            assert!(c.values().any(|x| got == x), "{}: {got}", c.key);
+            assert_eq!(got, c.options[0].0, "{}", c.key);
         }
     }
 
@@ -418,7 +418,7 @@ mod tests {
             running_points: vec![],
         };
         let s = Settings {
-            profile: Some(profile.to_json()),
+            profile: Some(profile.to_json().unwrap()),
             ..Settings::new()
         };
         assert!(s.label().unwrap().contains("profile me"));

@@ -5,7 +5,8 @@
 use pdr::engine::pipeline::{replay, PipelineConfig, Record};
 use pdr::io::pdrlog;
 use pdr::live::{
-    browser_events, orientation_angles, BrowserEvent, LiveSession, MotionEvent, Platform,
+    browser_events, orientation_angles, BrowserEvent, LiveSession, MotionEvent, OrientationEvent,
+    Platform, SensorReading,
 };
 use pdr::sim::scenarios;
 use wasm_bindgen_test::wasm_bindgen_test;
@@ -21,7 +22,7 @@ fn feed_into(live: &mut LiveSession, records: &[Record], platform: Platform) {
                 alpha,
                 beta,
                 gamma,
-            } => live.push_orientation(t, alpha, beta, gamma, true),
+            } => live.push_orientation(&OrientationEvent::absolute(t, alpha, beta, gamma)),
             BrowserEvent::Motion {
                 t,
                 x,
@@ -30,13 +31,12 @@ fn feed_into(live: &mut LiveSession, records: &[Record], platform: Platform) {
                 alpha,
                 beta,
                 gamma,
-                interval,
+                ..
             } => {
                 live.push_motion(&MotionEvent {
                     time_stamp_ms: t,
                     accel: Some([x, y, z]),
                     rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
-                    interval: Some(interval),
                 })
                 .unwrap();
             }
@@ -109,13 +109,12 @@ fn a_hidden_page_is_a_gap_not_steps() {
         let deg = 180.0 / std::f64::consts::PI;
         if let Some(q) = s.orientation {
             let (a, b, g) = orientation_angles(&q);
-            live.push_orientation(s.t * 1e3, a, b, g, true);
+            live.push_orientation(&OrientationEvent::absolute(s.t * 1e3, a, b, g));
         }
         live.push_motion(&MotionEvent {
             time_stamp_ms: s.t * 1e3,
             accel: Some([s.accel.x, s.accel.y, s.accel.z]),
             rotation_rate_deg_s: s.gyro.map(|g| [g.x * deg, g.y * deg, g.z * deg]),
-            interval: None,
         })
         .unwrap();
     }
@@ -197,7 +196,9 @@ fn motion_waits_briefly_for_the_attitude_and_the_scope_keeps_ten_seconds() {
                 alpha,
                 beta,
                 gamma,
-            } if t >= 500.0 => live.push_orientation(t, alpha, beta, gamma, true),
+            } if t >= 500.0 => {
+                live.push_orientation(&OrientationEvent::absolute(t, alpha, beta, gamma))
+            }
             BrowserEvent::Motion {
                 t, x, y, z, alpha, ..
             } => {
@@ -205,7 +206,6 @@ fn motion_waits_briefly_for_the_attitude_and_the_scope_keeps_ten_seconds() {
                     time_stamp_ms: t,
                     accel: Some([x, y, z]),
                     rotation_rate_deg_s: alpha.map(|a| [a, 0.0, 0.0]),
-                    interval: None,
                 })
                 .unwrap();
             }
@@ -248,7 +248,6 @@ fn motion_waits_briefly_for_the_attitude_and_the_scope_keeps_ten_seconds() {
                 time_stamp_ms: t,
                 accel: Some([x, y, z]),
                 rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
-                interval: None,
             })
             .unwrap();
         }
@@ -272,7 +271,11 @@ fn generic_sensor_readings_and_motion_events_agree() {
         }
         // The Generic Sensor API has the specification's sign on every platform.
         sensors
-            .push_sensor(s.t * 1e3, s.accel.into(), s.gyro.map(Into::into))
+            .push_sensor(&SensorReading {
+                timestamp_ms: s.t * 1e3,
+                accel: s.accel.into(),
+                gyro_rad_s: s.gyro.map(Into::into),
+            })
             .unwrap();
     }
     assert_eq!(sensors.readouts().steps, events.readouts().steps);
@@ -282,7 +285,11 @@ fn generic_sensor_readings_and_motion_events_agree() {
     );
     assert!(libm::hypot(a.east_m - b.east_m, a.north_m - b.north_m) < 0.05);
     assert!(sensors
-        .push_sensor(2e4, [f64::NAN, 0.0, 9.8], None)
+        .push_sensor(&SensorReading {
+            timestamp_ms: 2e4,
+            accel: [f64::NAN, 0.0, 9.8],
+            gyro_rad_s: None,
+        })
         .is_err());
     assert_eq!(sensors.readouts().refused, 1);
 
@@ -292,7 +299,11 @@ fn generic_sensor_readings_and_motion_events_agree() {
     still.push_quaternion(0.0, [0.0, 0.0, 0.382_683_4, 0.923_879_5]);
     for i in 0..500 {
         still
-            .push_sensor(f64::from(i) * 10.0, [0.0, 0.0, 9.81], Some([0.0; 3]))
+            .push_sensor(&SensorReading {
+                timestamp_ms: f64::from(i) * 10.0,
+                accel: [0.0, 0.0, 9.81],
+                gyro_rad_s: Some([0.0; 3]),
+            })
             .unwrap();
     }
     let r = still.readouts();

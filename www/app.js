@@ -1,11 +1,19 @@
-// Thin glue: load the WebAssembly engine, show the demo walks' figures, draw their tracks.
-import init, { Demo, FusionDemo } from './pkg/pdr.js';
+// Thin glue: load the WebAssembly engine, fill the choices, show the demo walks' figures, draw
+// their tracks.
+import init, { Demo, FusionDemo, choices } from './pkg/pdr.js';
 import { setupLive } from './live.js';
 import { setupWizard } from './wizard.js';
 import { setupUpload } from './upload.js';
+import { $, dark, fit } from './util.js';
 
-const $ = (id) => document.getElementById(id);
-const dark = window.matchMedia('(prefers-color-scheme: dark)');
+/** Fills every select marked `data-choice` with the options of the setting it is named after. */
+function fillChoices() {
+  const byKey = new Map(choices().map((c) => [c.key, c]));
+  for (const sel of document.querySelectorAll('select[data-choice]')) {
+    const prefix = sel.dataset.prefix ?? '';
+    sel.replaceChildren(...byKey.get(sel.name).options.map(([value, label]) => new Option(prefix + label, value)));
+  }
+}
 
 function fail(err) {
   document.documentElement.dataset.state = 'error';
@@ -17,6 +25,7 @@ function fail(err) {
 
 async function main() {
   await init();
+  fillChoices();
   setupLive();
   setupWizard();
   setupUpload();
@@ -41,7 +50,8 @@ async function main() {
   $('smoothed-p75').textContent = f.smoothed_p75_m.toFixed(1);
   $('fused-note').textContent = `PDR only: ${f.pdr_p75_m.toFixed(1)} m`;
   $('fusion-caption').textContent = `${f.fixes} fixes, ${f.fixes_gated} refused as outliers. ` +
-    `Learnt: step length × ${f.scale.toFixed(3)} (true 0.909), heading ${f.heading_correction_deg.toFixed(1)}° (true −8°), ` +
+    `Learnt: step length × ${f.scale.toFixed(3)} (true ${f.true_scale.toFixed(3)}), `
+    + `heading ${f.heading_correction_deg.toFixed(1)}° (true ${f.true_heading_correction_deg.toFixed(0).replace('-', '−')}°), ` +
     `declination ${f.declination_deg.toFixed(1)}° from the World Magnetic Model. Grey: the true path.`;
   keepDrawn($('fusion'), fusion);
   window.__pdr.fusion = f;
@@ -51,14 +61,8 @@ async function main() {
 /** Draws `what` on `canvas` at the device pixel ratio, again on resize and scheme change. */
 function keepDrawn(canvas, what) {
   const draw = () => {
-    const dpr = window.devicePixelRatio || 1;
-    const rect = canvas.getBoundingClientRect();
-    const w = Math.round(rect.width * dpr);
-    const h = Math.round(rect.height * dpr);
-    if (w === 0 || h === 0) return;
-    canvas.width = w;
-    canvas.height = h;
-    what.draw(canvas, dark.matches, dpr);
+    const dpr = fit(canvas);
+    if (dpr) what.draw(canvas, dark.matches, dpr);
   };
   draw();
   new ResizeObserver(draw).observe(canvas);

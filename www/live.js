@@ -1,15 +1,14 @@
 // Live mode: sensors in, readouts and plots out, the recording into IndexedDB.
 // Event plumbing only. Every number goes to the engine (Live, in wasm) as the browser gives it;
 // the conversions (iOS sign, interval units, deg/s, angles) are in src/live.rs.
-import { Live } from './pkg/pdr.js';
+import { Live, recording_summary } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
+import { $, dark, download, fit, note } from './util.js';
 
-const $ = (id) => document.getElementById(id);
-const dark = window.matchMedia('(prefers-color-scheme: dark)');
+// The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
 const DRAW_MS = 100; // at most ten redraws a second
-const NO_DATA_MS = 3000; // no motion sample this long after Start: say so
 const HOLD_MS = 2000; // press-and-hold to unlock the pocket guard
 
 /**
@@ -37,22 +36,17 @@ const MESSAGES = {
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
 let messageList = 'live-messages';
 function message(key, show, kind = 'warn', extra = '') {
-  const list = $(messageList);
-  let li = list.querySelector(`[data-key="${key}"]`);
-  if (!show) { li?.remove(); return; }
-  if (!li) {
-    li = document.createElement('li');
-    li.dataset.key = key;
-    list.append(li);
-  }
-  li.className = kind;
-  li.textContent = MESSAGES[key] + extra;
+  note(messageList, key, show && MESSAGES[key] + extra, kind);
 }
 
-/** The GNSS choice: the mode, and energy saving's window and period in seconds. */
-function gnssChoice() {
-  const num = (id) => { const v = $(id).valueAsNumber; return Number.isFinite(v) ? v : undefined; };
-  return { mode: $('gnss-mode').value, window: num('gnss-window'), period: num('gnss-period') };
+/** The settings of live mode's controls: each enabled control named by its setting's path, and
+ * the selected step-length profile. */
+function settings() {
+  const set = {};
+  for (const el of $('live-settings').querySelectorAll('[name]:enabled')) {
+    set[el.name] = el.type === 'number' ? el.valueAsNumber : el.value;
+  }
+  return { set, profile: profiles.selected() };
 }
 
 function fmtTime(s) {
@@ -66,29 +60,7 @@ function compassPoint(deg) {
   return ['N', 'NE', 'E', 'SE', 'S', 'SW', 'W', 'NW'][Math.round((((deg % 360) + 360) % 360) / 45) % 8];
 }
 
-function download(text, name) {
-  const url = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
-  const a = document.createElement('a');
-  a.href = url;
-  a.download = name;
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
-}
-
 const fileName = (started) => `pdr-${new Date(started).toISOString().slice(0, 19).replace(/[:T]/g, '-')}.pdrlog`;
-
-/** Sizes a canvas's backing store to its CSS size × the device pixel ratio. */
-function fit(canvas) {
-  const dpr = window.devicePixelRatio || 1;
-  const r = canvas.getBoundingClientRect();
-  const w = Math.round(r.width * dpr);
-  const h = Math.round(r.height * dpr);
-  if (w === 0 || h === 0) return 0;
-  if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
-  return dpr;
-}
 
 /** The live session with everything around it. One at a time. */
 class Session {
@@ -129,35 +101,18 @@ class Session {
   // --- sensors -------------------------------------------------------------------------
   listenEvents() {
     this.on(window, 'devicemotion', (e) => {
-      const a = e.accelerationIncludingGravity;
-      const r = e.rotationRate;
-      // Chromium without an accelerometer fires events with null values: no sample (and the
-      // "no motion data" message after a few seconds).
-      if (a?.x == null) return;
       try {
-        this.live.push_motion(e.timeStamp, a?.x ?? undefined, a?.y ?? undefined, a?.z ?? undefined,
-          r?.alpha ?? undefined, r?.beta ?? undefined, r?.gamma ?? undefined, e.interval ?? undefined);
-        this.sample();
+        if (this.live.push_motion(e) !== undefined) this.sample();
       } catch (err) { this.refused(err); }
     });
     this.listenOrientation();
   }
 
   listenOrientation() {
-    if ('ondeviceorientationabsolute' in window) {
-      // Chromium: the absolute stream; its `deviceorientation` is relative to an arbitrary start.
-      this.on(window, 'deviceorientationabsolute', (e) => {
-        if (e.alpha != null) this.live.push_orientation(e.timeStamp, e.alpha, e.beta, e.gamma, true);
-      });
-      return;
-    }
-    this.on(window, 'deviceorientation', (e) => {
-      if (typeof e.webkitCompassHeading === 'number' && e.webkitCompassHeading >= 0) {
-        this.live.push_compass(e.timeStamp, e.webkitCompassHeading, e.beta, e.gamma, screen.orientation?.angle ?? 0);
-      } else if (e.alpha != null) {
-        this.live.push_orientation(e.timeStamp, e.alpha, e.beta, e.gamma, !!e.absolute);
-      }
-    });
+    // Chromium: the absolute stream; its `deviceorientation` is relative to an arbitrary start.
+    const absolute = 'ondeviceorientationabsolute' in window;
+    this.on(window, absolute ? 'deviceorientationabsolute' : 'deviceorientation',
+      (e) => this.live.push_orientation(e, absolute, screen.orientation?.angle ?? 0));
   }
 
   /** The Generic Sensor API at the highest rate it grants, if it delivers within a second. */
@@ -184,7 +139,7 @@ class Session {
     if (!ok || this.ended) { acc.stop(); gyr.stop(); return false; }
     acc.addEventListener('reading', () => {
       try {
-        this.live.push_sensor(acc.timestamp, acc.x, acc.y, acc.z, gyr.x ?? undefined, gyr.y ?? undefined, gyr.z ?? undefined);
+        this.live.push_sensor(acc, gyr);
         this.sample();
       } catch (err) { this.refused(err); }
     });
@@ -192,10 +147,7 @@ class Session {
     if ('AbsoluteOrientationSensor' in window) {
       try {
         const ori = new AbsoluteOrientationSensor({ frequency: 60 });
-        ori.addEventListener('reading', () => {
-          const [x, y, z, w] = ori.quaternion;
-          this.live.push_quaternion(ori.timestamp, x, y, z, w);
-        });
+        ori.addEventListener('reading', () => this.live.push_quaternion(ori));
         ori.addEventListener('error', () => this.listenOrientation(), { once: true });
         ori.start();
         this.sensors.push(ori);
@@ -218,10 +170,8 @@ class Session {
   geoOn() {
     if (this.geoWatch != null || !navigator.geolocation) return;
     this.geoWatch = navigator.geolocation.watchPosition((p) => {
-      const c = p.coords;
       try {
-        this.live.push_fix(performance.now(), c.latitude, c.longitude, c.accuracy,
-          c.altitude ?? undefined, c.speed ?? undefined, Number.isFinite(c.heading) ? c.heading : undefined);
+        this.live.push_fix(performance.now(), p);
         message('locationUnavailable', false);
         this.dirty = true;
       } catch (err) { this.refused(err); }
@@ -304,7 +254,7 @@ class Session {
     this.lastDraw = now;
     const r = this.live.readouts();
     this.followGnssSchedule(r);
-    message('noSensor', !this.ended && r.samples === 0 && now - this.startedAt > NO_DATA_MS, 'error');
+    message('noSensor', !this.ended && this.live.no_motion(this.startedAt, now), 'error');
     message('noCompass', r.samples > 0 && !r.absolute_heading);
     show(r, this);
     this.onTick?.(r, this);
@@ -356,7 +306,7 @@ class Session {
  */
 function receiver(r, s) {
   const el = $('r-fixes');
-  if (s.gnssMode !== 'energy-saving' || !r.gnss_on_s || !(r.gnss_on_s[1] > 0)) { el.title = ''; return ''; }
+  if (s.gnssMode !== 'energy_saving' || !r.gnss_on_s || !(r.gnss_on_s[1] > 0)) { el.title = ''; return ''; }
   const [on, span] = r.gnss_on_s;
   el.title = `The receiver has been on ${fmtTime(on)} of the ${fmtTime(span)} since the first fix.`;
   return `${r.gnss_wanted ? '' : ' · off'} · on ${Math.round(100 * on / span)} %`;
@@ -435,7 +385,7 @@ function controls(state) {
   $('stop').hidden = state !== 'recording';
   $('lock').hidden = state !== 'recording';
   $('download').hidden = state !== 'stopped';
-  for (const id of ['gnss-mode', 'gnss-window', 'gnss-period']) $(id).disabled = state === 'recording';
+  $('live-settings').disabled = state === 'recording';
   document.documentElement.dataset.live = state;
 }
 
@@ -497,7 +447,7 @@ async function begin(makeLive, rec, opts = {}) {
       message('storage', true, 'error', String(err?.message ?? err));
     }
   }
-  await session.start(opts.gnss ?? gnssChoice().mode);
+  await session.start(opts.gnss ?? $('gnss-mode').value);
   return true;
 }
 
@@ -508,7 +458,7 @@ async function begin(makeLive, rec, opts = {}) {
  */
 export async function startWalk({ onTick, gnss, messages, title }) {
   if (busy()) return null; // a live recording runs: the wizard says so
-  const ok = await begin((ios) => new Live(ios, performance.timeOrigin, gnss, undefined), null,
+  const ok = await begin((ios) => new Live({ set: { 'fusion.mode.kind': gnss } }, ios, performance.timeOrigin), null,
     { onTick, gnss, messages, title });
   return ok ? current : null;
 }
@@ -532,7 +482,7 @@ async function stop() {
     lastFinished = s.rec;
     controls('stopped');
     // The profile's opt-in refinement listens (wizard.js).
-    window.dispatchEvent(new CustomEvent('pdr-walk-ended', { detail: { readouts: s.live.readouts(), freqs: s.live.step_freqs() } }));
+    window.dispatchEvent(new CustomEvent('pdr-walk-ended', { detail: { evidence: s.live.walk_evidence() } }));
   }
 }
 
@@ -547,7 +497,7 @@ async function offerRecovery() {
   const rec = open.sort((a, b) => b.started - a.started)[0];
   // Read now: on iOS the permission prompt must come straight from the Resume tap.
   const { text, nextSeq } = await store.text(rec.id);
-  const samples = text.split('\n').filter((l) => l.startsWith('imu,')).length;
+  const { samples } = recording_summary(text);
   $('recovery-text').textContent = `An unfinished recording from ${new Date(rec.started).toLocaleString()} `
     + `(${samples} samples) was not stopped: the page was closed or reloaded. Resume it, or download it.`;
   $('recovery').hidden = false;
@@ -556,8 +506,8 @@ async function offerRecovery() {
   const done = () => { $('recovery').hidden = true; document.documentElement.dataset.recovery = 'done'; };
   $('recover-resume').onclick = () => {
     done();
-    const g = gnssChoice();
-    begin((ios) => Live.resume(ios, performance.timeOrigin, g.mode, profiles.selected(), text, g.period, g.window),
+    const config = settings();
+    begin((ios) => Live.resume(config, ios, performance.timeOrigin, text),
       { id: rec.id, started: rec.started, resumed: true, nextSeq });
   };
   $('recover-save').onclick = async () => {
@@ -580,10 +530,15 @@ export function setupLive() {
   $('start').addEventListener('click', () => {
     if (busy()) return;
     const started = Date.now();
-    const g = gnssChoice();
-    begin((ios) => new Live(ios, performance.timeOrigin, g.mode, profiles.selected(), g.period, g.window), { id: `rec-${started}`, started });
+    const config = settings();
+    begin((ios) => new Live(config, ios, performance.timeOrigin), { id: `rec-${started}`, started });
   });
-  const duty = () => { $('duty').hidden = $('gnss-mode').value !== 'energy-saving'; };
+  // Energy saving's window and period are settings of that mode only.
+  const duty = () => {
+    const on = $('gnss-mode').value === 'energy_saving';
+    $('duty').hidden = !on;
+    for (const el of $('duty').querySelectorAll('input')) el.disabled = !on;
+  };
   $('gnss-mode').addEventListener('change', duty);
   duty();
   $('stop').addEventListener('click', stop);

@@ -1,9 +1,9 @@
 // Service worker: the app shell is cached so that the page opens offline once visited.
 // Network first (a new build is picked up at once), the cache when the network fails.
 // Copied to the site's root by `./dev build`, so that its scope is the whole app.
-const CACHE = 'pdr-shell-v3';
+const CACHE = 'pdr-shell-v4';
 const SHELL = [
-  './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/worker.js', 'www/style.css',
+  './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/worker.js', 'www/util.js', 'www/style.css',
   'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/manifest.webmanifest', 'www/icon.svg',
 ];
 

@@ -1,11 +1,9 @@
 // Upload mode: files in (picker, folder, drag & drop), the worker parses and runs the engine,
 // the page draws each analysis (AnalysisView, in wasm) and lets the user zoom, pan, hover,
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
-import { AnalysisView } from './pkg/pdr.js';
+import { AnalysisView, compare_settings, settings_label } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
-
-const $ = (id) => document.getElementById(id);
-const dark = window.matchMedia('(prefers-color-scheme: dark)');
+import { $, dark, download, fit } from './util.js';
 const PLOTS = [
   ['accel', 'Vertical acceleration, PLL output and steps'],
   ['sigma', 'σ of vertical acceleration and motion state'],
@@ -27,23 +25,16 @@ function banner(text, kind = 'error') {
   $('upload-banners').append(li);
 }
 
-/** The configuration of a row (A or B) for the worker. */
+/** The settings of a row (A or B) for the worker, and how they are described. */
 function config(tag) {
   const row = document.querySelector(`.config[data-config="${tag}"]`);
-  const v = (name) => row.querySelector(`[name=${name}]`).value;
-  const text = (name) => row.querySelector(`[name=${name}]`).selectedOptions[0]?.text ?? '';
-  // The profile is a line in frequency: it has no meaning for Weinberg's model.
-  const weinberg = v('length') === 'weinberg';
-  const profileName = weinberg ? '' : v('profile');
-  const sets = [`detector.kind=${v('detector')}`, `heading.method=${v('heading')}`];
-  if (weinberg) sets.push('step_length.kind=weinberg');
-  return {
-    sets,
-    profile: profileName ? profiles.all()[profileName] : undefined,
-    gnss: v('gnss'),
-    label: [text('detector'), text('heading'), weinberg ? 'Weinberg step length (K = 0.47)' : profileName ? `profile ${profileName}` : 'built-in step-length line',
-      text('gnss')].join(', '),
-  };
+  const set = {};
+  for (const sel of row.querySelectorAll('select[data-choice]')) set[sel.name] = sel.value;
+  const profile = row.querySelector('[name=profile]');
+  // A profile is a line in frequency: no other step-length model has one.
+  const line = set['step_length.kind'] === 'frequency';
+  const settings = { set, profile: line && profile.value ? profiles.all()[profile.value] : undefined };
+  return { settings, label: settings_label(settings) };
 }
 
 function configs() {
@@ -165,7 +156,7 @@ function onWorker(m) {
     show(l, m.tag, m.label);
     Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
   } else if (m.type === 'pdrlog') {
-    save(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`, 'text/plain');
+    download(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`);
   } else if (m.type === 'done') {
     pending -= 1;
     if (pending <= 0) finish();
@@ -257,14 +248,6 @@ function summaryHtml(s) {
   for (const [k, v] of rows) dl.append(el('dt', { textContent: k }), el('dd', { textContent: v }));
   for (const w of s.warnings.slice(0, 3)) dl.append(el('dt', { textContent: 'Note' }), el('dd', { textContent: w }));
   return dl;
-}
-
-function fit(canvas) {
-  const dpr = window.devicePixelRatio || 1;
-  const r = canvas.getBoundingClientRect();
-  canvas.width = Math.round(r.width * dpr);
-  canvas.height = Math.round(r.height * dpr);
-  return canvas.width && canvas.height ? dpr : 0;
 }
 
 function show(l, tag, label) {
@@ -449,15 +432,6 @@ function wirePlots(l) {
   }
 }
 
-function save(text, name, type) {
-  const url = URL.createObjectURL(text instanceof Blob ? text : new Blob([text], { type }));
-  const a = el('a', { href: url, download: name });
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
-}
-
 /** One PNG of the card's plots stacked (the map, then the diagnostics and the ellipse). */
 function pngOf(l) {
   const canvases = [...l.card.querySelectorAll('canvas')];
@@ -473,11 +447,11 @@ function pngOf(l) {
 async function exportClicked(l, what) {
   const v = l.views.a;
   const base = l.info.source.split('/').pop().replace(/[^\w.-]+/g, '_');
-  if (what === 'gpx') save(v.gpx(), `${base}.gpx`, 'application/gpx+xml');
-  else if (what === 'geojson') save(v.geojson(), `${base}.geojson`, 'application/geo+json');
-  else if (what === 'csv') save(v.steps_csv(), `${base}.steps.csv`, 'text/csv');
+  if (what === 'gpx') download(v.gpx(), `${base}.gpx`, 'application/gpx+xml');
+  else if (what === 'geojson') download(v.geojson(), `${base}.geojson`, 'application/geo+json');
+  else if (what === 'csv') download(v.steps_csv(), `${base}.steps.csv`, 'text/csv');
   else if (what === 'pdrlog') worker.postMessage({ type: 'pdrlog', index: l.info.index });
-  else if (what === 'png') save(await pngOf(l), `${base}.png`, 'image/png');
+  else if (what === 'png') download(await pngOf(l), `${base}.png`, 'image/png');
 }
 
 export function setupUpload() {
@@ -508,9 +482,12 @@ export function setupUpload() {
     finish(true);
     $('rerun').disabled = !lastFiles;
   });
-  for (const sel of document.querySelectorAll('.config [name=length]')) {
+  for (const [key, value] of Object.entries(compare_settings().set)) {
+    document.querySelector(`.config[data-config="b"] [name="${key}"]`).value = value;
+  }
+  for (const sel of document.querySelectorAll('.config [name="step_length.kind"]')) {
     const profile = sel.closest('.config').querySelector('[name=profile]');
-    sel.addEventListener('change', () => { profile.disabled = sel.value === 'weinberg'; });
+    sel.addEventListener('change', () => { profile.disabled = sel.value !== 'frequency'; });
   }
   $('compare').addEventListener('change', (e) => {
     document.querySelector('.config[data-config="b"]').hidden = !e.target.checked;

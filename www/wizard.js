@@ -2,27 +2,15 @@
 // walks run through live mode's session (sensors, pocket guard, wake lock), and every figure —
 // eq. 1 and 2, the fits, their warnings, the profile, its chart, the refinement — comes from
 // the engine (CalibrationWizard, profile_summary, refine_profile in src/web.rs).
-import { CalibrationWizard, profile_summary, refine_profile } from './pkg/pdr.js';
+import { CalibrationWizard, gnss_limit_m, profile_summary, refine_profile } from './pkg/pdr.js';
 import { startWalk, stopWalk } from './live.js';
 import * as profiles from './profiles.js';
+import { $, dark, download, fit, note } from './util.js';
 
-const $ = (id) => document.getElementById(id);
-const dark = window.matchMedia('(prefers-color-scheme: dark)');
-const GNSS_LIMIT_M = 10; // GNSS is offered as the distance source at this accuracy or better
 const PACES = { slow: 'slow walk', normal: 'normal walk', fast: 'fast walk', jog: 'jog', run: 'run' };
 
 let wizard; // made in setupWizard, once the engine is loaded
 let walking = null; // { session, row, pace, band, target }
-
-function note(list, key, text, kind = 'warn') {
-  const ul = $(list);
-  let li = ul.querySelector(`[data-key="${key}"]`);
-  if (!text) { li?.remove(); return null; }
-  if (!li) { li = document.createElement('li'); li.dataset.key = key; ul.append(li); }
-  li.className = kind;
-  li.textContent = text;
-  return li;
-}
 
 const source = () => document.querySelector('input[name=cal-source]:checked').value;
 
@@ -44,14 +32,14 @@ async function paceClicked(row) {
   const button = row.querySelector('button');
   const result = row.querySelector('.result');
   const session = await startWalk({
-    gnss: gnss ? 'best' : 'off',
+    gnss: gnss ? 'best_performance' : 'off',
     messages: 'cal-messages',
     title: gnss
       ? `Calibration, ${PACES[pace]}: walk; the wizard stops you at ${target} m`
       : `Calibration, ${PACES[pace]}: walk the ${target} m, then unlock and tap Stop`,
     onTick: (r, s) => {
       if (walking?.session !== s) return;
-      const path = gnss ? s.live.fix_path_m(GNSS_LIMIT_M) : null;
+      const path = gnss ? s.live.fix_path_m(gnss_limit_m()) : null;
       result.textContent = `${r.steps} steps` + (gnss ? ` · ${path.toFixed(0)} of ${target} m by GNSS` : '');
       if (gnss && path >= target) finish();
     },
@@ -78,7 +66,7 @@ async function finish() {
   const result = w.row.querySelector('.result');
   button.textContent = 'Walk again';
   button.classList.remove('running');
-  const distance = w.gnss ? w.session.live.fix_path_m(GNSS_LIMIT_M) : w.target;
+  const distance = w.gnss ? w.session.live.fix_path_m(gnss_limit_m()) : w.target;
   try {
     const p = wizard.add_walk(w.band, w.pace, distance, w.session.live.step_freqs());
     result.textContent = `N = ${p.steps} steps over ${p.distance_m.toFixed(1)} m · f̄ = ${p.f_mean_hz.toFixed(2)} Hz (eq. 1) · SL̄ = D/N = ${p.sl_mean_m.toFixed(3)} m (eq. 2) → one point of your ${w.band} line`;
@@ -132,11 +120,8 @@ function refresh() {
 }
 
 function draw(canvas, band) {
-  const dpr = window.devicePixelRatio || 1;
-  const r = canvas.getBoundingClientRect();
-  canvas.width = Math.round(r.width * dpr);
-  canvas.height = Math.round(r.height * dpr);
-  if (canvas.width && canvas.height) wizard.draw(canvas, dark.matches, dpr, band);
+  const dpr = fit(canvas);
+  if (dpr) wizard.draw(canvas, dark.matches, dpr, band);
 }
 
 function save() {
@@ -156,7 +141,7 @@ function checkGnss() {
   $('cal-gnss-state').textContent = 'waiting for a fix…';
   const id = navigator.geolocation.watchPosition((p) => {
     const acc = p.coords.accuracy;
-    const good = acc <= GNSS_LIMIT_M;
+    const good = acc <= gnss_limit_m();
     $('cal-gnss-state').textContent = `±${acc.toFixed(0)} m now: ${good ? 'good enough' : 'not good enough (go into the open)'}`;
     $('cal-gnss-radio').disabled = !good;
     if (!good && source() === 'gnss') document.querySelector('input[value=typed]').checked = true;
@@ -176,22 +161,7 @@ function showProfiles() {
   $('profile-in-use').textContent = json ? profiles.selectedName() : 'built-in';
   $('profile-export').disabled = !json;
   $('profile-delete').disabled = !json;
-  if (json) {
-    const s = profile_summary(json);
-    $('profile-values').textContent = `Walking SL = ${s.walking[0].toFixed(3)}·f ${s.walking[1] >= 0 ? '+' : '−'} ${Math.abs(s.walking[1]).toFixed(3)} m `
-      + `(${s.walking_points} walks); running SL = ${s.running[0].toFixed(3)}·f ${s.running[1] >= 0 ? '+' : '−'} ${Math.abs(s.running[1]).toFixed(3)} m (${s.running_points} runs).`;
-  } else {
-    $('profile-values').textContent = 'Built-in: walking SL = 0.25·f + 0.17 m, running SL = 0.90·f − 1.50 m.';
-  }
-}
-
-function download(text, name) {
-  const url = URL.createObjectURL(new Blob([text], { type: 'application/json' }));
-  const a = Object.assign(document.createElement('a'), { href: url, download: name });
-  document.body.append(a);
-  a.click();
-  a.remove();
-  setTimeout(() => URL.revokeObjectURL(url), 10_000);
+  $('profile-values').textContent = profile_summary(json).text;
 }
 
 async function importProfile(file) {
@@ -211,24 +181,19 @@ async function importProfile(file) {
   showProfiles();
 }
 
-/** Opt-in refinement after a live walk with fixes: the walking offset moves halfway to what the
- * fusion filter's step-length scale says, with an undo. */
+/** Opt-in refinement after a live walk with fixes, when the engine finds the walk says enough
+ * (`refine_profile`), with an undo. */
 function refineAfterWalk(e) {
   const name = profiles.selectedName();
   const json = profiles.selected();
-  const { readouts: r, freqs } = e.detail;
-  if (!$('refine').checked || !json || !r.fusion_scale || r.fixes < 20 || freqs.length < 50) return;
-  const [k, sd] = r.fusion_scale;
-  if (sd > 0.03 || Math.abs(k - 1) < 2 * sd) return; // not learnt, or not different from 1
-  const f = [...freqs].sort((a, b) => a - b)[Math.floor(freqs.length / 2)];
-  let refined;
-  try { refined = refine_profile(json, k, f, 0.5); } catch { return; }
-  const before = profile_summary(json).walking[1];
-  const after = profile_summary(refined).walking[1];
-  profiles.save(name, refined);
+  if (!$('refine').checked || !json) return;
+  const r = refine_profile(json, e.detail.evidence);
+  if (!r) return;
+  const [before, after] = r.offset_m;
+  profiles.save(name, r.json);
   showProfiles();
   const li = note('profile-messages', 'refined',
-    `“${name}”: walking offset b ${before.toFixed(3)} → ${after.toFixed(3)} m (the fixes found your steps ${k.toFixed(3)}× the profile's at ${f.toFixed(2)} Hz). `, 'ok');
+    `“${name}”: walking offset b ${before.toFixed(3)} → ${after.toFixed(3)} m (the fixes found your steps ${r.scale.toFixed(3)}× the profile's at ${r.cadence_hz.toFixed(2)} Hz). `, 'ok');
   const undo = Object.assign(document.createElement('button'), { type: 'button', className: 'small', textContent: 'Undo' });
   undo.addEventListener('click', () => { profiles.save(name, json); showProfiles(); li.remove(); });
   li.append(undo);
@@ -249,7 +214,7 @@ export function setupWizard() {
   $('profile-select').addEventListener('change', (e) => { profiles.select(e.target.value); showProfiles(); });
   $('profile-export').addEventListener('click', () => {
     const name = profiles.selectedName();
-    download(profiles.selected(), `pdr-profile-${name.replace(/[^\w-]+/g, '_')}.json`);
+    download(profiles.selected(), `pdr-profile-${name.replace(/[^\w-]+/g, '_')}.json`, 'application/json');
   });
   $('profile-import').addEventListener('change', (e) => { if (e.target.files[0]) importProfile(e.target.files[0]); e.target.value = ''; });
   $('profile-delete').addEventListener('click', () => { profiles.remove(profiles.selectedName()); showProfiles(); });

@@ -1,6 +1,7 @@
 // Upload mode's worker: the files are read, parsed and run through the engine here, off the
-// page's thread. Messages in: {type: 'load', files: [{name, file}], config} and
-// {type: 'rerun', index, config, tag} and {type: 'pdrlog', index}. Out: 'progress', 'parsed',
+// page's thread. Messages in: {type: 'load', files: [{name, file}], configs: {a, b}} and
+// {type: 'rerun', index, config, tag} and {type: 'pdrlog', index}, a config being
+// {settings, label}. Out: 'progress', 'parsed',
 // 'analysis' (bytes, transferred), 'pdrlog', 'done', 'failed'.
 import init, { Upload } from './pkg/pdr.js';
 
@@ -14,7 +15,7 @@ ready.then((w) => { memoryMb = () => w.memory.buffer.byteLength / 1e6; });
 function analyse(index, config, tag) {
   let last = 0;
   const t0 = performance.now();
-  const bytes = upload.analyse(index, config.sets, config.profile, config.gnss, (done, total) => {
+  const bytes = upload.analyse(index, config.settings, (done, total) => {
     const now = performance.now();
     if (now - last > 50 || done === total) {
       last = now;

@@ -204,6 +204,73 @@ pub fn refined_offset(line: &Line, k: f64, f: f64, rate: f64) -> f64 {
     line.b + rate.clamp(0.0, 1.0) * (k - 1.0) * sl
 }
 
+/// What a live walk with GNSS says about the user's step length: the fusion filter's
+/// step-length scale k and its standard deviation, the fixes received, and the frequencies of
+/// the steps.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct WalkEvidence {
+    /// Fixes received during the walk.
+    pub fixes: usize,
+    /// The filter's scale k and its standard deviation at the end of the walk.
+    pub scale: Option<(f64, f64)>,
+    /// f_k of every step, Hz.
+    pub step_freqs_hz: Vec<f64>,
+}
+
+/// Refinement needs at least this many fixes…
+pub const REFINE_MIN_FIXES: usize = 20;
+/// …and this many steps…
+pub const REFINE_MIN_STEPS: usize = 50;
+/// …a scale known to this standard deviation or better…
+pub const REFINE_MAX_SCALE_SD: f64 = 0.03;
+/// …and at least this many standard deviations away from 1 (else there is nothing to correct).
+pub const REFINE_MIN_SIGMAS: f64 = 2.0;
+/// The share of the way the offset moves on each walk (slow refinement over repeated walks).
+pub const REFINE_RATE: f64 = 0.5;
+
+/// A profile refined by one walk.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Refinement {
+    /// The refined profile.
+    pub file: ProfileFile,
+    /// The walking offset before and after, m.
+    pub offset_m: (f64, f64),
+    /// The scale k that moved it.
+    pub scale: f64,
+    /// The cadence it was applied at (the walk's median step frequency), Hz.
+    pub cadence_hz: f64,
+}
+
+/// The profile refined by a walk ([`refined_offset`] at the walk's median cadence,
+/// [`REFINE_RATE`] of the way), when the walk makes the scale known and different from 1; else
+/// `None`.
+pub fn refine(file: &ProfileFile, walk: &WalkEvidence) -> Option<Refinement> {
+    let (k, sd) = walk.scale?;
+    if walk.fixes < REFINE_MIN_FIXES
+        || walk.step_freqs_hz.len() < REFINE_MIN_STEPS
+        || !(sd <= REFINE_MAX_SCALE_SD)
+        || (k - 1.0).abs() < REFINE_MIN_SIGMAS * sd
+    {
+        return None;
+    }
+    let mut f = walk.step_freqs_hz.clone();
+    f.sort_by(f64::total_cmp);
+    let cadence_hz = f[f.len() / 2];
+    if !(k.is_finite() && k > 0.5 && k < 1.5 && cadence_hz.is_finite() && cadence_hz > 0.0) {
+        return None;
+    }
+    let mut out = file.clone();
+    let before = file.profile.walking.b;
+    out.profile.walking.b = refined_offset(&file.profile.walking, k, cadence_hz, REFINE_RATE);
+    out.profile.validate().ok()?;
+    Some(Refinement {
+        offset_m: (before, out.profile.walking.b),
+        file: out,
+        scale: k,
+        cadence_hz,
+    })
+}
+
 /// A saved profile: a name, the profile, and the points it was fitted from. The `version` field
 /// lets later versions read older files.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -245,10 +312,44 @@ impl ProfileFile {
     }
 
     /// The profile as JSON.
-    pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).unwrap_or_default()
+    pub fn to_json(&self) -> Result<String, ConfigError> {
+        serde_json::to_string_pretty(self)
+            .map_err(|e| ConfigError::new("profile", format!("cannot be written: {e}")))
+    }
+
+    /// Its lines for people: "Walking SL = 0.298·f + 0.203 m (3 walks); running SL = …".
+    pub fn describe(&self) -> String {
+        let line = |l: &Line| {
+            let sign = if l.b >= 0.0 { '+' } else { '−' };
+            format!("SL = {:.3}·f {sign} {:.3} m", l.a, l.b.abs())
+        };
+        format!(
+            "Walking {} ({} walks); running {} ({} runs).",
+            line(&self.profile.walking),
+            self.walking_points.len(),
+            line(&self.profile.running),
+            self.running_points.len()
+        )
     }
 }
+
+/// The built-in lines for people: "Built-in: walking SL = 0.25·f + 0.17 m, running SL = …".
+pub fn describe_builtin() -> String {
+    let p = StepLengthProfile::default();
+    let line = |l: &Line| {
+        let sign = if l.b >= 0.0 { '+' } else { '−' };
+        format!("SL = {:.2}·f {sign} {:.2} m", l.a, l.b.abs())
+    };
+    format!(
+        "Built-in: walking {}, running {}.",
+        line(&p.walking),
+        line(&p.running)
+    )
+}
+
+/// The wizard offers GNSS as the distance of a calibration walk while the reported accuracy is
+/// this good or better, m; its distance then counts fixes this good only.
+pub const GNSS_MAX_ACCURACY_M: f64 = 10.0;
 
 /// The band a calibration walk belongs to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -465,8 +566,11 @@ mod tests {
             walking_points: vec![(1.6, 0.6), (1.9, 0.68)],
             running_points: vec![],
         };
-        assert_eq!(ProfileFile::from_json(&p.to_json()).unwrap(), p);
-        let old = p.to_json().replace("\"version\": 1", "\"version\": 7");
+        assert_eq!(ProfileFile::from_json(&p.to_json().unwrap()).unwrap(), p);
+        let old = p
+            .to_json()
+            .unwrap()
+            .replace("\"version\": 1", "\"version\": 7");
         assert_eq!(
             ProfileFile::from_json(&old).unwrap_err().field,
             "profile.version"

@@ -131,6 +131,11 @@ pub struct Parsed {
     pub skipped: u64,
 }
 
+/// How many IMU samples a pdr-log's text holds (its `imu,` lines), without parsing them.
+pub fn count_imu_lines(text: &str) -> usize {
+    text.lines().filter(|l| l.starts_with("imu,")).count()
+}
+
 /// Reads a pdr-log stream. `file` names the source in errors. Lines are bounded
 /// ([`crate::io::lines::MAX_LINE`]), so a file of any size is read in memory proportional to
 /// its records.

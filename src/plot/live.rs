@@ -138,7 +138,9 @@ mod tests {
     #[test]
     fn draws_the_live_map_and_scope() {
         use crate::engine::pipeline::Record;
-        use crate::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
+        use crate::live::{
+            browser_events, BrowserEvent, LiveSession, MotionEvent, OrientationEvent, Platform,
+        };
         let sim = crate::sim::scenarios::straight_walk(1.8, 30.0).generate();
         let mut live = LiveSession::new(
             crate::engine::PipelineConfig::default(),
@@ -153,13 +155,12 @@ mod tests {
                     alpha,
                     beta,
                     gamma,
-                } => live.push_orientation(t, alpha, beta, gamma, true),
+                } => live.push_orientation(&OrientationEvent::absolute(t, alpha, beta, gamma)),
                 BrowserEvent::Motion { t, x, y, z, .. } if !(12e3..16e3).contains(&t) => {
                     live.push_motion(&MotionEvent {
                         time_stamp_ms: t,
                         accel: Some([x, y, z]),
                         rotation_rate_deg_s: None,
-                        interval: None,
                     })
                     .unwrap();
                 }
@@ -195,7 +196,11 @@ mod tests {
         };
         assert!(count(t.track) > 200, "track {}", count(t.track));
         assert!(count(t.start) > 20 && count(t.end) > 40);
-        let (samples, steps, now) = live.scope_data();
+        let crate::live::ScopeData {
+            samples,
+            steps,
+            now,
+        } = live.scope_data();
         assert!(steps.len() >= 10 && steps.iter().all(|&s| s > now - 10.0));
         let area = Raster {
             w: 600,

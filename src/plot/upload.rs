@@ -33,7 +33,7 @@ mod tests {
         assert_eq!(a.trace.t.len(), a.trace.up.len());
         assert!(!a.fixes.is_empty() && !a.fused.is_empty() && !a.innovations.is_empty());
         // The trip from the worker to the page keeps everything, NaN included.
-        let back = crate::analysis::Analysis::from_bytes(&a.to_bytes()).unwrap();
+        let back = crate::analysis::Analysis::from_bytes(&a.to_bytes().unwrap()).unwrap();
         assert_eq!(back.steps, a.steps);
         assert_eq!(back.trace.t, a.trace.t);
         let t = Theme::LIGHT;

@@ -82,6 +82,14 @@ pub fn demo_walk() -> Scenario {
     }
 }
 
+/// How much longer the engine's default step length is than the walker's on
+/// [`gnss_city_walk`]: the fusion should learn a scale of 1 / this.
+pub const GNSS_CITY_LENGTH_FACTOR: f64 = 1.1;
+
+/// How far east of the truth the OS heading reads on [`gnss_city_walk`], degrees: the fusion
+/// should learn a heading correction of minus this.
+pub const GNSS_CITY_HEADING_BIAS_DEG: f64 = 8.0;
+
 /// A walk through city streets with the GNSS receiver on (the fusion tests of issue "GNSS/PDR
 /// fusion"): about eleven minutes on a closed loop of blocks at 1.7–1.95 Hz, with a stop. The
 /// fixes (1 Hz, reported accuracy 3–12 m) include 20 % outliers of 30–80 m and a two-minute
@@ -91,8 +99,8 @@ pub fn demo_walk() -> Scenario {
 pub fn gnss_city_walk() -> Scenario {
     let mut w = Walker::default();
     for line in [&mut w.step_length.walking, &mut w.step_length.running] {
-        line.a /= 1.1;
-        line.b /= 1.1;
+        line.a /= GNSS_CITY_LENGTH_FACTOR;
+        line.b /= GNSS_CITY_LENGTH_FACTOR;
     }
     let mut segs = vec![Segment::still(3.0)];
     let legs = [
@@ -118,7 +126,7 @@ pub fn gnss_city_walk() -> Scenario {
         seed: 2021,
         walker: w,
         sensors: super::Sensors {
-            os_yaw_bias_deg: 8.0,
+            os_yaw_bias_deg: GNSS_CITY_HEADING_BIAS_DEG,
             ..super::Sensors::default()
         },
         gnss: Some(GnssSim {

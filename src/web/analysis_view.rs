@@ -2,7 +2,7 @@
 //! May import: `analysis`, `io`, `plot`.
 
 use super::canvas::on_canvas;
-use serde::Serialize;
+use super::{to_js, to_json_value};
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
@@ -18,7 +18,7 @@ impl AnalysisView {
     /// Reads the bytes [`Upload::analyse`] made.
     pub fn from_bytes(bytes: &[u8]) -> Result<AnalysisView, JsError> {
         Ok(AnalysisView {
-            a: crate::analysis::Analysis::from_bytes(bytes).map_err(|e| JsError::new(&e))?,
+            a: crate::analysis::Analysis::from_bytes(bytes).map_err(to_js)?,
             frame: Default::default(),
         })
     }
@@ -28,26 +28,38 @@ impl AnalysisView {
     /// (`pdr eval --json` for this log); the track's distance counts only the steps with a
     /// heading, `step_lengths_m` all of them.
     pub fn summary(&self) -> Result<JsValue, JsError> {
+        #[derive(serde::Serialize)]
+        struct Summary<'a> {
+            source: &'a str,
+            format: &'a str,
+            steps: usize,
+            samples: usize,
+            t0: Option<f64>,
+            t1: Option<f64>,
+            fixes: usize,
+            truth_waypoints: usize,
+            truth_steps: usize,
+            steps_without_heading: usize,
+            step_lengths_m: f64,
+            warnings: &'a [String],
+            score: &'a crate::eval::LogResult,
+        }
         let a = &self.a;
-        let score: serde_json::Value =
-            serde_json::from_str(&a.score_json).unwrap_or(serde_json::Value::Null);
-        let v = serde_json::json!({
-            "source": a.source,
-            "format": a.format,
-            "steps": a.steps.len(),
-            "samples": a.trace.t.len(),
-            "t0": a.trace.t.first(),
-            "t1": a.trace.t.last(),
-            "fixes": a.fixes.len(),
-            "truth_waypoints": a.truth_path.len(),
-            "truth_steps": a.truth_steps.len(),
-            "steps_without_heading": a.steps.iter().filter(|s| s.heading_rad.is_none()).count(),
-            "step_lengths_m": a.steps.iter().map(|s| s.length_m).sum::<f64>(),
-            "warnings": a.warnings,
-            "score": score,
-        });
-        v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-            .map_err(|e| JsError::new(&e.to_string()))
+        to_json_value(&Summary {
+            source: &a.source,
+            format: &a.format,
+            steps: a.steps.len(),
+            samples: a.trace.t.len(),
+            t0: a.trace.t.first().copied(),
+            t1: a.trace.t.last().copied(),
+            fixes: a.fixes.len(),
+            truth_waypoints: a.truth_path.len(),
+            truth_steps: a.truth_steps.len(),
+            steps_without_heading: a.steps.iter().filter(|s| s.heading_rad.is_none()).count(),
+            step_lengths_m: a.steps.iter().map(|s| s.length_m).sum(),
+            warnings: &a.warnings,
+            score: &a.score,
+        })
     }
 
     /// Draws the map; `bounds` `[min_e, max_e, min_n, max_n]` zooms (empty: fit all);
@@ -134,7 +146,7 @@ impl AnalysisView {
             .a
             .steps
             .get(i)
-            .ok_or_else(|| JsError::new(&format!("no step {i}")))?;
+            .ok_or_else(|| to_js(format!("no step {i}")))?;
         let deg = |r: Option<f64>| r.map(|r| r.to_degrees().rem_euclid(360.0));
         let v = serde_json::json!({
             "index": i,
@@ -146,8 +158,7 @@ impl AnalysisView {
             "step_heading_deg": deg(s.step_heading_rad),
             "motion": s.motion.as_str(),
         });
-        v.serialize(&serde_wasm_bindgen::Serializer::json_compatible())
-            .map_err(|e| JsError::new(&e.to_string()))
+        to_json_value(&v)
     }
 
     /// Draws diagnostics plot `kind` (`accel`, `sigma`, `heading`, `steps`, `gnss`, `fusion`)
@@ -164,7 +175,7 @@ impl AnalysisView {
         cursor: Option<f64>,
     ) -> Result<Vec<f64>, JsError> {
         let plot = crate::plot::upload::Plot::parse(kind)
-            .ok_or_else(|| JsError::new(&format!("no plot `{kind}`")))?;
+            .ok_or_else(|| to_js(format!("no plot `{kind}`")))?;
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
             crate::plot::upload::draw_plot(area, &self.a, plot, (t0, t1), cursor, theme, scale)
         })
@@ -266,7 +277,7 @@ impl AnalysisView {
     ) -> Result<crate::plot::upload::TimeAxis, JsError> {
         let pair = |v: &[f64], name: &str| match *v {
             [a, b] => Ok((a, b)),
-            _ => Err(JsError::new(&format!(
+            _ => Err(to_js(format!(
                 "`{name}` needs two numbers, not {}",
                 v.len()
             ))),

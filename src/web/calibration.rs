@@ -2,13 +2,13 @@
 //! May import: `engine`, `plot`.
 
 use super::canvas::on_canvas;
+use super::{to_js, to_value};
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
 /// A profile file's JSON, read and checked (the error names the field).
 pub(super) fn read_profile(text: &str) -> Result<crate::engine::calibration::ProfileFile, JsError> {
-    crate::engine::calibration::ProfileFile::from_json(text)
-        .map_err(|e| JsError::new(&e.to_string()))
+    crate::engine::calibration::ProfileFile::from_json(text).map_err(to_js)
 }
 
 /// The calibration wizard's engine side: the walks, the fits, the profile and its chart.
@@ -21,7 +21,7 @@ fn band(name: &str) -> Result<crate::engine::calibration::Band, JsError> {
     match name {
         "walking" => Ok(crate::engine::calibration::Band::Walking),
         "running" => Ok(crate::engine::calibration::Band::Running),
-        other => Err(JsError::new(&format!("unknown band `{other}`"))),
+        other => Err(to_js(format!("unknown band `{other}`"))),
     }
 }
 
@@ -51,8 +51,8 @@ impl CalibrationWizard {
         let w = self
             .wizard
             .add(band(band_name)?, pace, &walk)
-            .map_err(|e| JsError::new(&e.to_string()))?;
-        serde_wasm_bindgen::to_value(w).map_err(|e| JsError::new(&e.to_string()))
+            .map_err(to_js)?;
+        to_value(w)
     }
 
     /// Removes walk `index` (an outlier the user drops).
@@ -120,17 +120,16 @@ impl CalibrationWizard {
             notes: Vec<String>,
         }
         let (_, notes) = self.wizard.profile(&Default::default());
-        serde_wasm_bindgen::to_value(&State {
+        to_value(&State {
             walks: &self.wizard.walks,
             walking: fit(Band::Walking),
             running: fit(Band::Running),
             notes,
         })
-        .map_err(|e| JsError::new(&e.to_string()))
     }
 
     /// The profile file (JSON) the walks make, named `name`.
-    pub fn profile_json(&self, name: &str) -> String {
+    pub fn profile_json(&self, name: &str) -> Result<String, JsError> {
         use crate::engine::calibration::{Band, ProfileFile, PROFILE_VERSION};
         let (profile, _) = self.wizard.profile(&Default::default());
         ProfileFile {
@@ -141,6 +140,7 @@ impl CalibrationWizard {
             running_points: self.wizard.points(Band::Running),
         }
         .to_json()
+        .map_err(to_js)
     }
 
     /// Draws a band's points, line and residuals.
@@ -170,11 +170,29 @@ impl Default for CalibrationWizard {
     }
 }
 
-/// Reads a profile file (JSON) and returns `{name, walking: {a, b}, running: {a, b}}`, or an
-/// error naming the field that is wrong.
+/// Reads a profile file (JSON), or the built-in lines for `undefined`: `{name, walking: [a, b],
+/// running: [a, b], walking_points, running_points, text}` (`text` describes the lines for
+/// people), or an error naming the field that is wrong.
 #[wasm_bindgen]
-pub fn profile_summary(text: &str) -> Result<JsValue, JsError> {
-    let p = read_profile(text)?;
+pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
+    use crate::engine::calibration::{describe_builtin, ProfileFile, PROFILE_VERSION};
+    let (p, described) = match text {
+        Some(t) => {
+            let p = read_profile(&t)?;
+            let d = p.describe();
+            (p, d)
+        }
+        None => (
+            ProfileFile {
+                version: PROFILE_VERSION,
+                name: String::new(),
+                profile: Default::default(),
+                walking_points: Vec::new(),
+                running_points: Vec::new(),
+            },
+            describe_builtin(),
+        ),
+    };
     #[derive(serde::Serialize)]
     struct Summary<'a> {
         name: &'a str,
@@ -182,31 +200,48 @@ pub fn profile_summary(text: &str) -> Result<JsValue, JsError> {
         running: (f64, f64),
         walking_points: usize,
         running_points: usize,
+        text: String,
     }
-    serde_wasm_bindgen::to_value(&Summary {
+    to_value(&Summary {
         name: &p.name,
         walking: (p.profile.walking.a, p.profile.walking.b),
         running: (p.profile.running.a, p.profile.running.b),
         walking_points: p.walking_points.len(),
         running_points: p.running_points.len(),
+        text: described,
     })
-    .map_err(|e| JsError::new(&e.to_string()))
 }
 
-/// Automatic refinement (Basso 2021 §2.2.5): the profile with its walking offset moved by the
-/// fusion filter's step-length scale `k` at the cadence `f_hz`, a fraction `rate` of the way.
+/// Automatic refinement (Basso 2021 §2.2.5) after a live walk with GNSS: the profile (JSON)
+/// with its walking offset moved by what the walk's `evidence` (`Live.walk_evidence()`) says,
+/// `{json, offset_m: [before, after], scale, cadence_hz}`; `undefined` when the walk does not
+/// make the step-length scale known and different from 1 (see `engine::calibration::refine`).
 #[wasm_bindgen]
-pub fn refine_profile(text: &str, k: f64, f_hz: f64, rate: f64) -> Result<String, JsError> {
-    let mut p = read_profile(text)?;
-    if !(k.is_finite() && k > 0.5 && k < 1.5 && f_hz.is_finite() && f_hz > 0.0) {
-        return Err(JsError::new(&format!(
-            "no refinement from a scale of {k} at {f_hz} Hz"
-        )));
+pub fn refine_profile(text: &str, evidence: JsValue) -> Result<JsValue, JsError> {
+    let p = read_profile(text)?;
+    let walk: crate::engine::calibration::WalkEvidence =
+        serde_wasm_bindgen::from_value(evidence).map_err(to_js)?;
+    let Some(r) = crate::engine::calibration::refine(&p, &walk) else {
+        return Ok(JsValue::UNDEFINED);
+    };
+    #[derive(serde::Serialize)]
+    struct Refined {
+        json: String,
+        offset_m: (f64, f64),
+        scale: f64,
+        cadence_hz: f64,
     }
-    p.profile.walking.b =
-        crate::engine::calibration::refined_offset(&p.profile.walking, k, f_hz, rate);
-    p.profile
-        .validate()
-        .map_err(|e| JsError::new(&e.to_string()))?;
-    Ok(p.to_json())
+    to_value(&Refined {
+        json: r.file.to_json().map_err(to_js)?,
+        offset_m: r.offset_m,
+        scale: r.scale,
+        cadence_hz: r.cadence_hz,
+    })
+}
+
+/// The wizard offers GNSS as a walk's distance while the reported accuracy is this good or
+/// better, m; the walk's distance counts fixes this good only.
+#[wasm_bindgen]
+pub fn gnss_limit_m() -> f64 {
+    crate::engine::calibration::GNSS_MAX_ACCURACY_M
 }

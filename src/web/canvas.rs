@@ -1,6 +1,7 @@
 //! plotters' canvas backend for the page's canvases, and the one way the classes draw on one.
 //! May import: `plot`.
 
+use super::to_js;
 use crate::plot::Theme;
 use plotters::prelude::IntoDrawingArea;
 use plotters_backend::{
@@ -125,7 +126,7 @@ pub(super) fn on_canvas<T, E: std::fmt::Display>(
     let inner = CanvasBackend::with_canvas_object(canvas.clone()).ok_or_else(no_2d)?;
     let area = Canvas { inner, ctx }.into_drawing_area();
     let theme = if dark { Theme::DARK } else { Theme::LIGHT };
-    let out = draw(&area, &theme, dpr.clamp(1.0, 4.0)).map_err(|e| JsError::new(&e.to_string()))?;
-    area.present().map_err(|e| JsError::new(&e.to_string()))?;
+    let out = draw(&area, &theme, dpr.clamp(1.0, 4.0)).map_err(to_js)?;
+    area.present().map_err(to_js)?;
     Ok(out)
 }

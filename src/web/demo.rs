@@ -2,6 +2,7 @@
 //! May import: `demo`, `plot`.
 
 use super::canvas::on_canvas;
+use super::to_value;
 use crate::demo::{run_demo, run_fusion_demo, DemoSummary, FusionDemoSummary};
 use crate::plot::{draw_fusion, draw_track, FusionView};
 use wasm_bindgen::prelude::*;
@@ -26,7 +27,7 @@ impl Demo {
     /// The figures: `{steps, truth_steps, distance_m, truth_distance_m, end_error_m, duration_s,
     /// samples}`.
     pub fn summary(&self) -> Result<JsValue, JsError> {
-        serde_wasm_bindgen::to_value(&self.summary).map_err(|e| JsError::new(&e.to_string()))
+        to_value(&self.summary)
     }
 
     /// Draws the track on `canvas`, whose backing store the caller has sized to CSS size × `dpr`.
@@ -61,7 +62,7 @@ impl FusionDemo {
 
     /// The figures (see `FusionDemoSummary`).
     pub fn summary(&self) -> Result<JsValue, JsError> {
-        serde_wasm_bindgen::to_value(&self.summary).map_err(|e| JsError::new(&e.to_string()))
+        to_value(&self.summary)
     }
 
     /// Draws fixes, PDR-only, fused and smoothed tracks and the truth on `canvas`.

@@ -2,198 +2,162 @@
 //! of a recording.
 //! May import: `engine`, `io`, `live`, `plot`, `settings`.
 
-use super::calibration::read_profile;
 use super::canvas::on_canvas;
+use super::{settings_from, to_js, to_value};
+use crate::live::{LiveSession, MotionEvent, OrientationEvent, Platform, SensorReading};
 use crate::plot::{draw_live, draw_scope, LiveView};
 use wasm_bindgen::prelude::*;
 use web_sys::HtmlCanvasElement;
 
 /// A live session for the live page: browser events in, readouts, drawing and the recording
-/// out. Numbers cross the boundary as they come from the events; the conversions are in
+/// out. The events' fields are read here as the browser gives them; the conversions are in
 /// [`crate::live`].
 #[wasm_bindgen]
 pub struct Live {
-    session: crate::live::LiveSession,
+    session: LiveSession,
 }
 
-/// The default configuration with the page's GNSS choice — `best` (every fix),
-/// `energy-saving` (the receiver on for `window_s` every `period_s`, s; `None`: 10 s every 60 s)
-/// or `off` — and the selected step-length profile (JSON).
-pub(super) fn live_config(
-    gnss: &str,
-    profile: Option<String>,
-    period_s: Option<f64>,
-    window_s: Option<f64>,
-) -> Result<crate::engine::PipelineConfig, JsError> {
-    let mut c = crate::engine::PipelineConfig::default();
-    if let Some(p) = profile {
-        c.step_length = crate::engine::StepLengthModel::Frequency(read_profile(&p)?.profile);
-    }
-    match gnss {
-        "best" => {}
-        "energy-saving" => {
-            use crate::engine::fusion::{GnssMode, DEFAULT_PERIOD_S, DEFAULT_WINDOW_S};
-            c.fusion.mode = GnssMode::EnergySaving {
-                period_s: period_s.unwrap_or(DEFAULT_PERIOD_S),
-                window_s: window_s.unwrap_or(DEFAULT_WINDOW_S),
-            };
-        }
-        "off" => c.fusion.mode = crate::engine::fusion::GnssMode::Off,
-        other => return Err(JsError::new(&format!("unknown GNSS mode `{other}`"))),
-    }
-    c.validate().map_err(|e| JsError::new(&e.to_string()))?;
-    Ok(c)
-}
-
-fn platform(ios: bool) -> crate::live::Platform {
+fn platform(ios: bool) -> Platform {
     if ios {
-        crate::live::Platform::Ios
+        Platform::Ios
     } else {
-        crate::live::Platform::Android
+        Platform::Android
     }
+}
+
+/// A number field of a JS object (`null`, `undefined` and non-numbers are `None`).
+fn field(obj: &JsValue, name: &str) -> Option<f64> {
+    js_sys::Reflect::get(obj, &JsValue::from_str(name))
+        .ok()
+        .and_then(|v| v.as_f64())
+}
+
+/// Three number fields, all or none.
+fn fields3(obj: &JsValue, names: [&str; 3]) -> Option<[f64; 3]> {
+    Some([
+        field(obj, names[0])?,
+        field(obj, names[1])?,
+        field(obj, names[2])?,
+    ])
 }
 
 #[wasm_bindgen]
 impl Live {
-    /// A session with the default configuration, GNSS mode `gnss` (`best`, `energy-saving`,
-    /// `off`) and the step-length profile `profile` (a profile file's JSON, or the default);
-    /// `ios` selects Safari's conventions; `time_origin_ms` is `performance.timeOrigin` (event
-    /// times are counted from it). In energy-saving mode the receiver is on for `window_s`
-    /// every `period_s` (default 10 s every 60 s).
+    /// A session with `settings` (`{set, profile}`, see `choices()`; `undefined` for the
+    /// defaults); `ios` selects Safari's conventions; `time_origin_ms` is
+    /// `performance.timeOrigin` (event times are counted from it).
     #[wasm_bindgen(constructor)]
-    pub fn new(
-        ios: bool,
-        time_origin_ms: f64,
-        gnss: &str,
-        profile: Option<String>,
-        period_s: Option<f64>,
-        window_s: Option<f64>,
-    ) -> Result<Live, JsError> {
-        let cfg = live_config(gnss, profile, period_s, window_s)?;
-        crate::live::LiveSession::new(cfg, platform(ios), time_origin_ms)
+    pub fn new(settings: JsValue, ios: bool, time_origin_ms: f64) -> Result<Live, JsError> {
+        let cfg = settings_from(settings)?.config().map_err(to_js)?;
+        LiveSession::new(cfg, platform(ios), time_origin_ms)
             .map(|session| Live { session })
-            .map_err(|e| JsError::new(&e.to_string()))
+            .map_err(to_js)
     }
 
     /// A session continuing a recording (pdr-log text) after a reload; the other arguments as
     /// for [`Live::new`].
     pub fn resume(
+        settings: JsValue,
         ios: bool,
         time_origin_ms: f64,
-        gnss: &str,
-        profile: Option<String>,
         recorded: &str,
-        period_s: Option<f64>,
-        window_s: Option<f64>,
     ) -> Result<Live, JsError> {
-        crate::live::LiveSession::resume(
-            live_config(gnss, profile, period_s, window_s)?,
-            platform(ios),
-            time_origin_ms,
-            recorded,
-        )
-        .map(|session| Live { session })
-        .map_err(|e| JsError::new(&e))
+        let cfg = settings_from(settings)?.config().map_err(to_js)?;
+        LiveSession::resume(cfg, platform(ios), time_origin_ms, recorded)
+            .map(|session| Live { session })
+            .map_err(to_js)
     }
 
-    /// A `devicemotion` event: `event.timeStamp` (ms), `accelerationIncludingGravity`,
-    /// `rotationRate` (deg/s; all three or none) and `interval`. Returns the steps it completed.
+    /// A `devicemotion` event. Returns the steps it completed, or `undefined` when the event
+    /// carries no acceleration (Chromium without an accelerometer fires such events: no
+    /// sample).
     pub fn push_motion(
         &mut self,
-        time_stamp_ms: f64,
-        ax: Option<f64>,
-        ay: Option<f64>,
-        az: Option<f64>,
-        alpha: Option<f64>,
-        beta: Option<f64>,
-        gamma: Option<f64>,
-        interval: Option<f64>,
-    ) -> Result<usize, JsError> {
-        let ev = crate::live::MotionEvent {
-            time_stamp_ms,
-            accel: ax.zip(ay).zip(az).map(|((x, y), z)| [x, y, z]),
-            rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
-            interval,
+        e: &web_sys::DeviceMotionEvent,
+    ) -> Result<Option<usize>, JsError> {
+        let accel = e
+            .acceleration_including_gravity()
+            .and_then(|a| Some([a.x()?, a.y()?, a.z()?]));
+        if accel.is_none() {
+            return Ok(None);
+        }
+        let ev = MotionEvent {
+            time_stamp_ms: e.time_stamp(),
+            accel,
+            rotation_rate_deg_s: e
+                .rotation_rate()
+                .and_then(|r| Some([r.alpha()?, r.beta()?, r.gamma()?])),
         };
-        self.session
-            .push_motion(&ev)
-            .map_err(|e| JsError::new(&e.to_string()))
+        self.session.push_motion(&ev).map(Some).map_err(to_js)
     }
 
     /// A Generic Sensor API `Accelerometer` reading (m/s²) with the latest `Gyroscope` one
-    /// (rad/s, all three or none), at the accelerometer's `timestamp` (ms).
-    pub fn push_sensor(
-        &mut self,
-        timestamp_ms: f64,
-        ax: f64,
-        ay: f64,
-        az: f64,
-        gx: Option<f64>,
-        gy: Option<f64>,
-        gz: Option<f64>,
-    ) -> Result<usize, JsError> {
-        let gyro = gx.zip(gy).zip(gz).map(|((x, y), z)| [x, y, z]);
-        self.session
-            .push_sensor(timestamp_ms, [ax, ay, az], gyro)
-            .map_err(|e| JsError::new(&e.to_string()))
+    /// (rad/s; its x, y, z are `null` before its first reading), at the accelerometer's
+    /// `timestamp` (ms). Returns the steps it completed.
+    pub fn push_sensor(&mut self, acc: &JsValue, gyr: &JsValue) -> Result<usize, JsError> {
+        let r = SensorReading {
+            timestamp_ms: field(acc, "timestamp").unwrap_or(f64::NAN),
+            accel: fields3(acc, ["x", "y", "z"]).unwrap_or([f64::NAN; 3]),
+            gyro_rad_s: fields3(gyr, ["x", "y", "z"]),
+        };
+        self.session.push_sensor(&r).map_err(to_js)
     }
 
-    /// A `deviceorientation(absolute)` event, degrees.
+    /// A `deviceorientationabsolute` event (`absolute_stream`) or a `deviceorientation` one,
+    /// with `screen.orientation.angle` (degrees): iOS's `webkitCompassHeading` is read here.
     pub fn push_orientation(
         &mut self,
-        time_stamp_ms: f64,
-        alpha: f64,
-        beta: f64,
-        gamma: f64,
-        absolute: bool,
-    ) {
-        self.session
-            .push_orientation(time_stamp_ms, alpha, beta, gamma, absolute);
-    }
-
-    /// An iOS `deviceorientation` event with `webkitCompassHeading` (degrees), and
-    /// `screen.orientation.angle`.
-    pub fn push_compass(
-        &mut self,
-        time_stamp_ms: f64,
-        compass_heading_deg: f64,
-        beta: f64,
-        gamma: f64,
+        e: &web_sys::DeviceOrientationEvent,
+        absolute_stream: bool,
         screen_angle_deg: f64,
     ) {
-        let alpha = crate::live::ios_compass_alpha(compass_heading_deg, screen_angle_deg);
+        let ev = OrientationEvent {
+            time_stamp_ms: e.time_stamp(),
+            alpha: e.alpha(),
+            beta: e.beta(),
+            gamma: e.gamma(),
+            absolute: absolute_stream || e.absolute(),
+            compass_heading_deg: if absolute_stream {
+                None
+            } else {
+                field(e, "webkitCompassHeading")
+            },
+            screen_angle_deg,
+        };
+        self.session.push_orientation(&ev);
+    }
+
+    /// An `AbsoluteOrientationSensor` reading: its `quaternion` `[x, y, z, w]` at its
+    /// `timestamp` (ms).
+    pub fn push_quaternion(&mut self, sensor: &JsValue) {
+        let q = js_sys::Reflect::get(sensor, &JsValue::from_str("quaternion"))
+            .ok()
+            .map(|q| js_sys::Array::from(&q));
+        let at = |i: u32| {
+            q.as_ref()
+                .and_then(|q| q.get(i).as_f64())
+                .unwrap_or(f64::NAN)
+        };
+        let t = field(sensor, "timestamp").unwrap_or(f64::NAN);
         self.session
-            .push_orientation(time_stamp_ms, alpha, beta, gamma, true);
+            .push_quaternion(t, [at(0), at(1), at(2), at(3)]);
     }
 
-    /// An `AbsoluteOrientationSensor` quaternion `[x, y, z, w]`.
-    pub fn push_quaternion(&mut self, timestamp_ms: f64, x: f64, y: f64, z: f64, w: f64) {
-        self.session.push_quaternion(timestamp_ms, [x, y, z, w]);
-    }
-
-    /// A geolocation fix; `time_ms` on the page's clock (`performance.now()` at arrival).
-    pub fn push_fix(
-        &mut self,
-        time_ms: f64,
-        lat: f64,
-        lon: f64,
-        accuracy_m: f64,
-        altitude_m: Option<f64>,
-        speed_mps: Option<f64>,
-        heading_deg: Option<f64>,
-    ) -> Result<(), JsError> {
+    /// A geolocation position (`watchPosition`'s argument) that arrived at `time_ms` on the
+    /// page's clock (`performance.now()`).
+    pub fn push_fix(&mut self, time_ms: f64, position: &JsValue) -> Result<(), JsError> {
+        let c = js_sys::Reflect::get(position, &JsValue::from_str("coords"))
+            .map_err(|_| to_js("the position has no coords"))?;
         let f = crate::engine::GnssFix {
             t: time_ms * 1e-3,
-            lat_deg: lat,
-            lon_deg: lon,
-            h_accuracy_m: accuracy_m,
-            altitude_m,
-            speed_mps,
-            bearing_deg: heading_deg,
+            lat_deg: field(&c, "latitude").unwrap_or(f64::NAN),
+            lon_deg: field(&c, "longitude").unwrap_or(f64::NAN),
+            h_accuracy_m: field(&c, "accuracy").unwrap_or(f64::NAN),
+            altitude_m: field(&c, "altitude"),
+            speed_mps: field(&c, "speed"),
+            bearing_deg: field(&c, "heading").filter(|h| h.is_finite()),
         };
-        self.session
-            .push_fix(&f)
-            .map_err(|e| JsError::new(&e.to_string()))
+        self.session.push_fix(&f).map_err(to_js)
     }
 
     /// The frequencies of the steps counted so far (a calibration walk's f_k), Hz.
@@ -204,6 +168,18 @@ impl Live {
     /// The distance along the fixes no worse than `max_accuracy_m`, m.
     pub fn fix_path_m(&self, max_accuracy_m: f64) -> f64 {
         self.session.fix_path_m(max_accuracy_m)
+    }
+
+    /// What the walk says about the user's step length (for `refine_profile`): `{fixes, scale:
+    /// [k, sd] | undefined, step_freqs_hz}`.
+    pub fn walk_evidence(&self) -> Result<JsValue, JsError> {
+        to_value(&self.session.walk_evidence())
+    }
+
+    /// Whether to tell the user that no motion data has come: none `started_ms` + 3 s after the
+    /// start (`now_ms`, both on the page's clock).
+    pub fn no_motion(&self, started_ms: f64, now_ms: f64) -> bool {
+        self.session.readouts().samples == 0 && now_ms - started_ms > crate::live::NO_MOTION_MS
     }
 
     /// The page was hidden between two times (ms, page clock).
@@ -218,8 +194,7 @@ impl Live {
 
     /// The readouts (see `live::Readouts`).
     pub fn readouts(&self) -> Result<JsValue, JsError> {
-        serde_wasm_bindgen::to_value(&self.session.readouts())
-            .map_err(|e| JsError::new(&e.to_string()))
+        to_value(&self.session.readouts())
     }
 
     /// Draws the map.
@@ -250,13 +225,13 @@ impl Live {
         dark: bool,
         dpr: f64,
     ) -> Result<(), JsError> {
-        let (samples, steps, now) = self.session.scope_data();
+        let d = self.session.scope_data();
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
             draw_scope(
                 area,
-                &samples,
-                &steps,
-                now,
+                &d.samples,
+                &d.steps,
+                d.now,
                 crate::live::SCOPE_S,
                 theme,
                 scale,
@@ -265,15 +240,13 @@ impl Live {
     }
 }
 
-/// Replays a pdr-log (a live recording) through the default engine with the step-length
-/// profile `profile` (JSON, or the default): `{steps, distance_m, samples, skipped_lines}`.
+/// Replays a pdr-log (a live recording) through the engine with `settings` (`{set, profile}`;
+/// `undefined` for the defaults): `{steps, distance_m, samples, skipped_lines}`.
 #[wasm_bindgen]
-pub fn replay_log(text: &str, profile: Option<String>) -> Result<JsValue, JsError> {
-    let parsed = crate::io::pdrlog::read(text.as_bytes(), "recording")
-        .map_err(|e| JsError::new(&e.to_string()))?;
-    let r =
-        crate::engine::pipeline::replay(live_config("best", profile, None, None)?, &parsed.records)
-            .map_err(|e| JsError::new(&e.to_string()))?;
+pub fn replay_log(text: &str, settings: JsValue) -> Result<JsValue, JsError> {
+    let cfg = settings_from(settings)?.config().map_err(to_js)?;
+    let parsed = crate::io::pdrlog::read(text.as_bytes(), "recording").map_err(to_js)?;
+    let r = crate::engine::replay::replay(cfg, &parsed.records).map_err(to_js)?;
     let d = r.pipeline.diagnostics();
     #[derive(serde::Serialize)]
     struct Summary {
@@ -282,11 +255,22 @@ pub fn replay_log(text: &str, profile: Option<String>) -> Result<JsValue, JsErro
         samples: u64,
         skipped_lines: u64,
     }
-    serde_wasm_bindgen::to_value(&Summary {
+    to_value(&Summary {
         steps: r.pipeline.track().len(),
         distance_m: d.distance_m,
         samples: d.samples,
         skipped_lines: parsed.skipped,
     })
-    .map_err(|e| JsError::new(&e.to_string()))
+}
+
+/// What a recording (pdr-log text) holds, for the recovery offer: `{samples}`, the IMU samples.
+#[wasm_bindgen]
+pub fn recording_summary(text: &str) -> Result<JsValue, JsError> {
+    #[derive(serde::Serialize)]
+    struct Summary {
+        samples: usize,
+    }
+    to_value(&Summary {
+        samples: crate::io::pdrlog::count_imu_lines(text),
+    })
 }

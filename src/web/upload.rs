@@ -1,9 +1,9 @@
 //! Upload mode's worker side: the files read a slice at a time, parsed, and each log analysed
 //! into bytes for the page.
-//! May import: `analysis`, `engine`, `eval`, `io`, `settings`.
+//! May import: `analysis`, `engine`, `io`, `settings`.
 
 use super::blobs;
-use super::live::live_config;
+use super::{settings_from, to_js, to_value};
 use wasm_bindgen::prelude::*;
 
 /// Upload mode, the web worker's side: files in, logs parsed, each analysed into bytes for the
@@ -84,27 +84,23 @@ impl Upload {
                 Err(e) => out.errors.push(e),
             }
         }
-        serde_wasm_bindgen::to_value(&out).map_err(|e| JsError::new(&e.to_string()))
+        to_value(&out)
     }
 
-    /// Runs the engine over log `index` with the default configuration changed by `sets`
-    /// (`key=value`, as `pdr eval --set`), the step-length profile `profile` (JSON) and the
-    /// GNSS mode; `progress(done, total)` is called as records go through. Returns the
-    /// analysis as bytes for [`AnalysisView::from_bytes`].
+    /// Runs the engine over log `index` with `settings` (`{set, profile}`, as for `Live`);
+    /// `progress(done, total)` is called as records go through. Returns the analysis as bytes
+    /// for [`AnalysisView::from_bytes`](super::analysis_view::AnalysisView::from_bytes).
     pub fn analyse(
         &mut self,
         index: usize,
-        sets: Vec<String>,
-        profile: Option<String>,
-        gnss: &str,
+        settings: JsValue,
         progress: &js_sys::Function,
     ) -> Result<Vec<u8>, JsError> {
         let log = self
             .logs
             .get(index)
-            .ok_or_else(|| JsError::new(&format!("no log {index}")))?;
-        let cfg = crate::eval::apply_overrides(&live_config(gnss, profile, None, None)?, &sets)
-            .map_err(|e| JsError::new(&e))?;
+            .ok_or_else(|| to_js(format!("no log {index}")))?;
+        let cfg = settings_from(settings)?.config().map_err(to_js)?;
         let t0 = js_sys::Date::now();
         let a = crate::analysis::analyse(log, &cfg, &mut |done, total| {
             let _ = progress.call2(
@@ -113,9 +109,9 @@ impl Upload {
                 &(total as f64).into(),
             );
         })
-        .map_err(|e| JsError::new(&e.to_string()))?;
+        .map_err(to_js)?;
         self.engine_ms = js_sys::Date::now() - t0;
-        Ok(a.to_bytes())
+        a.to_bytes().map_err(to_js)
     }
 
     /// Log `index` in the project's own format (pdr-log).
@@ -123,7 +119,7 @@ impl Upload {
         let log = self
             .logs
             .get(index)
-            .ok_or_else(|| JsError::new(&format!("no log {index}")))?;
+            .ok_or_else(|| to_js(format!("no log {index}")))?;
         Ok(crate::io::pdrlog::to_string(&log.records))
     }
 }

@@ -229,7 +229,7 @@ test('energy saving: the geolocation watch is really stopped between windows and
     init: spy,
     context: { geolocation: fixAt(w.path[0]), permissions: ['geolocation', 'accelerometer', 'gyroscope', 'magnetometer'] },
   });
-  await page.selectOption('#gnss-mode', 'energy-saving');
+  await page.selectOption('#gnss-mode', 'energy_saving');
   assert.equal(await page.isVisible('#duty'), true, 'the window and period inputs are hidden');
   const WINDOW = 3;
   const PERIOD = 8;
@@ -311,7 +311,7 @@ test('permission denied, no sensors, no location, insecure page: each says what 
   // Energy saving with a window longer than its period: refused, naming the setting.
   {
     const { context, page } = await open();
-    await page.selectOption('#gnss-mode', 'energy-saving');
+    await page.selectOption('#gnss-mode', 'energy_saving');
     await page.fill('#gnss-window', '20');
     await page.fill('#gnss-period', '10');
     await page.click('#start');

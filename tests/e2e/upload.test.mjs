@@ -363,12 +363,12 @@ test('compare two configurations side by side, and re-run', async () => {
   const { context, page, errors } = await open({ width: 390, height: 844 });
   await page.check('#compare');
   // B: the peak counter, the closed form and Weinberg's step length, whose K no profile sets.
-  await page.selectOption('.config[data-config="b"] [name=length]', 'weinberg');
+  await page.selectOption('.config[data-config="b"] [name="step_length.kind"]', 'weinberg');
   assert.ok(await page.isDisabled('.config[data-config="b"] [name=profile]'), 'a profile offered to Weinberg');
   const r = await upload(page, [walk]);
   const { a, b } = r.logs[0];
   assert.ok(a && b, 'both configurations ran');
-  const nb = native(walk, '--detector', 'peak', '--heading', 'closed-form', '--step-length', 'weinberg');
+  const nb = native(walk, '--detector', 'peak', '--heading', 'closed_form2021', '--step-length', 'weinberg');
   assert.equal(b.steps, nb.steps, 'configuration B (peak, closed form, Weinberg) differs from pdr run');
   assert.equal(Number(b.score.distance_m.toFixed(1)), nb.distance, 'B distance differs from pdr run');
   assert.notEqual(Number(a.score.distance_m.toFixed(1)), nb.distance, 'A has B\'s distance');
@@ -383,11 +383,11 @@ test('compare two configurations side by side, and re-run', async () => {
   assert.match(figures[1], new RegExp(`Steps${nb.steps}Distance${nb.distance.toFixed(1)} m`));
   await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-compare-phone.png') });
   // Re-run A with the peak detector: its count becomes B's.
-  await page.selectOption('.config[data-config="a"] [name=detector]', 'peak');
-  await page.selectOption('.config[data-config="a"] [name=heading]', 'closed_form2021');
+  await page.selectOption('.config[data-config="a"] [name="detector.kind"]', 'peak');
+  await page.selectOption('.config[data-config="a"] [name="heading.method"]', 'closed_form2021');
   await page.click('#rerun');
   await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0].a.steps !== undefined);
-  const peak = native(walk, '--detector', 'peak', '--heading', 'closed-form').steps;
+  const peak = native(walk, '--detector', 'peak', '--heading', 'closed_form2021').steps;
   await page.waitForFunction((n) => window.__pdrUpload.logs[0].a.steps === n, peak, { timeout: 20_000 });
   assert.match(await page.locator('.log-result .mapbox .config-label').first().textContent(), /^A: peak counter, closed form \(2021\), /);
   assert.deepEqual(errors, []);

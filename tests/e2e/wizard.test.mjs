@@ -88,7 +88,7 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   const other = simulate(1.7, 120, 'other.pdrlog');
   const [withProfile, builtIn] = await page.evaluate(async ({ text, profile }) => {
     const { replay_log } = await import('./www/pkg/pdr.js');
-    return [replay_log(text, profile), replay_log(text, undefined)];
+    return [replay_log(text, { profile }), replay_log(text, undefined)];
   }, { text: other, profile: saved });
   const errWith = Math.abs(withProfile.distance_m - 120) / 120;
   const errBuiltIn = Math.abs(builtIn.distance_m - 120) / 120;
@@ -128,7 +128,7 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   // over 40 fixes (the event live mode sends at Stop): b moves halfway, and Undo restores it.
   const before = JSON.parse(saved).profile.walking.b;
   const ended = (k) => page.evaluate((k) => window.dispatchEvent(new CustomEvent('pdr-walk-ended', {
-    detail: { readouts: { fusion_scale: [k, 0.01], fixes: 40 }, freqs: Array(100).fill(1.8) },
+    detail: { evidence: { fixes: 40, scale: [k, 0.01], step_freqs_hz: Array(100).fill(1.8) } },
   })), k);
   await ended(0.95);
   assert.equal(await page.evaluate(() => document.querySelectorAll('#profile-messages li[data-key="refined"]').length), 0,

@@ -2,11 +2,9 @@
 //! subcommand to its own module (`run`, `eval`, `simulate`, `simcheck`, `bench`, `demo`, `serve`).
 //! May import: clap, the `pdr` library and the subcommands' modules.
 
+use crate::settings_args::SettingsArgs;
 use crate::{bench, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
-use pdr::engine::heading::HeadingMethod;
-use pdr::engine::pipeline::{PipelineConfig, StepDetectorConfig};
-use pdr::engine::{OrientationSource, StepLengthModel};
 use pdr::sim::scenarios;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -20,103 +18,6 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     cmd: Cmd,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum HeadingArg {
-    /// Basso 2016 Algorithm 1 (default).
-    TipToTail,
-    /// Basso 2021 closed form.
-    ClosedForm,
-    /// PCA over 2 s.
-    Pca,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum DetectorArg {
-    /// Phase-locked loop (default).
-    Pll,
-    /// Low-pass and peak.
-    Peak,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum OrientationArg {
-    /// OS quaternion, else Madgwick, else gravity (default).
-    Auto,
-    /// OS quaternion.
-    Os,
-    /// Madgwick filter.
-    Madgwick,
-    /// Gravity low-pass (no heading).
-    Gravity,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum LengthArg {
-    /// Piecewise linear in frequency (default).
-    Frequency,
-    /// Weinberg.
-    Weinberg,
-}
-
-#[derive(clap::Args)]
-struct Methods {
-    /// Heading method.
-    #[arg(long, value_enum, default_value = "tip-to-tail")]
-    heading: HeadingArg,
-    /// Step detector.
-    #[arg(long, value_enum, default_value = "pll")]
-    detector: DetectorArg,
-    /// Orientation source.
-    #[arg(long, value_enum, default_value = "auto")]
-    orientation: OrientationArg,
-    /// Step-length model.
-    #[arg(long, value_enum, default_value = "frequency")]
-    step_length: LengthArg,
-    /// GNSS/PDR fusion: every fix, energy saving (10 s every 60 s), or none.
-    #[arg(long, value_enum, default_value = "best")]
-    gnss: GnssArg,
-}
-
-#[derive(Clone, Copy, ValueEnum)]
-enum GnssArg {
-    /// Best performance: every fix is used.
-    Best,
-    /// Energy saving: the receiver on 10 s every 60 s once calibrated.
-    EnergySaving,
-    /// No fusion: fixes only set the geodetic origin.
-    Off,
-}
-
-impl Methods {
-    fn config(&self) -> PipelineConfig {
-        let mut c = PipelineConfig::with_heading(match self.heading {
-            HeadingArg::TipToTail => HeadingMethod::TipToTail2016,
-            HeadingArg::ClosedForm => HeadingMethod::ClosedForm2021,
-            HeadingArg::Pca => HeadingMethod::Pca,
-        });
-        if let DetectorArg::Peak = self.detector {
-            c.detector = StepDetectorConfig::Peak(Default::default());
-        }
-        c.orientation = match self.orientation {
-            OrientationArg::Auto => OrientationSource::Auto,
-            OrientationArg::Os => OrientationSource::Os,
-            OrientationArg::Madgwick => OrientationSource::MADGWICK,
-            OrientationArg::Gravity => OrientationSource::GRAVITY,
-        };
-        if let LengthArg::Weinberg = self.step_length {
-            c.step_length = StepLengthModel::Weinberg { k: 0.47 };
-        }
-        match self.gnss {
-            GnssArg::Best => {}
-            GnssArg::EnergySaving => {
-                c.fusion.mode = pdr::engine::fusion::GnssMode::ENERGY_SAVING;
-            }
-            GnssArg::Off => c.fusion.mode = pdr::engine::fusion::GnssMode::Off,
-        }
-        c
-    }
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -186,7 +87,7 @@ enum Cmd {
         #[arg(long)]
         fused: Option<PathBuf>,
         #[command(flatten)]
-        methods: Methods,
+        settings: SettingsArgs,
     },
     /// Run the embedded demo walk (the one the web page shows) and print its figures.
     Demo {
@@ -253,10 +154,8 @@ enum Cmd {
         /// Print one JSON object instead of a table.
         #[arg(long)]
         json: bool,
-        /// Override a configuration value, e.g. `heading.method=closed_form2021`,
-        /// `detector.kind=peak`, `motion.still_max=1.2` (repeatable).
-        #[arg(long = "set", value_name = "KEY=VALUE")]
-        sets: Vec<String>,
+        #[command(flatten)]
+        settings: SettingsArgs,
         /// Print the effective configuration as JSON and exit.
         #[arg(long)]
         show_config: bool,
@@ -286,16 +185,18 @@ pub fn main() -> ExitCode {
             track,
             geojson,
             fused,
-            methods,
-        } => run::run(
-            &file,
-            run::Outputs {
-                track: track.as_deref(),
-                geojson: geojson.as_deref(),
-                fused: fused.as_deref(),
-            },
-            methods.config(),
-        ),
+            settings,
+        } => settings.settings().and_then(|s| {
+            run::run(
+                &file,
+                run::Outputs {
+                    track: track.as_deref(),
+                    geojson: geojson.as_deref(),
+                    fused: fused.as_deref(),
+                },
+                &s,
+            )
+        }),
         Cmd::Demo { json } => demo::demo(json),
         Cmd::Simulate {
             scenario,
@@ -332,9 +233,11 @@ pub fn main() -> ExitCode {
         Cmd::Eval {
             paths,
             json,
-            sets,
+            settings,
             show_config,
-        } => eval::eval(&paths, json, &sets, show_config),
+        } => settings
+            .settings()
+            .and_then(|s| eval::eval(&paths, json, &s, show_config)),
         Cmd::Serve {
             root,
             http_port,

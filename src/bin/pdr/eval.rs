@@ -2,18 +2,18 @@
 //! and prints a table or one JSON object.
 //! May import: the `pdr` library; nothing of the other subcommands.
 
-use pdr::engine::pipeline::PipelineConfig;
+use pdr::settings::Settings;
 use std::path::PathBuf;
 
 pub fn eval(
     paths: &[PathBuf],
     json: bool,
-    sets: &[String],
+    settings: &Settings,
     show_config: bool,
 ) -> Result<(), String> {
     use pdr::eval::{evaluate, summarise, LogResult, Report};
     use pdr::io::import::{import_all, DirSet};
-    let cfg = pdr::eval::apply_overrides(&PipelineConfig::default(), sets)?;
+    let cfg = settings.config().map_err(|e| e.to_string())?;
     if show_config {
         out!(
             "{}",

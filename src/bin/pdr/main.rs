@@ -31,6 +31,8 @@ mod run;
 #[cfg(not(target_arch = "wasm32"))]
 mod serve;
 #[cfg(not(target_arch = "wasm32"))]
+mod settings_args;
+#[cfg(not(target_arch = "wasm32"))]
 mod simcheck;
 #[cfg(not(target_arch = "wasm32"))]
 mod simulate;

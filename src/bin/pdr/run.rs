@@ -1,11 +1,13 @@
 //! `pdr run`: replays one log of any format, prints a summary and writes the track files.
 //! May import: the `pdr` library; nothing of the other subcommands.
 
-use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::engine::pipeline::replay;
 use pdr::io::export;
+use pdr::settings::Settings;
 use std::path::Path;
 
-pub fn run(file: &Path, outputs: Outputs, cfg: PipelineConfig) -> Result<(), String> {
+pub fn run(file: &Path, outputs: Outputs, settings: &Settings) -> Result<(), String> {
+    let cfg = settings.config().map_err(|e| e.to_string())?;
     let name = file.display().to_string();
     let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
     let mut logs = pdr::io::import::import_all(&mut set);

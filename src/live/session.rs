@@ -1,153 +1,59 @@
-//! Live input: browser sensor events into the engine's records. This is the one place where the
-//! platforms' quirks are converted; everything after it is the same pipeline uploaded logs go
-//! through. Pure Rust (the wasm glue in [`crate::web`] only passes numbers), so it is tested
-//! natively and in the browser alike.
-//!
-//! # `devicemotion`, as browsers deliver it
-//! - `accelerationIncludingGravity`, m/s², device frame (x right, y top, z out of the screen).
-//!   Chromium follows the specification: a phone lying face up reads z = +9.81. Safari on iOS
-//!   reports the opposite sign (z = −9.81 face up), so iOS values are negated
-//!   ([`Platform::to_android`]).
-//! - `rotationRate`, **degrees** per second: `alpha` about the device x axis, `beta` about y,
-//!   `gamma` about z (w3c/deviceorientation #44). Checked in headless Chromium with its virtual
-//!   gyroscope: a reading of (1, 0.5, 0.25) rad/s arrives as alpha 57.3, beta 28.6, gamma 14.3
-//!   (`tests/e2e`). Converted to rad/s.
-//! - `interval`: milliseconds in Chromium (a fixed 16 on desktop), **seconds** on iOS. It is
-//!   only reported, never used for time: the time of a sample is `event.timeStamp` (ms on the
-//!   page's clock), converted to seconds.
-//!
-//! # `deviceorientation(absolute)`
-//! `alpha`, `beta`, `gamma` in degrees are the intrinsic Z-X'-Y'' angles of the W3C
-//! specification: the device → earth rotation is R = Rz(α)·Rx(β)·Ry(γ), the earth frame being
-//! East-North-Up when the event is absolute (alpha = 0 with the top of the device to the north;
-//! alpha grows counter-clockwise, so the compass heading of the top is 360° − α).
+//! The live session: samples in (through [`super::events`]), the one pipeline, the readouts,
+//! the map's and the scope's data, and the recording as pdr-log lines.
+//! May import: `engine`, `io` (the pdr-log), and [`super::events`].
 
+use super::events::{
+    normalise_motion, sensor_sample, EventError, MotionEvent, OrientationEvent, Platform,
+    SensorReading,
+};
 use crate::engine::orientation::{OrientationSource, HOLD_S};
 use crate::engine::pipeline::{Pipeline, PipelineConfig};
 use crate::engine::replay::feed;
-use crate::engine::types::Record;
-use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError};
-pub use crate::io::import::Platform;
-use nalgebra::{UnitQuaternion, Vector3};
+use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError, Record};
+use crate::io::ParseError;
+use nalgebra::UnitQuaternion;
 use std::collections::VecDeque;
+use std::fmt;
 
-/// One `devicemotion` event, fields as the browser gives them.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MotionEvent {
-    /// `event.timeStamp`, ms.
-    pub time_stamp_ms: f64,
-    /// `accelerationIncludingGravity` (x, y, z), m/s², platform sign.
-    pub accel: Option<[f64; 3]>,
-    /// `rotationRate` (alpha, beta, gamma), deg/s.
-    pub rotation_rate_deg_s: Option<[f64; 3]>,
-    /// `interval`: ms (Chromium) or s (iOS).
-    pub interval: Option<f64>,
-}
-
-/// A motion event in the engine's units and conventions.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Motion {
-    /// Time, s.
-    pub t: f64,
-    /// Specific force including gravity, m/s², Android sign, device frame.
-    pub accel: Vector3<f64>,
-    /// Angular rate about x, y, z, rad/s.
-    pub gyro: Option<Vector3<f64>>,
-    /// The interval the browser reports, s.
-    pub interval_s: Option<f64>,
-}
-
-/// Why a live event was refused.
+/// Why a live event or session was refused.
 #[derive(Debug, Clone, PartialEq)]
 pub enum LiveError {
-    /// The event lacks acceleration (the device has no accelerometer, or the browser withholds
-    /// it).
-    NoAcceleration,
-    /// A value is not a finite number.
-    NonFinite(&'static str),
+    /// The event carries no usable sample.
+    Event(EventError),
     /// The engine refused the sample.
     Engine(InputError),
+    /// The configuration is invalid.
+    Config(ConfigError),
+    /// The recording to resume is unreadable.
+    Recording(ParseError),
 }
 
-impl std::fmt::Display for LiveError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+impl fmt::Display for LiveError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            LiveError::NoAcceleration => write!(f, "the motion event carries no acceleration"),
-            LiveError::NonFinite(field) => write!(f, "`{field}` is not a finite number"),
+            LiveError::Event(e) => write!(f, "{e}"),
             LiveError::Engine(e) => write!(f, "{e}"),
+            LiveError::Config(e) => write!(f, "{e}"),
+            LiveError::Recording(e) => write!(f, "{e}"),
         }
     }
 }
 
-/// Converts a `devicemotion` event (see the module documentation for every rule).
-pub fn normalise_motion(ev: &MotionEvent, platform: Platform) -> Result<Motion, LiveError> {
-    let finite = |v: &[f64], field| {
-        if v.iter().all(|x| x.is_finite()) {
-            Ok(())
-        } else {
-            Err(LiveError::NonFinite(field))
-        }
-    };
-    finite(&[ev.time_stamp_ms], "timeStamp")?;
-    let a = ev.accel.ok_or(LiveError::NoAcceleration)?;
-    finite(&a, "accelerationIncludingGravity")?;
-    let gyro = match ev.rotation_rate_deg_s {
-        Some(r) => {
-            finite(&r, "rotationRate")?;
-            Some(Vector3::new(r[0], r[1], r[2]) * (std::f64::consts::PI / 180.0))
-        }
-        None => None,
-    };
-    let interval_s = ev
-        .interval
-        .filter(|i| i.is_finite() && *i > 0.0)
-        .map(|i| match platform {
-            Platform::Ios => i,
-            Platform::Android => i * 1e-3,
-        });
-    Ok(Motion {
-        t: ev.time_stamp_ms * 1e-3,
-        accel: platform.to_android(Vector3::new(a[0], a[1], a[2])),
-        gyro,
-        interval_s,
-    })
-}
+impl std::error::Error for LiveError {}
 
-/// The device → earth attitude of a `deviceorientation` event (degrees), R = Rz(α)·Rx(β)·Ry(γ).
-pub fn orientation_quaternion(alpha: f64, beta: f64, gamma: f64) -> UnitQuaternion<f64> {
-    let d = std::f64::consts::PI / 180.0;
-    UnitQuaternion::from_axis_angle(&Vector3::z_axis(), alpha * d)
-        * UnitQuaternion::from_axis_angle(&Vector3::x_axis(), beta * d)
-        * UnitQuaternion::from_axis_angle(&Vector3::y_axis(), gamma * d)
-}
-
-/// The W3C angles (degrees) of a device → earth attitude: the inverse of
-/// [`orientation_quaternion`], with β in [−90°, 90°] (an equivalent decomposition to the
-/// specification's β in [−180°, 180°), γ in [−90°, 90°)).
-pub fn orientation_angles(q: &UnitQuaternion<f64>) -> (f64, f64, f64) {
-    let r = q.to_rotation_matrix();
-    let m = r.matrix();
-    let beta = libm::asin(m[(2, 1)].clamp(-1.0, 1.0));
-    let alpha = libm::atan2(-m[(0, 1)], m[(1, 1)]);
-    let gamma = libm::atan2(-m[(2, 0)], m[(2, 2)]);
-    let d = 180.0 / std::f64::consts::PI;
-    (alpha * d, beta * d, gamma * d)
-}
-
-/// The `alpha` (degrees, W3C convention) of an iOS `deviceorientation` event from its
-/// `webkitCompassHeading`. Safari's `alpha` is relative to an arbitrary start; the compass
-/// heading is degrees clockwise from magnetic north of the top of the *interface*, so the
-/// heading of the device's top adds the screen orientation angle (`screen.orientation.angle`,
-/// 90 when the interface is turned a quarter counter-clockwise from portrait). The W3C `alpha`
-/// grows counter-clockwise: α = 360° − heading. Not verified on a real iPhone here.
-pub fn ios_compass_alpha(compass_heading_deg: f64, screen_angle_deg: f64) -> f64 {
-    (360.0 - (compass_heading_deg + screen_angle_deg)).rem_euclid(360.0)
+impl From<EventError> for LiveError {
+    fn from(e: EventError) -> Self {
+        LiveError::Event(e)
+    }
 }
 
 /// How long motion waits, from the first event, for an attitude before the session goes on
 /// without one (and the engine on the gyroscope alone): Chromium and Safari start both
 /// streams together, so a wait is short, and the first sample decides the orientation source.
 pub const ATTITUDE_WAIT_S: f64 = 1.0;
+
+/// How long after the start the page says that no motion data has come, ms.
+pub const NO_MOTION_MS: f64 = 3000.0;
 
 /// The span of the scrolling vertical-acceleration view, s.
 pub const SCOPE_S: f64 = 10.0;
@@ -161,6 +67,17 @@ pub struct ScopeSample {
     pub up: f64,
     /// PLL output cos φ.
     pub pll: Option<f64>,
+}
+
+/// What the scrolling view draws.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ScopeData {
+    /// (t, vertical acceleration, PLL output) of each sample, s, m/s².
+    pub samples: Vec<(f64, f64, Option<f64>)>,
+    /// The times of the steps among them, s.
+    pub steps: Vec<f64>,
+    /// The newest time, s.
+    pub now: f64,
 }
 
 /// Where the input stopped and resumed.
@@ -340,10 +257,10 @@ impl LiveSession {
         platform: Platform,
         origin_ms: f64,
         recorded: &str,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, LiveError> {
         let parsed = crate::io::pdrlog::read(recorded.as_bytes(), "the recovered recording")
-            .map_err(|e| e.to_string())?;
-        let mut s = Self::new(cfg, platform, origin_ms).map_err(|e| e.to_string())?;
+            .map_err(LiveError::Recording)?;
+        let mut s = Self::new(cfg, platform, origin_ms).map_err(LiveError::Config)?;
         s.log.clear();
         s.absolute = parsed
             .records
@@ -389,38 +306,27 @@ impl LiveSession {
 
     /// Feeds a `devicemotion` event; returns how many steps it completed.
     pub fn push_motion(&mut self, ev: &MotionEvent) -> Result<usize, LiveError> {
-        let m = normalise_motion(ev, self.platform).map_err(|e| self.refuse(e))?;
-        self.push_normalised(Motion {
+        let m = normalise_motion(ev, self.platform).map_err(|e| self.refuse(e.into()))?;
+        self.push_sample(ImuSample {
             t: m.t + self.origin_ms * 1e-3,
             ..m
         })
     }
 
-    /// Feeds a Generic Sensor API reading: `Accelerometer` (m/s², gravity included, the
-    /// specification's sign on every platform) with the latest `Gyroscope` reading (rad/s), at
-    /// the sensor's `timestamp` (ms on the page's clock).
-    pub fn push_sensor(
-        &mut self,
-        timestamp_ms: f64,
-        accel: [f64; 3],
-        gyro_rad_s: Option<[f64; 3]>,
-    ) -> Result<usize, LiveError> {
-        let all = [timestamp_ms, accel[0], accel[1], accel[2]];
-        if !all.iter().all(|x| x.is_finite()) {
-            return Err(self.refuse(LiveError::NonFinite("Accelerometer")));
-        }
-        if gyro_rad_s.is_some_and(|g| !g.iter().all(|x| x.is_finite())) {
-            return Err(self.refuse(LiveError::NonFinite("Gyroscope")));
-        }
-        self.push_normalised(Motion {
-            t: self.seconds(timestamp_ms),
-            accel: Vector3::from(accel),
-            gyro: gyro_rad_s.map(Vector3::from),
-            interval_s: None,
+    /// Feeds a Generic Sensor API reading; returns how many steps it completed.
+    pub fn push_sensor(&mut self, r: &SensorReading) -> Result<usize, LiveError> {
+        let (accel, gyro) = sensor_sample(r).map_err(|e| self.refuse(e.into()))?;
+        self.push_sample(ImuSample {
+            t: self.seconds(r.timestamp_ms),
+            accel,
+            gyro,
+            mag: None,
+            orientation: None,
         })
     }
 
-    fn push_normalised(&mut self, m: Motion) -> Result<usize, LiveError> {
+    /// A motion sample on the session's clock, before its attitude is attached.
+    fn push_sample(&mut self, m: ImuSample) -> Result<usize, LiveError> {
         // The first sample decides the engine's orientation source: wait a moment for an
         // attitude (these samples are not used, and not recorded, so that the recording
         // replays the same).
@@ -439,13 +345,7 @@ impl LiveSession {
             (Some((_, q, _)), Some(at)) if stale(at) => Some(q),
             _ => None,
         };
-        let s = ImuSample {
-            t: m.t,
-            accel: m.accel,
-            gyro: m.gyro,
-            mag: None,
-            orientation,
-        };
+        let s = ImuSample { orientation, ..m };
         let n = self
             .use_record(&Record::Imu(s))
             .map_err(|e| self.refuse(LiveError::Engine(e)))?;
@@ -467,35 +367,24 @@ impl LiveSession {
         Ok(n)
     }
 
-    /// Feeds a `deviceorientation` or `deviceorientationabsolute` event (degrees). Relative
-    /// events are ignored once absolute ones have come.
-    pub fn push_orientation(
-        &mut self,
-        time_stamp_ms: f64,
-        alpha: f64,
-        beta: f64,
-        gamma: f64,
-        absolute: bool,
-    ) {
-        if ![time_stamp_ms, alpha, beta, gamma]
-            .iter()
-            .all(|x| x.is_finite())
-        {
-            let _ = self.refuse(LiveError::NonFinite("deviceorientation"));
-            return;
+    /// Feeds a `deviceorientation` or `deviceorientationabsolute` event. Relative events are
+    /// ignored once absolute ones have come.
+    pub fn push_orientation(&mut self, ev: &OrientationEvent) {
+        match ev.attitude() {
+            Ok(Some((q, absolute))) => self.set_attitude(ev.time_stamp_ms, q, absolute),
+            Ok(None) => {}
+            Err(e) => {
+                let _ = self.refuse(e.into());
+            }
         }
-        self.set_attitude(
-            time_stamp_ms,
-            orientation_quaternion(alpha, beta, gamma),
-            absolute,
-        );
     }
 
     /// Feeds an `AbsoluteOrientationSensor` quaternion `[x, y, z, w]` (device → East-North-Up).
     pub fn push_quaternion(&mut self, timestamp_ms: f64, q: [f64; 4]) {
         let norm = libm::sqrt(q.iter().map(|v| v * v).sum());
         if !(timestamp_ms.is_finite() && norm.is_finite() && norm > 0.5) {
-            let _ = self.refuse(LiveError::NonFinite("AbsoluteOrientationSensor.quaternion"));
+            let _ =
+                self.refuse(EventError::NonFinite("AbsoluteOrientationSensor.quaternion").into());
             return;
         }
         let q = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(q[3], q[0], q[1], q[2]));
@@ -513,7 +402,7 @@ impl LiveSession {
         self.attitude_sticky = false;
     }
 
-    /// Feeds a geolocation fix (`t` in ms on the page's clock).
+    /// Feeds a geolocation fix (`t` in seconds on the page's clock).
     pub fn push_fix(&mut self, f: &GnssFix) -> Result<(), LiveError> {
         let f = GnssFix {
             t: self.seconds(f.t * 1e3),
@@ -539,6 +428,20 @@ impl LiveSession {
     /// The frequencies of the steps counted so far, Hz (a calibration walk's f_k).
     pub fn step_freqs(&self) -> Vec<f64> {
         self.pipeline.track().iter().map(|s| s.freq_hz).collect()
+    }
+
+    /// What the walk says about the user's step length: the fusion filter's scale and its
+    /// standard deviation, the fixes received and the steps' frequencies.
+    pub fn walk_evidence(&self) -> crate::engine::calibration::WalkEvidence {
+        crate::engine::calibration::WalkEvidence {
+            fixes: self.pipeline.fixes().len(),
+            scale: self
+                .pipeline
+                .fused()
+                .last()
+                .map(|f| (f.scale, f.scale_bias_sd[0])),
+            step_freqs_hz: self.step_freqs(),
+        }
     }
 
     /// The distance along the fixes no worse than `max_accuracy_m`, m: a fix is kept once it is
@@ -696,10 +599,9 @@ impl LiveSession {
         }
     }
 
-    /// The scrolling view's data: (t, vertical acceleration, PLL output) of the last
-    /// [`SCOPE_S`], the step times among them, and the newest time.
-    #[allow(clippy::type_complexity)]
-    pub fn scope_data(&self) -> (Vec<(f64, f64, Option<f64>)>, Vec<f64>, f64) {
+    /// The scrolling view's data: the last [`SCOPE_S`] of samples, the step times among them,
+    /// and the newest time.
+    pub fn scope_data(&self) -> ScopeData {
         let samples: Vec<_> = self.view.scope.iter().map(|s| (s.t, s.up, s.pll)).collect();
         let now = samples.last().map_or(0.0, |s| s.0);
         let steps = self
@@ -710,151 +612,10 @@ impl LiveSession {
             .map(|s| s.t)
             .take_while(|&t| t >= now - SCOPE_S)
             .collect();
-        (samples, steps, now)
-    }
-}
-
-/// One browser event of a simulated walk, as the page receives it (see [`browser_events`]).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-#[serde(tag = "type", rename_all = "lowercase")]
-pub enum BrowserEvent {
-    /// A `devicemotion` event.
-    Motion {
-        /// `timeStamp`, ms.
-        t: f64,
-        /// `accelerationIncludingGravity`, the platform's sign.
-        x: f64,
-        /// See `x`.
-        y: f64,
-        /// See `x`.
-        z: f64,
-        /// `rotationRate`, deg/s.
-        alpha: Option<f64>,
-        /// See `alpha`.
-        beta: Option<f64>,
-        /// See `alpha`.
-        gamma: Option<f64>,
-        /// `interval` in the platform's unit.
-        interval: f64,
-    },
-    /// A `deviceorientationabsolute` event (absolute `deviceorientation` on iOS).
-    Orientation {
-        /// `timeStamp`, ms.
-        t: f64,
-        /// Degrees.
-        alpha: f64,
-        /// Degrees.
-        beta: f64,
-        /// Degrees.
-        gamma: f64,
-    },
-}
-
-/// The samples of a log (a simulated walk) as the browser events a phone of `platform` would
-/// fire: the inverse of [`normalise_motion`] and [`orientation_quaternion`]. The end-to-end
-/// tests dispatch these on the live page.
-pub fn browser_events(records: &[Record], platform: Platform) -> Vec<BrowserEvent> {
-    let deg = 180.0 / std::f64::consts::PI;
-    let mut out = Vec::new();
-    let mut last = None;
-    for r in records {
-        let Record::Imu(s) = r else { continue };
-        let t = s.t * 1e3;
-        if let Some(q) = s.orientation {
-            let (alpha, beta, gamma) = orientation_angles(&q);
-            out.push(BrowserEvent::Orientation {
-                t,
-                alpha: alpha.rem_euclid(360.0),
-                beta,
-                gamma,
-            });
+        ScopeData {
+            samples,
+            steps,
+            now,
         }
-        let a = platform.to_android(s.accel);
-        let interval_ms = last.map_or(10.0, |l| t - l);
-        last = Some(t);
-        out.push(BrowserEvent::Motion {
-            t,
-            x: a.x,
-            y: a.y,
-            z: a.z,
-            alpha: s.gyro.map(|g| g.x * deg),
-            beta: s.gyro.map(|g| g.y * deg),
-            gamma: s.gyro.map(|g| g.z * deg),
-            interval: match platform {
-                Platform::Ios => interval_ms * 1e-3,
-                Platform::Android => interval_ms,
-            },
-        });
-    }
-    out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ios_and_android_events_give_the_same_sample() {
-        let android = MotionEvent {
-            time_stamp_ms: 1500.0,
-            accel: Some([0.3, -0.2, 9.81]),
-            rotation_rate_deg_s: Some([57.2958, 0.0, -28.6479]),
-            interval: Some(16.0),
-        };
-        let ios = MotionEvent {
-            accel: Some([-0.3, 0.2, -9.81]),
-            interval: Some(0.016),
-            ..android
-        };
-        let a = normalise_motion(&android, Platform::Android).unwrap();
-        let i = normalise_motion(&ios, Platform::Ios).unwrap();
-        assert_eq!(a, i);
-        assert_eq!(a.t, 1.5);
-        assert_eq!(a.interval_s, Some(0.016));
-        // alpha is about x, gamma about z, in deg/s.
-        let g = a.gyro.unwrap();
-        assert!((g.x - 1.0).abs() < 1e-5 && g.y == 0.0 && (g.z + 0.5).abs() < 1e-5);
-        assert_eq!(
-            normalise_motion(
-                &MotionEvent {
-                    accel: None,
-                    ..android
-                },
-                Platform::Android
-            ),
-            Err(LiveError::NoAcceleration)
-        );
-        assert!(normalise_motion(
-            &MotionEvent {
-                accel: Some([f64::NAN, 0.0, 9.8]),
-                ..android
-            },
-            Platform::Android
-        )
-        .is_err());
-    }
-
-    #[test]
-    fn angles_round_trip() {
-        for (a, b, g) in [(10.0, 20.0, 30.0), (250.0, -60.0, 80.0), (0.0, 89.0, -45.0)] {
-            let q = orientation_quaternion(a, b, g);
-            let (a2, b2, g2) = orientation_angles(&q);
-            assert!(q.angle_to(&orientation_quaternion(a2, b2, g2)) < 1e-9);
-        }
-    }
-
-    #[test]
-    fn orientation_angles_follow_the_specification() {
-        // Flat, face up, alpha 90°: the top of the device points west.
-        let q = orientation_quaternion(90.0, 0.0, 0.0);
-        let top = q * Vector3::y();
-        assert!((top - Vector3::new(-1.0, 0.0, 0.0)).norm() < 1e-12);
-        // Upright (beta 90°): the screen faces south, the top points up.
-        let q = orientation_quaternion(0.0, 90.0, 0.0);
-        assert!((q * Vector3::y() - Vector3::z()).norm() < 1e-12);
-        assert!((q * Vector3::z() - Vector3::new(0.0, -1.0, 0.0)).norm() < 1e-12);
-        // Rolled right (gamma 90°): the screen faces east, the device's x axis points down.
-        let q = orientation_quaternion(0.0, 0.0, 90.0);
-        assert!((q * Vector3::x() - Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-12);
     }
 }
