@@ -1,6 +1,6 @@
 //! One replay of a simulated 10-minute walk through the default pipeline, for profilers
 //! (`valgrind --tool=callgrind target/release/examples/bench_default`).
-use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::{Scenario, Segment, Walker};
 
 fn main() {

@@ -5,7 +5,7 @@
 //! `cargo run --release --example fusion_sim [-- KEY=VALUE…]` (overrides as `pdr eval --set`).
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 use pdr::engine::fusion::FusedStep;
-use pdr::engine::pipeline::replay;
+use pdr::engine::replay;
 use pdr::sim::scenarios;
 
 fn p75(mut v: Vec<f64>) -> f64 {

@@ -5,7 +5,7 @@
 //!
 //! `cargo run --release --example ms_loo`
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
-use pdr::engine::pipeline::PipelineConfig;
+use pdr::engine::PipelineConfig;
 use pdr::engine::StepLengthModel;
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;

@@ -1,7 +1,7 @@
 //! Per Microsoft indoor trace: walked distance between the first and last waypoint, estimated
 //! against the waypoint polyline (scale), steps and mean step length, waypoint p75 error.
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
-use pdr::engine::pipeline::replay;
+use pdr::engine::replay;
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;
 

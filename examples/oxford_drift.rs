@@ -4,7 +4,7 @@
 //! unmatched count (extra step) is printed with the engine's state at that time.
 //!
 //! `cargo run --release --example oxford_drift -- TRACE [--set KEY=VALUE…]`
-use pdr::engine::pipeline::{Pipeline, Record};
+use pdr::engine::{Pipeline, Record};
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;
 

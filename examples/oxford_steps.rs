@@ -5,8 +5,8 @@
 //!
 //! `cargo run --release --example oxford_steps`
 
-use pdr::engine::pipeline::{replay, PipelineConfig, Record, StepDetectorConfig};
 use pdr::engine::ImuSample;
+use pdr::engine::{replay, PipelineConfig, Record, StepDetectorConfig};
 use std::path::Path;
 
 fn main() {

@@ -1,5 +1,5 @@
 //! Diagnostic trace of one Oxford recording: per 5 s window, true steps vs counted, σ, PLL frequency.
-use pdr::engine::pipeline::PipelineConfig;
+use pdr::engine::PipelineConfig;
 use pdr::engine::{ImuSample, Pipeline};
 use std::path::Path;
 

@@ -5,7 +5,7 @@
 //!
 //! `SEED=n cargo run --release --example step_noise`
 #![allow(clippy::disallowed_methods)]
-use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::scenarios;
 fn stats(name: &str, v: &[f64]) {
     let n = v.len() as f64;

@@ -3,14 +3,15 @@
 //! fused and smoothed tracks, the truth placed in the track's frame, and the evaluation bench's
 //! scores. Pure Rust: the web worker makes it, the page draws it ([`crate::plot`]), the tests
 //! check it natively.
+//! May import: `engine`, `io`, `eval`.
 //!
 //! It is serialised ([`Analysis::to_bytes`], bincode) to cross from the worker to the page:
 //! signals are `f32` (plenty for a plot), times `f64` (Unix seconds need it).
 
-use crate::engine::pipeline::{Pipeline, PipelineConfig, StepRecord};
 use crate::engine::replay::replay_observed;
 use crate::engine::types::ConfigError;
 use crate::engine::types::Record;
+use crate::engine::{Pipeline, PipelineConfig, StepRecord};
 use crate::eval::LogResult;
 use crate::io::import::Log;
 

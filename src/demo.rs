@@ -1,11 +1,13 @@
 //! The embedded demo walks, run through the default pipeline; the web page and `pdr demo` show
-//! the same figures:
+//! the same figures.
+//! May import: `engine`, `sim`, `eval`.
+//!
 //! - [`run_demo`]: the simulator's [`crate::sim::scenarios::demo_walk`], PDR only;
 //! - [`run_fusion_demo`]: [`crate::sim::scenarios::gnss_city_walk`], with GNSS, through the
 //!   fusion filter and the smoother.
 
 use crate::engine::fusion::FusedStep;
-use crate::engine::pipeline::{replay, PipelineConfig, StepRecord};
+use crate::engine::{replay, PipelineConfig, StepRecord};
 use crate::sim::scenarios;
 
 /// Figures and series of the demo walk.

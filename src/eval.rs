@@ -1,4 +1,5 @@
 //! The evaluation bench: a log with ground truth through the engine, scored.
+//! May import: `engine`, `io`.
 //!
 //! Used by `pdr eval`, the tests and (for uploaded logs that carry truth) the page.
 //!
@@ -18,7 +19,8 @@
 //! step it is the origin, after the last step the last position.
 
 use crate::engine::fusion::FusedStep;
-use crate::engine::pipeline::{position_at, replay, Pipeline, PipelineConfig, StepRecord};
+use crate::engine::pipeline::{position_at, Pipeline, PipelineConfig, StepRecord};
+use crate::engine::replay;
 use crate::io::import::{Log, Waypoint};
 use serde::{Deserialize, Serialize};
 

@@ -1,13 +1,18 @@
 //! Pedestrian dead reckoning for a phone carried in a trouser pocket.
+//! The crate root: it declares the layers below and imports nothing itself.
 //!
-//! Layers point down only:
-//! - [`engine`]: pure maths and state (no files, no browsers). Basso 2016 and 2021.
+//! Layers point down only (each module's first lines say what it may import; `tests/layers.rs`
+//! checks it), from the bottom up:
+//! - [`engine`]: pure maths and state (no files, no browsers). The papers' methods.
 //! - [`settings`]: the one front door for the engine's configuration.
-//! - [`sim`]: a gait simulator producing phone-in-pocket IMU streams with known truth.
 //! - [`io`]: the project's own log format, the import of other formats, track exports.
-//! - [`live`]: browser sensor events into engine records (the platforms' quirks, in one place).
+//! - [`sim`]: a gait simulator with known truth, and its walks written in every format.
+//! - [`eval`]: the evaluation bench (a log's run scored against its truth).
+//! - [`live`]: browser sensor events into engine records (the platforms' quirks, in one place)
+//!   and the live session.
 //! - [`analysis`]: upload mode's analysis of a log (the engine run once, everything kept).
 //! - [`plot`]: drawing, generic over the plotters backend.
+//! - [`demo`]: the page's demo walks.
 //! - `web` (wasm32 only): wasm-bindgen glue.
 //!
 //! # Conventions (one set, everywhere)

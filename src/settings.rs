@@ -11,9 +11,9 @@
 //! CLI flag and a select on the page say the same thing the same way.
 
 use crate::engine::calibration::ProfileFile;
-use crate::engine::pipeline::PipelineConfig;
 use crate::engine::step_length::StepLengthModel;
 use crate::engine::types::ConfigError;
+use crate::engine::PipelineConfig;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fmt;
@@ -311,7 +311,7 @@ pub fn compare_preset() -> Settings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::pipeline::StepDetectorConfig;
+    use crate::engine::StepDetectorConfig;
 
     fn with_args(args: &[&str]) -> Result<PipelineConfig, SettingsError> {
         let args: Vec<String> = args.iter().map(|s| s.to_string()).collect();

@@ -3,7 +3,7 @@
 //! the fit must give a and b back. Runs natively and in headless Chromium.
 
 use pdr::engine::calibration::{fit_band, CalibrationWalk, FitWarning};
-use pdr::engine::pipeline::{replay, PipelineConfig};
+use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::{scenarios, Scenario};
 use wasm_bindgen_test::wasm_bindgen_test;
 

@@ -3,7 +3,7 @@
 
 use pdr::engine::heading::HeadingMethod;
 use pdr::engine::math::wrap_pi;
-use pdr::engine::pipeline::{replay, PipelineConfig, Record};
+use pdr::engine::{replay, PipelineConfig, Record};
 use pdr::engine::{ImuSample, InputError, Motion, Pipeline, StepRecord};
 use pdr::sim::{scenarios, Scenario, Segment, Simulation};
 use wasm_bindgen_test::wasm_bindgen_test;

@@ -10,9 +10,9 @@
 // Tolerances computed with std's `cos` and `hypot` are fine in tests (see clippy.toml).
 #![allow(clippy::disallowed_methods)]
 
-use pdr::engine::pipeline::{replay, PipelineConfig, Record};
 use pdr::engine::types::{GnssFix, ImuSample};
 use pdr::engine::OrientationSource;
+use pdr::engine::{replay, PipelineConfig, Record};
 use pdr::io::import::{import_all, Format, Log, MemSet, Platform};
 use pdr::sim::formats::{self, Recording};
 use pdr::sim::{scenarios, Simulation};

@@ -4,7 +4,7 @@
 //! `cargo test` and in headless Chromium under wasm-bindgen-test.
 
 use pdr::engine::fusion::{FusedStep, GnssMode};
-use pdr::engine::pipeline::{replay, Pipeline, PipelineConfig};
+use pdr::engine::{replay, Pipeline, PipelineConfig};
 use pdr::sim::{scenarios, Simulation};
 use wasm_bindgen_test::wasm_bindgen_test;
 

@@ -7,8 +7,8 @@
 #![allow(clippy::disallowed_methods)]
 
 use nalgebra::Vector3;
-use pdr::engine::pipeline::Record;
 use pdr::engine::types::ImuSample;
+use pdr::engine::Record;
 use pdr::io::import::{import_all, DirSet, Format, Log, MemSet, Platform, ZipSet};
 use pdr::io::pdrlog;
 use pdr::io::ParseError;

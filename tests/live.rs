@@ -2,7 +2,7 @@
 //! events, Android-style and iOS-style, through `LiveSession`, against the same walk replayed as
 //! a log; and the session's recording replayed. Runs natively and in headless Chromium.
 
-use pdr::engine::pipeline::{replay, PipelineConfig, Record};
+use pdr::engine::{replay, PipelineConfig, Record};
 use pdr::io::pdrlog;
 use pdr::live::{
     browser_events, orientation_angles, BrowserEvent, LiveSession, MotionEvent, OrientationEvent,

@@ -1,4 +1,5 @@
 //! Step-length calibration (Basso 2016 §II.D; the engine side of the calibration wizard).
+//! May import: the rest of `engine`.
 //!
 //! The user walks known distances at several paces. Each walk gives one point
 //! P = (f̄, SL̄): the harmonic mean of its step frequencies (eq. 1, [`harmonic_mean_frequency`])

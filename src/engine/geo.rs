@@ -4,6 +4,7 @@
 //! paper's reference [9]). The filter works in the exact tangent plane; between fixes a few
 //! steps apart the two agree within 0.3 % (the sphere against the ellipsoid) and 0.2° (a test
 //! checks it).
+//! May import: the rest of `engine`.
 
 /// WGS84 semi-major axis, m.
 const A: f64 = 6_378_137.0;

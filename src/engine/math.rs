@@ -1,4 +1,5 @@
 //! Small numeric helpers shared by the stages.
+//! May import: nothing of the crate (libm and nalgebra only).
 //!
 //! Every transcendental function goes through `libm`, a pure-Rust implementation, so that a
 //! replay gives bit-identical results natively and in WebAssembly.

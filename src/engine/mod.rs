@@ -1,4 +1,5 @@
 //! The engine: pure Rust, no web types, streaming and driven by timestamps.
+//! May import: nothing above it (no `io`, `sim`, `plot`, `live`, `web`, …); only crates.
 //!
 //! One file per method of the papers:
 //! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass.

@@ -1,4 +1,5 @@
 //! Motion detection by the standard deviation of vertical acceleration (Basso 2016 §II.B).
+//! May import: the rest of `engine`.
 //!
 //! σ_z(t) = sqrt( (1/n₂) Σ_{t_k ∈ Φ₂(t)} (a_z(t_k) − μ_z(t))² ), Φ₂(t) = { t_k : t_k ≥ t − 2 },
 //! kept up to date incrementally with a time-regulated buffer: the sums Σa and Σa² are updated with

@@ -1,4 +1,5 @@
 //! Orientation into the navigation frame (East-North-Up).
+//! May import: the rest of `engine`.
 //!
 //! Three sources (issue "Engine core" item 2):
 //! - [`OrientationSource::Os`]: the quaternion the operating system supplies. Basso 2016 §II.A

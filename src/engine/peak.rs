@@ -1,5 +1,6 @@
 //! A simple peak detector on vertical acceleration, in the same stage shape as the PLL, to
 //! compare against (the "fixed cut-off plus threshold" family Basso 2016 §II.C argues against).
+//! May import: the rest of `engine`.
 //!
 //! The vertical acceleration is smoothed by two cascaded first-order low-pass filters
 //! (cut-off [`PeakConfig::lpf_hz`]); a local maximum of the smoothed signal is a step when it is at

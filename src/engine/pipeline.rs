@@ -1,7 +1,8 @@
 //! The one pipeline: IMU and GNSS records in time order in, step records out.
+//! May import: the rest of `engine`.
 //!
-//! Live sensor events and uploaded logs go through the same [`Pipeline::push_imu`] and
-//! [`Pipeline::push_gnss`] calls; replaying a log ([`replay`]) is a loop over them.
+//! Live sensor events and uploaded logs go through the same [`Pipeline::push`]; replaying a log
+//! ([`crate::engine::replay`]) is a loop over it.
 //!
 //! Per IMU sample: validate → orientation into ENU → motion detector (σ_z) → heading window →
 //! step detector → for each step: period and frequency, heading, step length, dead reckoning
@@ -36,10 +37,8 @@ use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
 use super::pll::{Pll, PllConfig};
-pub use super::replay::{replay, Replay}; // TODO(restructure): callers import from `replay`
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
-pub use super::types::Record;
-use super::types::{positive, ConfigError, GnssFix, ImuSample, InputError};
+use super::types::{positive, ConfigError, GnssFix, ImuSample, InputError, Record};
 use std::collections::VecDeque;
 
 /// Which step detector to use.

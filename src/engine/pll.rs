@@ -1,5 +1,6 @@
 //! Step detection by a phase-locked loop on vertical acceleration (Basso 2016 §II.C, Fig. 2;
 //! Basso 2021 §2.2.2, Fig. 5).
+//! May import: the rest of `engine`.
 //!
 //! The loop has the three blocks of Basso 2016 Fig. 2:
 //! - **Phase detector**: a multiplier. With the normalised input x = A cos φᵢ and the oscillator

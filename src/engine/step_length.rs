@@ -1,4 +1,5 @@
 //! Step length.
+//! May import: the rest of `engine`.
 //!
 //! - [`StepLengthProfile`]: Basso 2016 §II.D. Within a band of frequencies the step length is
 //!   nearly linear in step frequency, SL = a·f + b, with one line for walking (about 1.5–2.2 Hz)

@@ -1,4 +1,5 @@
 //! Input records and the error types of the engine's boundary.
+//! May import: nothing of the crate.
 //!
 //! Units and frames are those stated in the crate documentation: seconds, m/s² (specific force
 //! including gravity, Android sign), rad/s, µT, device frame x-right / y-up-screen / z-out,

@@ -18,8 +18,8 @@
 
 use crate::engine::fusion::FusedStep;
 use crate::engine::geo::LocalFrame;
-use crate::engine::pipeline::StepRecord;
 use crate::engine::types::GnssFix;
+use crate::engine::StepRecord;
 use std::fmt::Write as _;
 
 /// The CSV header without and with geodetic columns.

@@ -28,8 +28,8 @@
 
 use super::lines::{try_each_line, MAX_WARNINGS};
 use super::ParseError;
-use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
+use crate::engine::Record;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::fmt::Write as _;
 use std::io::BufRead;

@@ -7,9 +7,9 @@ use super::events::{
     SensorReading,
 };
 use crate::engine::orientation::{OrientationSource, HOLD_S};
-use crate::engine::pipeline::{Pipeline, PipelineConfig};
 use crate::engine::replay::feed;
 use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError, Record};
+use crate::engine::{Pipeline, PipelineConfig};
 use crate::io::ParseError;
 use nalgebra::UnitQuaternion;
 use std::collections::VecDeque;

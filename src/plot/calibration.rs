@@ -1,5 +1,5 @@
 //! The calibration wizard's chart of one band: the walks' points, the line and the residuals.
-//! Imports: `engine` (the band fit and the line); never `web`, `live` or `eval`.
+//! May import: `engine` (the band fit and the line); never `web`, `live` or `eval`.
 
 use super::theme::Theme;
 use plotters::coord::Shift;

@@ -1,6 +1,7 @@
 //! The map frame every map shares: bounds at an equal scale, the chart in metres with its grid,
 //! north arrow, scale bar, start and end marks and legend, and [`MapFrame`] (a drawn map's pixels
-//! and metres, zoom and pan). Imports: the theme; never `web`, `live` or `eval`.
+//! and metres, zoom and pan).
+//! May import: the theme; never `web`, `live` or `eval`.
 
 use super::theme::Theme;
 use plotters::coord::types::RangedCoordf64;

@@ -1,5 +1,5 @@
 //! The fusion demo's map: GNSS fixes, the PDR-only, fused and smoothed tracks and the truth.
-//! Imports: the map frame and the theme; never `web`, `live` or `eval`.
+//! May import: the map frame and the theme; never `web`, `live` or `eval`.
 
 use super::frame::{legend, map_chart, north_and_scale, start_end, MapChart, Mark};
 use super::theme::Theme;

@@ -1,5 +1,5 @@
 //! Live mode's map: the walk so far, the current position and heading, fixes, gaps.
-//! Imports: the map frame and the theme; never `web`, `live` or `eval` (only the test below
+//! May import: the map frame and the theme; never `web`, `live` or `eval` (only the test below
 //! feeds a simulated walk through `crate::live`, to have a live map to draw).
 
 use super::frame::{legend, map_chart, north_and_scale, Mark};
@@ -137,7 +137,7 @@ mod tests {
 
     #[test]
     fn draws_the_live_map_and_scope() {
-        use crate::engine::pipeline::Record;
+        use crate::engine::Record;
         use crate::live::{
             browser_events, BrowserEvent, LiveSession, MotionEvent, OrientationEvent, Platform,
         };

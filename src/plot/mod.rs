@@ -1,6 +1,7 @@
 //! Drawing, generic over the plotters
 //! [`DrawingBackend`](plotters::prelude::DrawingBackend), so the same code draws on a browser
 //! canvas and, in tests, into a bitmap.
+//! May import: `engine`, `analysis`; never `web`, `live` or `eval`.
 //!
 //! One file per drawing: [`Theme`] (`theme`), the map frame every map shares and [`MapFrame`]
 //! (`frame`), the demo's track (`track`), the fusion map (`fusion`), the live map (`live`), the

@@ -1,5 +1,5 @@
 //! An in-memory raster for the drawing tests (compiled for tests only).
-//! Imports: plotters and its backend trait only; never `web`, `live` or `eval`.
+//! May import: plotters and its backend trait only; never `web`, `live` or `eval`.
 
 use plotters::prelude::*;
 

@@ -1,5 +1,5 @@
 //! Live mode's scrolling scope: vertical acceleration, the PLL output and the detected steps.
-//! Imports: the theme; never `web`, `live` or `eval`.
+//! May import: the theme; never `web`, `live` or `eval`.
 
 use super::theme::Theme;
 use plotters::coord::Shift;

@@ -1,5 +1,5 @@
 //! The colour schemes every plot draws with.
-//! Imports: plotters' colours only; never `web`, `live` or `eval`.
+//! May import: plotters' colours only; never `web`, `live` or `eval`.
 
 use plotters::prelude::*;
 

@@ -1,9 +1,9 @@
 //! The demo's track: the PDR track in metres with the reference path.
-//! Imports: `engine` (step records) and the map frame; never `web`, `live` or `eval`.
+//! May import: `engine` (step records) and the map frame; never `web`, `live` or `eval`.
 
 use super::frame::{map_chart, north_and_scale, start_end};
 use super::theme::Theme;
-use crate::engine::pipeline::StepRecord;
+use crate::engine::StepRecord;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 

@@ -3,7 +3,7 @@
 //! Fig. 5).
 //!
 //! One file each: the map (`map`), the diagnostics plots (`plots`) and the ellipse (`ellipse`).
-//! Imports: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
+//! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
 
 mod ellipse;
 mod map;

@@ -2,7 +2,7 @@
 //! promises, outliers and outages. May import: `engine` and `io`.
 
 use super::{Rng, Scenario, Truth};
-use crate::engine::pipeline::Record;
+use crate::engine::Record;
 use std::f64::consts::TAU;
 
 /// The GNSS receiver: fixes of the true path with the noise their reported accuracy promises,

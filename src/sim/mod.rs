@@ -39,9 +39,9 @@ pub mod scenarios;
 
 pub use gnss::GnssSim;
 
-use crate::engine::pipeline::Record;
 use crate::engine::step_length::StepLengthProfile;
 use crate::engine::types::ImuSample;
+use crate::engine::Record;
 use gnss::merge_in_time;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use std::f64::consts::{FRAC_PI_2, PI, TAU};

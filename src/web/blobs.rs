@@ -2,6 +2,7 @@
 //! with `FileReaderSync` as the parser asks for bytes, so that a 100 MB recording is never held
 //! whole in the engine's memory. `FileReaderSync` exists only in workers: this is the upload
 //! worker's file set.
+//! May import: `io` (the file set it implements).
 
 use crate::io::import::fileset::ReadSeek;
 use crate::io::import::FileSet;

@@ -3,8 +3,8 @@
 //! May import: the `pdr` library; nothing of the other subcommands.
 
 use pdr::engine::heading::HeadingMethod;
-use pdr::engine::pipeline::{replay, PipelineConfig, Record, StepDetectorConfig};
 use pdr::engine::OrientationSource;
+use pdr::engine::{replay, PipelineConfig, Record, StepDetectorConfig};
 use pdr::io::pdrlog;
 use pdr::sim::scenarios;
 use std::time::Instant;

@@ -1,6 +1,7 @@
 //! The `pdr` command-line tool. It is native only: built for wasm32 (as `cargo test --target
 //! wasm32-unknown-unknown` does for every target) it is an empty program.
 //! Here: the `out!` macro and the modules; `cli` parses the command line and dispatches.
+//! May import: the `pdr` library and its own subcommand modules.
 
 /// `println!` that ends the program quietly when standard output is closed (`pdr … | head`)
 /// instead of panicking, as command-line tools do.

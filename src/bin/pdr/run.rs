@@ -1,7 +1,7 @@
 //! `pdr run`: replays one log of any format, prints a summary and writes the track files.
 //! May import: the `pdr` library; nothing of the other subcommands.
 
-use pdr::engine::pipeline::replay;
+use pdr::engine::replay;
 use pdr::io::export;
 use pdr::settings::Settings;
 use std::path::Path;

@@ -3,7 +3,7 @@
 //! May import: the `pdr` library and `cli::{FormatArg, PlatformArg}`; no other subcommand.
 
 use crate::cli::{FormatArg, PlatformArg};
-use pdr::engine::pipeline::Record;
+use pdr::engine::Record;
 use pdr::io::pdrlog;
 use pdr::sim::Simulation;
 use std::path::Path;

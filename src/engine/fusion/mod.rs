@@ -1,6 +1,7 @@
 //! GNSS/PDR fusion: a Kalman filter that advances once per detected step (Basso 2021 §2.2.6),
 //! with the systematic errors of §2.2.5 and §3.1.2 in its state, an energy-saving GNSS duty
 //! cycle, and a Rauch–Tung–Striebel smoother for whole logs (ours; none of the papers has one).
+//! May import: the rest of `engine`.
 //!
 //! # State and models
 //! The paper names the pieces (a multi-rate, step-triggered, size-varying filter; compensation of
@@ -51,8 +52,6 @@
 //! - [`schedule`]: energy saving's receiver schedule;
 //! - [`smoother`]: the Rauch–Tung–Striebel smoother;
 //! - [`declination`]: the World Magnetic Model's declination at the origin.
-//!
-//! May import: the rest of `engine`.
 
 pub mod config;
 pub mod declination;

@@ -1,4 +1,5 @@
 //! Basso 2021 §2.2.3–2.2.4: closed-form heading from the first harmonic over the last step.
+//! May import: the rest of `engine`.
 //!
 //! With T_k = t_k − t_{k−1} (eq. 7) and ω_k = 2π/T_k (eq. 11), the first-harmonic coefficients of
 //! the north and east acceleration over the step (eq. 13) give the ellipse

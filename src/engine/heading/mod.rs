@@ -1,4 +1,5 @@
 //! Heading of each step from the horizontal acceleration in the navigation frame.
+//! May import: the rest of `engine`.
 //!
 //! - [`tip_to_tail`]: Basso 2016 Algorithm 1 (second-order Fourier over the last stride, tip and
 //!   tail of the pseudo-ellipse).

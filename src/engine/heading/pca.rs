@@ -1,5 +1,6 @@
 //! PCA heading baseline (Steinhoff & Schiele 2010, as cited by Basso 2016 §I): the principal axis
 //! of the horizontal acceleration over a sliding window (2 s by default), computed at each step.
+//! May import: the rest of `engine`.
 //!
 //! For the 2×2 covariance [[C_ee, C_en], [C_en, C_nn]] the principal axis is at angle
 //! ½·atan2(2C_en, C_ee − C_nn) from east. The forward sense along the axis is resolved with the

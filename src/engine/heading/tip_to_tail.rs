@@ -1,4 +1,5 @@
 //! Basso 2016, Algorithm 1: average heading estimation (A-HE) from the tip-to-tail vector.
+//! May import: the rest of `engine`.
 //!
 //! At the end t_k of each step, with the stride period T_k = t_k − t_{k−2} (Basso 2016 §III):
 //! a) the unbiased second-order Fourier approximation of the planar acceleration over the stride,

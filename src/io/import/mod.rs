@@ -39,8 +39,8 @@ pub use super::{field_error, file_error};
 pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
 
 use super::ParseError;
-use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
+use crate::engine::Record;
 use nalgebra::{UnitQuaternion, Vector3};
 
 /// Standard gravity, m/s² (for sources that give acceleration in g).

@@ -1,5 +1,5 @@
 //! Upload mode's horizontal-acceleration ellipse of one stride (Basso 2016 Fig. 5).
-//! Imports: `analysis`, the theme and the axis labels; never `web`, `live` or `eval`.
+//! May import: `analysis`, the theme and the axis labels; never `web`, `live` or `eval`.
 
 use super::plots::draw_title;
 use crate::analysis::Analysis;

@@ -1,5 +1,5 @@
 //! Upload mode's map of an [`Analysis`]: tracks, fixes, truth, the highlighted step.
-//! Imports: `analysis` and the map frame; never `web`, `live` or `eval`.
+//! May import: `analysis` and the map frame; never `web`, `live` or `eval`.
 
 use crate::analysis::Analysis;
 use crate::plot::frame::{legend, map_chart_in, north_and_scale, start_end, MapFrame, Mark};

@@ -1,5 +1,5 @@
 //! Upload mode's diagnostics plots of an [`Analysis`] on one time axis, and its zoom and pan.
-//! Imports: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
+//! May import: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
 
 use crate::analysis::Analysis;
 use crate::plot::theme::Theme;
@@ -122,7 +122,7 @@ pub fn draw_plot<DB: DrawingBackend>(
     let (x0, x1) = (t0 - origin, t1 - origin);
     let cols = (area.dim_in_pixel().0 as usize).max(10);
     let tr = &a.trace;
-    let steps_in: Vec<&crate::engine::pipeline::StepRecord> =
+    let steps_in: Vec<&crate::engine::StepRecord> =
         a.steps.iter().filter(|s| s.t >= t0 && s.t <= t1).collect();
     #[allow(clippy::type_complexity)]
     let (title, y_label, (y0, y1), right): (

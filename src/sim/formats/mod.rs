@@ -63,8 +63,8 @@ mod sensor_logger;
 mod xio;
 
 use super::Simulation;
-use crate::engine::pipeline::Record;
 use crate::engine::types::{GnssFix, ImuSample};
+use crate::engine::Record;
 use crate::io::import::{Format, Platform};
 use nalgebra::{Quaternion, UnitQuaternion};
 
