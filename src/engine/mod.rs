@@ -15,6 +15,36 @@
 //! - [`fusion`]: the per-step GNSS/PDR Kalman filter (Basso 2021 §2.2.5–2.2.6, §3), energy
 //!   saving, the magnetic declination, and a Rauch–Tung–Striebel smoother.
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
+//!
+//! # The stage shape
+//! Every stage has settings with `Default` and `validate()` (the fields of [`PipelineConfig`]),
+//! `new(settings)`, `push(input)` and `diagnostics()` (a small `Copy` struct, read-only).
+//!
+//! | Stage | Settings | `push` takes | gives | Diagnostics |
+//! |---|---|---|---|---|
+//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not |
+//! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
+//! | [`pll::Pll`], [`peak::PeakDetector`] | [`pll::PllConfig`], [`peak::PeakConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
+//! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
+//! | [`step_length::StepLength`] | [`StepLengthModel`] | [`step_length::StepLengthInput`] | the length, m | last length |
+//! | [`fusion::Fusion`] | [`fusion::FusionConfig`] | [`fusion::FixInput`] (`push_fix`), [`fusion::StepInput`] (`push_step`) | the fix's outcome; `Option<`[`fusion::FusedStep`]`>` | fix counts, receiver time, last step |
+//!
+//! Where a stage departs from the shape, and why:
+//! - The detectors split their settings from their running state (`restart()` is a fresh state,
+//!   as the onset look-back needs); the other stages are never restarted mid-log and keep both
+//!   together.
+//! - The motion detector and the orientation give an output for every sample, not an `Option`.
+//!   So does the step-length stage for every step: its models keep nothing between steps.
+//! - The heading stage and the fusion filter take two inputs at two rates (samples and steps;
+//!   fixes and steps), each with its own `push_*`.
+//! - The heading methods themselves ([`heading::tip_to_tail`], [`heading::closed_form`],
+//!   [`heading::pca`]) are pure functions of a window of samples: the state around them (the
+//!   two-step average, the yaw aid) is the heading stage's.
+//! - The Rauch–Tung–Striebel smoother ([`fusion::smoother::Smoother`]) is a backward pass over
+//!   the whole walk: the filter pushes each step's prediction and estimate into it, and
+//!   [`fusion::Fusion::smoothed`] runs the pass. Energy saving's schedule
+//!   ([`fusion::schedule::Schedule`]) is pushed the time of each fix and step.
+//! - [`calibration`] fits lines to whole walks; it is a set of functions, not a stage.
 
 pub mod calibration;
 pub mod detector;
