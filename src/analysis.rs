@@ -232,6 +232,108 @@ impl Analysis {
         }
     }
 
+    /// The figures shown under the map, for people: (label, text) rows, then up to three of
+    /// the reader's warnings as notes.
+    pub fn figures(&self) -> Vec<(String, String)> {
+        let sc = &self.score;
+        let n = self.steps.len();
+        let mut rows = Vec::new();
+        let mut row = |k: &str, v: String| rows.push((k.to_string(), v));
+        let truth = sc.truth_steps.map_or(String::new(), |t| {
+            let debounced = sc.step_error_debounced_pct.map_or(String::new(), |d| {
+                format!("; {} % against debounced truth", fixed(d, 1))
+            });
+            format!(
+                " (true {t}, error {} %{debounced})",
+                opt(sc.step_error_pct, 1)
+            )
+        });
+        row("Steps", format!("{n}{truth}"));
+        row(
+            "Distance",
+            format!(
+                "{} m in {} min",
+                fixed(sc.distance_m, 1),
+                fixed(sc.duration_s / 60.0, 1)
+            ),
+        );
+        let without = self
+            .steps
+            .iter()
+            .filter(|s| s.heading_rad.is_none())
+            .count();
+        if without > 0 {
+            let all: f64 = self.steps.iter().map(|s| s.length_m).sum();
+            let why = if without == n {
+                "the log has no gyroscope, magnetometer or orientation, so the track cannot be drawn"
+            } else {
+                "left out of the track"
+            };
+            row(
+                "No heading",
+                format!(
+                    "{without} of {n} steps ({} m of steps in all): {why}",
+                    fixed(all, 1)
+                ),
+            );
+        }
+        if let Some(w) = sc.waypoint_error_m {
+            row(
+                "Waypoints",
+                format!(
+                    "error p75 {} m, max {} m over {} waypoints",
+                    fixed(w.p75, 1),
+                    fixed(w.max, 1),
+                    sc.waypoints
+                ),
+            );
+        }
+        if let Some(l) = sc.loop_closure_m {
+            row("Loop closure", format!("{} m", fixed(l, 1)));
+        }
+        for (e, name) in [
+            (sc.gnss_error_m, "GNSS alone"),
+            (sc.fused_error_m, "Fused"),
+            (sc.smoothed_error_m, "Smoothed"),
+        ] {
+            if let Some(e) = e {
+                row(
+                    name,
+                    format!("p75 {} m, max {} m", fixed(e.p75, 1), fixed(e.max, 1)),
+                );
+            }
+        }
+        if !self.fixes.is_empty() {
+            row("GNSS", format!("{} fixes", self.fixes.len()));
+        }
+        for w in self.warnings.iter().take(3) {
+            row("Note", w.clone());
+        }
+        rows
+    }
+
+    /// Step `i` for people: "Step 12: t = 5.43 s · length 0.68 m · frequency 1.83 Hz · heading
+    /// 91° (single step 88°) · walking".
+    pub fn step_text(&self, i: usize) -> Option<String> {
+        let s = self.steps.get(i)?;
+        let t0 = self.trace.t.first().copied().unwrap_or(s.t);
+        let deg = |r: Option<f64>| {
+            r.map_or("–".to_string(), |r| {
+                format!("{}°", fixed(r.to_degrees().rem_euclid(360.0), 0))
+            })
+        };
+        Some(format!(
+            "Step {}: t = {} s · length {} m · frequency {} Hz · heading {} (single step {}) · {}",
+            i + 1,
+            fixed(s.t - t0, 2),
+            fixed(s.length_m, 2),
+            fixed(s.freq_hz, 2),
+            deg(s.heading_rad),
+            deg(s.step_heading_rad),
+            s.motion.as_str()
+        ))
+    }
+
     /// The index of the step nearest to a time, s.
     pub fn step_near_time(&self, t: f64) -> Option<usize> {
         let i = self.steps.partition_point(|s| s.t < t);
@@ -244,5 +346,52 @@ impl Analysis {
                     .abs()
                     .total_cmp(&(self.steps[b].t - t).abs())
             })
+    }
+}
+
+/// `x` with `d` decimals as JavaScript's `toFixed` writes it: an exact tie rounds away from zero
+/// (Rust's formatting rounds it to even), so the page's figures match what scripts compute.
+pub fn fixed(x: f64, d: usize) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    // The exact decimal expansion: ties at digit d + 1 are `5` followed by zeros only.
+    let exact = format!("{:.*}", d + 80, x.abs());
+    let cut = exact.find('.').map_or(exact.len(), |p| p + 1 + d);
+    let tie = exact[cut..].starts_with('5') && exact[cut + 1..].bytes().all(|b| b == b'0');
+    if tie {
+        let step = libm::pow(10.0, -(d as f64));
+        let up = x.abs() + step / 2.0;
+        let s = format!("{:.*}", d, up);
+        return if x < 0.0 { format!("-{s}") } else { s };
+    }
+    format!("{:.*}", d, x)
+}
+
+/// [`fixed`] with one or no decimals, or "–" without a value.
+fn opt(v: Option<f64>, d: usize) -> String {
+    v.map_or("–".to_string(), |v| fixed(v, d))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fixed;
+
+    #[test]
+    fn fixed_rounds_as_javascript_does() {
+        // `(x).toFixed(d)` in Node for each.
+        for (x, d, js) in [
+            (1.25, 1, "1.3"),
+            (0.35, 1, "0.3"),
+            (-1.25, 1, "-1.3"),
+            (2.5, 0, "3"),
+            (236.75, 1, "236.8"),
+            (1.005, 2, "1.00"),
+            (0.05, 1, "0.1"),
+            (359.5, 0, "360"),
+            (-0.04, 1, "-0.0"),
+        ] {
+            assert_eq!(fixed(x, d), js, "{x} to {d}");
+        }
     }
 }

@@ -226,27 +226,10 @@ function card(info) {
   return c;
 }
 
-function fmt(v, d = 1) { return v == null ? '–' : Number(v).toFixed(d); }
-
-function summaryHtml(s) {
-  const sc = s.score ?? {};
-  const rows = [
-    ['Steps', `${s.steps}` + (sc.truth_steps != null ? ` (true ${sc.truth_steps}, error ${fmt(sc.step_error_pct)} %${sc.step_error_debounced_pct != null ? `; ${fmt(sc.step_error_debounced_pct)} % against debounced truth` : ''})` : '')],
-    ['Distance', `${fmt(sc.distance_m)} m in ${fmt(sc.duration_s / 60)} min`],
-  ];
-  if (s.steps_without_heading) {
-    rows.push(['No heading', `${s.steps_without_heading} of ${s.steps} steps (${fmt(s.step_lengths_m)} m of steps in all): `
-      + (s.steps_without_heading === s.steps ? 'the log has no gyroscope, magnetometer or orientation, so the track cannot be drawn' : 'left out of the track')]);
-  }
-  if (sc.waypoint_error_m) rows.push(['Waypoints', `error p75 ${fmt(sc.waypoint_error_m.p75)} m, max ${fmt(sc.waypoint_error_m.max)} m over ${sc.waypoints} waypoints`]);
-  if (sc.loop_closure_m != null) rows.push(['Loop closure', `${fmt(sc.loop_closure_m)} m`]);
-  for (const [k, name] of [['gnss_error_m', 'GNSS alone'], ['fused_error_m', 'Fused'], ['smoothed_error_m', 'Smoothed']]) {
-    if (sc[k]) rows.push([name, `p75 ${fmt(sc[k].p75)} m, max ${fmt(sc[k].max)} m`]);
-  }
-  if (s.fixes) rows.push(['GNSS', `${s.fixes} fixes`]);
+/** The figures under a map, as the engine words them. */
+function figures(view) {
   const dl = el('dl', { className: 'summary' });
-  for (const [k, v] of rows) dl.append(el('dt', { textContent: k }), el('dd', { textContent: v }));
-  for (const w of s.warnings.slice(0, 3)) dl.append(el('dt', { textContent: 'Note' }), el('dd', { textContent: w }));
+  for (const [k, v] of view.figures()) dl.append(el('dt', { textContent: k }), el('dd', { textContent: v }));
   return dl;
 }
 
@@ -268,7 +251,7 @@ function show(l, tag, label) {
     [...maps.children].sort((a, b) => a.dataset.tag.localeCompare(b.dataset.tag)).forEach((c) => maps.append(c));
     wireMap(l, tag, cv);
   }
-  box.querySelector('dl').replaceWith(summaryHtml(s));
+  box.querySelector('dl').replaceWith(figures(v));
   // The configuration each map was run with, named once there are two.
   box.dataset.label = label;
   const two = Object.keys(l.views).length > 1;
@@ -314,10 +297,8 @@ function drawPlots(l) {
 function select(l, i, view) {
   if (i == null) return;
   l.step = i;
-  const s = view.step_info(i);
   const info = l.card.querySelector('.stepinfo');
-  info.textContent = `Step ${i + 1}: t = ${s.t_rel_s.toFixed(2)} s · length ${s.length_m.toFixed(2)} m · frequency ${s.freq_hz.toFixed(2)} Hz · `
-    + `heading ${s.heading_deg == null ? '–' : `${s.heading_deg.toFixed(0)}°`} (single step ${s.step_heading_deg == null ? '–' : `${s.step_heading_deg.toFixed(0)}°`}) · ${s.motion}`;
+  info.textContent = view.step_text(i);
   info.dataset.step = String(i);
   drawAll(l);
 }

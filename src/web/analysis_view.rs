@@ -135,6 +135,18 @@ impl AnalysisView {
         vec![e0, e1, n0, n1]
     }
 
+    /// The figures shown under the map: `[[label, text], …]`.
+    pub fn figures(&self) -> Result<JsValue, JsError> {
+        to_json_value(&self.a.figures())
+    }
+
+    /// Step `i` described for people.
+    pub fn step_text(&self, i: usize) -> Result<String, JsError> {
+        self.a
+            .step_text(i)
+            .ok_or_else(|| to_js(format!("no step {i}")))
+    }
+
     /// The step nearest to time `t` (s, the log's clock).
     pub fn step_near_time(&self, t: f64) -> Option<usize> {
         self.a.step_near_time(t)
