@@ -400,6 +400,8 @@ impl std::fmt::Display for WalkError {
     }
 }
 
+impl std::error::Error for WalkError {}
+
 /// The fewest steps a calibration walk needs (a count off by one is then within 5 %).
 pub const MIN_STEPS: usize = 20;
 
