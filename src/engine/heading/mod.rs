@@ -284,8 +284,14 @@ impl Heading {
         &self.cfg
     }
 
+    /// The latest sample's device → ENU attitude, when the orientation source has one.
+    pub fn attitude(&self) -> Option<nalgebra::UnitQuaternion<f64>> {
+        self.attitude
+    }
+
     /// Each sample's device → ENU attitude, when the orientation source has one. With
     /// [`YawAid::learn_offset`] the device's yaw is integrated from its increments.
+    #[inline]
     pub fn push_attitude(&mut self, q: Option<nalgebra::UnitQuaternion<f64>>) {
         if self.cfg.yaw_aid.is_some_and(|a| a.learn_offset) {
             if let (Some(q), Some(p)) = (&q, &self.attitude) {
