@@ -1,6 +1,6 @@
 // Live mode: sensors in, readouts and plots out, the recording into IndexedDB.
 // Event plumbing only. Every number goes to the engine (Live, in wasm) as the browser gives it;
-// the conversions (iOS sign, interval units, deg/s, angles) are in src/live.rs.
+// the conversions (iOS sign, deg/s, angles, iOS's compass) are in src/live/events.rs.
 import { Live, recording_summary } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
