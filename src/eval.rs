@@ -72,6 +72,26 @@ impl ErrorSummary {
     }
 }
 
+/// What the fusion filter learnt from a log's fixes, at its last step, and what it did with
+/// them.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FusionResult {
+    /// Step-length scale (true length = scale × PDR length).
+    pub scale: f64,
+    /// Its standard deviation.
+    pub scale_sd: f64,
+    /// Heading correction (true heading = PDR heading + declination + this), degrees.
+    pub heading_correction_deg: f64,
+    /// Its standard deviation, degrees.
+    pub heading_correction_sd_deg: f64,
+    /// Fixes that updated the filter.
+    pub fixes_used: u64,
+    /// Fixes the gate refused.
+    pub fixes_gated: u64,
+    /// Position resets after repeated gating.
+    pub resets: u64,
+}
+
 /// One log's result. The field names are stable: other tools read them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct LogResult {
@@ -113,6 +133,8 @@ pub struct LogResult {
     pub fused_error_m: Option<ErrorSummary>,
     /// Absolute error of the smoothed track at those times, m.
     pub smoothed_error_m: Option<ErrorSummary>,
+    /// What the fusion filter learnt and how sure it is, for a log with fixes.
+    pub fusion: Option<FusionResult>,
     /// Lines skipped while reading.
     pub skipped_lines: u64,
     /// Records the engine refused.
@@ -152,6 +174,7 @@ impl LogResult {
             gnss_error_m: None,
             fused_error_m: None,
             smoothed_error_m: None,
+            fusion: None,
             skipped_lines: 0,
             refused_records: 0,
             error: Some(error),
@@ -180,12 +203,21 @@ pub struct Summary {
     pub waypoint_p75_m: Option<f64>,
     /// 75th percentile of all counted waypoint errors of all logs, pooled, %.
     pub waypoint_p75_pct: Option<f64>,
-    /// Pooled 75th percentiles of the absolute errors of GNSS alone, fused and smoothed, m.
+    /// Median over the logs of each log's 75th percentile of the absolute error of GNSS alone,
+    /// m (every log counts once, whatever its length).
     pub gnss_p75_m: Option<f64>,
-    /// See `gnss_p75_m`.
+    /// The same for the fused track, m.
     pub fused_p75_m: Option<f64>,
-    /// See `gnss_p75_m`.
+    /// The same for the smoothed track, m.
     pub smoothed_p75_m: Option<f64>,
+    /// 75th percentile of all absolute errors of GNSS alone of all logs, pooled, m.
+    pub gnss_pooled_p75_m: Option<f64>,
+    /// The same for the fused track, m.
+    pub fused_pooled_p75_m: Option<f64>,
+    /// The same for the smoothed track, m.
+    pub smoothed_pooled_p75_m: Option<f64>,
+    /// Logs whose fused p75 is more than 1.1 × their GNSS-alone p75.
+    pub fused_worse_than_gnss: u64,
 }
 
 /// Step-count figures of one group of logs.
@@ -263,6 +295,19 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
         res.waypoint_errors_pct = pct;
     }
     absolute_errors(p, &log.truth.waypoints, &mut res);
+    res.fusion = p.fusion().and_then(|f| {
+        let d = f.diagnostics();
+        let last = d.last?;
+        Some(FusionResult {
+            scale: last.scale,
+            scale_sd: last.scale_bias_sd[0],
+            heading_correction_deg: last.bias_rad.to_degrees(),
+            heading_correction_sd_deg: last.scale_bias_sd[1].to_degrees(),
+            fixes_used: d.counts.used,
+            fixes_gated: d.counts.gated,
+            resets: d.counts.resets,
+        })
+    });
     if log.truth.loop_closure {
         let (e, n) = track.last().map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
         res.loop_closure_m = Some(libm::hypot(e, n));
@@ -437,6 +482,10 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
             groups.entry(g.clone()).or_default().push(l);
         }
     }
+    let median_p75 = |get: fn(&LogResult) -> Option<ErrorSummary>| {
+        let v: Vec<f64> = logs.iter().filter_map(|l| get(l).map(|e| e.p75)).collect();
+        (!v.is_empty()).then(|| percentile(&v, 50.0))
+    };
     let pooled = |k: usize| {
         let v: Vec<f64> = logs
             .iter()
@@ -473,9 +522,19 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         step_mae_by_group,
         waypoint_p75_m: (!m.is_empty()).then(|| percentile(&m, 75.0)),
         waypoint_p75_pct: (!pct.is_empty()).then(|| percentile(&pct, 75.0)),
-        gnss_p75_m: pooled(0),
-        fused_p75_m: pooled(1),
-        smoothed_p75_m: pooled(2),
+        gnss_p75_m: median_p75(|l| l.gnss_error_m),
+        fused_p75_m: median_p75(|l| l.fused_error_m),
+        smoothed_p75_m: median_p75(|l| l.smoothed_error_m),
+        gnss_pooled_p75_m: pooled(0),
+        fused_pooled_p75_m: pooled(1),
+        smoothed_pooled_p75_m: pooled(2),
+        fused_worse_than_gnss: logs
+            .iter()
+            .filter(|l| match (l.gnss_error_m, l.fused_error_m) {
+                (Some(g), Some(f)) => f.p75 > 1.1 * g.p75,
+                _ => false,
+            })
+            .count() as u64,
     }
 }
 
