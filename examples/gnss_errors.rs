@@ -31,9 +31,15 @@ fn main() {
         return;
     };
     // Per log: (time, error east, error north, reported accuracy) at each landmark.
-    let mut all: Vec<(String, Vec<(f64, f64, f64, f64)>)> = Vec::new();
+    type Errors = Vec<(f64, f64, f64, f64)>;
+    let mut all: Vec<(String, Errors)> = Vec::new();
     for log in import_all(&mut set).into_iter().flatten() {
-        let wps: Vec<_> = log.truth.waypoints.iter().filter(|w| w.geo.is_some()).collect();
+        let wps: Vec<_> = log
+            .truth
+            .waypoints
+            .iter()
+            .filter(|w| w.geo.is_some())
+            .collect();
         let fixes: Vec<_> = log
             .records
             .iter()
@@ -58,14 +64,30 @@ fn main() {
             if w.t - a.t > 3.0 || b.t - w.t > 3.0 {
                 continue;
             }
-            let k = if b.t > a.t { (w.t - a.t) / (b.t - a.t) } else { 0.0 };
+            let k = if b.t > a.t {
+                (w.t - a.t) / (b.t - a.t)
+            } else {
+                0.0
+            };
             let [ae, an, _] = frame.to_enu(a.lat_deg, a.lon_deg, 0.0);
             let [be, bn, _] = frame.to_enu(b.lat_deg, b.lon_deg, 0.0);
             let (fe, fn_) = (ae + k * (be - ae), an + k * (bn - an));
             let acc = a.h_accuracy_m + k * (b.h_accuracy_m - a.h_accuracy_m);
             errs.push((w.t, fe - te, fn_ - tn, acc));
         }
-        let name = log.source.rsplit('/').next().unwrap_or(&log.source).to_string();
+        let name = log
+            .source
+            .rsplit('/')
+            .next()
+            .unwrap_or(&log.source)
+            .to_string();
+        if let Some((lt, lg, lp)) = baselines(&log) {
+            println!(
+                "{name:<44} between landmarks: truth {lt:>6.1} m, fixes {:.2} ×, PDR {:.2} ×",
+                lg / lt,
+                lp / lt
+            );
+        }
         all.push((name, errs));
     }
     println!(
@@ -75,7 +97,10 @@ fn main() {
     let mut ratios = Vec::new();
     for (name, e) in &all {
         let mag: Vec<f64> = e.iter().map(|x| libm::hypot(x.1, x.2)).collect();
-        let r: Vec<f64> = e.iter().map(|x| libm::hypot(x.1, x.2) / x.3.max(1.0)).collect();
+        let r: Vec<f64> = e
+            .iter()
+            .map(|x| libm::hypot(x.1, x.2) / x.3.max(1.0))
+            .collect();
         if e.is_empty() {
             continue;
         }
@@ -127,7 +152,65 @@ fn main() {
     for (k, w) in bins.windows(2).enumerate() {
         let (s, _, n) = sums[k];
         if n > 0 {
-            println!("  {:>5.0}–{:<5.0} s: {:>5.2}  ({n} pairs)", w[0], w[1], s / n as f64);
+            println!(
+                "  {:>5.0}–{:<5.0} s: {:>5.2}  ({n} pairs)",
+                w[0],
+                w[1],
+                s / n as f64
+            );
         }
     }
+}
+
+/// Displacement between consecutive landmarks, summed over a log: truth, fixes (interpolated at
+/// the landmarks' times) and the PDR track (its position at those times): how far each says
+/// the walker went between the landmarks.
+pub fn baselines(log: &pdr::io::import::Log) -> Option<(f64, f64, f64)> {
+    let wps: Vec<_> = log
+        .truth
+        .waypoints
+        .iter()
+        .filter(|w| w.geo.is_some())
+        .collect();
+    let fixes: Vec<_> = log
+        .records
+        .iter()
+        .filter_map(|r| match r {
+            Record::Gnss(f) => Some(*f),
+            _ => None,
+        })
+        .collect();
+    let (lat0, lon0) = wps.first()?.geo?;
+    let frame = LocalFrame::new(lat0, lon0, 0.0);
+    let run = pdr::engine::replay(pdr::engine::PipelineConfig::default(), &log.records).ok()?;
+    let track = run.pipeline.track();
+    let fix_at = |t: f64| -> Option<(f64, f64)> {
+        let i = fixes.partition_point(|f| f.t <= t);
+        let (a, b) = (fixes.get(i.checked_sub(1)?)?, fixes.get(i)?);
+        if t - a.t > 3.0 || b.t - t > 3.0 {
+            return None;
+        }
+        let k = if b.t > a.t {
+            (t - a.t) / (b.t - a.t)
+        } else {
+            0.0
+        };
+        let [ae, an, _] = frame.to_enu(a.lat_deg, a.lon_deg, 0.0);
+        let [be, bn, _] = frame.to_enu(b.lat_deg, b.lon_deg, 0.0);
+        Some((ae + k * (be - ae), an + k * (bn - an)))
+    };
+    let (mut lt, mut lg, mut lp) = (0.0, 0.0, 0.0);
+    for w in wps.windows(2) {
+        let (Some(g0), Some(g1)) = (fix_at(w[0].t), fix_at(w[1].t)) else {
+            continue;
+        };
+        let [t0e, t0n, _] = frame.to_enu(w[0].geo?.0, w[0].geo?.1, 0.0);
+        let [t1e, t1n, _] = frame.to_enu(w[1].geo?.0, w[1].geo?.1, 0.0);
+        let p0 = pdr::engine::pipeline::position_at(track, w[0].t);
+        let p1 = pdr::engine::pipeline::position_at(track, w[1].t);
+        lt += libm::hypot(t1e - t0e, t1n - t0n);
+        lg += libm::hypot(g1.0 - g0.0, g1.1 - g0.1);
+        lp += libm::hypot(p1.0 - p0.0, p1.1 - p0.1);
+    }
+    Some((lt, lg, lp))
 }
