@@ -11,7 +11,7 @@
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 use pdr::engine::geo::LocalFrame;
 use pdr::engine::pipeline::position_at;
-use pdr::engine::{replay, PipelineConfig, Record};
+use pdr::engine::{replay, PipelineConfig};
 use pdr::io::import::{import_all, DirSet};
 use std::path::Path;
 
@@ -66,19 +66,11 @@ fn main() {
     };
     let mut rows: Vec<[f64; 4]> = Vec::new();
     for log in import_all(&mut set).into_iter().flatten() {
-        let wps: Vec<_> = log
-            .truth
-            .waypoints
-            .iter()
-            .filter(|w| w.geo.is_some())
-            .collect();
+        let wps: Vec<_> = log.geodetic_waypoints().collect();
         let fixes: Vec<_> = log
-            .records
-            .iter()
-            .filter_map(|r| match r {
-                Record::Gnss(f) if f.h_accuracy_m <= 50.0 => Some(*f),
-                _ => None,
-            })
+            .fixes()
+            .filter(|f| f.h_accuracy_m <= 50.0)
+            .copied()
             .collect();
         let Some(w0) = wps.first() else { continue };
         let (lat0, lon0) = w0.geo.unwrap_or_default();

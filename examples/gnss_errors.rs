@@ -11,7 +11,6 @@
 //! `cargo run --release --example gnss_errors [PATH]` (default `../shared/data/ipin2023`).
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 use pdr::engine::geo::LocalFrame;
-use pdr::engine::Record;
 use pdr::io::import::{import_all, DirSet};
 use std::path::PathBuf;
 
@@ -34,20 +33,8 @@ fn main() {
     type Errors = Vec<(f64, f64, f64, f64)>;
     let mut all: Vec<(String, Errors)> = Vec::new();
     for log in import_all(&mut set).into_iter().flatten() {
-        let wps: Vec<_> = log
-            .truth
-            .waypoints
-            .iter()
-            .filter(|w| w.geo.is_some())
-            .collect();
-        let fixes: Vec<_> = log
-            .records
-            .iter()
-            .filter_map(|r| match r {
-                Record::Gnss(f) => Some(*f),
-                _ => None,
-            })
-            .collect();
+        let wps: Vec<_> = log.geodetic_waypoints().collect();
+        let fixes: Vec<_> = log.fixes().copied().collect();
         let (Some(w0), false) = (wps.first(), fixes.is_empty()) else {
             continue;
         };
@@ -166,20 +153,8 @@ fn main() {
 /// the landmarks' times) and the PDR track (its position at those times): how far each says
 /// the walker went between the landmarks.
 pub fn baselines(log: &pdr::io::import::Log) -> Option<(f64, f64, f64)> {
-    let wps: Vec<_> = log
-        .truth
-        .waypoints
-        .iter()
-        .filter(|w| w.geo.is_some())
-        .collect();
-    let fixes: Vec<_> = log
-        .records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Gnss(f) => Some(*f),
-            _ => None,
-        })
-        .collect();
+    let wps: Vec<_> = log.geodetic_waypoints().collect();
+    let fixes: Vec<_> = log.fixes().copied().collect();
     let (lat0, lon0) = wps.first()?.geo?;
     let frame = LocalFrame::new(lat0, lon0, 0.0);
     let run = pdr::engine::replay(pdr::engine::PipelineConfig::default(), &log.records).ok()?;

@@ -270,6 +270,19 @@ impl Log {
             .count()
     }
 
+    /// The GNSS fixes, in time order.
+    pub fn fixes(&self) -> impl Iterator<Item = &GnssFix> {
+        self.records.iter().filter_map(|r| match r {
+            Record::Gnss(f) => Some(f),
+            _ => None,
+        })
+    }
+
+    /// The truth waypoints that are geodetic (latitude and longitude).
+    pub fn geodetic_waypoints(&self) -> impl Iterator<Item = &Waypoint> {
+        self.truth.waypoints.iter().filter(|w| w.geo.is_some())
+    }
+
     /// First and last record time, s.
     pub fn time_span(&self) -> Option<(f64, f64)> {
         let t = |r: &Record| match r {
