@@ -176,11 +176,11 @@ impl FileSet for BlobSet {
         Ok(Box::new(BufReader::with_capacity(CHUNK, self.file(name)?)))
     }
 
-    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
-        Ok(Box::new(BufReader::with_capacity(
-            1 << 16,
-            self.file(name)?,
-        )))
+    fn open_seekable(&mut self, name: &str) -> Option<io::Result<Box<dyn ReadSeek + '_>>> {
+        Some(
+            self.file(name)
+                .map(|f| Box::new(BufReader::with_capacity(1 << 16, f)) as Box<dyn ReadSeek>),
+        )
     }
 
     fn label(&self, name: &str) -> String {

@@ -1,6 +1,8 @@
-//! Where the files of a recording come from: a folder, a zip archive, or memory (uploads).
+//! Where the files of a recording come from: a folder, a zip archive (within the limits of
+//! [`archive_limits`](super::archive_limits)), or memory (uploads).
 //! May import: `engine` and `io`.
 
+use super::archive_limits::{ArchiveLimits, Budget, Metered};
 use std::io::{self, BufRead, BufReader, Cursor, Read, Seek};
 use std::path::{Path, PathBuf};
 
@@ -15,12 +17,21 @@ pub trait FileSet {
     fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>>;
     /// The name to show in messages (the full path, or `archive.zip/inner/name`).
     fn label(&self, name: &str) -> String;
-    /// A file of the set as a seekable stream, for reading it as a zip archive. By default the
-    /// file is read into memory; a set on disk opens it in place.
-    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
-        let mut bytes = Vec::new();
-        self.open(name)?.read_to_end(&mut bytes)?;
-        Ok(Box::new(Cursor::new(bytes)))
+    /// A file of the set as a seekable stream, for reading it as a zip archive, when the set
+    /// can give one without reading the file whole (on disk, in memory, a browser `Blob`).
+    /// `None` by default: an archive inside an archive is then read as a stream
+    /// ([`StreamZipSet`](super::stream_zip::StreamZipSet)).
+    fn open_seekable(&mut self, _name: &str) -> Option<io::Result<Box<dyn ReadSeek + '_>>> {
+        None
+    }
+    /// How many archives deep the set is (0: a folder or an upload).
+    fn depth(&self) -> u32 {
+        0
+    }
+    /// The decompression budget the set's archive spends, shared with the archives inside it
+    /// (`None` outside archives).
+    fn budget(&self) -> Option<Budget> {
+        None
     }
     /// The size of a file in bytes, when known cheaply.
     fn size(&mut self, _name: &str) -> Option<u64> {
@@ -123,22 +134,35 @@ impl FileSet for DirSet {
         self.path(name).display().to_string()
     }
 
-    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
-        Ok(Box::new(std::fs::File::open(self.path(name))?))
+    fn open_seekable(&mut self, name: &str) -> Option<io::Result<Box<dyn ReadSeek + '_>>> {
+        Some(
+            std::fs::File::open(self.path(name))
+                .map(|f| Box::new(BufReader::with_capacity(1 << 16, f)) as Box<dyn ReadSeek>),
+        )
     }
 }
 
-/// The files of a zip archive, decompressed as they are read.
+/// The files of a zip archive read in place (on disk, in memory), decompressed as they are
+/// read, within the [`ArchiveLimits`].
 pub struct ZipSet<R: Read + Seek> {
     label: String,
     archive: zip::ZipArchive<R>,
     names: Vec<String>,
+    depth: u32,
+    budget: Budget,
 }
 
 impl<R: Read + Seek> ZipSet<R> {
-    /// Opens an archive; `label` names it in messages.
+    /// Opens an archive at depth 1 with the default limits; `label` names it in messages.
     pub fn new(reader: R, label: &str) -> io::Result<Self> {
+        Self::within(reader, label, 1, Budget::new(ArchiveLimits::default()))
+    }
+
+    /// Opens an archive `depth` archives deep that spends `budget`.
+    pub fn within(reader: R, label: &str, depth: u32, budget: Budget) -> io::Result<Self> {
+        budget.admit_archive(depth, 0)?;
         let archive = zip::ZipArchive::new(reader).map_err(io::Error::other)?;
+        budget.admit_archive(depth, archive.len())?;
         let mut names: Vec<String> = archive
             .file_names()
             .filter(|n| !n.ends_with('/') && !n.starts_with("__MACOSX/"))
@@ -149,6 +173,8 @@ impl<R: Read + Seek> ZipSet<R> {
             label: label.to_string(),
             archive,
             names,
+            depth,
+            budget,
         })
     }
 }
@@ -158,13 +184,26 @@ impl<R: Read + Seek> FileSet for ZipSet<R> {
         &self.names
     }
 
+    /// The entry, once its declared sizes pass [`Budget::admit`], metered as it is read (the
+    /// zip crate checks its CRC-32).
     fn open(&mut self, name: &str) -> io::Result<Box<dyn BufRead + '_>> {
         let f = self.archive.by_name(name).map_err(io::Error::other)?;
-        Ok(Box::new(BufReader::with_capacity(1 << 16, f)))
+        let (compressed, size) = (f.compressed_size(), f.size());
+        self.budget.admit(compressed, size)?;
+        let body = Metered::new(f, self.budget.clone(), compressed, size, None);
+        Ok(Box::new(BufReader::with_capacity(1 << 16, body)))
     }
 
     fn label(&self, name: &str) -> String {
         format!("{}/{name}", self.label)
+    }
+
+    fn depth(&self) -> u32 {
+        self.depth
+    }
+
+    fn budget(&self) -> Option<Budget> {
+        Some(self.budget.clone())
     }
 }
 
@@ -205,8 +244,11 @@ impl FileSet for MemSet {
         Ok(Box::new(Cursor::new(self.bytes(name)?)))
     }
 
-    fn open_seekable(&mut self, name: &str) -> io::Result<Box<dyn ReadSeek + '_>> {
-        Ok(Box::new(Cursor::new(self.bytes(name)?)))
+    fn open_seekable(&mut self, name: &str) -> Option<io::Result<Box<dyn ReadSeek + '_>>> {
+        Some(
+            self.bytes(name)
+                .map(|b| Box::new(Cursor::new(b)) as Box<dyn ReadSeek + '_>),
+        )
     }
 
     fn label(&self, name: &str) -> String {

@@ -24,6 +24,7 @@
 //! A log that cannot be read at all gives a [`ParseError`] naming the file, line and column. A bad
 //! line inside a readable log is skipped and kept in [`Log::warnings`]; every good line is kept.
 
+pub mod archive_limits;
 pub(crate) mod common;
 pub mod fileset;
 pub mod get_sensor_data;
@@ -32,11 +33,14 @@ pub mod ms_indoor;
 pub mod oxford;
 pub mod phyphox;
 pub mod sensor_logger;
+pub mod stream_zip;
 pub mod xio;
 
 pub use super::lines::{MAX_LINE, MAX_WARNINGS};
 pub use super::{field_error, file_error};
+pub use archive_limits::{ArchiveLimits, Budget, LimitHit};
 pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
+pub use stream_zip::StreamZipSet;
 
 use super::ParseError;
 use crate::engine::types::{GnssFix, ImuSample};
@@ -475,17 +479,32 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
     out
 }
 
-/// Reads the logs of a zip archive found inside a file set. An archive on disk is read in
-/// place, one in memory (an upload) from memory; its members are decompressed as they are read.
+/// Reads the logs of a zip archive found inside a file set, within the [`ArchiveLimits`]. An
+/// archive on disk or in memory (an upload) is read in place; one inside another archive as a
+/// stream ([`StreamZipSet`]). Its members are decompressed as they are read. A limit hit by
+/// the archive as a whole is one error naming it; one hit by a member is that member's error.
 fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>> {
     let label = set.label(name);
-    match set.open_seekable(name).and_then(|r| ZipSet::new(r, &label)) {
+    let depth = set.depth() + 1;
+    let budget = set
+        .budget()
+        .unwrap_or_else(|| Budget::new(ArchiveLimits::default()));
+    let refused = |e: std::io::Error| {
+        let message = match LimitHit::of(&e) {
+            Some(hit) => format!("refused: {hit}"),
+            None => format!("unreadable zip archive: {e}"),
+        };
+        vec![Err(file_error(&label, 0, message))]
+    };
+    if let Some(r) = set.open_seekable(name) {
+        return match r.and_then(|r| ZipSet::within(r, &label, depth, budget.clone())) {
+            Ok(mut zip) => import_all(&mut zip),
+            Err(e) => refused(e),
+        };
+    }
+    match StreamZipSet::new(set, name, depth, budget) {
         Ok(mut zip) => import_all(&mut zip),
-        Err(e) => vec![Err(file_error(
-            &label,
-            0,
-            format!("unreadable zip archive: {e}"),
-        ))],
+        Err(e) => refused(e),
     }
 }
 
