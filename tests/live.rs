@@ -354,3 +354,259 @@ fn live_smoothed_track_equals_the_smoother_at_any_time() {
     }
     assert!(checks > 20, "{checks} checks with a fused track");
 }
+
+/// A small deterministic generator (SplitMix64) for the hostile streams.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d4_9bb1_3311_13eb);
+        z ^ (z >> 31)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn chance(&mut self, p: f64) -> bool {
+        self.unit() < p
+    }
+    /// A value that is not a number, or not a finite one.
+    fn junk(&mut self) -> f64 {
+        [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, -f64::NAN][(self.next() % 4) as usize]
+    }
+}
+
+/// Checks everything the page shows for numbers that are not finite.
+fn assert_shows_finite(live: &mut LiveSession, what: &str) {
+    let r = live.readouts();
+    let ok = |v: f64| v.is_finite();
+    assert!(
+        ok(r.distance_m) && ok(r.sample_rate_hz) && ok(r.duration_s),
+        "{what}: {r:?}"
+    );
+    for v in [r.cadence_hz, r.heading_deg, r.gnss_accuracy_m]
+        .into_iter()
+        .flatten()
+    {
+        assert!(ok(v), "{what}: {r:?}");
+    }
+    if let Some((a, b)) = r.fusion_scale {
+        assert!(ok(a) && ok(b), "{what}: {r:?}");
+    }
+    for s in live.pipeline().track() {
+        assert!(
+            ok(s.t) && ok(s.east_m) && ok(s.north_m) && ok(s.length_m),
+            "{what}: {s:?}"
+        );
+        assert!(s.heading_rad.is_none_or(ok), "{what}: {s:?}");
+    }
+    let m = live.map_data();
+    for &(e, n) in m
+        .pdr
+        .iter()
+        .chain(&m.fused)
+        .chain(&m.smoothed)
+        .chain(&m.gaps)
+    {
+        assert!(ok(e) && ok(n), "{what}: map {m:?}");
+    }
+    assert!(
+        m.fixes.iter().all(|&(e, n, a)| ok(e) && ok(n) && ok(a)),
+        "{what}"
+    );
+    let s = live.scope_data();
+    assert!(ok(s.now) && s.steps.iter().all(|&t| ok(t)), "{what}");
+    for &(t, up, pll) in &s.samples {
+        assert!(ok(t) && ok(up) && pll.is_none_or(ok), "{what}: scope");
+    }
+}
+
+/// Hostile event streams into the live session: values that are NaN, infinite or missing,
+/// time going backwards, duplicate timestamps, bursts at 1 kHz, throttling to 5 Hz (a
+/// background tab), a sensor that stops mid-walk, garbage attitudes, fixes and gaps. The
+/// session never panics and never shows a number that is not finite; the steps only grow; and
+/// the recording replays to the same track and the same number of samples.
+#[wasm_bindgen_test(unsupported = test)]
+fn hostile_event_streams_keep_the_session_consistent() {
+    let sim = scenarios::gnss_city_walk().generate();
+    let t0 = sim.records.iter().find_map(|r| match r {
+        Record::Imu(s) => Some(s.t),
+        _ => None,
+    });
+    let records: Vec<Record> = sim
+        .records
+        .iter()
+        .take_while(|r| !matches!(r, Record::Imu(s) if Some(s.t - 150.0) > t0))
+        .cloned()
+        .collect();
+    let seeds: u64 = if cfg!(target_arch = "wasm32") { 2 } else { 6 };
+    for seed in 0..seeds {
+        let mut rng = Rng(seed.wrapping_mul(0x2545_f491_4f6c_dd1d) + 1);
+        let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
+        let (mut burst, mut throttle, mut stopped) = (0u32, 0u32, 0u32);
+        let (mut steps, mut pushed, mut refused, mut n) = (0usize, 0u64, 0u64, 0u64);
+        let mut log = String::new();
+        for r in &records {
+            let evs: Vec<BrowserEvent> = match r {
+                Record::Gnss(f) => {
+                    let mut f = *f;
+                    if rng.chance(0.1) {
+                        match rng.next() % 4 {
+                            0 => f.lat_deg = rng.junk(),
+                            1 => {
+                                f.h_accuracy_m = [0.0, -5.0, rng.junk()][(rng.next() % 3) as usize]
+                            }
+                            2 => f.t -= 30.0 * rng.unit(),
+                            _ => f.t = rng.junk(),
+                        }
+                    }
+                    refused += u64::from(live.push_fix(&f).is_err());
+                    continue;
+                }
+                Record::Gap(a, b) => {
+                    live.mark_gap(a * 1e3, b * 1e3);
+                    continue;
+                }
+                Record::Imu(_) => browser_events(std::slice::from_ref(r), Platform::Android),
+            };
+            if rng.chance(0.0005) {
+                burst = 30;
+            }
+            if rng.chance(0.0003) {
+                throttle = 500;
+            }
+            if rng.chance(0.0002) {
+                stopped = 1500;
+            }
+            for ev in evs {
+                match ev {
+                    BrowserEvent::Orientation {
+                        t,
+                        alpha,
+                        beta,
+                        gamma,
+                    } => {
+                        let mut o = OrientationEvent::absolute(t, alpha, beta, gamma);
+                        if rng.chance(0.02) {
+                            match rng.next() % 4 {
+                                0 => o.alpha = None,
+                                1 => o.beta = Some(rng.junk()),
+                                2 => o.gamma = Some(720.0),
+                                _ => o.time_stamp_ms = rng.junk(),
+                            }
+                        }
+                        live.push_orientation(&o);
+                        if rng.chance(0.002) {
+                            let q = [[f64::NAN, 0.0, 0.0, 1.0], [0.0; 4], [3.0, 0.0, 0.0, 4.0]];
+                            live.push_quaternion(t, q[(rng.next() % 3) as usize]);
+                        }
+                    }
+                    BrowserEvent::Motion {
+                        t,
+                        x,
+                        y,
+                        z,
+                        alpha,
+                        beta,
+                        gamma,
+                        ..
+                    } => {
+                        n += 1;
+                        if stopped > 0 {
+                            stopped -= 1;
+                            if stopped == 0 && rng.chance(0.5) {
+                                live.mark_gap(t - 15_000.0, t);
+                            }
+                            continue;
+                        }
+                        if throttle > 0 {
+                            throttle -= 1;
+                            if n % 20 != 0 {
+                                continue;
+                            }
+                        }
+                        let mut m = MotionEvent {
+                            time_stamp_ms: t,
+                            accel: Some([x, y, z]),
+                            rotation_rate_deg_s: alpha
+                                .zip(beta)
+                                .zip(gamma)
+                                .map(|((a, b), g)| [a, b, g]),
+                        };
+                        if rng.chance(0.03) {
+                            match rng.next() % 6 {
+                                0 => m.accel = Some([x, rng.junk(), z]),
+                                1 => m.accel = None,
+                                2 => m.rotation_rate_deg_s = None,
+                                3 => m.rotation_rate_deg_s = Some([rng.junk(), 0.0, 0.0]),
+                                4 => m.time_stamp_ms -= 2000.0 * rng.unit(),
+                                _ => m.time_stamp_ms = rng.junk(),
+                            }
+                        }
+                        let copies = if burst > 0 {
+                            burst -= 1;
+                            10
+                        } else if rng.chance(0.02) {
+                            2 // a duplicate timestamp
+                        } else {
+                            1
+                        };
+                        for k in 0..copies {
+                            let mut c = m;
+                            if burst > 0 {
+                                c.time_stamp_ms += f64::from(k); // 1 kHz
+                            }
+                            pushed += 1;
+                            refused += u64::from(live.push_motion(&c).is_err());
+                        }
+                    }
+                }
+            }
+            let now = live.readouts().steps;
+            assert!(
+                now >= steps,
+                "seed {seed}: steps went from {steps} to {now}"
+            );
+            steps = now;
+            if n % 1000 == 0 {
+                assert_shows_finite(&mut live, &format!("seed {seed}, event {n}"));
+                log.push_str(&live.take_log());
+            }
+        }
+        assert_shows_finite(&mut live, &format!("seed {seed}, end"));
+        log.push_str(&live.take_log());
+        let r = live.readouts();
+        assert!(
+            refused > 0 && r.steps > 20,
+            "seed {seed}: {refused} refused, {} steps",
+            r.steps
+        );
+        // Refused orientation events are counted too.
+        assert!(
+            r.refused >= refused,
+            "seed {seed}: {} < {refused}",
+            r.refused
+        );
+        let parsed = pdrlog::read(log.as_bytes(), "hostile.pdrlog").unwrap();
+        assert_eq!(parsed.skipped, 0, "seed {seed}: {:?}", parsed.errors);
+        let samples = parsed
+            .records
+            .iter()
+            .filter(|r| matches!(r, Record::Imu(_)))
+            .count();
+        assert_eq!(samples as u64, r.samples, "seed {seed}: samples recorded");
+        assert!(r.samples <= pushed, "seed {seed}");
+        let again = replay(PipelineConfig::default(), &parsed.records).unwrap();
+        assert_eq!(
+            again.pipeline.track(),
+            live.pipeline().track(),
+            "seed {seed}: replay"
+        );
+        eprintln!(
+            "seed {seed}: {pushed} motion events pushed, {} refused in all, {} samples, {} steps",
+            r.refused, r.samples, r.steps
+        );
+    }
+}
