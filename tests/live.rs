@@ -400,7 +400,7 @@ fn assert_shows_finite(live: &mut LiveSession, what: &str) {
             ok(s.t) && ok(s.east_m) && ok(s.north_m) && ok(s.length_m),
             "{what}: {s:?}"
         );
-        assert!(s.heading_rad.is_none_or(ok), "{what}: {s:?}");
+        assert!(s.heading_rad.map_or(true, ok), "{what}: {s:?}");
     }
     let m = live.map_data();
     for &(e, n) in m
@@ -419,7 +419,7 @@ fn assert_shows_finite(live: &mut LiveSession, what: &str) {
     let s = live.scope_data();
     assert!(ok(s.now) && s.steps.iter().all(|&t| ok(t)), "{what}");
     for &(t, up, pll) in &s.samples {
-        assert!(ok(t) && ok(up) && pll.is_none_or(ok), "{what}: scope");
+        assert!(ok(t) && ok(up) && pll.map_or(true, ok), "{what}: scope");
     }
 }
 
