@@ -5,7 +5,7 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, statSync } from 'node:fs';
-import { deflateRawSync } from 'node:zlib';
+import { constants as zlibConstants, deflateRawSync } from 'node:zlib';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -54,16 +54,22 @@ function crc32(bytes) {
   return (c ^ 0xffffffff) >>> 0;
 }
 
-/** A zip archive (deflated, as phones write them) of [name, bytes] entries. */
+/**
+ * A zip archive (deflated, as phones write them) of [name, bytes] entries. An entry may instead
+ * be [name, { deflated, size, crc }]: data already deflated, with the size and CRC its headers
+ * state.
+ */
 function zip(entries) {
   const parts = [];
   const central = [];
   let offset = 0;
   const dosDate = ((2026 - 1980) << 9) | (11 << 5) | 23;
-  for (const [name, data] of entries) {
+  for (const [name, entry] of entries) {
     const n = Buffer.from(name);
-    const z = deflateRawSync(data);
-    const crc = crc32(data);
+    const raw = entry.deflated ? entry : null;
+    const data = raw ? { length: raw.size } : entry;
+    const z = raw ? raw.deflated : deflateRawSync(data);
+    const crc = raw ? raw.crc : crc32(data);
     const head = Buffer.alloc(30);
     head.writeUInt32LE(0x04034b50, 0);
     [20, 0, 8, 0, dosDate].forEach((v, i) => head.writeUInt16LE(v, 4 + 2 * i));
@@ -86,11 +92,25 @@ function zip(entries) {
   const cd = Buffer.concat(central);
   const end = Buffer.alloc(22);
   end.writeUInt32LE(0x06054b50, 0);
-  end.writeUInt16LE(entries.length, 8);
-  end.writeUInt16LE(entries.length, 10);
+  end.writeUInt16LE(Math.min(entries.length, 0xffff), 8);
+  end.writeUInt16LE(Math.min(entries.length, 0xffff), 10);
   end.writeUInt32LE(cd.length, 12);
   end.writeUInt32LE(offset, 16);
-  return Buffer.concat([...parts, cd, end]);
+  if (entries.length < 0xffff) return Buffer.concat([...parts, cd, end]);
+  // More entries than 16 bits count: the zip64 end record and its locator (APPNOTE 4.3.14-15).
+  const end64 = Buffer.alloc(56 + 20);
+  end64.writeUInt32LE(0x06064b50, 0);
+  end64.writeBigUInt64LE(44n, 4);
+  end64.writeUInt16LE(45, 12);
+  end64.writeUInt16LE(45, 14);
+  end64.writeBigUInt64LE(BigInt(entries.length), 24);
+  end64.writeBigUInt64LE(BigInt(entries.length), 32);
+  end64.writeBigUInt64LE(BigInt(cd.length), 40);
+  end64.writeBigUInt64LE(BigInt(offset), 48);
+  end64.writeUInt32LE(0x07064b50, 56);
+  end64.writeBigUInt64LE(BigInt(offset + cd.length), 64);
+  end64.writeUInt32LE(1, 72);
+  return Buffer.concat([...parts, cd, end64, end]);
 }
 
 /** The one-hour 100 Hz walk (pdr-log), written once for the tests that need a long load. */
@@ -262,6 +282,36 @@ test('a corrupt file beside a good one: the banner names the file and line, the 
   const banner = await page.textContent('#upload-banners li.error');
   console.log(`banner: ${banner}`);
   assert.match(banner, /^broken\.json:[1-9]\d*:\d+: /);
+  await context.close();
+});
+
+test('hostile archives through the worker: a deep nest, 2 GiB of zeros (honest and lying headers), 100 000 entries; each refused by name, the good file loads', async () => {
+  const walk = readFileSync(path.join(FIXTURES, 'walk.pdrlog'));
+  let nest = zip([['walk.pdrlog', walk]]);
+  for (let level = 9; level >= 1; level--) nest = zip([[`level${level}.zip`, nest]]);
+  // 2 GiB of zeros behind a pdr-log header, deflated fast: a MiB with a full flush, repeated.
+  const head = deflateRawSync(Buffer.from('# pdr-log 1\n'), { finishFlush: zlibConstants.Z_FULL_FLUSH });
+  const mib = deflateRawSync(Buffer.alloc(1 << 20), { finishFlush: zlibConstants.Z_FULL_FLUSH });
+  const zeros = Buffer.concat([head, ...Array(2048).fill(mib), Buffer.from([0x03, 0x00])]);
+  // The CRC is never reached: the limits stop the reading first.
+  const honest = zip([['x.pdrlog', { deflated: zeros, size: 2 ** 31, crc: 0 }]]);
+  const liar = zip([['x.pdrlog', { deflated: zeros, size: 10 << 20, crc: 0 }]]);
+  const many = zip(Array.from({ length: 100_000 }, (_, i) => [`e${i}`, Buffer.alloc(0)]));
+  const files = { 'nest.zip': nest, 'honest.zip': honest, 'liar.zip': liar, 'many.zip': many };
+  for (const [name, bytes] of Object.entries(files)) writeFileSync(path.join(tmp, name), bytes);
+  const { context, page, errors } = await open();
+  const r = await upload(page, [...Object.keys(files).map((f) => path.join(tmp, f)), path.join(FIXTURES, 'walk.pdrlog')]);
+  assert.deepEqual(r.logs.map((l) => l.a.source), ['walk.pdrlog']);
+  const byFile = Object.fromEntries(r.errors.map((e) => [e.file, e.message]));
+  console.log(r.errors.map((e) => `${e.file}: ${e.message}`).join('\n'));
+  assert.match(byFile['nest.zip/level1.zip/level2.zip'], /archive limit `depth`/);
+  assert.match(byFile['honest.zip/x.pdrlog'], /archive limit `ratio`/);
+  assert.match(byFile['liar.zip/x.pdrlog'], /archive limit `declared size`/);
+  assert.match(byFile['many.zip'], /archive limit `entries`/);
+  assert.equal(r.errors.length, 4);
+  const banners = await page.textContent('#upload-banners');
+  for (const f of ['nest.zip/level1.zip/level2.zip', 'honest.zip/x.pdrlog', 'liar.zip/x.pdrlog', 'many.zip']) assert.ok(banners.includes(f), `${f} in the banners`);
+  assert.deepEqual(errors, []);
   await context.close();
 });
 
