@@ -344,3 +344,72 @@ fn the_total_budget_is_shared_by_the_archives_inside() {
         "{e:#?}"
     );
 }
+
+/// Damaged archives inside archives (bytes flipped, cut short, junk inserted, in the inner or
+/// the outer archive, with and without data descriptors): never a panic, every record read is
+/// finite, and every error names the upload.
+#[test]
+fn damaged_nested_archives_never_panic() {
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let files = fixture("sensor_logger_android", "Recording/");
+    let mut outcomes = [0usize; 2];
+    for round in 0..600 {
+        let stream = round % 2 == 0;
+        let mut inner = zip_of(&files, CompressionMethod::Deflated, stream);
+        let r = next();
+        let mut damage = |b: &mut Vec<u8>| match r % 3 {
+            0 => {
+                for _ in 0..1 + r % 8 {
+                    let i = (next() as usize) % b.len();
+                    b[i] ^= 1 << (next() % 8);
+                }
+            }
+            1 => b.truncate((next() as usize) % b.len()),
+            _ => {
+                let at = (next() as usize) % b.len();
+                let junk: Vec<u8> = (0..1 + next() % 64).map(|_| next() as u8).collect();
+                b.splice(at..at, junk);
+            }
+        };
+        if round % 5 != 4 {
+            damage(&mut inner);
+        }
+        let method = if round % 3 == 0 {
+            CompressionMethod::Stored
+        } else {
+            CompressionMethod::Deflated
+        };
+        let mut outer = zip_of(&[("inner.zip".into(), inner)], method, round % 4 < 2);
+        if round % 5 == 4 {
+            damage(&mut outer);
+        }
+        for got in import_all(&mut MemSet::new(vec![("outer.zip".into(), outer)])) {
+            match got {
+                Ok(log) => {
+                    outcomes[0] += 1;
+                    for rec in &log.records {
+                        let ok = match rec {
+                            pdr::engine::Record::Imu(s) => {
+                                s.t.is_finite() && s.accel.iter().all(|v| v.is_finite())
+                            }
+                            pdr::engine::Record::Gnss(f) => f.check().is_ok(),
+                            pdr::engine::Record::Gap(a, b) => a.is_finite() && b.is_finite(),
+                        };
+                        assert!(ok, "round {round}: {rec:?}");
+                    }
+                }
+                Err(e) => {
+                    outcomes[1] += 1;
+                    assert!(e.file.starts_with("outer.zip"), "round {round}: {e}");
+                }
+            }
+        }
+    }
+    assert!(outcomes[0] > 50 && outcomes[1] > 50, "{outcomes:?}");
+}
