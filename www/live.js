@@ -83,6 +83,7 @@ class Session {
     this.writes = Promise.resolve();
     this.writing = false;
     this.unsaved = []; // chunks not yet in IndexedDB, in order: written, or kept until downloaded
+    this.saved = { chunks: 0, chars: 0 }; // written so far
     this.retryAt = 0;
     this.retryMs = RETRY_MS[0];
     this.seq = rec?.nextSeq ?? 0;
@@ -252,6 +253,8 @@ class Session {
           const batch = this.unsaved.slice(0, WRITE_CHUNKS);
           await store.append(this.rec.id, batch);
           this.unsaved.splice(0, batch.length);
+          this.saved.chunks += batch.length;
+          for (const c of batch) this.saved.chars += c.text.length;
         }
         if (this.storageFull) { this.storageFull = false; message('storage', false); }
         this.retryMs = RETRY_MS[0];
@@ -267,13 +270,18 @@ class Session {
     return this.writes;
   }
 
-  /** The whole recording so far: what IndexedDB holds and the chunks it does not. */
+  /**
+   * The whole recording so far: what IndexedDB holds and the chunks it does not. Read by the
+   * engine only when it continues a damaged one (the engine then holds it all for a moment);
+   * else its own chunks are joined as they are.
+   */
   async recording() {
     let stored = { pieces: [] };
     try {
       stored = await store.pieces(this.rec.id, this.unsaved);
     } catch { stored = { pieces: this.unsaved }; } // no IndexedDB at all: memory holds it all
-    return readRecording(stored.pieces);
+    if (this.rec.damaged) return readRecording(stored.pieces);
+    return { text: stored.pieces.map((c) => c.text).join('') };
   }
 
   /**
@@ -484,6 +492,7 @@ async function begin(makeLive, rec, opts = {}) {
     get readouts() { return session.live.readouts(); },
     get source() { return session.source; },
     get unsaved() { return session.unsaved.length; },
+    get saved() { return { ...session.saved, unsavedChars: session.unsaved.reduce((n, c) => n + c.text.length, 0) }; },
     draw: () => session.draw(),
   };
   if (live) {
@@ -591,7 +600,7 @@ async function offerRecovery() {
     done();
     const config = settings();
     begin((ios) => Live.resume(config, ios, performance.timeOrigin, text),
-      { id: rec.id, started: started.getTime(), resumed: true, nextSeq: stored.nextSeq });
+      { id: rec.id, started: started.getTime(), resumed: true, nextSeq: stored.nextSeq, damaged: damage(read) !== '' });
   };
   $('recover-save').onclick = async () => {
     download(text, fileName(started.getTime()));
