@@ -184,6 +184,48 @@ fn a_recording_resumed_after_a_reload_continues_the_same_track() {
 }
 
 #[wasm_bindgen_test(unsupported = test)]
+fn a_damaged_recording_resumes_with_every_good_line_and_says_what_was_skipped() {
+    let sim = scenarios::straight_walk(1.8, 20.0).generate();
+    let mut first = feed(&sim.records, Platform::Android);
+    let good = first.take_log();
+    let lines: Vec<&str> = good.split_inclusive('\n').collect();
+    let n = lines.len();
+    // The version tag lost, garbage, a field that is not a number, absurd but finite values,
+    // a time going backwards, and the last line cut short.
+    let mut bad = lines[1..n / 2].concat();
+    bad.push_str("\u{0}\u{1}garbage,,,\nimu,12.5,0,nan,9.8,,,,,,,,,,\n");
+    bad.push_str("imu,12.51,1e300,-1e300,1e300,1e300,0,0,,,,,,,\nimu,0.5,0,0,9.8,,,,,,,,,,\n");
+    bad.push_str(&lines[n / 2..n - 1].concat());
+    bad.push_str(&lines[n - 1][..20]);
+    let s = LiveSession::resume(PipelineConfig::default(), Platform::Android, 0.0, &bad).unwrap();
+    let r = s.readouts();
+    assert_eq!(r.skipped_lines, 3, "{:?}", r.last_error);
+    let why = r.last_error.clone().unwrap();
+    assert!(
+        why.contains("field `accel` is not a finite, in-range number"),
+        "{why}"
+    );
+    assert!(r.distance_m.is_finite(), "distance {}", r.distance_m);
+    assert!(r.heading_deg.is_none_or(f64::is_finite));
+    assert!(r.cadence_hz.is_none_or(f64::is_finite));
+    assert!(s
+        .pipeline()
+        .track()
+        .iter()
+        .all(|st| st.east_m.is_finite() && st.north_m.is_finite()));
+    // Every good sample went through: all but the cut one, with the early one; the absurd one
+    // was refused by the engine, naming its field.
+    assert_eq!(r.samples, first.readouts().samples);
+    assert_eq!(r.refused, 1);
+    assert!(
+        r.steps.abs_diff(first.readouts().steps) <= 2,
+        "{} against {}",
+        r.steps,
+        first.readouts().steps
+    );
+}
+
+#[wasm_bindgen_test(unsupported = test)]
 fn motion_waits_briefly_for_the_attitude_and_the_scope_keeps_ten_seconds() {
     let sim = scenarios::straight_walk(1.8, 20.0).generate();
     let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();

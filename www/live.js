@@ -1,7 +1,7 @@
 // Live mode: sensors in, readouts and plots out, the recording into IndexedDB.
 // Event plumbing only. Every number goes to the engine (Live, in wasm) as the browser gives it;
 // the conversions (iOS sign, deg/s, angles, iOS's compass) are in src/live/events.rs.
-import { Live, recording_summary } from './pkg/pdr.js';
+import { Live, recover_recording } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
 import { $, dark, download, fit, note } from './util.js';
@@ -10,6 +10,8 @@ import { $, dark, download, fit, note } from './util.js';
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
 const DRAW_MS = 100; // at most ten redraws a second
 const HOLD_MS = 2000; // press-and-hold to unlock the pocket guard
+const RETRY_MS = [1000, 60_000]; // storage refused: retry after 1 s, doubling up to a minute
+const WRITE_CHUNKS = 40; // chunks per IndexedDB transaction when catching up
 
 /**
  * Whether motion events follow iOS's conventions: every browser on iOS is WebKit. Told from the
@@ -30,7 +32,7 @@ const MESSAGES = {
   noWakeLock: 'This browser cannot keep the screen on. Set a long screen timeout: when the screen goes off, the browser stops the sensors and the walk has a gap.',
   engine: 'Some sensor events were refused: ',
   cannotStart: 'Live mode could not start: ',
-  storage: 'The recording cannot be saved on this device (private mode or storage full): ',
+  storage: 'The recording cannot be saved on this device (storage full, or refused in private mode). The walk goes on and what was not saved is kept in memory: tap Stop, then “Download recording”, to keep the whole walk; closing the page now would lose it. ',
 };
 
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
@@ -79,7 +81,11 @@ class Session {
     this.geoWatch = null;
     this.wakeLock = null;
     this.writes = Promise.resolve();
-    this.queue = [];
+    this.writing = false;
+    this.unsaved = []; // chunks not yet in IndexedDB, in order: written, or kept until downloaded
+    this.saved = { chunks: 0, chars: 0 }; // written so far
+    this.retryAt = 0;
+    this.retryMs = RETRY_MS[0];
     this.seq = rec?.nextSeq ?? 0;
     this.handlers = [];
   }
@@ -222,17 +228,60 @@ class Session {
   }
 
   // --- recording -----------------------------------------------------------------------
+  /** Takes the engine's new log lines as the next chunk, and writes the chunks not yet saved. */
   flush() {
     const text = this.live.take_log();
-    if (!text || !this.rec) return this.writes;
-    const chunk = { seq: this.seq++, text };
-    const samples = this.live.readouts().samples;
-    this.queue.push(chunk); // written in order; shifted once written
-    this.writes = this.writes
-      .then(() => store.append(this.rec.id, chunk, samples))
-      .then(() => this.queue.shift())
-      .catch((err) => message('storage', true, 'error', String(err?.message ?? err)));
+    if (!this.rec) return this.writes;
+    if (text) {
+      const { samples, steps } = this.live.readouts();
+      this.unsaved.push({ seq: this.seq++, text, samples, steps });
+    }
+    return this.save();
+  }
+
+  /**
+   * Writes the unsaved chunks in order, a few per transaction (all or none of each). A chunk
+   * leaves `unsaved` only once written. When storage refuses, the chunks stay in memory, the
+   * page says so, and writing is tried again later (1 s, doubling up to a minute).
+   */
+  save(force = false) {
+    if (this.writing || !this.unsaved.length || (!force && performance.now() < this.retryAt)) return this.writes;
+    this.writing = true;
+    this.writes = (async () => {
+      try {
+        while (this.unsaved.length) {
+          const batch = this.unsaved.slice(0, WRITE_CHUNKS);
+          await store.append(this.rec.id, batch);
+          this.unsaved.splice(0, batch.length);
+          this.saved.chunks += batch.length;
+          for (const c of batch) this.saved.chars += c.text.length;
+        }
+        if (this.storageFull) { this.storageFull = false; message('storage', false); }
+        this.retryMs = RETRY_MS[0];
+      } catch (err) {
+        this.storageFull = true;
+        message('storage', true, 'error', `(${err?.name ?? 'Error'}: ${err?.message ?? err})`);
+        this.retryAt = performance.now() + this.retryMs;
+        this.retryMs = Math.min(2 * this.retryMs, RETRY_MS[1]);
+      } finally {
+        this.writing = false;
+      }
+    })();
     return this.writes;
+  }
+
+  /**
+   * The whole recording so far: what IndexedDB holds and the chunks it does not. Read by the
+   * engine only when it continues a damaged one (the engine then holds it all for a moment);
+   * else its own chunks are joined as they are.
+   */
+  async recording() {
+    let stored = { pieces: [] };
+    try {
+      stored = await store.pieces(this.rec.id, this.unsaved);
+    } catch { stored = { pieces: this.unsaved }; } // no IndexedDB at all: memory holds it all
+    if (this.rec.damaged) return readRecording(stored.pieces);
+    return { text: stored.pieces.map((c) => c.text).join('') };
   }
 
   /**
@@ -243,7 +292,7 @@ class Session {
     if (this.ended || !this.rec) return;
     this.flush();
     try {
-      if (this.queue.length) localStorage.setItem(store.tailKey(this.rec.id), JSON.stringify(this.queue));
+      if (this.unsaved.length) localStorage.setItem(store.tailKey(this.rec.id), JSON.stringify(this.unsaved));
     } catch { /* storage full or refused: the last batch is lost */ }
   }
 
@@ -261,6 +310,11 @@ class Session {
     if (!this.dirty || !this.rec) return;
     this.dirty = false;
     if (!$('guard').hidden) return; // nobody sees the plots
+    this.draw();
+  }
+
+  /** Draws the map and the scope. */
+  draw() {
     const dpr = fit($('live-map'));
     if (dpr) this.live.draw($('live-map'), dark.matches, dpr);
     const dpr2 = fit($('live-scope'));
@@ -290,8 +344,9 @@ class Session {
     clearInterval(this.flushTimer);
     this.wakeLock?.release().catch(() => {});
     this.wakeLock = null;
-    await this.flush();
-    if (this.rec) await store.setState(this.rec.id, 'done');
+    this.flush();
+    await this.save(true);
+    if (this.rec && !this.unsaved.length) await store.setState(this.rec.id, 'done').catch(() => {});
     message('noSensor', false);
     this.dirty = true;
     this.lastDraw = -Infinity;
@@ -433,7 +488,13 @@ async function begin(makeLive, rec, opts = {}) {
   current = new Session(engine, rec, ios, opts.onTick);
   const session = current;
   // For the end-to-end tests and the curious: the session's state now.
-  window.__pdrLive = { get readouts() { return session.live.readouts(); }, get source() { return session.source; } };
+  window.__pdrLive = {
+    get readouts() { return session.live.readouts(); },
+    get source() { return session.source; },
+    get unsaved() { return session.unsaved.length; },
+    get saved() { return { ...session.saved, unsavedChars: session.unsaved.reduce((n, c) => n + c.text.length, 0) }; },
+    draw: () => session.draw(),
+  };
   if (live) {
     $('live-view').hidden = false;
     controls('recording');
@@ -479,11 +540,32 @@ async function stop() {
   await s.stop();
   unlock();
   if (s.rec) {
-    lastFinished = s.rec;
+    lastFinished = s;
     controls('stopped');
     // The profile's opt-in refinement listens (wizard.js).
     window.dispatchEvent(new CustomEvent('pdr-walk-ended', { detail: { evidence: s.live.walk_evidence() } }));
   }
+}
+
+/**
+ * What the engine reads of a recording's stored pieces: `{text, samples, steps, skipped_lines,
+ * missing_pieces, notes}`; `text` is the pieces as they are when they are whole, else every good
+ * line (see `recover_recording`). `steps` is what the page counted when the last piece was taken.
+ */
+function readRecording(pieces) {
+  const r = recover_recording(pieces);
+  const text = r.text ?? pieces.map((c) => c.text).join('');
+  const steps = pieces.findLast((c) => Number.isFinite(c?.steps))?.steps;
+  return { ...r, text, steps };
+}
+
+/** The sentence about a damaged recording, or ''. */
+function damage(r) {
+  if (!r.skipped_lines && !r.missing_pieces && !r.notes.length) return '';
+  const parts = [];
+  if (r.skipped_lines) parts.push(`${r.skipped_lines} damaged line${r.skipped_lines > 1 ? 's were' : ' was'} skipped`);
+  if (r.missing_pieces) parts.push(`${r.missing_pieces} piece${r.missing_pieces > 1 ? 's are' : ' is'} missing (a gap in the walk)`);
+  return ` Part of it is damaged: ${parts.join(', ') || 'it was repaired'}; everything else is kept. First problem: ${r.notes[0] ?? '–'}.`;
 }
 
 async function offerRecovery() {
@@ -496,26 +578,36 @@ async function offerRecovery() {
   if (!open.length) return;
   const rec = open.sort((a, b) => b.started - a.started)[0];
   // Read now: on iOS the permission prompt must come straight from the Resume tap.
-  const { text, nextSeq } = await store.text(rec.id);
-  const { samples } = recording_summary(text);
-  $('recovery-text').textContent = `An unfinished recording from ${new Date(rec.started).toLocaleString()} `
-    + `(${samples} samples) was not stopped: the page was closed or reloaded. Resume it, or download it.`;
+  let stored;
+  let read;
+  try {
+    stored = await store.pieces(rec.id);
+    read = readRecording(stored.pieces);
+  } catch (err) {
+    message('storage', true, 'error', `(the unfinished recording cannot be read: ${err?.message ?? err})`);
+    return;
+  }
+  const { text, samples, steps } = read;
+  const started = new Date(Number.isFinite(rec.started) ? rec.started : Date.now());
+  $('recovery-text').textContent = `An unfinished recording from ${started.toLocaleString()} `
+    + `(${samples} samples${steps != null ? `, ${steps} steps` : ''}) was not stopped: the page was closed or reloaded. `
+    + `Resume it, or download it.${damage(read)}`;
   $('recovery').hidden = false;
   document.documentElement.dataset.recovery = 'offered';
-  window.__pdrRecovery = { id: rec.id, samples };
+  window.__pdrRecovery = { id: rec.id, samples, steps, skipped_lines: read.skipped_lines, missing_pieces: read.missing_pieces, notes: read.notes };
   const done = () => { $('recovery').hidden = true; document.documentElement.dataset.recovery = 'done'; };
   $('recover-resume').onclick = () => {
     done();
     const config = settings();
     begin((ios) => Live.resume(config, ios, performance.timeOrigin, text),
-      { id: rec.id, started: rec.started, resumed: true, nextSeq });
+      { id: rec.id, started: started.getTime(), resumed: true, nextSeq: stored.nextSeq, damaged: damage(read) !== '' });
   };
   $('recover-save').onclick = async () => {
-    download(text, fileName(rec.started));
-    await store.setState(rec.id, 'done');
+    download(text, fileName(started.getTime()));
+    await store.setState(rec.id, 'done').catch(() => {});
     done();
   };
-  $('recover-discard').onclick = async () => { await store.remove(rec.id); done(); };
+  $('recover-discard').onclick = async () => { await store.remove(rec.id).catch(() => {}); done(); };
 }
 
 /** Wires up the live section. */
@@ -544,7 +636,7 @@ export function setupLive() {
   $('stop').addEventListener('click', stop);
   $('lock').addEventListener('click', lock);
   $('download').addEventListener('click', async () => {
-    if (lastFinished) download((await store.text(lastFinished.id)).text, fileName(lastFinished.started));
+    if (lastFinished) download((await lastFinished.recording()).text, fileName(lastFinished.rec.started));
   });
   const redraw = () => { if (current) { current.dirty = true; current.lastDraw = -Infinity; current.tick(performance.now()); } };
   new ResizeObserver(redraw).observe($('live-map'));

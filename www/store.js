@@ -22,15 +22,26 @@ async function open() {
   return db;
 }
 
+/**
+ * Runs `fn(...objectStores)` in one transaction; resolves once it has committed, rejects when it
+ * aborts (a quota error, a request refused) or `fn` throws (then nothing of it is written).
+ */
 async function tx(stores, mode, fn) {
   const d = await open();
   const t = d.transaction(stores, mode);
   const done = new Promise((resolve, reject) => {
     t.oncomplete = resolve;
     t.onerror = () => reject(t.error);
-    t.onabort = () => reject(t.error);
+    t.onabort = () => reject(t.error ?? new DOMException('the write was aborted', 'AbortError'));
   });
-  const result = fn(...stores.map((s) => t.objectStore(s)));
+  let result;
+  try {
+    result = fn(...stores.map((s) => t.objectStore(s)));
+  } catch (err) {
+    done.catch(() => {});
+    try { t.abort(); } catch { /* already finished */ }
+    throw err;
+  }
   await done;
   return result;
 }
@@ -41,12 +52,16 @@ export async function create(meta) {
   await tx(['recordings'], 'readwrite', (rec) => rec.put({ ...meta, state: 'recording', samples: 0 }));
 }
 
-/** Appends a chunk `{seq, text}` of pdr-log text, and the running sample count. */
-export async function append(id, chunk, samples) {
-  await tx(['recordings', 'chunks'], 'readwrite', (rec, chunks) => {
-    chunks.add({ rec: id, ...chunk });
+/**
+ * Appends chunks `{seq, text, samples, steps}` of pdr-log text, in order, all or none, and the
+ * running sample count.
+ */
+export async function append(id, chunks) {
+  const last = chunks.at(-1);
+  await tx(['recordings', 'chunks'], 'readwrite', (rec, store) => {
+    for (const c of chunks) store.add({ rec: id, ...c });
     const g = rec.get(id);
-    g.onsuccess = () => { if (g.result) rec.put({ ...g.result, samples, updated: Date.now() }); };
+    g.onsuccess = () => { if (g.result) rec.put({ ...g.result, samples: last.samples, updated: Date.now() }); };
   });
 }
 
@@ -66,25 +81,36 @@ export async function list() {
 export const tailKey = (id) => `pdr-tail-${id}`;
 
 /**
- * The whole pdr-log text of a recording, and the next chunk number. Chunks saved in
- * localStorage at page close are added first, those IndexedDB lacks.
+ * The stored pieces of a recording, `[{seq, text, samples, steps}]` in order of `seq` (each seq
+ * once), with the pieces `extra` (those not yet written) and those saved in localStorage at page
+ * close; and the next piece number. What they hold, damaged or not, is for the engine to read
+ * (`recover_recording`).
  */
-export async function text(id) {
+export async function pieces(id, extra = []) {
   const d = await open();
   const get = async () => request(d.transaction('chunks').objectStore('chunks').index('rec').getAll(id));
   let chunks = await get();
-  const tail = localStorage.getItem(tailKey(id));
-  if (tail) {
-    const have = new Set(chunks.map((c) => c.seq));
-    const missing = JSON.parse(tail).filter((c) => !have.has(c.seq));
-    if (missing.length) {
+  let tail = [];
+  try { tail = JSON.parse(localStorage.getItem(tailKey(id)) ?? '[]'); } catch { /* damaged: ignored */ }
+  if (!Array.isArray(tail)) tail = [];
+  const have = new Set(chunks.map((c) => c?.seq));
+  const missing = tail.filter((c) => !have.has(c?.seq));
+  let saved = true;
+  if (missing.length) {
+    try {
       await tx(['chunks'], 'readwrite', (store) => { for (const c of missing) store.add({ rec: id, ...c }); });
       chunks = await get();
+    } catch {
+      saved = false; // storage refused: kept in localStorage, read from there again next time
+      chunks = chunks.concat(missing);
     }
-    localStorage.removeItem(tailKey(id));
   }
-  chunks.sort((a, b) => a.seq - b.seq);
-  return { text: chunks.map((c) => c.text).join(''), nextSeq: chunks.length ? chunks.at(-1).seq + 1 : 0 };
+  if (saved) localStorage.removeItem(tailKey(id));
+  const bySeq = new Map();
+  for (const c of [...chunks, ...extra]) if (c && !bySeq.has(c.seq)) bySeq.set(c.seq, c);
+  const all = [...bySeq.values()].sort((a, b) => (a.seq > b.seq) - (a.seq < b.seq));
+  const seqs = all.map((c) => c.seq).filter(Number.isFinite);
+  return { pieces: all, nextSeq: seqs.reduce((m, s) => Math.max(m, s + 1), 0) };
 }
 
 export async function remove(id) {

@@ -65,7 +65,44 @@ impl ImuSample {
         }
         Ok(())
     }
+
+    /// [`check_finite`](Self::check_finite), and every component within [`IMU_LIMITS`]: what
+    /// the engine accepts.
+    pub fn check_range(&self) -> Result<(), InputError> {
+        self.check_finite()?;
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
+        if self.accel.amax() > IMU_LIMITS.accel_m_s2 {
+            return bad("accel");
+        }
+        if self.gyro.is_some_and(|g| g.amax() > IMU_LIMITS.gyro_rad_s) {
+            return bad("gyro");
+        }
+        if self.mag.is_some_and(|m| m.amax() > IMU_LIMITS.mag_ut) {
+            return bad("mag");
+        }
+        Ok(())
+    }
 }
+
+/// The largest magnitude of each component an IMU sample may hold. Far beyond any phone's
+/// sensor (accelerometers saturate at 8–16 g, gyroscopes at about 35 rad/s, the Earth's field
+/// is under 70 µT): a larger value is a damaged record, refused before it can overflow the
+/// filters into infinities and NaN.
+pub struct ImuLimits {
+    /// m/s² (about 1000 g).
+    pub accel_m_s2: f64,
+    /// rad/s.
+    pub gyro_rad_s: f64,
+    /// µT.
+    pub mag_ut: f64,
+}
+
+/// See [`ImuLimits`].
+pub const IMU_LIMITS: ImuLimits = ImuLimits {
+    accel_m_s2: 1e4,
+    gyro_rad_s: 1e3,
+    mag_ut: 1e5,
+};
 
 /// One GNSS position fix.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -133,7 +170,7 @@ fn all_finite<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {
 /// Why an input record was refused. The engine's state is untouched by a refused record.
 #[derive(Debug, Clone, PartialEq)]
 pub enum InputError {
-    /// A field holds NaN or ±∞ (or, for GNSS, is out of range).
+    /// A field holds NaN or ±∞, or is out of range (GNSS coordinates, [`IMU_LIMITS`]).
     NonFinite {
         /// The record's time (may itself be the bad field).
         t: f64,

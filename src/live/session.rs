@@ -10,7 +10,6 @@ use crate::engine::orientation::{OrientationSource, HOLD_S};
 use crate::engine::replay::feed;
 use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError, Record};
 use crate::engine::{Pipeline, PipelineConfig};
-use crate::io::ParseError;
 use nalgebra::UnitQuaternion;
 use std::collections::VecDeque;
 use std::fmt;
@@ -24,8 +23,6 @@ pub enum LiveError {
     Engine(InputError),
     /// The configuration is invalid.
     Config(ConfigError),
-    /// The recording to resume is unreadable.
-    Recording(ParseError),
 }
 
 impl fmt::Display for LiveError {
@@ -34,7 +31,6 @@ impl fmt::Display for LiveError {
             LiveError::Event(e) => write!(f, "{e}"),
             LiveError::Engine(e) => write!(f, "{e}"),
             LiveError::Config(e) => write!(f, "{e}"),
-            LiveError::Recording(e) => write!(f, "{e}"),
         }
     }
 }
@@ -178,6 +174,8 @@ pub struct Readouts {
     pub waited: u64,
     /// Events refused (with the reason of the last one).
     pub refused: u64,
+    /// Lines of a resumed recording that could not be read.
+    pub skipped_lines: u64,
     /// The last refusal.
     pub last_error: Option<String>,
     /// Whether the GNSS receiver should be on now (energy-saving mode).
@@ -213,6 +211,7 @@ pub struct LiveSession {
     log: String,
     recent: VecDeque<f64>,
     refused: u64,
+    skipped_lines: u64,
     last_error: Option<String>,
     // The smoothed track as of the filter's last correction: (corrections then, positions).
     smoothed: (u64, Vec<(f64, f64)>),
@@ -245,29 +244,37 @@ impl LiveSession {
             log: crate::io::pdrlog::preamble(),
             recent: VecDeque::new(),
             refused: 0,
+            skipped_lines: 0,
             last_error: None,
         })
     }
 
     /// A session that continues a recording (pdr-log text, e.g. recovered after a reload): its
     /// records go through the engine again, and [`take_log`](Self::take_log) then returns only
-    /// what comes after them.
+    /// what comes after them. The recording is read as [`crate::io::pdrlog::recover`] reads
+    /// one piece: a bad line, a last line cut short or a missing version tag is skipped and
+    /// counted (`skipped_lines`, the first reason in `last_error`), never fatal; records the
+    /// engine refuses are counted in `refused`.
     pub fn resume(
         cfg: PipelineConfig,
         platform: Platform,
         origin_ms: f64,
         recorded: &str,
     ) -> Result<Self, LiveError> {
-        let parsed = crate::io::pdrlog::read(recorded.as_bytes(), "the recovered recording")
-            .map_err(LiveError::Recording)?;
+        let parsed = crate::io::pdrlog::recover(&[(0, Some(recorded))]);
         let mut s = Self::new(cfg, platform, origin_ms).map_err(LiveError::Config)?;
         s.log.clear();
+        s.skipped_lines = parsed.skipped_lines;
+        s.last_error = parsed
+            .notes
+            .first()
+            .map(|n| format!("the recovered recording: {n}"));
         s.absolute = parsed
             .records
             .iter()
             .any(|r| matches!(r, Record::Imu(i) if i.orientation.is_some()));
         let view = &mut s.view;
-        feed(
+        let refusals = feed(
             &mut s.pipeline,
             &parsed.records,
             &mut |p: &Pipeline, _, r: &Record, accepted| {
@@ -276,6 +283,10 @@ impl LiveSession {
                 }
             },
         );
+        s.refused += refusals.count;
+        if let Some((i, e)) = refusals.errors.first() {
+            s.last_error = Some(format!("the recovered recording, record {}: {e}", i + 1));
+        }
         Ok(s)
     }
 
@@ -511,6 +522,7 @@ impl LiveSession {
             absolute_heading: self.absolute,
             waited: self.waited,
             refused: self.refused,
+            skipped_lines: self.skipped_lines,
             last_error: self.last_error.clone(),
             gnss_wanted: self.pipeline.gnss_wanted(now),
             gnss_on_s: d.gnss_on_s,

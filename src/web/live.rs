@@ -3,7 +3,7 @@
 //! May import: `engine`, `io`, `live`, `plot`, `settings`.
 
 use super::canvas::on_canvas;
-use super::{settings_from, to_js, to_value};
+use super::{settings_from, to_js, to_json_value, to_value};
 use crate::live::{LiveSession, MotionEvent, OrientationEvent, Platform, SensorReading};
 use crate::plot::{draw_live, draw_scope, LiveView};
 use wasm_bindgen::prelude::*;
@@ -263,14 +263,45 @@ pub fn replay_log(text: &str, settings: JsValue) -> Result<JsValue, JsError> {
     })
 }
 
-/// What a recording (pdr-log text) holds, for the recovery offer: `{samples}`, the IMU samples.
+/// What can be read of a live recording stored in pieces (`[{seq, text}]`, as IndexedDB holds
+/// them), for the recovery offer and the download: `{text, samples, skipped_lines,
+/// missing_pieces, notes}`. `text` is `null` when the pieces joined in the order given are a
+/// whole, good log (use them as they are), else the log of every good line (see
+/// `io::pdrlog::recover`). Never throws: anything that is not a piece is noted and skipped.
 #[wasm_bindgen]
-pub fn recording_summary(text: &str) -> Result<JsValue, JsError> {
+pub fn recover_recording(pieces: &JsValue) -> Result<JsValue, JsError> {
+    let get = |o: &JsValue, k: &str| js_sys::Reflect::get(o, &JsValue::from_str(k)).ok();
+    let mut bad = Vec::new();
+    let mut owned: Vec<(u64, Option<String>)> = Vec::new();
+    if let Some(arr) = pieces.dyn_ref::<js_sys::Array>() {
+        for (i, p) in arr.iter().enumerate() {
+            match get(&p, "seq").and_then(|v| v.as_f64()) {
+                Some(seq) if seq >= 0.0 && seq.fract() == 0.0 && seq < 1e15 => {
+                    owned.push((seq as u64, get(&p, "text").and_then(|t| t.as_string())));
+                }
+                _ => bad.push(format!("stored piece {i} has no number: skipped")),
+            }
+        }
+    } else {
+        bad.push("the stored recording is not a list of pieces".to_string());
+    }
+    let borrowed: Vec<(u64, Option<&str>)> =
+        owned.iter().map(|(s, t)| (*s, t.as_deref())).collect();
+    let r = crate::io::pdrlog::recover(&borrowed);
     #[derive(serde::Serialize)]
     struct Summary {
+        text: Option<String>,
         samples: usize,
+        skipped_lines: u64,
+        missing_pieces: u64,
+        notes: Vec<String>,
     }
-    to_value(&Summary {
-        samples: crate::io::pdrlog::count_imu_lines(text),
+    let whole = r.whole && bad.is_empty();
+    to_json_value(&Summary {
+        text: (!whole).then(|| crate::io::pdrlog::to_string(&r.records)),
+        samples: r.samples,
+        skipped_lines: r.skipped_lines + bad.len() as u64,
+        missing_pieces: r.missing_pieces,
+        notes: bad.into_iter().chain(r.notes).collect(),
     })
 }

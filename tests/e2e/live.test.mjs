@@ -162,7 +162,7 @@ test('reload while recording: the recovery offer holds every sample, and resumin
   const offered = await page.evaluate(() => window.__pdrRecovery);
   console.log(`recovery after reload: ${offered.samples} samples recorded of ${before} sent`);
   assert.equal(offered.samples, before);
-  assert.match(await page.textContent('#recovery-text'), new RegExp(`\\(${before} samples\\)`));
+  assert.match(await page.textContent('#recovery-text'), new RegExp(`\\(${before} samples, \\d+ steps\\)`));
   await page.click('#recover-resume');
   await page.waitForFunction(() => document.documentElement.dataset.source);
   const resumed = await readouts(page);
