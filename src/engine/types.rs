@@ -27,6 +27,18 @@ pub struct ImuSample {
     pub orientation: Option<UnitQuaternion<f64>>,
 }
 
+/// The largest time the engine accepts, in magnitude, s: 2⁴⁰ s, about 35 000 years, so Unix
+/// time and any clock since boot fit, with a resolution still finer than 0.25 ms. A larger (yet
+/// finite) time is refused as out of range: there the engine's resampling grids (steps of
+/// 20–50 ms) no longer change the time when a step is added, and a loop over the grid up to a
+/// sample's time would never end (found by the `live` fuzz target).
+pub const MAX_TIME_S: f64 = 1_099_511_627_776.0;
+
+/// Whether a time is one the engine accepts: finite and within ±[`MAX_TIME_S`] (NaN is not).
+pub fn time_in_range(t: f64) -> bool {
+    t.abs() <= MAX_TIME_S
+}
+
 impl ImuSample {
     /// A sample with acceleration only.
     pub fn accel_only(t: f64, accel: DeviceVec) -> Self {
@@ -39,22 +51,23 @@ impl ImuSample {
         }
     }
 
-    /// Checks that every value present is finite; names the first field that is not.
+    /// Checks that every value present is finite, the time within ±[`MAX_TIME_S`] and the
+    /// sensor values within ±[`MAX_SENSOR_VALUE`]; names the first field that is not.
     pub fn check_finite(&self) -> Result<(), InputError> {
         let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
-        if !self.t.is_finite() {
+        if !time_in_range(self.t) {
             return bad("t");
         }
-        if !all_finite(self.accel.iter()) {
+        if !all_in_range(self.accel.iter()) {
             return bad("accel");
         }
         if let Some(g) = self.gyro {
-            if !all_finite(g.iter()) {
+            if !all_in_range(g.iter()) {
                 return bad("gyro");
             }
         }
         if let Some(m) = self.mag {
-            if !all_finite(m.iter()) {
+            if !all_in_range(m.iter()) {
                 return bad("mag");
             }
         }
@@ -87,10 +100,11 @@ pub struct GnssFix {
 }
 
 impl GnssFix {
-    /// Checks finiteness and ranges; names the first bad field.
+    /// Checks finiteness and ranges (the time within ±[`MAX_TIME_S`]); names the first bad
+    /// field.
     pub fn check(&self) -> Result<(), InputError> {
         let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
-        if !self.t.is_finite() {
+        if !time_in_range(self.t) {
             return bad("t");
         }
         if !self.lat_deg.is_finite() || self.lat_deg.abs() > 90.0 {
@@ -128,6 +142,18 @@ pub enum Record {
 
 fn all_finite<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {
     it.all(|v| v.is_finite())
+}
+
+/// The largest acceleration (m/s²), angular rate (rad/s) or magnetic field (µT) component the
+/// engine accepts, in magnitude. Far beyond any phone's sensor (accelerometers saturate near
+/// 16–32 g, gyroscopes near 35 rad/s, magnetometers near 5 000 µT), and small enough that
+/// squares and sums of squares stay far from overflow: a finite 1e308 would otherwise become
+/// an infinite norm, then NaN in the vertical acceleration and the PLL (found by the `live`
+/// fuzz target). A sample beyond it is refused as out of range.
+pub const MAX_SENSOR_VALUE: f64 = 1e6;
+
+fn all_in_range<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {
+    it.all(|v| v.abs() <= MAX_SENSOR_VALUE)
 }
 
 /// Why an input record was refused. The engine's state is untouched by a refused record.
