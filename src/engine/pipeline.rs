@@ -464,7 +464,7 @@ impl Pipeline {
     }
 
     fn check(&self, s: &ImuSample) -> Result<(), InputError> {
-        s.check_finite()?;
+        s.check()?;
         if let Some(last) = self.last_t {
             if s.t < last {
                 return Err(InputError::TimeWentBackwards { t: s.t, last });

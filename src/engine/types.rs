@@ -51,9 +51,11 @@ impl ImuSample {
         }
     }
 
-    /// Checks that every value present is finite, the time within ±[`MAX_TIME_S`] and the
-    /// sensor values within ±[`MAX_SENSOR_VALUE`]; names the first field that is not.
-    pub fn check_finite(&self) -> Result<(), InputError> {
+    /// What the engine accepts: every value present finite ([`Self::check_finite`]), the time
+    /// within ±[`MAX_TIME_S`] and the sensor values within ±[`MAX_SENSOR_VALUE`]; names the
+    /// first field that is not.
+    pub fn check(&self) -> Result<(), InputError> {
+        self.check_finite()?;
         let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
         if !time_in_range(self.t) {
             return bad("t");
@@ -68,6 +70,28 @@ impl ImuSample {
         }
         if let Some(m) = self.mag {
             if !all_in_range(m.iter()) {
+                return bad("mag");
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks that every value present is finite; names the first field that is not.
+    pub fn check_finite(&self) -> Result<(), InputError> {
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
+        if !self.t.is_finite() {
+            return bad("t");
+        }
+        if !all_finite(self.accel.iter()) {
+            return bad("accel");
+        }
+        if let Some(g) = self.gyro {
+            if !all_finite(g.iter()) {
+                return bad("gyro");
+            }
+        }
+        if let Some(m) = self.mag {
+            if !all_finite(m.iter()) {
                 return bad("mag");
             }
         }
