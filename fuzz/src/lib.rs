@@ -382,7 +382,7 @@ impl Bytes<'_> {
             t @ 1..=15 => SPECIAL[t as usize - 1],
             t @ 16..=127 => self.t_ms + f64::from(t - 16),
             t @ 128..=191 => self.t_ms - f64::from(t - 128),
-            t => self.t_ms + 1000.0 * 2f64.powi(i32::from(t - 192)),
+            t => self.t_ms + 1000.0 * (1u64 << (t - 192)) as f64,
         };
         self.t_ms = t;
         Some(t)
