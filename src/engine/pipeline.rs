@@ -38,7 +38,7 @@ use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
 use super::pll::{Pll, PllConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
-use super::types::{positive, ConfigError, GnssFix, ImuSample, InputError, Record};
+use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use std::collections::VecDeque;
 
 /// Which step detector to use.
@@ -464,7 +464,7 @@ impl Pipeline {
     }
 
     fn check(&self, s: &ImuSample) -> Result<(), InputError> {
-        s.check_range()?;
+        s.check()?;
         if let Some(last) = self.last_t {
             if s.t < last {
                 return Err(InputError::TimeWentBackwards { t: s.t, last });
@@ -516,9 +516,10 @@ impl Pipeline {
     }
 
     /// Tells the engine that the input stopped between `t0` and `t1` (page hidden, sensor
-    /// paused). The next sample after `t1` starts a new bout; nothing bridges the gap.
+    /// paused). The next sample after `t1` starts a new bout; nothing bridges the gap. A gap
+    /// whose times are out of range ([`super::types::MAX_TIME_S`]) is ignored.
     pub fn mark_gap(&mut self, t0: f64, t1: f64) {
-        if t1 > t0 && t0.is_finite() && t1.is_finite() {
+        if t1 > t0 && time_in_range(t0) && time_in_range(t1) {
             self.gap(t1 - t0);
             // The interval is now accounted for; the next sample must not count it again.
             self.last_t = Some(self.last_t.map_or(t1, |l| l.max(t1)));

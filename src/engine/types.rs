@@ -27,6 +27,18 @@ pub struct ImuSample {
     pub orientation: Option<UnitQuaternion<f64>>,
 }
 
+/// The largest time the engine accepts, in magnitude, s: 2⁴⁰ s, about 35 000 years, so Unix
+/// time and any clock since boot fit, with a resolution still finer than 0.25 ms. A larger (yet
+/// finite) time is refused as out of range: there the engine's resampling grids (steps of
+/// 20–50 ms) no longer change the time when a step is added, and a loop over the grid up to a
+/// sample's time would never end (found by the `live` fuzz target).
+pub const MAX_TIME_S: f64 = 1_099_511_627_776.0;
+
+/// Whether a time is one the engine accepts: finite and within ±[`MAX_TIME_S`] (NaN is not).
+pub fn time_in_range(t: f64) -> bool {
+    t.abs() <= MAX_TIME_S
+}
+
 impl ImuSample {
     /// A sample with acceleration only.
     pub fn accel_only(t: f64, accel: DeviceVec) -> Self {
@@ -37,6 +49,27 @@ impl ImuSample {
             mag: None,
             orientation: None,
         }
+    }
+
+    /// What the engine accepts: every value present finite ([`Self::check_finite`]), the time
+    /// within ±[`MAX_TIME_S`] and every sensor component within [`IMU_LIMITS`]; names the
+    /// first field that is not.
+    pub fn check(&self) -> Result<(), InputError> {
+        self.check_finite()?;
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
+        if !time_in_range(self.t) {
+            return bad("t");
+        }
+        if self.accel.amax() > IMU_LIMITS.accel_m_s2 {
+            return bad("accel");
+        }
+        if self.gyro.is_some_and(|g| g.amax() > IMU_LIMITS.gyro_rad_s) {
+            return bad("gyro");
+        }
+        if self.mag.is_some_and(|m| m.amax() > IMU_LIMITS.mag_ut) {
+            return bad("mag");
+        }
+        Ok(())
     }
 
     /// Checks that every value present is finite; names the first field that is not.
@@ -65,29 +98,14 @@ impl ImuSample {
         }
         Ok(())
     }
-
-    /// [`check_finite`](Self::check_finite), and every component within [`IMU_LIMITS`]: what
-    /// the engine accepts.
-    pub fn check_range(&self) -> Result<(), InputError> {
-        self.check_finite()?;
-        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
-        if self.accel.amax() > IMU_LIMITS.accel_m_s2 {
-            return bad("accel");
-        }
-        if self.gyro.is_some_and(|g| g.amax() > IMU_LIMITS.gyro_rad_s) {
-            return bad("gyro");
-        }
-        if self.mag.is_some_and(|m| m.amax() > IMU_LIMITS.mag_ut) {
-            return bad("mag");
-        }
-        Ok(())
-    }
 }
 
 /// The largest magnitude of each component an IMU sample may hold. Far beyond any phone's
 /// sensor (accelerometers saturate at 8–16 g, gyroscopes at about 35 rad/s, the Earth's field
-/// is under 70 µT): a larger value is a damaged record, refused before it can overflow the
-/// filters into infinities and NaN.
+/// is under 70 µT), and small enough that squares and sums of squares stay far from overflow: a
+/// finite 1e308 would otherwise become an infinite norm, then NaN in the vertical acceleration
+/// and the PLL (found by the `live` fuzz target and by a damaged recording). A larger value is
+/// refused as out of range.
 pub struct ImuLimits {
     /// m/s² (about 1000 g).
     pub accel_m_s2: f64,
@@ -124,10 +142,11 @@ pub struct GnssFix {
 }
 
 impl GnssFix {
-    /// Checks finiteness and ranges; names the first bad field.
+    /// Checks finiteness and ranges (the time within ±[`MAX_TIME_S`]); names the first bad
+    /// field.
     pub fn check(&self) -> Result<(), InputError> {
         let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
-        if !self.t.is_finite() {
+        if !time_in_range(self.t) {
             return bad("t");
         }
         if !self.lat_deg.is_finite() || self.lat_deg.abs() > 90.0 {

@@ -8,7 +8,7 @@ use super::events::{
 };
 use crate::engine::orientation::{OrientationSource, HOLD_S};
 use crate::engine::replay::feed;
-use crate::engine::types::{ConfigError, GnssFix, ImuSample, InputError, Record};
+use crate::engine::types::{time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use crate::engine::{Pipeline, PipelineConfig};
 use nalgebra::UnitQuaternion;
 use std::collections::VecDeque;
@@ -425,13 +425,14 @@ impl LiveSession {
     }
 
     /// The page was hidden (or the sensors paused) between two times, ms on the page's clock.
-    /// The gap starts no earlier than the last sample received.
+    /// The gap starts no earlier than the last sample received. A gap with a time out of the
+    /// engine's range ([`crate::engine::types::MAX_TIME_S`]) is ignored, and not recorded.
     pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
         let t0 = self
             .seconds(t0_ms)
             .max(self.view.last_t.unwrap_or(f64::NEG_INFINITY));
         let t1 = self.seconds(t1_ms);
-        if t1 > t0 && t0.is_finite() && t1.is_finite() {
+        if t1 > t0 && time_in_range(t0) && time_in_range(t1) {
             let _ = self.use_record(&Record::Gap(t0, t1));
         }
     }
