@@ -32,6 +32,7 @@ const MESSAGES = {
   noWakeLock: 'This browser cannot keep the screen on. Set a long screen timeout: when the screen goes off, the browser stops the sensors and the walk has a gap.',
   engine: 'Some sensor events were refused: ',
   cannotStart: 'Live mode could not start: ',
+  unreadable: 'An unfinished recording is stored on this device but cannot be read: ',
   storage: 'The recording cannot be saved on this device (storage full, or refused in private mode). The walk goes on and what was not saved is kept in memory: tap Stop, then “Download recording”, to keep the whole walk; closing the page now would lose it. ',
 };
 
@@ -584,7 +585,7 @@ async function offerRecovery() {
     stored = await store.pieces(rec.id);
     read = readRecording(stored.pieces);
   } catch (err) {
-    message('storage', true, 'error', `(the unfinished recording cannot be read: ${err?.message ?? err})`);
+    message('unreadable', true, 'error', String(err?.message ?? err));
     return;
   }
   const { text, samples, steps } = read;

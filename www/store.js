@@ -29,10 +29,11 @@ async function open() {
 async function tx(stores, mode, fn) {
   const d = await open();
   const t = d.transaction(stores, mode);
+  const why = (e) => t.error ?? e?.target?.error ?? new DOMException('the transaction was aborted before it was committed', 'AbortError');
   const done = new Promise((resolve, reject) => {
     t.oncomplete = resolve;
-    t.onerror = () => reject(t.error);
-    t.onabort = () => reject(t.error ?? new DOMException('the write was aborted', 'AbortError'));
+    t.onerror = (e) => reject(why(e));
+    t.onabort = (e) => reject(why(e));
   });
   let result;
   try {

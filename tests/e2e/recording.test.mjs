@@ -73,11 +73,14 @@ function fullDisk(after) {
 
 test('storage full: the page says so, the walk goes on, and the download holds every sample', async () => {
   const w = walk('square');
-  const { context, page, errors } = await open([[fullDisk, 3]]);
+  const { context, page, errors } = await open([[fullDisk, 1]]);
   await start(page);
   const base = await page.evaluate(() => performance.now());
   const third = Math.floor(w.events.length / 3);
-  await dispatch(page, w.events, { base, to: third });
+  // In two goes, a batch apart: the first chunk is written, the next refused.
+  await dispatch(page, w.events, { base, to: third >> 1 });
+  await page.waitForTimeout(400);
+  await dispatch(page, w.events, { base, from: third >> 1, to: third });
   await page.waitForSelector('#live-messages li[data-key="storage"]', { timeout: 5000 });
   const shown = (await messages(page)).join('\n');
   assert.match(shown, /cannot be saved on this device.*walk goes on.*kept in memory.*Download recording.*QuotaExceededError/);
@@ -89,7 +92,7 @@ test('storage full: the page says so, the walk goes on, and the download holds e
   await page.waitForTimeout(400);
   const r = await readouts(page);
   const held = await page.evaluate(() => ({ unsaved: window.__pdrLive.unsaved, refused: window.__quota.refused }));
-  console.log(`storage full after 3 chunks: ${held.refused} writes refused, ${held.unsaved} chunks held in memory; `
+  console.log(`storage full after the first chunk: ${held.refused} writes refused, ${held.unsaved} chunks held in memory; `
     + `${r.steps} steps of ${w.truth_steps}, ${r.samples} samples`);
   assert.ok(held.unsaved > 5 && held.refused > 2, JSON.stringify(held));
   assert.ok(Math.abs(r.steps - w.truth_steps) <= 0.02 * w.truth_steps, `${r.steps} of ${w.truth_steps}`);
@@ -101,6 +104,7 @@ test('storage full: the page says so, the walk goes on, and the download holds e
   assert.ok(await drawn(page, 'live-map') > 0.02, 'the map is blank');
   assert.ok(await drawn(page, 'live-scope') > 0.02, 'the scope is blank');
   await page.locator('#live').screenshot({ path: path.join(ARTIFACTS, 'live-storage-full-phone.png') });
+  await page.locator('#live-messages li[data-key="storage"]').screenshot({ path: path.join(ARTIFACTS, 'live-storage-full-message.png') });
   // Stop, download: every sample, and `pdr run` counts the page's steps.
   await page.click('#stop');
   await page.waitForFunction(() => document.documentElement.dataset.live === 'stopped');
@@ -117,11 +121,13 @@ test('storage full: the page says so, the walk goes on, and the download holds e
 
 test('storage full, then free again: the chunks held in memory are written in order', async () => {
   const w = walk('straight');
-  const { context, page, errors } = await open([[fullDisk, 2]]);
+  const { context, page, errors } = await open([[fullDisk, 1]]);
   await start(page);
   const base = await page.evaluate(() => performance.now());
   const half = Math.floor(w.events.length / 2);
-  await dispatch(page, w.events, { base, to: half });
+  await dispatch(page, w.events, { base, to: half >> 1 });
+  await page.waitForTimeout(400);
+  await dispatch(page, w.events, { base, from: half >> 1, to: half });
   await page.waitForSelector('#live-messages li[data-key="storage"]', { timeout: 5000 });
   await page.waitForTimeout(1200); // a retry refused too
   assert.ok(await page.evaluate(() => window.__pdrLive.unsaved) > 0);
