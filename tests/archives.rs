@@ -4,6 +4,8 @@
 //! small total budget) refused with a named error while the other files load, within bounded
 //! memory.
 
+mod common;
+use common::peak_rss;
 use flate2::write::DeflateEncoder;
 use flate2::{Compression, FlushCompress};
 use pdr::io::import::{import_all, ArchiveLimits, Budget, DirSet, Log, MemSet, ZipSet};
@@ -63,19 +65,6 @@ fn oks(results: &[Result<Log, ParseError>]) -> Vec<&Log> {
 
 fn errors(results: &[Result<Log, ParseError>]) -> Vec<&ParseError> {
     results.iter().filter_map(|r| r.as_ref().err()).collect()
-}
-
-/// Peak resident memory of this process, bytes (Linux only).
-fn peak_rss() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let kb: u64 = s
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))?
-        .split_whitespace()
-        .nth(1)?
-        .parse()
-        .ok()?;
-    Some(kb * 1024)
 }
 
 #[test]

@@ -6,6 +6,8 @@
 // Expected values computed with std's `sin` are fine in tests (see clippy.toml).
 #![allow(clippy::disallowed_methods)]
 
+mod common;
+use common::peak_rss;
 use nalgebra::Vector3;
 use pdr::engine::types::ImuSample;
 use pdr::engine::Record;
@@ -870,19 +872,6 @@ impl pdr::io::import::FileSet for Huge {
     fn label(&self, name: &str) -> String {
         format!("huge/{name}")
     }
-}
-
-/// Peak resident memory of this process, bytes (Linux only).
-fn peak_rss() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/self/status").ok()?;
-    let kb: u64 = s
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))?
-        .split_whitespace()
-        .nth(1)?
-        .parse()
-        .ok()?;
-    Some(kb * 1024)
 }
 
 /// Every reader gets a plausible first line and then 2 GiB of binary junk (release builds;
