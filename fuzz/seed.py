@@ -164,3 +164,40 @@ for sc in ["straight", "gnss-city"]:
     live(f"{s}/events.json", False, False, sc == "gnss-city")
     live(f"{s}/events-ios.json", True, False, sc == "gnss-city")
     live(f"{s}/events.json", False, True, sc == "gnss-city")
+
+# zip: archives of the fixtures and of simulated folders, deflated and stored, with and without
+# data descriptors (zipfile writes them when its output cannot seek), each at most 64 KiB.
+import io, zipfile
+
+class Unseekable(io.RawIOBase):
+    def __init__(self):
+        self.buf = bytearray()
+    def writable(self):
+        return True
+    def write(self, b):
+        self.buf += b
+        return len(b)
+
+def zipped(files, method, stream):
+    out = Unseekable() if stream else io.BytesIO()
+    with zipfile.ZipFile(out, "w", method) as z:
+        for name, data in files:
+            z.writestr(name, data)
+    return bytes(out.buf) if stream else out.getvalue()
+
+def tree(root, prefix):
+    files = []
+    for dirpath, _, names in os.walk(root):
+        for n in sorted(names):
+            p = os.path.join(dirpath, n)
+            files.append((prefix + os.path.relpath(p, root), cut(read(p), 8 * 1024)))
+    return files
+
+sources = [tree(f"{FIX}/sensor_logger_android", "Recording/"), tree(f"{FIX}/phyphox", ""),
+           [("walk.pdrlog", read(f"{FIX}/walk.pdrlog"))]]
+for files in sources:
+    for method in [zipfile.ZIP_DEFLATED, zipfile.ZIP_STORED]:
+        for stream in [False, True]:
+            z = zipped(files, method, stream)
+            if len(z) <= MAX:
+                put("zip", z)

@@ -17,7 +17,7 @@ use pdr::io::ParseError;
 use pdr::live::{LiveSession, MotionEvent, OrientationEvent, Platform, SensorReading};
 
 /// Every target, by name (the names of `fuzz_targets/*.rs`).
-pub const TARGETS: [&str; 12] = [
+pub const TARGETS: [&str; 13] = [
     "pdrlog",
     "sniff",
     "sensor_logger_csv",
@@ -30,6 +30,7 @@ pub const TARGETS: [&str; 12] = [
     "xio",
     "profile_json",
     "live",
+    "zip",
 ];
 
 /// Runs the target `name` on `data`. Panics (the finding) when a check fails.
@@ -47,6 +48,7 @@ pub fn run(name: &str, data: &[u8]) {
         "xio" => xio(data),
         "profile_json" => profile_json(data),
         "live" => live(data),
+        "zip" => zip(data),
         _ => panic!("no fuzz target `{name}`"),
     }
 }
@@ -596,4 +598,19 @@ fn check_session(s: &mut LiveSession) {
     p.fixes().iter().for_each(check_fix);
     let _ = s.walk_evidence();
     finite("fix_path_m", s.fix_path_m(20.0));
+}
+
+/// A zip archive as an upload (read in place by the zip crate, within the archive limits), and
+/// the same bytes as a zip inside a stored zip (read as a stream from its local headers,
+/// `io::import::stream_zip`).
+pub fn zip(data: &[u8]) {
+    use std::io::Write;
+    import_files(vec![("upload.zip".to_string(), data.to_vec())]);
+    let mut w = ::zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let opts = ::zip::write::SimpleFileOptions::default()
+        .compression_method(::zip::CompressionMethod::Stored);
+    w.start_file("inner.zip", opts).expect("a stored entry");
+    w.write_all(data).expect("in memory");
+    let outer = w.finish().expect("in memory").into_inner();
+    import_files(vec![("outer.zip".to_string(), outer)]);
 }
