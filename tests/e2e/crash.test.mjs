@@ -21,7 +21,7 @@ import { mkdtempSync, readFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
-import { ARTIFACTS, BIN, URL_HTTP } from './util.mjs';
+import { ARTIFACTS, BIN, URL_HTTP, loadPage } from './util.mjs';
 
 const FLUSH_MS = 250; // live.js
 const WRITE_MS = 100; // an IndexedDB write in flight at the kill
@@ -64,17 +64,6 @@ async function killBrowser(b) {
   const gone = new Promise((resolve) => b.proc.once('exit', resolve));
   process.kill(-b.proc.pid, 'SIGKILL');
   await gone;
-}
-
-/** Opens the page; collects its errors. */
-async function openPage(context) {
-  const page = await context.newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
-  await page.goto(URL_HTTP);
-  await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 30_000 });
-  return { page, errors };
 }
 
 /** The page's virtual sensors, with a fixed attitude (heading 45°). */
@@ -133,7 +122,7 @@ test('crashes while recording: every sample but the last batch is recovered, and
   const random = rng(seed);
   console.log(`crash trials: seed ${seed} (PDR_CRASH_SEED repeats the kill moments)`);
   let b = await launch();
-  let { page, errors } = await openPage(b.context);
+  let { page, errors } = await loadPage(b.context, URL_HTTP);
   const rows = [];
   try {
     for (const [n, how] of TRIALS.entries()) {
@@ -167,7 +156,7 @@ test('crashes while recording: every sample but the last batch is recovered, and
         b = await launch();
       }
       // Open again: the page offers the recording.
-      ({ page, errors } = await openPage(b.context));
+      ({ page, errors } = await loadPage(b.context, URL_HTTP));
       await page.waitForFunction(() => document.documentElement.dataset.recovery === 'offered', null, { timeout: 10_000 });
       const offer = await page.evaluate(() => window.__pdrRecovery);
       dbg('offered', offer);

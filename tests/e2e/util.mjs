@@ -48,6 +48,15 @@ export async function openPage(browser, url, { options = {}, init = [], onPage, 
     if (Array.isArray(script)) await context.addInitScript(...script);
     else await context.addInitScript(script);
   }
+  return { context, ...await loadPage(context, url, { onPage, states }) };
+}
+
+/**
+ * Opens `url` in a new page of `context`, collecting console errors and uncaught exceptions;
+ * `onPage(page)` runs before the page loads. Waits until the page's state is one of `states`
+ * and returns `{ page, errors }`.
+ */
+export async function loadPage(context, url, { onPage, states = ['ready'] } = {}) {
   const page = await context.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
@@ -55,7 +64,7 @@ export async function openPage(browser, url, { options = {}, init = [], onPage, 
   onPage?.(page);
   await page.goto(url);
   await page.waitForFunction((s) => s.includes(document.documentElement.dataset.state), states, { timeout: 30_000 });
-  return { context, page, errors };
+  return { page, errors };
 }
 
 // window.__pdrFire(e, base, ios) dispatches one event of a walk (`pdr simulate --events`) at
