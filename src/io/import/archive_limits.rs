@@ -22,7 +22,8 @@
 //! its declared size is refused ([`LimitHit::Larger`]), so a header that lies cannot get past
 //! the limits. Each limit is an error about that file only; the other files still load.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
 use std::fmt;
 use std::io::{self, Read};
 use std::rc::Rc;
@@ -138,6 +139,10 @@ impl LimitHit {
 #[derive(Debug, Clone)]
 pub struct Budget {
     left: Rc<Cell<u64>>,
+    /// How far each entry (by label) has been decompressed: reading an entry again (its head to
+    /// recognise it, then whole; an archive inside an archive streamed again to reach each of
+    /// its entries) spends only what goes past that.
+    seen: Rc<RefCell<HashMap<String, u64>>>,
     limits: ArchiveLimits,
 }
 
@@ -146,6 +151,7 @@ impl Budget {
     pub fn new(limits: ArchiveLimits) -> Self {
         Budget {
             left: Rc::new(Cell::new(limits.max_total_bytes)),
+            seen: Rc::default(),
             limits,
         }
     }
@@ -155,9 +161,10 @@ impl Budget {
         &self.limits
     }
 
-    /// Counts `n` more bytes decompressed from an entry that has now given `out` bytes from
-    /// `compressed` compressed ones: the ratio (past the grace), then the total.
-    pub(super) fn meter(&self, out: u64, compressed: u64, n: u64) -> io::Result<()> {
+    /// Counts the bytes of entry `key` up to `out`, decompressed from `compressed` compressed
+    /// ones: the ratio (past the grace), then the total, which only the bytes past what was
+    /// read of the entry before spend.
+    pub(super) fn meter(&self, key: &str, out: u64, compressed: u64) -> io::Result<()> {
         let l = &self.limits;
         if out > l.ratio_grace_bytes && out > compressed.saturating_mul(l.max_ratio) {
             return Err(LimitHit::Ratio {
@@ -165,6 +172,12 @@ impl Budget {
                 limit: l.max_ratio,
             }
             .into_io());
+        }
+        let mut seen = self.seen.borrow_mut();
+        let before = seen.get(key).copied().unwrap_or(0);
+        let n = out.saturating_sub(before);
+        if n == 0 {
+            return Ok(());
         }
         let left = self.left.get();
         if n > left {
@@ -175,6 +188,7 @@ impl Budget {
             .into_io());
         }
         self.left.set(left - n);
+        seen.insert(key.to_string(), out);
         Ok(())
     }
 
@@ -223,6 +237,7 @@ impl Budget {
 pub struct Metered<R> {
     inner: R,
     budget: Budget,
+    key: String,
     compressed: u64,
     declared: u64,
     read: u64,
@@ -230,12 +245,20 @@ pub struct Metered<R> {
 }
 
 impl<R: Read> Metered<R> {
-    /// Meters `inner`, an entry of `compressed` bytes that says it holds `declared` bytes with
-    /// CRC-32 `crc` (checked at the end when given).
-    pub fn new(inner: R, budget: Budget, compressed: u64, declared: u64, crc: Option<u32>) -> Self {
+    /// Meters `inner`, the entry `key` (its label) of `compressed` bytes that says it holds
+    /// `declared` bytes with CRC-32 `crc` (checked at the end when given).
+    pub fn new(
+        inner: R,
+        budget: Budget,
+        key: String,
+        compressed: u64,
+        declared: u64,
+        crc: Option<u32>,
+    ) -> Self {
         Metered {
             inner,
             budget,
+            key,
             compressed,
             declared,
             read: 0,
@@ -265,7 +288,7 @@ impl<R: Read> Read for Metered<R> {
             }
             .into_io());
         }
-        self.budget.meter(self.read, self.compressed, n as u64)?;
+        self.budget.meter(&self.key, self.read, self.compressed)?;
         if let Some((_, h)) = &mut self.crc {
             h.update(&buf[..n]);
         }

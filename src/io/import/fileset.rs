@@ -190,7 +190,8 @@ impl<R: Read + Seek> FileSet for ZipSet<R> {
         let f = self.archive.by_name(name).map_err(io::Error::other)?;
         let (compressed, size) = (f.compressed_size(), f.size());
         self.budget.admit(compressed, size)?;
-        let body = Metered::new(f, self.budget.clone(), compressed, size, None);
+        let key = format!("{}/{name}", self.label);
+        let body = Metered::new(f, self.budget.clone(), key, compressed, size, None);
         Ok(Box::new(BufReader::with_capacity(1 << 16, body)))
     }
 

@@ -234,14 +234,27 @@ fn skip_entry(r: &mut dyn BufRead, e: &Entry) -> io::Result<()> {
 
 /// The entry's decompressed bytes, metered, from a stream at the start of its data, for an
 /// entry whose compressed size is known.
-fn body<'a>(r: impl BufRead + 'a, e: &Entry, budget: &Budget) -> Metered<Box<dyn Read + 'a>> {
+fn body<'a>(
+    r: impl BufRead + 'a,
+    e: &Entry,
+    label: &str,
+    budget: &Budget,
+) -> Metered<Box<dyn Read + 'a>> {
     let limited = r.take(e.compressed);
     let inner: Box<dyn Read + 'a> = if e.method == DEFLATED {
         Box::new(flate2::bufread::DeflateDecoder::new(limited))
     } else {
         Box::new(limited)
     };
-    Metered::new(inner, budget.clone(), e.compressed, e.size, Some(e.crc))
+    let key = format!("{label}/{}", e.name);
+    Metered::new(
+        inner,
+        budget.clone(),
+        key,
+        e.compressed,
+        e.size,
+        Some(e.crc),
+    )
 }
 
 /// The listing pass over one entry, from the stream at the start of its data: keeps its first
@@ -249,7 +262,7 @@ fn body<'a>(r: impl BufRead + 'a, e: &Entry, budget: &Budget) -> Metered<Box<dyn
 /// with a data descriptor is decompressed to find its end (deflate ends itself); one that
 /// cannot be, or that hits a limit on the way, ends the listing with an error, since the next
 /// header cannot be found.
-fn list_entry(r: &mut dyn BufRead, e: &mut Entry, budget: &Budget) -> io::Result<()> {
+fn list_entry(r: &mut dyn BufRead, e: &mut Entry, label: &str, budget: &Budget) -> io::Result<()> {
     let dir = e.name.ends_with('/');
     if !e.descriptor {
         let refused = unreadable(e)
@@ -262,7 +275,7 @@ fn list_entry(r: &mut dyn BufRead, e: &mut Entry, budget: &Budget) -> io::Result
                 count: &consumed,
             };
             let mut head = Vec::new();
-            match body(src, e, budget)
+            match body(src, e, label, budget)
                 .take(HEAD_BYTES as u64)
                 .read_to_end(&mut head)
             {
@@ -289,6 +302,7 @@ fn list_entry(r: &mut dyn BufRead, e: &mut Entry, budget: &Budget) -> io::Result
             }),
             consumed: &consumed,
             budget: budget.clone(),
+            key: format!("{label}/{}", e.name),
             out: 0,
         };
         let mut head = Vec::new();
@@ -314,6 +328,7 @@ struct LiveRatio<'a, R> {
     inner: R,
     consumed: &'a Cell<u64>,
     budget: Budget,
+    key: String,
     out: u64,
 }
 
@@ -321,7 +336,8 @@ impl<R: Read> Read for LiveRatio<'_, R> {
     fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
         let n = self.inner.read(buf)?;
         self.out += n as u64;
-        self.budget.meter(self.out, self.consumed.get(), n as u64)?;
+        self.budget
+            .meter(&self.key, self.out, self.consumed.get())?;
         Ok(n)
     }
 }
@@ -353,7 +369,7 @@ impl<'a> StreamZipSet<'a> {
             let mut r = outer.open(name)?;
             while let Some(mut e) = next_header(&mut r)? {
                 budget.admit_archive(depth, entries.len() + 1)?;
-                list_entry(&mut r, &mut e, &budget)?;
+                list_entry(&mut r, &mut e, &label, &budget)?;
                 entries.push(e);
             }
         }
@@ -403,7 +419,7 @@ impl FileSet for StreamZipSet<'_> {
             skip_entry(&mut r, e)?;
         }
         next_header(&mut r)?.ok_or_else(changed)?;
-        let body = body(r, &self.entries[k], &self.budget);
+        let body = body(r, &self.entries[k], &self.label, &self.budget);
         Ok(Box::new(BufReader::with_capacity(1 << 16, body)))
     }
 
