@@ -293,6 +293,16 @@ pub const CHOICES: &[Choice] = &[
             ("off", "off"),
         ],
     },
+    Choice {
+        key: "placement",
+        title: "Sensor placement",
+        flag: "placement",
+        options: &[
+            ("auto", "recognised from the signal"),
+            ("body", "on the body (steps)"),
+            ("foot", "on the foot (strides, ZUPT)"),
+        ],
+    },
 ];
 
 /// The choice that sets `key`.

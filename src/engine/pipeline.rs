@@ -28,6 +28,8 @@
 //!   leaves the state untouched.
 
 use super::detector::{Candidate, DetectorInput};
+use super::foot::placement::{Placement, Recogniser};
+use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
 use super::fusion::GnssMode;
 use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
 use super::fusion::{Fusion, FusionConfig};
@@ -40,6 +42,8 @@ use super::pll::{Pll, PllConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use std::collections::VecDeque;
+
+mod foot;
 
 /// Which step detector to use.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -89,6 +93,11 @@ pub struct PipelineConfig {
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
+    /// Where the IMU is worn: `auto` (default; a foot is recognised from the signal,
+    /// [`crate::engine::foot::placement`]), `body` or `foot`.
+    pub placement: Placement,
+    /// Foot mode ([`crate::engine::foot`]).
+    pub foot: FootConfig,
 }
 
 impl Default for PipelineConfig {
@@ -103,6 +112,8 @@ impl Default for PipelineConfig {
             onset_coherence_min: 0.0,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
+            placement: Placement::Auto,
+            foot: FootConfig::default(),
         }
     }
 }
@@ -130,6 +141,7 @@ impl PipelineConfig {
         self.heading.validate()?;
         self.step_length.validate()?;
         self.fusion.validate()?;
+        self.foot.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -232,6 +244,13 @@ pub struct Diagnostics {
     /// Time the GNSS receiver was (or would have been) on, from the first fix to the last
     /// sample, s; and that whole span, s. Energy saving leaves it on for its windows only.
     pub gnss_on_s: Option<(f64, f64)>,
+    /// The mode that ran: `body` (steps) or `foot` (strides); `auto` while undecided (steps as
+    /// `body`).
+    pub placement: Placement,
+    /// Strides counted in foot mode (each also counts as two steps in `steps`).
+    pub strides: u64,
+    /// The foot stage, while it runs.
+    pub foot: Option<FootDiagnostics>,
 }
 
 /// The step detector the configuration chose. One per pipeline, used on every sample: kept
@@ -305,12 +324,20 @@ pub struct Pipeline {
     frame: Option<LocalFrame>,
     fusion: Option<Fusion>,
     diag: Diagnostics,
+    // Foot mode: the stage (while foot mode runs or the placement is undecided), the resolved
+    // placement, the strides held while undecided and the last stride's time.
+    foot: Option<Foot>,
+    placement: Placement,
+    recogniser: Recogniser,
+    pending: Vec<Stride>,
+    last_stride_t: Option<f64>,
 }
 
 impl Pipeline {
     /// A pipeline with a validated configuration.
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
+        let (cfg_placement, cfg_foot) = (cfg.placement, cfg.foot);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             history_s: cfg
@@ -336,6 +363,14 @@ impl Pipeline {
             frame: None,
             fusion: None,
             diag: Diagnostics::default(),
+            foot: match cfg_placement {
+                Placement::Body => None,
+                _ => Some(Foot::new(cfg_foot)?),
+            },
+            placement: cfg_placement,
+            recogniser: Recogniser::default(),
+            pending: Vec::new(),
+            last_stride_t: None,
         })
     }
 
@@ -414,15 +449,22 @@ impl Pipeline {
             // loop found while still instead gave 8 steps at 4.4 Hz at the start of a 2 Hz walk
             // on Oxford Pixel_Jamie_Hard_InHand_1: still, the loop follows whatever moves.)
             for c in self.look_back(s.t, state) {
+                if self.placement == Placement::Foot {
+                    continue;
+                }
                 if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
                     self.diag.onset_steps += 1;
                     self.emit(c, state);
                 }
             }
         } else if let Some(c) = cand.filter(|_| state.is_moving()) {
-            self.emit(c, state);
+            if self.placement != Placement::Foot {
+                self.emit(c, state);
+            }
         }
         self.prev_state = state;
+        // Recognising a foot replaces the steps so far by the strides: all are new then.
+        let first = if self.push_foot(s, dt) { 0 } else { first };
         Ok(&self.steps[first..])
     }
 
@@ -503,6 +545,9 @@ impl Pipeline {
         self.motion.clear_window();
         self.buf.clear();
         self.detector.gap();
+        if let Some(f) = &mut self.foot {
+            f.gap();
+        }
         self.end_bout();
     }
 
@@ -694,6 +739,8 @@ impl Pipeline {
             d.fix_counts = Some(f.counts);
             d.gnss_on_s = f.gnss_on_s;
         }
+        d.placement = self.placement;
+        d.foot = self.foot.as_ref().map(Foot::diagnostics);
         if let Detector::Pll(p) = &self.detector {
             let p = p.diagnostics();
             d.pll_freq_hz = Some(p.freq_hz);
