@@ -3,9 +3,12 @@
 //! wasm-bindgen-test.
 
 use nalgebra::{Matrix3, Rotation3, Vector3};
+use pdr::engine::foot::{Foot, FootConfig, Stride};
+use pdr::engine::heading::yaw_aid::device_twist;
+use pdr::engine::hybrid::{Hybrid, HybridConfig, HybridMethod, HybridStride};
 use pdr::engine::math::{heading_of, wrap_pi};
 use pdr::engine::Record;
-use pdr::sim::{scenarios, FootImu, Scenario, Segment, Walker};
+use pdr::sim::{scenarios, FootImu, FootStride, Scenario, Segment, Walker};
 use wasm_bindgen_test::wasm_bindgen_test;
 
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
@@ -155,4 +158,204 @@ fn foot_simulation_is_deterministic() {
         .sum();
     assert!(sum.is_finite());
     assert!(a.strides.len() >= 8, "{}", a.strides.len());
+}
+
+/// Foot mode's strides on a foot-only walk.
+fn foot_strides(records: &[Record]) -> Vec<Stride> {
+    let mut foot = Foot::new(FootConfig::default()).unwrap();
+    let mut out = Vec::new();
+    let mut last = None;
+    for r in records {
+        if let Record::Imu(s) | Record::Foot(s) = r {
+            let dt = last.map_or(0.0, |l| s.t - l);
+            last = Some(s.t);
+            out.extend(foot.push(s, dt));
+        }
+    }
+    out
+}
+
+/// The true stride whose landing is nearest.
+fn true_stride(truth: &[FootStride], t_end: f64) -> &FootStride {
+    truth
+        .iter()
+        .min_by(|a, b| (a.t_end - t_end).abs().total_cmp(&(b.t_end - t_end).abs()))
+        .unwrap()
+}
+
+/// Foot mode (the `foot` stage) on the simulated foot: stride length within 2 %, heading within
+/// 2° on straight legs (Strozzi 2017 §3.2), walking at three cadences and running.
+#[wasm_bindgen_test(unsupported = test)]
+fn foot_mode_on_the_simulated_foot() {
+    let walks = [
+        scenarios::straight_walk(1.6, 30.0),
+        scenarios::straight_walk(1.9, 30.0),
+        scenarios::straight_walk(2.2, 30.0),
+        scenarios::straight_run(2.8, 20.0),
+    ];
+    for sc in walks {
+        let fs = sc.generate_foot(&FootImu::default());
+        let got = foot_strides(&fs.sim.records);
+        assert!(
+            got.len() + 1 >= fs.strides.len() && got.len() <= fs.strides.len(),
+            "{} strides found of {}",
+            got.len(),
+            fs.strides.len()
+        );
+        let (mut worst_len, mut worst_head): (f64, f64) = (0.0, 0.0);
+        for s in &got {
+            let t = true_stride(&fs.strides, s.t_end);
+            assert!((t.t_end - s.t_end).abs() < 0.2, "{s:?} vs {t:?}");
+            if t.length_m < 0.5 {
+                continue; // the last half stride (feet together)
+            }
+            worst_len = worst_len.max((s.length_m / t.length_m - 1.0).abs());
+            worst_head = worst_head.max(wrap_pi(s.heading_rad - t.heading_rad).abs().to_degrees());
+        }
+        println!(
+            "foot mode, {:?}: {} strides, worst length error {:.2} %, worst heading error {:.2}°",
+            sc.segments[1].gait,
+            got.len(),
+            100.0 * worst_len,
+            worst_head
+        );
+        assert!(worst_len < 0.02, "length error {worst_len}");
+        assert!(worst_head < 2.0, "heading error {worst_head}°");
+    }
+}
+
+/// A long outdoor-like walk, an athletic track as Strozzi's (two straights, two smooth 180°
+/// bends), `laps` times round, walked at 1.8 Hz; the phone's OS yaw wanders by 2° (1σ), the
+/// foot's gyroscope bias drifts (warming up) by 0.05°/s over the walk about its vertical axis.
+fn track_walk(laps: usize) -> Scenario {
+    let w = Walker::default();
+    let f = 1.8;
+    let mut segs = vec![Segment::still(3.0)];
+    for _ in 0..laps {
+        for _ in 0..2 {
+            segs.push(Segment::walk_distance(84.4, f, &w));
+            segs.push(Segment::walk_distance(115.6, f, &w).turning(180.0));
+        }
+    }
+    segs.push(Segment::still(3.0));
+    let mut sc = Scenario::new(segs);
+    sc.sensors.os_yaw_error_deg = 2.0;
+    sc.seed = 2017;
+    sc
+}
+
+fn track_foot(duration_s: f64) -> FootImu {
+    FootImu {
+        gyro_bias_drift: [0.0, 0.0, 0.05f64.to_radians() / duration_s],
+        ..FootImu::default()
+    }
+}
+
+struct HybridRun {
+    strides: Vec<HybridStride>,
+    diag: pdr::engine::hybrid::HybridDiagnostics,
+}
+
+/// The trunk yaw (the twist of the phone's attitude) and the foot's strides through the hybrid
+/// stage, in time order, as a pipeline would feed them.
+fn run_hybrid(records: &[Record], method: HybridMethod) -> HybridRun {
+    let mut h = Hybrid::new(HybridConfig {
+        method,
+        ..HybridConfig::default()
+    })
+    .unwrap();
+    let mut foot = Foot::new(FootConfig::default()).unwrap();
+    let mut last = None;
+    let mut out = Vec::new();
+    for r in records {
+        match r {
+            Record::Imu(s) => {
+                if let Some(y) = s.orientation.as_ref().and_then(device_twist) {
+                    h.push_heading(s.t, y);
+                }
+            }
+            Record::Foot(s) => {
+                let dt = last.map_or(0.0, |l| s.t - l);
+                last = Some(s.t);
+                if let Some(st) = foot.push(s, dt) {
+                    h.push_stride(&st);
+                }
+            }
+            _ => {}
+        }
+        while let Some(x) = h.pop() {
+            out.push(x);
+        }
+    }
+    out.extend(h.flush());
+    HybridRun {
+        strides: out,
+        diag: h.diagnostics(),
+    }
+}
+
+/// Strozzi 2017 §5.1, Table 1: on long outdoor paths the hybrid (foot lengths, trunk heading,
+/// either method) ends closer to the truth than the foot alone, whose heading drifts.
+#[wasm_bindgen_test(unsupported = test)]
+fn hybrid_beats_foot_mode_on_a_long_two_sensor_walk() {
+    let sc = track_walk(1);
+    let foot_imu = track_foot(sc.duration_s());
+    let (sim, fs) = sc.generate_two_sensor(&foot_imu);
+    let start = fs.track.pose(0.0).p;
+    let end = fs.strides.last().unwrap().to;
+    let truth = (end.0 - start.x, end.1 - start.y);
+    let distance: f64 = fs.strides.iter().map(|s| s.length_m).sum();
+    let foot_only = foot_strides(&fs.sim.records);
+    let f_end = foot_only.last().unwrap();
+    let err = |e: f64, n: f64| libm::hypot(e - truth.0, n - truth.1);
+    let foot_err = err(f_end.east_m, f_end.north_m);
+    println!(
+        "track walk: {distance:.1} m, {} true strides, {} found; foot mode ends {foot_err:.2} m ({:.2} %) from the truth",
+        fs.strides.len(),
+        foot_only.len(),
+        100.0 * foot_err / distance
+    );
+    for method in [HybridMethod::MidSwing, HybridMethod::FirCrossing] {
+        let run = run_hybrid(&sim.records, method);
+        assert_eq!(run.strides.len(), foot_only.len(), "{method:?}");
+        let last = run.strides.last().unwrap();
+        let e = err(last.east_m, last.north_m);
+        println!(
+            "hybrid {method:?}: ends {e:.2} m ({:.2} %) from the truth; {:?}",
+            100.0 * e / distance,
+            run.diag
+        );
+        assert!(e < foot_err, "{method:?}: {e} m vs foot mode {foot_err} m");
+        assert!(run.diag.no_trunk == 0, "{:?}", run.diag);
+    }
+}
+
+/// A two-sensor walk round-trips through the pdr-log (`foot` records), and its x-io CSV holds
+/// the foot IMU (as the x-io sensor is on a foot), which foot mode reads to the same strides.
+#[wasm_bindgen_test(unsupported = test)]
+fn two_sensor_walks_are_written_and_read_back() {
+    let sc = scenarios::straight_walk(1.8, 12.0);
+    let (sim, fs) = sc.generate_two_sensor(&FootImu::default());
+    let feet = sim
+        .records
+        .iter()
+        .filter(|r| matches!(r, Record::Foot(_)))
+        .count();
+    assert_eq!(feet, fs.sim.records.len());
+    assert!(sim.records.len() > feet + 1000);
+    let text = pdr::io::pdrlog::to_string(&sim.records);
+    let back = pdr::io::pdrlog::read(text.as_bytes(), "two.pdrlog").unwrap();
+    assert!(back.errors.is_empty(), "{:?}", back.errors.first());
+    assert_eq!(back.records, sim.records);
+    let rec = pdr::sim::formats::write(
+        &sim,
+        pdr::io::import::Format::XioFoot,
+        pdr::io::import::Platform::Android,
+    );
+    let (_, csv) = &rec.files[0];
+    let log = pdr::io::import::xio::read_xio(&csv[..], "sensor_data.csv").unwrap();
+    assert_eq!(log.records.len(), feet);
+    let strides = foot_strides(&log.records);
+    assert_eq!(strides.len(), foot_strides(&fs.sim.records).len());
+    assert!(strides.len() >= 9, "{}", strides.len());
 }

@@ -355,6 +355,7 @@ impl Pipeline {
                 self.mark_gap(*t0, *t1);
                 Ok(&[])
             }
+            Record::Foot(_) => Ok(&[]),
         }
     }
 

@@ -54,8 +54,11 @@ pub struct FootImu {
     pub accel_noise: f64,
     /// Gyroscope white noise, rad/s (1σ).
     pub gyro_noise: f64,
-    /// Gyroscope bias, rad/s, sensor frame.
+    /// Gyroscope bias at the start, rad/s, sensor frame.
     pub gyro_bias: [f64; 3],
+    /// Linear drift of the gyroscope bias, rad/s per second (a sensor warming up): what a
+    /// bias estimated at the first stance does not remove, so foot mode's heading drifts.
+    pub gyro_bias_drift: [f64; 3],
     /// Accelerometer bias, m/s², sensor frame.
     pub accel_bias: [f64; 3],
     /// Height of the instep at mid-swing, m.
@@ -77,6 +80,7 @@ impl Default for FootImu {
             accel_noise: 0.03,
             gyro_noise: 0.004,
             gyro_bias: [0.0005, -0.0004, 0.0003],
+            gyro_bias_drift: [0.0; 3],
             accel_bias: [0.0, 0.0, 0.0],
             clearance_m: 0.12,
             pitch_deg: 30.0,
@@ -94,6 +98,7 @@ impl FootImu {
             accel_noise: 0.0,
             gyro_noise: 0.0,
             gyro_bias: [0.0; 3],
+            gyro_bias_drift: [0.0; 3],
             ..FootImu::default()
         }
     }
@@ -400,6 +405,7 @@ impl Scenario {
         let mut rng = Rng(self.seed ^ 0xF007_1A1B_5EED_F00D);
         let dur = self.duration_s();
         let gyro_bias = Vector3::from(foot.gyro_bias);
+        let gyro_drift = Vector3::from(foot.gyro_bias_drift);
         let accel_bias = Vector3::from(foot.accel_bias);
         let rate = if foot.rate_hz.is_finite() && foot.rate_hz > 0.0 {
             foot.rate_hz
@@ -413,7 +419,7 @@ impl Scenario {
             let pose = track.pose(t);
             let rt = pose.r.transpose();
             let accel = rt * (pose.a + Vector3::z() * G) + accel_bias + rng.vec3(foot.accel_noise);
-            let gyro = pose.w_body + gyro_bias + rng.vec3(foot.gyro_noise);
+            let gyro = pose.w_body + gyro_bias + gyro_drift * t + rng.vec3(foot.gyro_noise);
             records.push(Record::Imu(ImuSample {
                 t: t + self.clock_offset_s,
                 accel,
@@ -448,5 +454,26 @@ impl Scenario {
             strides,
             track,
         }
+    }
+}
+
+impl Scenario {
+    /// A two-sensor walk (Strozzi 2017 §4): the pocket phone's records ([`Scenario::generate`])
+    /// with the foot IMU's samples merged in time as `Record::Foot`, the walker's truth, and the
+    /// foot's strides and trajectory.
+    pub fn generate_two_sensor(&self, foot: &FootImu) -> (Simulation, FootSimulation) {
+        let mut phone = self.generate();
+        let fs = self.generate_foot(foot);
+        let feet: Vec<Record> = fs
+            .sim
+            .records
+            .iter()
+            .filter_map(|r| match r {
+                Record::Imu(s) => Some(Record::Foot(*s)),
+                _ => None,
+            })
+            .collect();
+        phone.records = super::gnss::merge_in_time(std::mem::take(&mut phone.records), feet);
+        (phone, fs)
     }
 }
