@@ -7,7 +7,8 @@ use pdr::engine::foot::{Foot, FootConfig, Stride};
 use pdr::engine::heading::yaw_aid::device_twist;
 use pdr::engine::hybrid::{Hybrid, HybridConfig, HybridMethod, HybridStride};
 use pdr::engine::math::{heading_of, wrap_pi};
-use pdr::engine::Record;
+use pdr::engine::{replay, PipelineConfig, Record};
+use pdr::settings::Settings;
 use pdr::sim::{scenarios, FootImu, FootStride, Scenario, Segment, Walker};
 use wasm_bindgen_test::wasm_bindgen_test;
 
@@ -358,4 +359,47 @@ fn two_sensor_walks_are_written_and_read_back() {
     let strides = foot_strides(&log.records);
     assert_eq!(strides.len(), foot_strides(&fs.sim.records).len());
     assert!(strides.len() >= 9, "{}", strides.len());
+}
+
+/// The pipeline with a two-sensor log: the track is the foot's strides with the hybrid heading
+/// (each `hybrid.method`), one record per stride counting two steps; `foot` is foot mode's own
+/// track. The hybrid methods end closer to the truth than the foot's heading.
+#[wasm_bindgen_test(unsupported = test)]
+fn the_pipeline_builds_the_track_from_strides_with_a_foot_sensor() {
+    let sc = track_walk(1);
+    let (sim, fs) = sc.generate_two_sensor(&track_foot(sc.duration_s()));
+    let start = fs.track.pose(0.0).p;
+    let end = fs.strides.last().unwrap().to;
+    let mut errs = Vec::new();
+    for method in ["foot", "mid_swing", "fir_crossing"] {
+        let cfg = Settings::new()
+            .with("hybrid.method", method)
+            .config()
+            .unwrap();
+        let r = replay(cfg, &sim.records).unwrap();
+        assert!(r.errors.is_empty(), "{:?}", r.errors.first());
+        let track = r.pipeline.track();
+        let d = r.pipeline.diagnostics();
+        assert_eq!(track.len(), fs.strides.len(), "{method}");
+        assert_eq!(d.steps, 2 * track.len() as u64);
+        let last = track.last().unwrap();
+        let e = libm::hypot(
+            last.east_m - (end.0 - start.x),
+            last.north_m - (end.1 - start.y),
+        );
+        println!(
+            "pipeline, hybrid.method = {method}: ends {e:.2} m from the truth; {:?}",
+            d.hybrid
+        );
+        errs.push(e);
+    }
+    assert!(errs[1] < errs[0] && errs[2] < errs[0], "{errs:?}");
+    // A body-only log never makes the hybrid stage.
+    let body = replay(
+        PipelineConfig::default(),
+        &scenarios::straight_walk(1.8, 10.0).generate().records,
+    )
+    .unwrap();
+    assert!(body.pipeline.diagnostics().hybrid.is_none());
+    assert!(!body.pipeline.track().is_empty());
 }

@@ -61,6 +61,8 @@ pub enum HybridMethod {
     MidSwing,
     /// Method 2: the trunk yaw where it crosses its FIR-filtered self (Fig. 7).
     FirCrossing,
+    /// The foot's own heading (foot mode, §3.2): the trunk is not used.
+    Foot,
 }
 
 /// Settings of the hybrid heading.
@@ -359,6 +361,7 @@ impl Hybrid {
         }
         let s = *self.queue.front()?;
         let known = match self.cfg.method {
+            HybridMethod::Foot => true,
             HybridMethod::MidSwing => self.last.is_some_and(|(t, _)| t >= s.t_end),
             HybridMethod::FirCrossing => self.filtered_until >= s.t_end,
         };
@@ -427,6 +430,10 @@ impl Hybrid {
                 None => self.diag.no_crossing += 1,
             }
         }
+        if self.cfg.method == HybridMethod::Foot {
+            self.diag.strides += 1;
+            return self.propagate(s, s.t_end, s.heading_rad);
+        }
         let yaw = yaw.or_else(|| self.median_at(t_sample));
         let heading = match yaw {
             Some(y) => {
@@ -445,11 +452,15 @@ impl Hybrid {
                 s.heading_rad
             }
         };
-        // Eq. 4 with compass headings (clockwise from north): east += SL sin h, north += SL cos h.
+        self.diag.strides += 1;
+        self.propagate(s, t_sample, heading)
+    }
+
+    /// Eq. 4 with compass headings (clockwise from north): east += SL sin h, north += SL cos h.
+    fn propagate(&mut self, s: &Stride, t_sample: f64, heading: f64) -> HybridStride {
         let (sh, ch) = libm::sincos(heading);
         self.pos.0 += s.length_m * sh;
         self.pos.1 += s.length_m * ch;
-        self.diag.strides += 1;
         HybridStride {
             stride: *s,
             t_sample,

@@ -33,6 +33,7 @@ use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput,
 use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
+use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
@@ -40,6 +41,8 @@ use super::pll::{Pll, PllConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use std::collections::VecDeque;
+
+mod two_sensor;
 
 /// Which step detector to use.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -89,6 +92,9 @@ pub struct PipelineConfig {
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
+    /// With a second, foot-mounted IMU (`Record::Foot`): how each stride's heading is taken
+    /// (Strozzi 2017 §4, [`crate::engine::hybrid`]).
+    pub hybrid: HybridConfig,
 }
 
 impl Default for PipelineConfig {
@@ -103,6 +109,7 @@ impl Default for PipelineConfig {
             onset_coherence_min: 0.0,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
+            hybrid: HybridConfig::default(),
         }
     }
 }
@@ -130,6 +137,7 @@ impl PipelineConfig {
         self.heading.validate()?;
         self.step_length.validate()?;
         self.fusion.validate()?;
+        self.hybrid.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -232,6 +240,8 @@ pub struct Diagnostics {
     /// Time the GNSS receiver was (or would have been) on, from the first fix to the last
     /// sample, s; and that whole span, s. Energy saving leaves it on for its windows only.
     pub gnss_on_s: Option<(f64, f64)>,
+    /// The hybrid heading, with a foot-mounted IMU.
+    pub hybrid: Option<HybridDiagnostics>,
 }
 
 /// The step detector the configuration chose. One per pipeline, used on every sample: kept
@@ -305,6 +315,8 @@ pub struct Pipeline {
     frame: Option<LocalFrame>,
     fusion: Option<Fusion>,
     diag: Diagnostics,
+    /// Foot mode and the hybrid heading, once a foot sample arrived.
+    two: Option<two_sensor::TwoSensor>,
 }
 
 impl Pipeline {
@@ -336,6 +348,7 @@ impl Pipeline {
             frame: None,
             fusion: None,
             diag: Diagnostics::default(),
+            two: None,
         })
     }
 
@@ -355,7 +368,7 @@ impl Pipeline {
                 self.mark_gap(*t0, *t1);
                 Ok(&[])
             }
-            Record::Foot(_) => Ok(&[]),
+            Record::Foot(s) => self.push_foot_imu(s),
         }
     }
 
@@ -386,6 +399,7 @@ impl Pipeline {
         });
         let nav = orientation.push(s, dt)?;
         self.heading.push_attitude(nav.attitude);
+        self.push_trunk_attitude(s.t, nav.attitude);
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
@@ -528,6 +542,10 @@ impl Pipeline {
     }
 
     fn emit(&mut self, c: Candidate, state: Motion) {
+        if self.two.is_some() {
+            // With a foot sensor, the track is its strides (see `two_sensor`).
+            return;
+        }
         // Continuous with the previous step unless a cycle was skipped or a stop intervened.
         let cont = self
             .t_km1
@@ -686,6 +704,7 @@ impl Pipeline {
     /// Counters and current values.
     pub fn diagnostics(&self) -> Diagnostics {
         let mut d = self.diag;
+        d.hybrid = self.hybrid_diagnostics();
         let m = self.motion.diagnostics();
         d.motion = self.orientation.as_ref().map(|_| m.state);
         d.sigma_z = m.sigma_z;
