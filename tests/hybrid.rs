@@ -327,6 +327,16 @@ fn hybrid_beats_foot_mode_on_a_long_two_sensor_walk() {
             run.diag
         );
         assert!(e < foot_err, "{method:?}: {e} m vs foot mode {foot_err} m");
+        // Method 2 finds the mid-swing instant from the trunk alone (§4.1: "the same middle
+        // swing point"); method 1 samples there by construction.
+        let lag: f64 = run
+            .strides
+            .iter()
+            .map(|s| (s.t_sample - s.stride.t_mid_swing).abs())
+            .sum::<f64>()
+            / run.strides.len() as f64;
+        println!("  mean |sampling instant − mid-swing| {:.1} ms", 1e3 * lag);
+        assert!(lag < 0.05, "{method:?}: {lag} s");
         assert!(run.diag.no_trunk == 0, "{:?}", run.diag);
     }
 }
@@ -402,4 +412,55 @@ fn the_pipeline_builds_the_track_from_strides_with_a_foot_sensor() {
     .unwrap();
     assert!(body.pipeline.diagnostics().hybrid.is_none());
     assert!(!body.pipeline.track().is_empty());
+}
+
+/// Bad input to the hybrid stage is refused and counted, never a NaN: non-finite trunk yaws,
+/// times going backwards, a stride with NaN, no trunk at all (the foot's heading is used).
+#[wasm_bindgen_test(unsupported = test)]
+fn the_hybrid_stage_refuses_bad_input() {
+    let stride = |t: f64, len: f64| Stride {
+        t_start: t - 0.4,
+        t_end: t,
+        t_mid_swing: t - 0.2,
+        length_m: len,
+        heading_rad: 0.3,
+        east_m: 0.0,
+        north_m: 0.0,
+        up_m: 0.0,
+    };
+    for method in [HybridMethod::MidSwing, HybridMethod::FirCrossing] {
+        let mut h = Hybrid::new(HybridConfig {
+            method,
+            ..HybridConfig::default()
+        })
+        .unwrap();
+        h.push_heading(0.0, f64::NAN);
+        h.push_heading(f64::INFINITY, 0.0);
+        for i in 0..300 {
+            h.push_heading(
+                f64::from(i) * 0.01,
+                1.0 + 0.1 * libm::sin(f64::from(i) * 0.07),
+            );
+        }
+        h.push_heading(1.0, 0.0); // backwards
+        h.push_stride(&stride(2.0, f64::NAN));
+        h.push_stride(&stride(2.5, 1.4));
+        h.push_stride(&stride(2.4, 1.4)); // backwards
+        let mut out: Vec<_> = std::iter::from_fn(|| h.pop()).collect();
+        out.extend(h.flush());
+        assert_eq!(out.len(), 1, "{method:?}");
+        assert!(out[0].heading_rad.is_finite() && out[0].east_m.is_finite());
+        assert_eq!(
+            h.diagnostics().refused,
+            5,
+            "{method:?}: {:?}",
+            h.diagnostics()
+        );
+        // A stride long after the trunk stopped: the foot's heading, counted.
+        h.push_stride(&stride(60.0, 1.0));
+        let late = h.flush();
+        assert_eq!(late.len(), 1);
+        assert!((late[0].heading_rad - 0.3).abs() < 1e-12);
+        assert_eq!(h.diagnostics().no_trunk, 1);
+    }
 }

@@ -156,7 +156,7 @@ pub struct HybridDiagnostics {
     pub no_crossing: u64,
     /// Strides with no trunk yaw near their instant (the foot's heading used).
     pub no_trunk: u64,
-    /// Trunk samples refused (non-finite).
+    /// Trunk samples and strides refused (non-finite, time going backwards).
     pub refused: u64,
     /// Strides waiting for the filter.
     pub pending: usize,
@@ -342,8 +342,16 @@ impl Hybrid {
         self.grid_next = Some(g);
     }
 
-    /// Queues a stride of the foot (in time order); see [`Hybrid::pop`].
+    /// Queues a stride of the foot (in time order); see [`Hybrid::pop`]. A stride with a
+    /// non-finite field or ending before the previous one is refused and counted.
     pub fn push_stride(&mut self, s: &Stride) {
+        let finite = [s.t_start, s.t_end, s.t_mid_swing, s.length_m, s.heading_rad]
+            .iter()
+            .all(|v| v.is_finite());
+        if !finite || self.queue.back().is_some_and(|b| s.t_end < b.t_end) {
+            self.diag.refused += 1;
+            return;
+        }
         if self.queue.len() >= MAX_QUEUE {
             if let Some(old) = self.queue.pop_front() {
                 let out = self.resolve(&old);
