@@ -226,25 +226,13 @@ fn foot_mode_on_the_simulated_foot() {
 }
 
 /// A long outdoor-like walk, an athletic track as Strozzi's (two straights, two smooth 180°
-/// bends), `laps` times round, walked at 1.8 Hz; the phone's OS yaw wanders by 2° (1σ), the
-/// foot's gyroscope bias drifts (warming up) by 0.05°/s over the walk about its vertical axis.
+/// bends), `laps` times round ([`scenarios::athletic_track`]).
 fn track_walk(laps: usize) -> Scenario {
-    let w = Walker::default();
-    let f = 1.8;
-    let mut segs = vec![Segment::still(3.0)];
-    for _ in 0..laps {
-        for _ in 0..2 {
-            segs.push(Segment::walk_distance(84.4, f, &w));
-            segs.push(Segment::walk_distance(115.6, f, &w).turning(180.0));
-        }
-    }
-    segs.push(Segment::still(3.0));
-    let mut sc = Scenario::new(segs);
-    sc.sensors.os_yaw_error_deg = 2.0;
-    sc.seed = 2017;
-    sc
+    scenarios::athletic_track(laps)
 }
 
+/// The foot's gyroscope bias drifts (warming up) by 0.05°/s over the walk about its vertical
+/// axis.
 fn track_foot(duration_s: f64) -> FootImu {
     FootImu {
         gyro_bias_drift: [0.0, 0.0, 0.05f64.to_radians() / duration_s],
