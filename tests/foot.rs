@@ -206,3 +206,54 @@ fn phone_logs_are_never_taken_for_a_foot() {
         }
     }
 }
+
+/// The simulated foot (`sim::foot`) through the one pipeline with the default (auto) placement:
+/// recognised as a foot, stride length within 2 % and heading within 2° of the truth on straight
+/// walks and a run; the simulated pocket phone of the same walks is never taken for a foot.
+#[wasm_bindgen_test(unsupported = test)]
+fn the_simulated_foot_is_recognised_and_its_strides_are_right() {
+    use pdr::engine::math::wrap_pi;
+    use pdr::sim::{scenarios, FootImu};
+    for sc in [
+        scenarios::straight_walk(1.6, 30.0),
+        scenarios::straight_walk(2.2, 30.0),
+        scenarios::straight_run(2.8, 20.0),
+    ] {
+        let fs = sc.generate_foot(&FootImu::default());
+        let r = replay(PipelineConfig::default(), &fs.sim.records).unwrap();
+        let d = r.pipeline.diagnostics();
+        assert_eq!(d.placement, Placement::Foot);
+        let track = r.pipeline.track();
+        assert!(
+            track.len() + 1 >= fs.strides.len() && track.len() <= fs.strides.len(),
+            "{} strides of {}",
+            track.len(),
+            fs.strides.len()
+        );
+        let (mut worst_len, mut worst_head): (f64, f64) = (0.0, 0.0);
+        for s in track {
+            let t = fs
+                .strides
+                .iter()
+                .min_by(|a, b| (a.t_end - s.t).abs().total_cmp(&(b.t_end - s.t).abs()))
+                .unwrap();
+            assert!((t.t_end - s.t).abs() < 0.2);
+            if t.length_m < 0.5 {
+                continue; // the last half stride (feet together)
+            }
+            worst_len = worst_len.max((s.length_m / t.length_m - 1.0).abs());
+            let h = s.heading_rad.unwrap();
+            worst_head = worst_head.max(wrap_pi(h - t.heading_rad).abs().to_degrees());
+        }
+        println!(
+            "pipeline, foot: {} strides, worst length {:.2} %, worst heading {:.2}°",
+            track.len(),
+            100.0 * worst_len,
+            worst_head
+        );
+        assert!(worst_len < 0.02, "length error {worst_len}");
+        assert!(worst_head < 2.0, "heading error {worst_head}°");
+        let pocket = replay(PipelineConfig::default(), &sc.generate().records).unwrap();
+        assert_ne!(pocket.pipeline.diagnostics().placement, Placement::Foot);
+    }
+}

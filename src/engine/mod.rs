@@ -16,6 +16,8 @@
 //!   saving, the magnetic declination, and a Rauch–Tung–Striebel smoother.
 //! - [`foot`]: foot mode (Strozzi 2017 §3.2): stance detection, strapdown with zero-velocity
 //!   updates in an error-state Kalman filter (Foxlin 2005, OpenShoe), a stride per stance.
+//! - [`hybrid`]: Strozzi 2017 §4's hybrid: each foot stride's length with the trunk's heading,
+//!   sampled at mid-swing (eq. 3) or where it crosses its FIR-filtered self.
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
 //!
 //! # The stage shape
@@ -55,6 +57,7 @@ pub mod foot;
 pub mod fusion;
 pub mod geo;
 pub mod heading;
+pub mod hybrid;
 pub mod math;
 pub mod motion;
 pub mod orientation;

@@ -35,6 +35,7 @@ use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput,
 use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
+use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
@@ -44,6 +45,7 @@ use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, Inp
 use std::collections::VecDeque;
 
 mod foot;
+mod two_sensor;
 
 /// Which step detector to use.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -98,6 +100,9 @@ pub struct PipelineConfig {
     pub placement: Placement,
     /// Foot mode ([`crate::engine::foot`]).
     pub foot: FootConfig,
+    /// With a second, foot-mounted IMU (`Record::Foot`): how each stride's heading is taken
+    /// (Strozzi 2017 §4, [`crate::engine::hybrid`]).
+    pub hybrid: HybridConfig,
 }
 
 impl Default for PipelineConfig {
@@ -114,6 +119,7 @@ impl Default for PipelineConfig {
             gap_s: 0.5,
             placement: Placement::Auto,
             foot: FootConfig::default(),
+            hybrid: HybridConfig::default(),
         }
     }
 }
@@ -142,6 +148,7 @@ impl PipelineConfig {
         self.step_length.validate()?;
         self.fusion.validate()?;
         self.foot.validate()?;
+        self.hybrid.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -251,6 +258,8 @@ pub struct Diagnostics {
     pub strides: u64,
     /// The foot stage, while it runs.
     pub foot: Option<FootDiagnostics>,
+    /// The hybrid heading, with a foot-mounted IMU.
+    pub hybrid: Option<HybridDiagnostics>,
 }
 
 /// The step detector the configuration chose. One per pipeline, used on every sample: kept
@@ -331,6 +340,8 @@ pub struct Pipeline {
     recogniser: Recogniser,
     pending: Vec<Stride>,
     last_stride_t: Option<f64>,
+    /// Foot mode and the hybrid heading, once a foot sample arrived.
+    two: Option<two_sensor::TwoSensor>,
 }
 
 impl Pipeline {
@@ -371,6 +382,7 @@ impl Pipeline {
             recogniser: Recogniser::default(),
             pending: Vec::new(),
             last_stride_t: None,
+            two: None,
         })
     }
 
@@ -390,6 +402,7 @@ impl Pipeline {
                 self.mark_gap(*t0, *t1);
                 Ok(&[])
             }
+            Record::Foot(s) => self.push_foot_imu(s),
         }
     }
 
@@ -420,6 +433,7 @@ impl Pipeline {
         });
         let nav = orientation.push(s, dt)?;
         self.heading.push_attitude(nav.attitude);
+        self.push_trunk_attitude(s.t, nav.attitude);
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
@@ -572,6 +586,10 @@ impl Pipeline {
     }
 
     fn emit(&mut self, c: Candidate, state: Motion) {
+        if self.two.is_some() {
+            // With a foot sensor, the track is its strides (see `two_sensor`).
+            return;
+        }
         // Continuous with the previous step unless a cycle was skipped or a stop intervened.
         let cont = self
             .t_km1
@@ -730,6 +748,7 @@ impl Pipeline {
     /// Counters and current values.
     pub fn diagnostics(&self) -> Diagnostics {
         let mut d = self.diag;
+        d.hybrid = self.hybrid_diagnostics();
         let m = self.motion.diagnostics();
         d.motion = self.orientation.as_ref().map(|_| m.state);
         d.sigma_z = m.sigma_z;

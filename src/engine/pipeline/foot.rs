@@ -16,7 +16,8 @@ impl Pipeline {
     /// Feeds the foot stage, while it runs. Returns true when this sample made the pipeline
     /// recognise a foot: the steps so far were replaced by the strides.
     pub(super) fn push_foot(&mut self, s: &ImuSample, dt: f64) -> bool {
-        let Some(foot) = &mut self.foot else {
+        // With a second, foot-mounted IMU the strides are that sensor's (`two_sensor`).
+        let Some(foot) = self.foot.as_mut().filter(|_| self.two.is_none()) else {
             return false;
         };
         let stride = foot.push(s, dt);
