@@ -248,7 +248,17 @@ impl Analysis {
                 opt(sc.step_error_pct, 1)
             )
         });
-        row("Steps", format!("{n}{truth}"));
+        match sc.strides {
+            // Foot mode: one record per stride, each two steps.
+            Some(strides) => row(
+                "Strides",
+                format!(
+                    "{strides} ({} steps{truth}): foot mode, zero-velocity updates",
+                    sc.steps
+                ),
+            ),
+            None => row("Steps", format!("{n}{truth}")),
+        }
         row(
             "Distance",
             format!(
@@ -289,7 +299,17 @@ impl Analysis {
             );
         }
         if let Some(l) = sc.loop_closure_m {
-            row("Loop closure", format!("{} m", fixed(l, 1)));
+            match sc.strides.filter(|_| sc.distance_m > 0.0) {
+                Some(_) => row(
+                    "Loop closure",
+                    format!(
+                        "{} m ({} % of the distance)",
+                        fixed(l, 2),
+                        fixed(100.0 * l / sc.distance_m, 2)
+                    ),
+                ),
+                None => row("Loop closure", format!("{} m", fixed(l, 1))),
+            }
         }
         for (e, name) in [
             (sc.gnss_error_m, "GNSS alone"),

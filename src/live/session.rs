@@ -499,7 +499,8 @@ impl LiveSession {
         };
         let now = d.time_span.map_or(0.0, |s| s.1);
         Readouts {
-            steps: self.pipeline.track().len(),
+            // A stride (foot mode) counts as two steps.
+            steps: d.steps as usize,
             distance_m: d.distance_m,
             cadence_hz: last.map(|s| s.freq_hz),
             heading_deg: last.and_then(|s| s.heading_rad).map(f64::to_degrees),
