@@ -49,6 +49,7 @@
 pub mod calibration;
 pub mod detector;
 pub mod fusion;
+pub mod fuzzy_step_length;
 pub mod geo;
 pub mod heading;
 pub mod math;
@@ -60,6 +61,7 @@ pub mod pll;
 pub mod replay;
 pub mod step_length;
 pub mod types;
+pub mod zero_crossing;
 
 pub use heading::{HeadingConfig, HeadingMethod};
 pub use motion::{Motion, MotionConfig};
