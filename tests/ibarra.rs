@@ -282,3 +282,66 @@ fn every_shared_log_runs_clean_with_each() {
         assert!(steps > 10_000, "{steps} steps");
     }
 }
+
+/// Hostile input: a pocket walk with bursts of huge accelerations, repeated and jittered times,
+/// zero-length intervals, a gap and a long constant stretch. Both methods give finite lengths
+/// within the clamp, and finite positions (the lobe memory's bound is the unit test
+/// `noise_alone_is_refused_by_the_area_floor`).
+#[wasm_bindgen_test(unsupported = test)]
+fn hostile_input_stays_finite() {
+    use pdr::engine::{ImuSample, Pipeline, Record};
+    let both = PipelineConfig {
+        step_length: StepLengthModel::Fuzzy(FuzzyConfig::default()),
+        ..zc()
+    };
+    let sim = scenarios::straight_walk(1.9, 40.0).generate();
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut p = Pipeline::new(both).unwrap();
+    let mut last_t = 0.0;
+    for (i, r) in sim.records.iter().enumerate() {
+        let Record::Imu(s) = r else { continue };
+        let mut s = *s;
+        if i % 97 < 5 {
+            s.accel *= 1.0 + 1e4 * rnd();
+        }
+        // Repeated times, and a 3 s gap in the middle.
+        s.t = if i % 13 == 0 { last_t } else { s.t };
+        if s.t > 20.0 {
+            s.t += 3.0;
+        }
+        last_t = s.t;
+        let _ = p.push(&Record::Imu(s));
+    }
+    // A minute of the same sample at 400 Hz: no steps, nothing grows.
+    let Some(Record::Imu(s)) = sim
+        .records
+        .iter()
+        .rev()
+        .find(|r| matches!(r, Record::Imu(_)))
+    else {
+        panic!("no samples")
+    };
+    for k in 0..24_000 {
+        let _ = p.push(&Record::Imu(ImuSample {
+            t: last_t + 1.0 + k as f64 * 0.0025,
+            ..*s
+        }));
+    }
+    let track = p.track();
+    assert!(track.len() > 20, "{} steps", track.len());
+    for s in track {
+        assert!(
+            s.length_m.is_finite() && (0.2..=2.5).contains(&s.length_m),
+            "{s:?}"
+        );
+        assert!(s.east_m.is_finite() && s.north_m.is_finite(), "{s:?}");
+    }
+    let d = p.diagnostics();
+    assert!(d.distance_m.is_finite());
+}
