@@ -288,6 +288,30 @@ pub struct ProfileFile {
     /// Calibration points of the running band.
     #[serde(default)]
     pub running_points: Vec<(f64, f64)>,
+    /// The fuzzy step length's output scale k ([`fuzzy_scale`]), when a calibration walk was
+    /// made with that model; absent from files that have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fuzzy_scale: Option<f64>,
+}
+
+/// The fuzzy step length's output scale from a calibration walk (Ibarra 2015 §4.4.2 has no
+/// calibration; ours, as the line's eq. 2 does for SL̄): the walk's known distance over the
+/// sum of the step lengths the fuzzy system gave with scale `current`, times `current`:
+/// k = current · D / Σ SL_k. Refused like a wizard walk: a distance that is not a positive
+/// number of metres, fewer than [`MIN_STEPS`] steps, or lengths that are not finite and
+/// positive.
+pub fn fuzzy_scale(distance_m: f64, lengths_m: &[f64], current: f64) -> Result<f64, WalkError> {
+    if !(distance_m.is_finite() && distance_m > 0.0) {
+        return Err(WalkError::Distance(distance_m));
+    }
+    let sum: f64 = lengths_m.iter().sum();
+    if lengths_m.len() < MIN_STEPS
+        || !(sum.is_finite() && sum > 0.0)
+        || !(current.is_finite() && current > 0.0)
+    {
+        return Err(WalkError::TooFewSteps(lengths_m.len()));
+    }
+    Ok(current * distance_m / sum)
 }
 
 /// The current profile file version.
@@ -309,6 +333,9 @@ impl ProfileFile {
             ));
         }
         p.profile.validate()?;
+        if let Some(k) = p.fuzzy_scale {
+            super::types::positive("profile.fuzzy_scale", k)?;
+        }
         Ok(p)
     }
 
@@ -568,6 +595,7 @@ mod tests {
             profile: StepLengthProfile::default(),
             walking_points: vec![(1.6, 0.6), (1.9, 0.68)],
             running_points: vec![],
+            fuzzy_scale: None,
         };
         assert_eq!(ProfileFile::from_json(&p.to_json().unwrap()).unwrap(), p);
         let old = p

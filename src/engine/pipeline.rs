@@ -39,6 +39,7 @@ use super::peak::{PeakConfig, PeakDetector};
 use super::pll::{Pll, PllConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
+use super::zero_crossing::{ZeroCrossing, ZeroCrossingConfig};
 use std::collections::VecDeque;
 
 /// Which step detector to use.
@@ -49,6 +50,8 @@ pub enum StepDetectorConfig {
     Pll(PllConfig),
     /// The comparison peak detector.
     Peak(PeakConfig),
+    /// Ibarra 2015's zero crossings with the area under each lobe.
+    ZeroCrossing(ZeroCrossingConfig),
 }
 
 impl Default for StepDetectorConfig {
@@ -126,6 +129,7 @@ impl PipelineConfig {
         match &self.detector {
             StepDetectorConfig::Pll(c) => c.validate()?,
             StepDetectorConfig::Peak(c) => c.validate()?,
+            StepDetectorConfig::ZeroCrossing(c) => c.validate()?,
         }
         self.heading.validate()?;
         self.step_length.validate()?;
@@ -240,6 +244,7 @@ pub struct Diagnostics {
 enum Detector {
     Pll(Pll),
     Peak(PeakDetector),
+    ZeroCrossing(ZeroCrossing),
 }
 
 impl Detector {
@@ -247,6 +252,7 @@ impl Detector {
         match cfg {
             StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
             StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
+            StepDetectorConfig::ZeroCrossing(c) => Detector::ZeroCrossing(ZeroCrossing::new(c)),
         }
     }
 
@@ -254,6 +260,7 @@ impl Detector {
         match self {
             Detector::Pll(p) => p.push(x),
             Detector::Peak(p) => p.push(x),
+            Detector::ZeroCrossing(z) => z.push(x),
         }
     }
 
@@ -269,6 +276,7 @@ impl Detector {
                 }
             }
             Detector::Peak(p) => p.restart(),
+            Detector::ZeroCrossing(z) => z.restart(cadence_hz),
         }
     }
 
@@ -278,6 +286,7 @@ impl Detector {
         match self {
             Detector::Pll(p) => p.reset_phase(),
             Detector::Peak(p) => p.reset(),
+            Detector::ZeroCrossing(z) => z.reset(),
         }
     }
 }
@@ -731,7 +740,7 @@ impl Pipeline {
     pub fn pll_output(&self) -> Option<f64> {
         match &self.detector {
             Detector::Pll(p) => Some(p.output()),
-            Detector::Peak(_) => None,
+            Detector::Peak(_) | Detector::ZeroCrossing(_) => None,
         }
     }
 }

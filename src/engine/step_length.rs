@@ -8,6 +8,7 @@
 //!   ([`fit_line`], with f̄ by eq. 1 [`harmonic_mean_frequency`] and SL̄ = D/N by eq. 2).
 //! - Weinberg (Analog Devices AN-602, cited by Basso 2016 as [18]): SL = K·(a_max − a_min)^¼ of
 //!   the vertical acceleration over the step.
+//! - Fuzzy (Ibarra 2015 §4.4.2): [`super::fuzzy_step_length`].
 //!
 //! # Default coefficients
 //! The papers publish no numbers for the lines (Basso 2016 Fig. 4 shows two users only). The
@@ -27,6 +28,7 @@
 //! Between the bands the line is chosen by frequency, switching at the midpoint of the gap
 //! (2.45 Hz by default); outside the bands each line is extrapolated, then clamped.
 
+use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStepLength};
 use super::heading::NavSample;
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
@@ -140,6 +142,9 @@ pub enum StepLengthModel {
         #[serde(default = "weinberg_k")]
         k: f64,
     },
+    /// Ibarra 2015's fuzzy system on step frequency, activity and the variance of the vertical
+    /// acceleration over the step, times a calibrated scale.
+    Fuzzy(FuzzyConfig),
 }
 
 /// Weinberg's K when none is given: 0.47 gives 0.70 m at a 5 m/s² peak-to-peak.
@@ -161,6 +166,7 @@ impl StepLengthModel {
         match self {
             StepLengthModel::Frequency(p) => p.validate(),
             StepLengthModel::Weinberg { k } => positive("step_length.k", *k),
+            StepLengthModel::Fuzzy(c) => c.validate(),
         }
     }
 }
@@ -216,6 +222,7 @@ pub struct StepLengthDiagnostics {
 #[derive(Debug, Clone)]
 pub struct StepLength {
     model: StepLengthModel,
+    fuzzy: Option<FuzzyStepLength>,
     last_m: Option<f64>,
 }
 
@@ -223,6 +230,10 @@ impl StepLength {
     /// A stage with a validated model.
     pub fn new(model: StepLengthModel) -> Self {
         StepLength {
+            fuzzy: match &model {
+                StepLengthModel::Fuzzy(c) => Some(FuzzyStepLength::new(*c)),
+                _ => None,
+            },
             model,
             last_m: None,
         }
@@ -239,6 +250,13 @@ impl StepLength {
             StepLengthModel::Frequency(p) => p.length(step.freq_hz),
             StepLengthModel::Weinberg { k } => {
                 weinberg(*k, peak_to_peak(step.buf, step.t0, step.t1))
+            }
+            // The activity's σ is the step's own (the square root of the variance input).
+            StepLengthModel::Fuzzy(_) => {
+                let v = vertical_variance(step.buf, step.t0, step.t1).map_or(0.0, |m| m.1);
+                self.fuzzy
+                    .as_ref()
+                    .map_or(0.2, |z| z.infer(step.freq_hz, libm::sqrt(v), v).length_m)
             }
         };
         self.last_m = Some(m);

@@ -138,6 +138,7 @@ impl CalibrationWizard {
             profile,
             walking_points: self.wizard.points(Band::Walking),
             running_points: self.wizard.points(Band::Running),
+            fuzzy_scale: None,
         }
         .to_json()
         .map_err(to_js)
@@ -189,6 +190,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
                 profile: Default::default(),
                 walking_points: Vec::new(),
                 running_points: Vec::new(),
+                fuzzy_scale: None,
             },
             describe_builtin(),
         ),
