@@ -2,7 +2,8 @@
 //! May import: nothing above it (no `io`, `sim`, `plot`, `live`, `web`, …); only crates.
 //!
 //! One file per method of the papers:
-//! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass.
+//! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass;
+//!   [`kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
 //! - [`motion`]: σ_z motion detection (Basso 2016 §II.B).
 //! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
 //!   [`detector`]: what both are fed and find.
@@ -22,7 +23,7 @@
 //!
 //! | Stage | Settings | `push` takes | gives | Diagnostics |
 //! |---|---|---|---|---|
-//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not |
+//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not, KF-NFA R scale and mismatch |
 //! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
 //! | [`pll::Pll`], [`peak::PeakDetector`] | [`pll::PllConfig`], [`peak::PeakConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
@@ -51,6 +52,7 @@ pub mod detector;
 pub mod fusion;
 pub mod geo;
 pub mod heading;
+pub mod kf_nfa;
 pub mod math;
 pub mod motion;
 pub mod orientation;
