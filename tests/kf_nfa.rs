@@ -350,3 +350,35 @@ fn every_real_log_runs_without_nan_refusal_or_restart() {
     }
     eprintln!("{runs} runs");
 }
+
+/// FNV-1a over the bits of a track's steps.
+fn digest(track: &[StepRecord]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for s in track {
+        for v in [
+            s.t,
+            s.east_m,
+            s.north_m,
+            s.heading_rad.unwrap_or(-1.0),
+            s.length_m,
+        ] {
+            for b in v.to_bits().to_le_bytes() {
+                h ^= b as u64;
+                h = h.wrapping_mul(0x0100_0000_01b3);
+            }
+        }
+    }
+    h
+}
+
+/// The demo walk through the KF-NFA, bit for bit: the same constant is checked natively and in
+/// Chromium, so this fails if the two builds ever disagree. When an intended change alters the
+/// track, update the constant from the native failure message and check the wasm run agrees.
+#[wasm_bindgen_test(unsupported = test)]
+fn replay_is_bit_identical_natively_and_in_wasm() {
+    let sim = scenarios::demo_walk().generate();
+    let d = digest(&run(&sim, kf()));
+    assert_eq!(d, KF_NFA_DEMO_DIGEST, "KF-NFA demo digest changed: {d:#x}");
+}
+
+const KF_NFA_DEMO_DIGEST: u64 = 0x6a24_998d_05a8_6663;
