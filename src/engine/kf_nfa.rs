@@ -35,7 +35,7 @@
 //!    thesis's third row (ψ from the gyroscope through eq. 3.3) is the process's own
 //!    information again, correlated with its noise against eq. 2.5, so we drop it: yaw is
 //!    propagated by the gyroscope alone, as in the thesis. **Magnetometer:** the thesis uses
-//!    none (it cites [49], [50] for doing so). `magnetometer = false` (the default) follows it;
+//!    none (it cites its refs. 49 and 50 for doing so). `magnetometer = false` (the default) follows it;
 //!    `magnetometer = true` fills the third row of H (eq. 3.10) with the magnetometer's heading
 //!    error and starts the yaw from it, as Madgwick does here.
 //! 3. **R's units.** Eq. 3.12 puts accelerometer variances (mg²) into the R of an angle
