@@ -245,7 +245,7 @@ impl KfNfa {
             p: Mat6::zeros(),
             r: r0,
             r0,
-            inn2: Vec::with_capacity(cfg.window.min(MAX_WINDOW)),
+            inn2: Vec::with_capacity(cfg.window.clamp(1, MAX_WINDOW)),
             next: 0,
             diag: KfNfaDiagnostics {
                 r_scale: [1.0; 3],
@@ -366,13 +366,16 @@ impl KfNfa {
         // Eq. 3.15: the window of squared innovations (the error state is zero before the
         // update, so Inn = z, eq. 3.13).
         let inn2 = [0, 1, 2].map(|i| z[i].map_or(0.0, |v| v * v));
-        if self.inn2.len() < self.cfg.window {
+        // Validation keeps the window in 1..=MAX_WINDOW; clamped again so that an unvalidated
+        // setting can neither divide by zero nor grow the ring.
+        let m = self.cfg.window.clamp(1, MAX_WINDOW);
+        if self.inn2.len() < m {
             self.inn2.push(inn2);
         } else {
             self.inn2[self.next] = inn2;
         }
-        self.next = (self.next + 1) % self.cfg.window;
-        let full = self.inn2.len() == self.cfg.window;
+        self.next = (self.next + 1) % m;
+        let full = self.inn2.len() == m;
         let mut x = Vec6::zeros();
         for i in 0..3 {
             let Some(zi) = z[i] else { continue };
@@ -380,7 +383,7 @@ impl KfNfa {
             if self.cfg.adapt && full && dt > 0.0 {
                 // Eqs. 3.14, 3.15, 3.16; S with R_{k−1}.
                 let s = self.p[(k, k)] + self.r[i];
-                let c = self.inn2.iter().map(|v| v[i]).sum::<f64>() / self.cfg.window as f64;
+                let c = self.inn2.iter().map(|v| v[i]).sum::<f64>() / m as f64;
                 let dom = s - c;
                 let xn = if s + c > 0.0 { dom / (s + c) } else { 0.0 };
                 self.diag.mismatch[i] = xn;
@@ -479,5 +482,13 @@ mod tests {
             }
         }
         assert!(f.diagnostics().resets > 0);
+        // An unvalidated window of 0 neither panics nor adapts by nonsense.
+        let mut f = KfNfa::new(KfNfaConfig {
+            window: 0,
+            ..Default::default()
+        });
+        for _ in 0..10 {
+            assert!(f.push(&Vector3::zeros(), &g, None, 0.01).is_some());
+        }
     }
 }
