@@ -7,8 +7,8 @@
 //! ms-indoor ipin2023, read from `../shared/data`; the settings change the KF-NFA's defaults).
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 use nalgebra::{UnitQuaternion, Vector3};
-use pdr::engine::kf_nfa::KfNfaConfig;
 use pdr::engine::math::wrap_pi;
+use pdr::engine::orientation::kf_nfa::KfNfaConfig;
 use pdr::engine::orientation::{Orientation, OrientationSource};
 use pdr::engine::Record;
 use pdr::io::import::{import_all, DirSet};

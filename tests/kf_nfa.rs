@@ -3,8 +3,8 @@
 //! Every test runs natively under `cargo test` and in headless Chromium under wasm-bindgen-test.
 
 use nalgebra::{UnitQuaternion, Vector3};
-use pdr::engine::kf_nfa::{KfNfa, KfNfaConfig};
 use pdr::engine::math::wrap_pi;
+use pdr::engine::orientation::kf_nfa::{KfNfa, KfNfaConfig};
 use pdr::engine::orientation::{Orientation, OrientationSource, G0};
 use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
 use pdr::sim::{scenarios, Simulation};

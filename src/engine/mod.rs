@@ -3,7 +3,7 @@
 //!
 //! One file per method of the papers:
 //! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass;
-//!   [`kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
+//!   [`orientation::kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
 //! - [`motion`]: σ_z motion detection (Basso 2016 §II.B).
 //! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
 //!   [`detector`]: what both are fed and find.
@@ -52,7 +52,6 @@ pub mod detector;
 pub mod fusion;
 pub mod geo;
 pub mod heading;
-pub mod kf_nfa;
 pub mod math;
 pub mod motion;
 pub mod orientation;

@@ -9,7 +9,7 @@
 //!   eqs. 1–5). The filter itself is the `ahrs` crate; we set its sample period on every sample
 //!   from the timestamps.
 //! - [`OrientationSource::KfNfa`]: the Kalman filter with fuzzy adaptation of R of Ibarra 2015
-//!   ch. 3, in [`super::kf_nfa`]; accelerometer and gyroscope, magnetometer optional (off).
+//!   ch. 3, in [`kf_nfa`]; accelerometer and gyroscope, magnetometer optional (off).
 //! - [`OrientationSource::GravityLowPass`]: acceleration only. Gravity is tracked by a low-pass
 //!   filter; this yields vertical acceleration (so steps) but no horizontal axes, so no heading.
 //!   The vertical acceleration is taken as |a| − |g_lp| rather than the projection a·ĝ_lp − |g_lp|:
@@ -18,11 +18,13 @@
 //!   Measured on the 34 Oxford step-counter traces (accelerometer only): mean absolute count
 //!   error 9.76 % with the projection, 8.93 % with the norm (front pocket 15.2 % → 9.0 %).
 
-use super::kf_nfa::{KfNfa, KfNfaConfig, KfNfaDiagnostics};
 use super::math::OnePole;
 use super::types::{positive, ConfigError, DeviceVec, ImuSample, InputError};
 use ahrs::Ahrs;
+use kf_nfa::{KfNfa, KfNfaConfig, KfNfaDiagnostics};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+
+pub mod kf_nfa;
 
 /// Standard gravity, m/s².
 pub const G0: f64 = 9.806_65;

@@ -1,6 +1,6 @@
 //! KF-NFA: the Kalman filter with (neuro-)fuzzy adaptation of Ibarra 2015, chapter 3, for the
 //! attitude from accelerometer and gyroscope.
-//! May import: the rest of `engine`.
+//! May import: the rest of `engine` (a child of [`super`], the orientation stage).
 //!
 //! # What the thesis writes, and what is used
 //! - **State** (eqs. 3.4–3.5): x = [φ, b_φ, θ, b_θ, ψ, b_ψ]: roll, pitch, yaw and a gyroscope bias
@@ -57,8 +57,8 @@
 //!    [`MAX_VARIANCE`]) restarts the filter from the next sample, counted in the diagnostics; a
 //!    sample with no usable accelerometer direction is propagated only, also counted.
 
-use super::orientation::{attitude_from_vectors, G0};
-use super::types::{positive, ConfigError, DeviceVec};
+use super::{attitude_from_vectors, G0};
+use crate::engine::types::{positive, ConfigError, DeviceVec};
 use nalgebra::{Matrix3, SMatrix, SVector, UnitQuaternion, Vector3};
 
 type Mat6 = SMatrix<f64, 6, 6>;
