@@ -56,6 +56,9 @@
 //! 7. **Divergence.** A non-finite or runaway state (|b| > [`MAX_BIAS`], a variance beyond
 //!    [`MAX_VARIANCE`]) restarts the filter from the next sample, counted in the diagnostics; a
 //!    sample with no usable accelerometer direction is propagated only, also counted.
+//! 8. **Defaults** were measured on the real sets, not the simulator (README, "KF-NFA
+//!    attitude"): R₀ is the thesis's Table 3.2 (σ_acc = 0.022 m/s²), and the adaptation is what
+//!    makes that usable in a walk (IPIN waypoint p75 11.0 m with R fixed, 4.8 m adapted).
 
 use super::{attitude_from_vectors, G0};
 use crate::engine::types::{positive, ConfigError, DeviceVec};
