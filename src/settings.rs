@@ -292,6 +292,7 @@ pub const CHOICES: &[Choice] = &[
             ("auto", "OS quaternion, else Madgwick, else gravity"),
             ("os", "OS quaternion"),
             ("madgwick", "Madgwick filter"),
+            ("kf_nfa", "KF-NFA (Ibarra 2015)"),
             ("gravity_low_pass", "gravity low-pass (no heading)"),
         ],
     },

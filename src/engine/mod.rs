@@ -2,7 +2,8 @@
 //! May import: nothing above it (no `io`, `sim`, `plot`, `live`, `web`, …); only crates.
 //!
 //! One file per method of the papers:
-//! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass.
+//! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass;
+//!   [`orientation::kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
 //! - [`motion`]: σ_z motion detection (Basso 2016 §II.B).
 //! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
 //!   [`zero_crossing`]: zero crossings + area (Ibarra 2015 §4.4.1, eqs. 4.8–4.9);
@@ -24,7 +25,7 @@
 //!
 //! | Stage | Settings | `push` takes | gives | Diagnostics |
 //! |---|---|---|---|---|
-//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not |
+//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not, KF-NFA R scale and mismatch |
 //! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
 //! | [`pll::Pll`], [`peak::PeakDetector`], [`zero_crossing::ZeroCrossing`] | [`pll::PllConfig`], [`peak::PeakConfig`], [`zero_crossing::ZeroCrossingConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |

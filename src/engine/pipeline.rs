@@ -496,12 +496,10 @@ impl Pipeline {
                     field: "orientation",
                 })
             }
-            OrientationSource::Madgwick { .. } if s.gyro.is_none() => {
-                Err(InputError::MissingField {
-                    t: s.t,
-                    field: "gyro",
-                })
-            }
+            src if src.needs_gyro() && s.gyro.is_none() => Err(InputError::MissingField {
+                t: s.t,
+                field: "gyro",
+            }),
             _ => Ok(()),
         }
     }
@@ -729,6 +727,11 @@ impl Pipeline {
     /// The device → ENU attitude of the latest sample, when the orientation source has one.
     pub fn attitude(&self) -> Option<nalgebra::UnitQuaternion<f64>> {
         self.attitude
+    }
+
+    /// The orientation stage's diagnostics (the KF-NFA's R scale and mismatch), once started.
+    pub fn orientation_diagnostics(&self) -> Option<super::orientation::OrientationDiagnostics> {
+        self.orientation.as_ref().map(|o| o.diagnostics())
     }
 
     /// Mean and σ of the vertical acceleration over the motion detector's window, m/s².

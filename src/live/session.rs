@@ -517,6 +517,7 @@ impl LiveSession {
             orientation: d.orientation.map(|o| match o {
                 OrientationSource::Os => "os",
                 OrientationSource::Madgwick { .. } => "madgwick",
+                OrientationSource::KfNfa(_) => "kf_nfa",
                 OrientationSource::GravityLowPass { .. } => "gravity",
                 OrientationSource::Auto => "auto",
             }),
