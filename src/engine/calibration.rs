@@ -678,6 +678,46 @@ mod tests {
     }
 
     #[test]
+    fn fuzzy_scale_least_squares_and_refusals() {
+        // D_i = 1.2·L_i exactly: k = 1.2; with noise, Σ D·L / Σ L².
+        assert!((fit_fuzzy_scale(&[(60.0, 50.0), (36.0, 30.0)]).unwrap() - 1.2).abs() < 1e-12);
+        let k = fit_fuzzy_scale(&[(10.0, 10.0), (20.0, 10.0)]).unwrap();
+        assert!((k - 1.5).abs() < 1e-12);
+        for bad in [
+            &[][..],
+            &[(10.0, 0.0)],
+            &[(10.0, f64::NAN)],
+            &[(f64::INFINITY, 1.0)],
+        ] {
+            assert!(fit_fuzzy_scale(bad).is_err(), "{bad:?}");
+        }
+        let walk = |l: Vec<f64>| CalibrationWalk {
+            distance_m: 30.0,
+            step_freqs_hz: vec![1.8; 40],
+            fuzzy_lengths_m: l,
+        };
+        let mut w = Wizard::default();
+        for l in [
+            vec![0.7; 39],
+            vec![0.0; 40],
+            vec![f64::NAN; 40],
+            vec![-0.1; 40],
+        ] {
+            let e = w.add(Band::Walking, "normal", &walk(l)).unwrap_err();
+            assert!(matches!(e, WalkError::FuzzyLengths(_)) && !e.to_string().is_empty());
+        }
+        assert!(w.walks.is_empty() && w.fuzzy_scale().is_none());
+        // Old callers (no lengths) fit the line only; a running walk does not count.
+        w.add(Band::Walking, "normal", &walk(vec![])).unwrap();
+        assert!(w.fuzzy_scale().is_none());
+        w.add(Band::Running, "jog", &walk(vec![1.0; 40])).unwrap();
+        assert!(w.fuzzy_scale().is_none());
+        w.add(Band::Walking, "fast", &walk(vec![0.6; 40])).unwrap();
+        assert!((w.fuzzy_scale().unwrap() - 1.25).abs() < 1e-12);
+        assert!(w.profile(&Default::default()).1[2].contains("scale k = 1.250"));
+    }
+
+    #[test]
     fn profile_file_round_trip_and_errors() {
         let p = ProfileFile {
             version: PROFILE_VERSION,
