@@ -602,6 +602,20 @@ impl Pipeline {
         self.t_km1 = Some(c.t);
     }
 
+    /// What the step-length stage was given for `step`, one of this pipeline's steps just
+    /// returned by [`push`](Self::push) (before the next sample moves the buffer): its
+    /// frequency, the recent samples and the step's span, T_k = 1/f_k back from its time. Lets a
+    /// caller ask another step-length model about the same step (the calibration wizard's fuzzy
+    /// lengths) without a second pipeline.
+    pub fn step_length_input(&self, step: &StepRecord) -> StepLengthInput<'_> {
+        StepLengthInput {
+            freq_hz: step.freq_hz,
+            buf: &self.buf,
+            t0: step.t - 1.0 / step.freq_hz,
+            t1: step.t,
+        }
+    }
+
     /// Feeds one GNSS fix. The first accepted fix becomes the geodetic origin of the track.
     pub fn push_gnss(&mut self, f: &GnssFix) -> Result<(), InputError> {
         if let Err(e) = f.check() {

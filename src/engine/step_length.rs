@@ -28,7 +28,7 @@
 //! Between the bands the line is chosen by frequency, switching at the midpoint of the gap
 //! (2.45 Hz by default); outside the bands each line is extrapolated, then clamped.
 
-use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStepLength};
+use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStep, FuzzyStepLength};
 use super::heading::NavSample;
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
@@ -251,13 +251,10 @@ impl StepLength {
             StepLengthModel::Weinberg { k } => {
                 weinberg(*k, peak_to_peak(step.buf, step.t0, step.t1))
             }
-            // The activity's σ is the step's own (the square root of the variance input).
-            StepLengthModel::Fuzzy(_) => {
-                let v = vertical_variance(step.buf, step.t0, step.t1).map_or(0.0, |m| m.1);
-                self.fuzzy
-                    .as_ref()
-                    .map_or(0.2, |z| z.infer(step.freq_hz, libm::sqrt(v), v).length_m)
-            }
+            StepLengthModel::Fuzzy(_) => self
+                .fuzzy
+                .as_ref()
+                .map_or(0.2, |z| fuzzy_step(z, step).length_m),
         };
         self.last_m = Some(m);
         m
@@ -269,6 +266,15 @@ impl StepLength {
             last_m: self.last_m,
         }
     }
+}
+
+/// The fuzzy system's inference for one step of the step-length stage: the variance of the
+/// vertical acceleration over the step, the activity's σ the step's own (its square root). The
+/// one place the fuzzy model reads a step, for the stage and for the calibration wizard's walks
+/// (`live::LiveSession::fuzzy_lengths`).
+pub fn fuzzy_step(z: &FuzzyStepLength, step: &StepLengthInput) -> FuzzyStep {
+    let v = vertical_variance(step.buf, step.t0, step.t1).map_or(0.0, |m| m.1);
+    z.infer(step.freq_hz, libm::sqrt(v), v)
 }
 
 /// Basso 2016 eq. 1: the mean step frequency of a calibration walk, the harmonic mean
