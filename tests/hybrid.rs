@@ -424,6 +424,7 @@ fn the_hybrid_stage_refuses_bad_input() {
         .unwrap();
         h.push_heading(0.0, f64::NAN);
         h.push_heading(f64::INFINITY, 0.0);
+        h.push_heading(-1e300, 0.0); // finite, but beyond any clock
         for i in 0..300 {
             h.push_heading(
                 f64::from(i) * 0.01,
@@ -440,10 +441,13 @@ fn the_hybrid_stage_refuses_bad_input() {
         assert!(out[0].heading_rad.is_finite() && out[0].east_m.is_finite());
         assert_eq!(
             h.diagnostics().refused,
-            5,
+            6,
             "{method:?}: {:?}",
             h.diagnostics()
         );
+        // A pause: nothing is interpolated across it, however long.
+        h.push_heading(1e11, 0.5);
+        h.push_heading(1e11 + 0.01, 0.5);
         // A stride long after the trunk stopped: the foot's heading, counted.
         h.push_stride(&stride(60.0, 1.0));
         let late = h.flush();
