@@ -294,6 +294,16 @@ pub const CHOICES: &[Choice] = &[
         ],
     },
     Choice {
+        key: "placement",
+        title: "Sensor placement",
+        flag: "placement",
+        options: &[
+            ("auto", "recognised from the signal"),
+            ("body", "on the body (steps)"),
+            ("foot", "on the foot (strides, ZUPT)"),
+        ],
+    },
+    Choice {
         key: "hybrid.method",
         title: "Stride heading with a foot sensor",
         flag: "hybrid",

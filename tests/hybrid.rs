@@ -415,6 +415,7 @@ fn the_hybrid_stage_refuses_bad_input() {
         east_m: 0.0,
         north_m: 0.0,
         up_m: 0.0,
+        peak_rate_rad_s: 5.0,
     };
     for method in [HybridMethod::MidSwing, HybridMethod::FirCrossing] {
         let mut h = Hybrid::new(HybridConfig {

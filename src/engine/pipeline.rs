@@ -28,6 +28,8 @@
 //!   leaves the state untouched.
 
 use super::detector::{Candidate, DetectorInput};
+use super::foot::placement::{Placement, Recogniser};
+use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
 use super::fusion::GnssMode;
 use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
 use super::fusion::{Fusion, FusionConfig};
@@ -42,6 +44,7 @@ use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use std::collections::VecDeque;
 
+mod foot;
 mod two_sensor;
 
 /// Which step detector to use.
@@ -95,6 +98,11 @@ pub struct PipelineConfig {
     /// With a second, foot-mounted IMU (`Record::Foot`): how each stride's heading is taken
     /// (Strozzi 2017 §4, [`crate::engine::hybrid`]).
     pub hybrid: HybridConfig,
+    /// Where the IMU is worn: `auto` (default; a foot is recognised from the signal,
+    /// [`crate::engine::foot::placement`]), `body` or `foot`.
+    pub placement: Placement,
+    /// Foot mode ([`crate::engine::foot`]).
+    pub foot: FootConfig,
 }
 
 impl Default for PipelineConfig {
@@ -110,6 +118,8 @@ impl Default for PipelineConfig {
             fusion: FusionConfig::default(),
             gap_s: 0.5,
             hybrid: HybridConfig::default(),
+            placement: Placement::Auto,
+            foot: FootConfig::default(),
         }
     }
 }
@@ -138,6 +148,7 @@ impl PipelineConfig {
         self.step_length.validate()?;
         self.fusion.validate()?;
         self.hybrid.validate()?;
+        self.foot.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -242,6 +253,13 @@ pub struct Diagnostics {
     pub gnss_on_s: Option<(f64, f64)>,
     /// The hybrid heading, with a foot-mounted IMU.
     pub hybrid: Option<HybridDiagnostics>,
+    /// The mode that ran: `body` (steps) or `foot` (strides); `auto` while undecided (steps as
+    /// `body`).
+    pub placement: Placement,
+    /// Strides counted in foot mode (each also counts as two steps in `steps`).
+    pub strides: u64,
+    /// The foot stage, while it runs.
+    pub foot: Option<FootDiagnostics>,
 }
 
 /// The step detector the configuration chose. One per pipeline, used on every sample: kept
@@ -317,12 +335,20 @@ pub struct Pipeline {
     diag: Diagnostics,
     /// Foot mode and the hybrid heading, once a foot sample arrived.
     two: Option<two_sensor::TwoSensor>,
+    // Foot mode: the stage (while foot mode runs or the placement is undecided), the resolved
+    // placement, the strides held while undecided and the last stride's time.
+    foot: Option<Foot>,
+    placement: Placement,
+    recogniser: Recogniser,
+    pending: Vec<Stride>,
+    last_stride_t: Option<f64>,
 }
 
 impl Pipeline {
     /// A pipeline with a validated configuration.
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
+        let (cfg_placement, cfg_foot) = (cfg.placement, cfg.foot);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             history_s: cfg
@@ -349,6 +375,14 @@ impl Pipeline {
             fusion: None,
             diag: Diagnostics::default(),
             two: None,
+            foot: match cfg_placement {
+                Placement::Body => None,
+                _ => Some(Foot::new(cfg_foot)?),
+            },
+            placement: cfg_placement,
+            recogniser: Recogniser::default(),
+            pending: Vec::new(),
+            last_stride_t: None,
         })
     }
 
@@ -429,15 +463,22 @@ impl Pipeline {
             // loop found while still instead gave 8 steps at 4.4 Hz at the start of a 2 Hz walk
             // on Oxford Pixel_Jamie_Hard_InHand_1: still, the loop follows whatever moves.)
             for c in self.look_back(s.t, state) {
+                if self.placement == Placement::Foot {
+                    continue;
+                }
                 if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
                     self.diag.onset_steps += 1;
                     self.emit(c, state);
                 }
             }
         } else if let Some(c) = cand.filter(|_| state.is_moving()) {
-            self.emit(c, state);
+            if self.placement != Placement::Foot {
+                self.emit(c, state);
+            }
         }
         self.prev_state = state;
+        // Recognising a foot replaces the steps so far by the strides: all are new then.
+        let first = if self.push_foot(s, dt) { 0 } else { first };
         Ok(&self.steps[first..])
     }
 
@@ -518,6 +559,9 @@ impl Pipeline {
         self.motion.clear_window();
         self.buf.clear();
         self.detector.gap();
+        if let Some(f) = &mut self.foot {
+            f.gap();
+        }
         self.end_bout();
     }
 
@@ -714,6 +758,8 @@ impl Pipeline {
             d.fix_counts = Some(f.counts);
             d.gnss_on_s = f.gnss_on_s;
         }
+        d.placement = self.placement;
+        d.foot = self.foot.as_ref().map(Foot::diagnostics);
         if let Detector::Pll(p) = &self.detector {
             let p = p.diagnostics();
             d.pll_freq_hz = Some(p.freq_hz);

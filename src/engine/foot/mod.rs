@@ -9,6 +9,7 @@
 //! north the foot's x axis at the first stance (the yaw of a foot IMU without magnetometer is
 //! unobservable; [`zupt`]).
 
+pub mod placement;
 pub mod stance;
 pub mod zupt;
 
@@ -17,6 +18,11 @@ use crate::engine::types::{ConfigError, ImuSample};
 use nalgebra::Vector3;
 use stance::{Stance, StanceConfig};
 use zupt::{Zupt, ZuptConfig};
+
+/// The shortest swing that makes a stride, s. A foot's swing lasts 0.3–0.5 s; on the x-io walks
+/// the stance test also drops out for a few tens of milliseconds within a stance (the foot
+/// rolling), which would otherwise count as strides of a few centimetres.
+pub const MIN_SWING_S: f64 = 0.15;
 
 /// Settings of foot mode.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -55,6 +61,8 @@ pub struct Stride {
     pub north_m: f64,
     /// Foot position at foot flat, up, m.
     pub up_m: f64,
+    /// Largest |ω| in the swing, rad/s (a foot turns at several rad/s; [`placement`]).
+    pub peak_rate_rad_s: f64,
 }
 
 /// Counters and current values of foot mode; read-only.
@@ -72,6 +80,8 @@ pub struct FootDiagnostics {
     pub discarded: u64,
     /// Strides emitted.
     pub strides: u64,
+    /// "Swings" shorter than [`MIN_SWING_S`] between two stances: not strides.
+    pub short_swings: u64,
     /// Horizontal distance of the strides, m.
     pub distance_m: f64,
     /// Zero-velocity updates refused (singular or non-finite), and filter restarts after a
@@ -92,6 +102,7 @@ pub struct Foot {
     init: (Vector3<f64>, Vector3<f64>, u32),
     prev_stance: bool,
     swing_start: f64,
+    swing_peak_rate: f64,
     /// Foot position at the end of the last stance.
     last_stance_p: Vector3<f64>,
     /// Where the foot was when the filter last restarted (it restarts from there).
@@ -110,6 +121,7 @@ impl Foot {
             init: (Vector3::zeros(), Vector3::zeros(), 0),
             prev_stance: false,
             swing_start: 0.0,
+            swing_peak_rate: 0.0,
             last_stance_p: Vector3::zeros(),
             origin: Vector3::zeros(),
             diag: FootDiagnostics::default(),
@@ -184,6 +196,13 @@ impl Foot {
         let out = match (self.prev_stance, stance) {
             (true, false) => {
                 self.swing_start = t;
+                self.swing_peak_rate = w.norm();
+                self.last_stance_p = p;
+                None
+            }
+            (false, true) if t - self.swing_start < MIN_SWING_S => {
+                // A flicker of the stance test, not a stride: the stance goes on.
+                self.diag.short_swings += 1;
                 self.last_stance_p = p;
                 None
             }
@@ -201,13 +220,17 @@ impl Foot {
                     east_m: p.x,
                     north_m: p.y,
                     up_m: p.z,
+                    peak_rate_rad_s: self.swing_peak_rate,
                 })
             }
             (true, true) => {
                 self.last_stance_p = p;
                 None
             }
-            (false, false) => None,
+            (false, false) => {
+                self.swing_peak_rate = self.swing_peak_rate.max(w.norm());
+                None
+            }
         };
         self.prev_stance = stance;
         out

@@ -51,8 +51,8 @@ pub struct StanceConfig {
 impl Default for StanceConfig {
     fn default() -> Self {
         StanceConfig {
-            th_a_m_s2: 1.5,
-            th_w_rad_s: 1.0,
+            th_a_m_s2: 2.5,
+            th_w_rad_s: 0.6,
             t_min_s: 0.1,
             g_m_s2: crate::engine::orientation::G0,
         }

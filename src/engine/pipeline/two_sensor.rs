@@ -9,7 +9,8 @@
 //! orientation gives the trunk attitude; its motion state is shown) but emits no steps.
 
 use super::{Pipeline, StepRecord};
-use crate::engine::foot::{Foot, FootConfig};
+use crate::engine::foot::placement::Placement;
+use crate::engine::foot::Foot;
 use crate::engine::fusion;
 use crate::engine::heading::yaw_aid::device_twist;
 use crate::engine::hybrid::{Hybrid, HybridStride};
@@ -47,12 +48,14 @@ impl Pipeline {
         }
         if self.two.is_none() {
             // Validated with the configuration, so neither can fail here.
-            let (Ok(foot), Ok(hybrid)) = (
-                Foot::new(FootConfig::default()),
-                Hybrid::new(self.cfg.hybrid),
-            ) else {
+            let (Ok(foot), Ok(hybrid)) = (Foot::new(self.cfg.foot), Hybrid::new(self.cfg.hybrid))
+            else {
                 return Ok(&[]);
             };
+            // The first IMU is the trunk's: it is never taken for a foot (`placement`).
+            self.placement = Placement::Body;
+            self.foot = None;
+            self.pending = Vec::new();
             self.two = Some(TwoSensor {
                 foot,
                 hybrid,
@@ -132,6 +135,7 @@ impl Pipeline {
             });
         }
         self.diag.steps += 2;
+        self.diag.strides += 1;
         self.diag.distance_m += st.length_m;
     }
 
