@@ -124,6 +124,10 @@ pub struct LogResult {
     pub waypoint_error_pct: Option<PctSummary>,
     /// Loop-closure error, m, for walks that end where they started.
     pub loop_closure_m: Option<f64>,
+    /// The mode that ran: `body` or `foot` (`auto` when the log was too short to decide).
+    pub placement: crate::engine::foot::placement::Placement,
+    /// Strides, when foot mode ran (each counts as two steps in `steps`).
+    pub strides: Option<u64>,
     /// The log's group within its data set (Oxford: the phone's placement).
     pub group: Option<String>,
     /// Absolute error of the GNSS fixes alone at the geodetic truth's times (fixes interpolated
@@ -170,6 +174,8 @@ impl LogResult {
             waypoint_error_m: None,
             waypoint_error_pct: None,
             loop_closure_m: None,
+            placement: crate::engine::foot::placement::Placement::Auto,
+            strides: None,
             group: None,
             gnss_error_m: None,
             fused_error_m: None,
@@ -259,7 +265,10 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
     let track = p.track();
     res.samples = d.samples;
     res.duration_s = d.time_span.map_or(0.0, |(a, b)| b - a);
-    res.steps = track.len() as u64;
+    res.steps = d.steps;
+    res.placement = d.placement;
+    res.strides =
+        (d.placement == crate::engine::foot::placement::Placement::Foot).then_some(d.strides);
     res.distance_m = d.distance_m;
     res.refused_records = run.refused;
     if d.samples == 0 {

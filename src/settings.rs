@@ -306,6 +306,26 @@ pub const CHOICES: &[Choice] = &[
             ("off", "off"),
         ],
     },
+    Choice {
+        key: "placement",
+        title: "Sensor placement",
+        flag: "placement",
+        options: &[
+            ("auto", "recognised from the signal"),
+            ("body", "on the body (steps)"),
+            ("foot", "on the foot (strides, ZUPT)"),
+        ],
+    },
+    Choice {
+        key: "hybrid.method",
+        title: "Stride heading with a foot sensor",
+        flag: "hybrid",
+        options: &[
+            ("mid_swing", "trunk at mid-swing (Strozzi 2017)"),
+            ("fir_crossing", "trunk at the FIR crossing (Strozzi 2017)"),
+            ("foot", "the foot's own"),
+        ],
+    },
 ];
 
 /// The choice that sets `key`.

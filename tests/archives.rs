@@ -387,7 +387,7 @@ fn damaged_nested_archives_never_panic() {
                     outcomes[0] += 1;
                     for rec in &log.records {
                         let ok = match rec {
-                            pdr::engine::Record::Imu(s) => {
+                            pdr::engine::Record::Imu(s) | pdr::engine::Record::Foot(s) => {
                                 s.t.is_finite() && s.accel.iter().all(|v| v.is_finite())
                             }
                             pdr::engine::Record::Gnss(f) => f.check().is_ok(),

@@ -96,7 +96,7 @@ fn assert_sane(log: &Log) {
     let mut last = f64::NEG_INFINITY;
     for r in &log.records {
         let t = match r {
-            Record::Imu(s) => {
+            Record::Imu(s) | Record::Foot(s) => {
                 s.check_finite().unwrap();
                 if let Some(q) = s.orientation {
                     assert!((q.norm() - 1.0).abs() < 1e-9);

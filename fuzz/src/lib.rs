@@ -75,6 +75,13 @@ pub fn check_record(r: &Record) {
             gyro,
             mag,
             orientation,
+        })
+        | Record::Foot(ImuSample {
+            t,
+            accel,
+            gyro,
+            mag,
+            orientation,
         }) => {
             finite("imu.t", *t);
             accel.iter().for_each(|&v| finite("imu.accel", v));

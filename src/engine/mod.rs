@@ -17,6 +17,10 @@
 //!   loop that feeds a log through it.
 //! - [`fusion`]: the per-step GNSS/PDR Kalman filter (Basso 2021 §2.2.5–2.2.6, §3), energy
 //!   saving, the magnetic declination, and a Rauch–Tung–Striebel smoother.
+//! - [`foot`]: foot mode (Strozzi 2017 §3.2): stance detection, strapdown with zero-velocity
+//!   updates in an error-state Kalman filter (Foxlin 2005, OpenShoe), a stride per stance.
+//! - [`hybrid`]: Strozzi 2017 §4's hybrid: each foot stride's length with the trunk's heading,
+//!   sampled at mid-swing (eq. 3) or where it crosses its FIR-filtered self.
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
 //!
 //! # The stage shape
@@ -30,6 +34,7 @@
 //! | [`pll::Pll`], [`peak::PeakDetector`], [`zero_crossing::ZeroCrossing`] | [`pll::PllConfig`], [`peak::PeakConfig`], [`zero_crossing::ZeroCrossingConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
 //! | [`step_length::StepLength`] | [`StepLengthModel`] | [`step_length::StepLengthInput`] | the length, m | last length |
+//! | [`foot::Foot`] | [`foot::FootConfig`] | a sample and its dt | `Option<`[`foot::Stride`]`>` (T_min late) | stances, strides, distance |
 //! | [`fusion::Fusion`] | [`fusion::FusionConfig`] | [`fusion::FixInput`] (`push_fix`), [`fusion::StepInput`] (`push_step`) | the fix's outcome; `Option<`[`fusion::FusedStep`]`>` | fix counts, receiver time, last step |
 //!
 //! Where a stage departs from the shape, and why:
@@ -51,10 +56,12 @@
 
 pub mod calibration;
 pub mod detector;
+pub mod foot;
 pub mod fusion;
 pub mod fuzzy_step_length;
 pub mod geo;
 pub mod heading;
+pub mod hybrid;
 pub mod math;
 pub mod motion;
 pub mod orientation;

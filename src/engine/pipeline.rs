@@ -28,11 +28,14 @@
 //!   leaves the state untouched.
 
 use super::detector::{Candidate, DetectorInput};
+use super::foot::placement::{Placement, Recogniser};
+use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
 use super::fusion::GnssMode;
 use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
 use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
+use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::peak::{PeakConfig, PeakDetector};
@@ -41,6 +44,9 @@ use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use super::zero_crossing::{ZeroCrossing, ZeroCrossingConfig};
 use std::collections::VecDeque;
+
+mod foot;
+mod two_sensor;
 
 /// Which step detector to use.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -92,6 +98,14 @@ pub struct PipelineConfig {
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
+    /// With a second, foot-mounted IMU (`Record::Foot`): how each stride's heading is taken
+    /// (Strozzi 2017 §4, [`crate::engine::hybrid`]).
+    pub hybrid: HybridConfig,
+    /// Where the IMU is worn: `auto` (default; a foot is recognised from the signal,
+    /// [`crate::engine::foot::placement`]), `body` or `foot`.
+    pub placement: Placement,
+    /// Foot mode ([`crate::engine::foot`]).
+    pub foot: FootConfig,
 }
 
 impl Default for PipelineConfig {
@@ -106,6 +120,9 @@ impl Default for PipelineConfig {
             onset_coherence_min: 0.0,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
+            hybrid: HybridConfig::default(),
+            placement: Placement::Auto,
+            foot: FootConfig::default(),
         }
     }
 }
@@ -134,6 +151,8 @@ impl PipelineConfig {
         self.heading.validate()?;
         self.step_length.validate()?;
         self.fusion.validate()?;
+        self.hybrid.validate()?;
+        self.foot.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -236,6 +255,15 @@ pub struct Diagnostics {
     /// Time the GNSS receiver was (or would have been) on, from the first fix to the last
     /// sample, s; and that whole span, s. Energy saving leaves it on for its windows only.
     pub gnss_on_s: Option<(f64, f64)>,
+    /// The hybrid heading, with a foot-mounted IMU.
+    pub hybrid: Option<HybridDiagnostics>,
+    /// The mode that ran: `body` (steps) or `foot` (strides); `auto` while undecided (steps as
+    /// `body`).
+    pub placement: Placement,
+    /// Strides counted in foot mode (each also counts as two steps in `steps`).
+    pub strides: u64,
+    /// The foot stage, while it runs.
+    pub foot: Option<FootDiagnostics>,
 }
 
 /// The step detector the configuration chose. One per pipeline, used on every sample: kept
@@ -314,12 +342,22 @@ pub struct Pipeline {
     frame: Option<LocalFrame>,
     fusion: Option<Fusion>,
     diag: Diagnostics,
+    /// Foot mode and the hybrid heading, once a foot sample arrived.
+    two: Option<two_sensor::TwoSensor>,
+    // Foot mode: the stage (while foot mode runs or the placement is undecided), the resolved
+    // placement, the strides held while undecided and the last stride's time.
+    foot: Option<Foot>,
+    placement: Placement,
+    recogniser: Recogniser,
+    pending: Vec<Stride>,
+    last_stride_t: Option<f64>,
 }
 
 impl Pipeline {
     /// A pipeline with a validated configuration.
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
+        let (cfg_placement, cfg_foot) = (cfg.placement, cfg.foot);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             history_s: cfg
@@ -345,6 +383,15 @@ impl Pipeline {
             frame: None,
             fusion: None,
             diag: Diagnostics::default(),
+            two: None,
+            foot: match cfg_placement {
+                Placement::Body => None,
+                _ => Some(Foot::new(cfg_foot)?),
+            },
+            placement: cfg_placement,
+            recogniser: Recogniser::default(),
+            pending: Vec::new(),
+            last_stride_t: None,
         })
     }
 
@@ -364,6 +411,7 @@ impl Pipeline {
                 self.mark_gap(*t0, *t1);
                 Ok(&[])
             }
+            Record::Foot(s) => self.push_foot_imu(s),
         }
     }
 
@@ -394,6 +442,7 @@ impl Pipeline {
         });
         let nav = orientation.push(s, dt)?;
         self.heading.push_attitude(nav.attitude);
+        self.push_trunk_attitude(s.t, nav.attitude);
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
@@ -423,15 +472,22 @@ impl Pipeline {
             // loop found while still instead gave 8 steps at 4.4 Hz at the start of a 2 Hz walk
             // on Oxford Pixel_Jamie_Hard_InHand_1: still, the loop follows whatever moves.)
             for c in self.look_back(s.t, state) {
+                if self.placement == Placement::Foot {
+                    continue;
+                }
                 if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
                     self.diag.onset_steps += 1;
                     self.emit(c, state);
                 }
             }
         } else if let Some(c) = cand.filter(|_| state.is_moving()) {
-            self.emit(c, state);
+            if self.placement != Placement::Foot {
+                self.emit(c, state);
+            }
         }
         self.prev_state = state;
+        // Recognising a foot replaces the steps so far by the strides: all are new then.
+        let first = if self.push_foot(s, dt) { 0 } else { first };
         Ok(&self.steps[first..])
     }
 
@@ -510,6 +566,9 @@ impl Pipeline {
         self.motion.clear_window();
         self.buf.clear();
         self.detector.gap();
+        if let Some(f) = &mut self.foot {
+            f.gap();
+        }
         self.end_bout();
     }
 
@@ -534,6 +593,10 @@ impl Pipeline {
     }
 
     fn emit(&mut self, c: Candidate, state: Motion) {
+        if self.two.is_some() {
+            // With a foot sensor, the track is its strides (see `two_sensor`).
+            return;
+        }
         // Continuous with the previous step unless a cycle was skipped or a stop intervened.
         let cont = self
             .t_km1
@@ -706,6 +769,7 @@ impl Pipeline {
     /// Counters and current values.
     pub fn diagnostics(&self) -> Diagnostics {
         let mut d = self.diag;
+        d.hybrid = self.hybrid_diagnostics();
         let m = self.motion.diagnostics();
         d.motion = self.orientation.as_ref().map(|_| m.state);
         d.sigma_z = m.sigma_z;
@@ -715,6 +779,8 @@ impl Pipeline {
             d.fix_counts = Some(f.counts);
             d.gnss_on_s = f.gnss_on_s;
         }
+        d.placement = self.placement;
+        d.foot = self.foot.as_ref().map(Foot::diagnostics);
         if let Detector::Pll(p) = &self.detector {
             let p = p.diagnostics();
             d.pll_freq_hz = Some(p.freq_hz);

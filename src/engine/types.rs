@@ -180,6 +180,10 @@ pub enum Record {
     Gnss(GnssFix),
     /// The recorder noticed that input stopped between two times (s).
     Gap(f64, f64),
+    /// A sample of a second, foot-mounted IMU (sensor frame of the foot; Strozzi 2017 §4's
+    /// two-sensor walks): fed to foot mode while the first IMU (trunk or pocket) gives the
+    /// heading. Its own stream: its times are checked against the previous foot sample.
+    Foot(ImuSample),
 }
 
 fn all_finite<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {

@@ -11,6 +11,7 @@
 //! imu,t_s,ax,ay,az,gx,gy,gz,mx,my,mz,qw,qx,qy,qz
 //! gnss,t_s,lat_deg,lon_deg,acc_m,alt_m,speed_mps,bearing_deg
 //! gap,t0_s,t1_s
+//! foot,t_s,ax,ay,az,gx,gy,gz,mx,my,mz,qw,qx,qy,qz
 //! ```
 //!
 //! Units: `t_s` seconds on the recorder's clock (any origin, increasing); `a*` m/s², specific
@@ -20,7 +21,8 @@
 //! accuracy, m; `alt_m` m; `speed_mps` m/s; `bearing_deg` degrees clockwise from true north.
 //! An empty field is a missing value; the gyroscope, magnetometer and quaternion groups are
 //! present or empty as a whole. `gap` records say the recorder saw no samples between two times
-//! (for example while the page was hidden).
+//! (for example while the page was hidden). `foot` records are the samples of a second IMU strapped on
+//! a foot (Strozzi 2017 §4's two-sensor walks), with the fields of `imu` in the foot sensor's frame.
 //!
 //! Reading is lenient per line: a bad line is reported with its file, line, column and field and
 //! skipped; every good line before and after it is kept. A missing or unknown version tag is
@@ -75,8 +77,17 @@ fn opt(out: &mut String, v: Option<f64>) {
 pub fn line(r: &Record) -> String {
     let mut s = String::with_capacity(96);
     match r {
-        Record::Imu(i) => {
-            let _ = write!(s, "imu,{},{},{},{}", i.t, i.accel.x, i.accel.y, i.accel.z);
+        Record::Imu(i) | Record::Foot(i) => {
+            let kind = if matches!(r, Record::Foot(_)) {
+                "foot"
+            } else {
+                "imu"
+            };
+            let _ = write!(
+                s,
+                "{kind},{},{},{},{}",
+                i.t, i.accel.x, i.accel.y, i.accel.z
+            );
             for v in [i.gyro, i.mag] {
                 for k in 0..3 {
                     opt(&mut s, v.map(|v| v[k]));
@@ -221,7 +232,7 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
     })?;
     // Records are put in time order (a damaged or hand-edited file); the engine needs it.
     let time = |r: &Record| match r {
-        Record::Imu(s) => s.t,
+        Record::Imu(s) | Record::Foot(s) => s.t,
         Record::Gnss(f) => f.t,
         Record::Gap(t0, _) => *t0,
     };
@@ -377,7 +388,7 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
         }
         if gap_before {
             let t0 = out.records.last().map(|r| match *r {
-                Record::Imu(s) => s.t,
+                Record::Imu(s) | Record::Foot(s) => s.t,
                 Record::Gnss(f) => f.t,
                 Record::Gap(_, t1) => t1,
             });
@@ -415,7 +426,7 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
 /// The time a record is ordered by: its own, a gap's start.
 fn record_time(r: &Record) -> f64 {
     match r {
-        Record::Imu(s) => s.t,
+        Record::Imu(s) | Record::Foot(s) => s.t,
         Record::Gnss(f) => f.t,
         Record::Gap(t0, _) => *t0,
     }
@@ -426,14 +437,14 @@ type FieldErr = (Option<usize>, Option<&'static str>, String);
 fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
     let kind = rec.first().copied().unwrap_or("").trim();
     let names: &[&'static str] = match kind {
-        "imu" => &IMU_FIELDS,
+        "imu" | "foot" => &IMU_FIELDS,
         "gnss" => &GNSS_FIELDS,
         "gap" => &GAP_FIELDS,
         other => {
             return Err((
                 Some(1),
                 Some("kind"),
-                format!("unknown record kind `{other}` (expected imu, gnss or gap)"),
+                format!("unknown record kind `{other}` (expected imu, foot, gnss or gap)"),
             ))
         }
     };
@@ -490,7 +501,7 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
         }
     };
     Ok(match kind {
-        "imu" => {
+        "imu" | "foot" => {
             let q = match (num(11)?, group(12)?) {
                 (Some(w), Some([x, y, z])) => {
                     let q = Quaternion::new(w, x, y, z);
@@ -518,13 +529,18 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
                     ))
                 }
             };
-            Record::Imu(ImuSample {
+            let s = ImuSample {
                 t: req(1)?,
                 accel: Vector3::new(req(2)?, req(3)?, req(4)?),
                 gyro: group(5)?.map(Vector3::from),
                 mag: group(8)?.map(Vector3::from),
                 orientation: q,
-            })
+            };
+            if kind == "foot" {
+                Record::Foot(s)
+            } else {
+                Record::Imu(s)
+            }
         }
         "gnss" => Record::Gnss(GnssFix {
             t: req(1)?,

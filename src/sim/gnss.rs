@@ -86,7 +86,7 @@ impl Scenario {
 /// Merges two time-ordered record lists (a stable merge: at equal times `a` comes first).
 pub(super) fn merge_in_time(a: Vec<Record>, b: Vec<Record>) -> Vec<Record> {
     let time = |r: &Record| match r {
-        Record::Imu(s) => s.t,
+        Record::Imu(s) | Record::Foot(s) => s.t,
         Record::Gnss(f) => f.t,
         Record::Gap(t, _) => *t,
     };

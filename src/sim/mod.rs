@@ -29,14 +29,18 @@
 //! Model at the origin, for the date [`Scenario::clock_offset_s`] puts the walk on), and the OS
 //! heading may carry a constant bias ([`Sensors::os_yaw_bias_deg`]).
 //!
+//! A foot-mounted IMU on the same walker, on request: [`foot`].
+//!
 //! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,
 //! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
 //! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
 
+pub mod foot;
 pub mod formats;
 mod gnss;
 pub mod scenarios;
 
+pub use foot::{FootImu, FootSimulation, FootStride};
 pub use gnss::GnssSim;
 
 use crate::engine::step_length::StepLengthProfile;

@@ -168,3 +168,24 @@ pub fn long_walk(minutes: f64) -> Scenario {
     }
     Scenario::new(segs)
 }
+
+/// `laps` times round a 400 m athletic track like Strozzi 2017 §5.1's outdoor path (84.4 m
+/// straights, smooth 180° bends of 115.6 m) at 1.8 Hz, between 3 s pauses; the phone's OS yaw
+/// wanders by 2° (1σ), as a real attitude's does. The two-sensor walk of `tests/hybrid.rs` (with
+/// [`super::FootImu`]).
+pub fn athletic_track(laps: usize) -> Scenario {
+    let w = Walker::default();
+    let f = 1.8;
+    let mut segs = vec![Segment::still(3.0)];
+    for _ in 0..laps {
+        for _ in 0..2 {
+            segs.push(Segment::walk_distance(84.4, f, &w));
+            segs.push(Segment::walk_distance(115.6, f, &w).turning(180.0));
+        }
+    }
+    segs.push(Segment::still(3.0));
+    let mut sc = Scenario::new(segs);
+    sc.sensors.os_yaw_error_deg = 2.0;
+    sc.seed = 2017;
+    sc
+}

@@ -36,6 +36,19 @@ enum ScenarioArg {
     Calibration,
     /// `--minutes` of walking, turning, pausing and running (the benchmarks' walk).
     Long,
+    /// Once round a 400 m athletic track (Strozzi 2017 §5.1's outdoor path), for `--foot`.
+    Track,
+}
+
+/// Which IMUs `pdr simulate` writes.
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum FootArg {
+    /// The pocket phone only.
+    None,
+    /// Only an IMU on the walker's right foot (as x-io's foot-mounted walks).
+    Only,
+    /// The phone and the foot IMU (pdr-log `foot` records): a two-sensor walk.
+    Two,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -133,6 +146,9 @@ enum Cmd {
         /// Long walk: its duration, minutes.
         #[arg(long, default_value_t = 60.0)]
         minutes: f64,
+        /// A foot-mounted IMU on the same walker (`sim::foot`, 400 Hz).
+        #[arg(long, value_enum, default_value = "none")]
+        foot: FootArg,
     },
     /// Accuracy of every method on simulated walks with known truth.
     Simcheck,
@@ -214,6 +230,7 @@ pub fn main() -> ExitCode {
             sl_a,
             sl_b,
             minutes,
+            foot,
         } => {
             let sc = match scenario {
                 ScenarioArg::Demo => scenarios::demo_walk(),
@@ -224,8 +241,16 @@ pub fn main() -> ExitCode {
                     scenarios::calibration_walk(cadence, metres, sl_a, sl_b)
                 }
                 ScenarioArg::Long => scenarios::long_walk(minutes),
+                ScenarioArg::Track => scenarios::athletic_track(1),
             };
-            simulate::simulate(sc, out.as_deref(), format, events.as_deref(), platform)
+            simulate::simulate(
+                sc,
+                out.as_deref(),
+                format,
+                events.as_deref(),
+                platform,
+                foot,
+            )
         }
         Cmd::Simcheck => {
             simcheck::simcheck();

@@ -103,6 +103,23 @@ fn print_report(report: &pdr::eval::Report) {
             opt(l.loop_closure_m, 1),
         );
     }
+    for l in report.logs.iter() {
+        let Some(strides) = l.strides else { continue };
+        out!(
+            "foot mode {:<34} {} strides ({} steps), {:.2} m walked, loop closure {} m ({} % of the distance)",
+            l.path.rsplit('/').next().unwrap_or(&l.path),
+            strides,
+            l.steps,
+            l.distance_m,
+            opt(l.loop_closure_m, 3),
+            opt(
+                l.loop_closure_m
+                    .filter(|_| l.distance_m > 0.0)
+                    .map(|c| 100.0 * c / l.distance_m),
+                2
+            )
+        );
+    }
     for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
         out!(
             "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m",

@@ -51,7 +51,12 @@ pub fn run(file: &Path, outputs: Outputs, settings: &Settings) -> Result<(), Str
     );
     out!("orientation   {:?}", d.orientation);
     out!("duration      {:.1} s", t1 - t0);
-    out!("steps         {}", track.len());
+    if d.placement == pdr::engine::foot::placement::Placement::Foot {
+        out!("mode          foot (zero-velocity updates; a stride counts as two steps)");
+        out!("strides       {} ({} steps)", d.strides, d.steps);
+    } else {
+        out!("steps         {}", track.len());
+    }
     out!("distance      {:.1} m", d.distance_m);
     if let Some(last) = track.last() {
         out!("final east    {:.1} m", last.east_m);

@@ -2,7 +2,7 @@
 //! from `--format` to the import's formats) or as the browser events a phone would fire.
 //! May import: the `pdr` library and `cli::{FormatArg, PlatformArg}`; no other subcommand.
 
-use crate::cli::{FormatArg, PlatformArg};
+use crate::cli::{FootArg, FormatArg, PlatformArg};
 use pdr::engine::Record;
 use pdr::io::pdrlog;
 use pdr::sim::Simulation;
@@ -14,8 +14,14 @@ pub fn simulate(
     format: FormatArg,
     events: Option<&Path>,
     platform: PlatformArg,
+    foot: FootArg,
 ) -> Result<(), String> {
-    let sim = sc.generate();
+    let imu = pdr::sim::FootImu::default();
+    let sim = match foot {
+        FootArg::None => sc.generate(),
+        FootArg::Only => sc.generate_foot(&imu).sim,
+        FootArg::Two => sc.generate_two_sensor(&imu).0,
+    };
     let write = |path: &Path, text: String| {
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
     };

@@ -290,7 +290,7 @@ impl Log {
     /// First and last record time, s.
     pub fn time_span(&self) -> Option<(f64, f64)> {
         let t = |r: &Record| match r {
-            Record::Imu(s) => s.t,
+            Record::Imu(s) | Record::Foot(s) => s.t,
             Record::Gnss(f) => f.t,
             Record::Gap(a, _) => *a,
         };

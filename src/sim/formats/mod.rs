@@ -19,7 +19,7 @@
 //! | GetSensorData | file | `ACCE`, `GYRO`, `MAGN` | `AHRS` rotation vector | `GNSS` (twice) | `POSI` landmarks |
 //! | Oxford Step Counter | folder | accelerometer only | none | none | foot contacts |
 //! | Microsoft Indoor 2.0 | file | accel., gyro, mag | rotation vector | none | `TYPE_WAYPOINT` |
-//! | x-io Gait-Tracking | file | gyro (deg/s), accel. (g) | none | none | (loop closure, claimed by the reader) |
+//! | x-io Gait-Tracking | file | gyro (deg/s), accel. (g): the foot IMU's when the walk has one | none | none | (loop closure, claimed by the reader) |
 //! | pdr-log | file | everything, lossless | | | |
 //!
 //! Where a format has no place for something the simulation has, it is left out: phyphox, Oxford
@@ -151,6 +151,8 @@ enum Item<'a> {
 /// The records of a simulation with the clocks of the formats.
 struct Walk<'a> {
     items: Vec<Item<'a>>,
+    /// The samples of a foot-mounted IMU (`Record::Foot`), if the walk has one.
+    foot: Vec<&'a ImuSample>,
     /// Simulation time of the start of the recording, s.
     start: f64,
     /// Whether the simulation's clock is a Unix time.
@@ -343,8 +345,17 @@ impl<'a> Walk<'a> {
                 .saturating_mul(1_000_000_000)
                 .saturating_add(round_i64(start * 1e9))
         };
+        let foot = sim
+            .records
+            .iter()
+            .filter_map(|r| match r {
+                Record::Foot(s) if s.check_finite().is_ok() => Some(s),
+                _ => None,
+            })
+            .collect();
         Walk {
             items,
+            foot,
             start,
             unix,
             unix_start_ns,

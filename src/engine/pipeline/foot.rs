@@ -1,0 +1,95 @@
+//! The pipeline in foot mode: feeding the foot stage, recognising a foot, one step record per
+//! stride. May import: the rest of `engine`.
+
+use super::{Pipeline, StepRecord};
+use crate::engine::foot::placement::{Placement, DECIDE_WITHIN_S};
+use crate::engine::foot::Stride;
+use crate::engine::fusion;
+use crate::engine::motion::Motion;
+use crate::engine::types::ImuSample;
+
+/// The share of a gait cycle spent in swing (about 40 %, Perry's gait analysis), giving the
+/// stride frequency of the first stride of a walk from its swing alone.
+const SWING_SHARE: f64 = 0.4;
+
+impl Pipeline {
+    /// Feeds the foot stage, while it runs. Returns true when this sample made the pipeline
+    /// recognise a foot: the steps so far were replaced by the strides.
+    pub(super) fn push_foot(&mut self, s: &ImuSample, dt: f64) -> bool {
+        let Some(foot) = &mut self.foot else {
+            return false;
+        };
+        let stride = foot.push(s, dt);
+        match self.placement {
+            Placement::Foot => {
+                if let Some(st) = stride {
+                    self.emit_stride(st);
+                }
+                false
+            }
+            Placement::Auto => {
+                if let Some(st) = stride {
+                    self.pending.push(st);
+                    if self.recogniser.push(&st) {
+                        self.become_foot();
+                        return true;
+                    }
+                }
+                let start = self.diag.time_span.map_or(s.t, |p| p.0);
+                if s.t - start > DECIDE_WITHIN_S {
+                    self.placement = Placement::Body;
+                    self.foot = None;
+                    self.pending = Vec::new();
+                }
+                false
+            }
+            Placement::Body => false,
+        }
+    }
+
+    /// Foot recognised: the step detector's steps so far give way to the strides.
+    fn become_foot(&mut self) {
+        self.placement = Placement::Foot;
+        self.steps.clear();
+        self.diag.steps = 0;
+        self.diag.onset_steps = 0;
+        self.diag.steps_without_heading = 0;
+        self.diag.distance_m = 0.0;
+        self.pos = (0.0, 0.0);
+        for st in std::mem::take(&mut self.pending) {
+            self.emit_stride(st);
+        }
+    }
+
+    /// One step record per stride, at foot flat: the foot's position from the zero-velocity
+    /// track, the stride's length and heading; it counts as two steps.
+    fn emit_stride(&mut self, st: Stride) {
+        let period = self
+            .last_stride_t
+            .map(|l| st.t_end - l)
+            .filter(|&p| p > 0.0 && p <= 3.0)
+            .unwrap_or((st.t_end - st.t_start) / SWING_SHARE);
+        self.last_stride_t = Some(st.t_end);
+        self.pos = (st.east_m, st.north_m);
+        self.steps.push(StepRecord {
+            t: st.t_end,
+            east_m: st.east_m,
+            north_m: st.north_m,
+            heading_rad: Some(st.heading_rad),
+            step_heading_rad: Some(st.heading_rad),
+            length_m: st.length_m,
+            freq_hz: if period > 0.0 { 1.0 / period } else { 0.0 },
+            motion: Motion::Walking,
+        });
+        if let Some(f) = &mut self.fusion {
+            f.push_step(&fusion::StepInput {
+                t: st.t_end,
+                length_m: st.length_m,
+                heading_rad: Some(st.heading_rad),
+            });
+        }
+        self.diag.steps += 2;
+        self.diag.strides += 1;
+        self.diag.distance_m += st.length_m;
+    }
+}
