@@ -26,6 +26,7 @@
 //! - Angular rate: rad/s, right-handed about the device axes. Magnetic field: µT.
 
 pub mod analysis;
+pub mod compare;
 pub mod demo;
 pub mod engine;
 pub mod eval;

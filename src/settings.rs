@@ -63,7 +63,8 @@ pub enum SettingsError {
     },
     /// The profile file is unreadable or invalid.
     Profile(ConfigError),
-    /// A profile was given, but the step-length model has no line in frequency.
+    /// A profile was given, but the step-length model has no line in frequency (nor, for the
+    /// fuzzy model, the profile a fuzzy scale).
     ProfileWithoutLine,
     /// A value fails validation.
     Invalid(ConfigError),
@@ -84,8 +85,9 @@ impl fmt::Display for SettingsError {
             SettingsError::Profile(e) => write!(f, "step-length profile: {e}"),
             SettingsError::ProfileWithoutLine => write!(
                 f,
-                "a step-length profile is a line in frequency: choose `step_length.kind` \
-                 `frequency` to use one"
+                "a step-length profile is a line in frequency (and, when a fuzzy calibration \
+                 walk made it, a fuzzy scale): choose `step_length.kind` `frequency`, or \
+                 `fuzzy` with a profile that has `fuzzy_scale`"
             ),
             SettingsError::Invalid(e) => write!(f, "{e}"),
         }
@@ -133,6 +135,10 @@ impl Settings {
             let file = ProfileFile::from_json(text).map_err(SettingsError::Profile)?;
             match &mut cfg.step_length {
                 StepLengthModel::Frequency(p) => *p = file.profile,
+                StepLengthModel::Fuzzy(c) => match file.fuzzy_scale {
+                    Some(k) => c.scale = k,
+                    None => return Err(SettingsError::ProfileWithoutLine),
+                },
                 _ => return Err(SettingsError::ProfileWithoutLine),
             }
         }
@@ -161,6 +167,7 @@ impl Settings {
         };
         let length = match &cfg.step_length {
             StepLengthModel::Weinberg { k } => format!("Weinberg step length (K = {k})"),
+            StepLengthModel::Fuzzy(c) => format!("fuzzy step length (scale {:.3})", c.scale),
             StepLengthModel::Frequency(_) => match &self.profile {
                 Some(text) => {
                     let file = ProfileFile::from_json(text).map_err(SettingsError::Profile)?;
@@ -251,7 +258,11 @@ pub const CHOICES: &[Choice] = &[
         key: "detector.kind",
         title: "Step detector",
         flag: "detector",
-        options: &[("pll", "PLL (Basso 2016)"), ("peak", "peak counter")],
+        options: &[
+            ("pll", "PLL (Basso 2016)"),
+            ("peak", "peak counter"),
+            ("zero_crossing", "zero crossing + area (Ibarra 2015)"),
+        ],
     },
     Choice {
         key: "heading.method",
@@ -270,6 +281,7 @@ pub const CHOICES: &[Choice] = &[
         options: &[
             ("frequency", "line in frequency (2016)"),
             ("weinberg", "Weinberg"),
+            ("fuzzy", "fuzzy (Ibarra 2015)"),
         ],
     },
     Choice {
@@ -280,6 +292,7 @@ pub const CHOICES: &[Choice] = &[
             ("auto", "OS quaternion, else Madgwick, else gravity"),
             ("os", "OS quaternion"),
             ("madgwick", "Madgwick filter"),
+            ("kf_nfa", "KF-NFA (Ibarra 2015)"),
             ("gravity_low_pass", "gravity low-pass (no heading)"),
         ],
     },
@@ -436,6 +449,7 @@ mod tests {
             profile: Default::default(),
             walking_points: vec![],
             running_points: vec![],
+            fuzzy_scale: None,
         };
         let s = Settings {
             profile: Some(profile.to_json().unwrap()),

@@ -24,6 +24,7 @@ fn walk(f: f64, metres: f64, seed: u64) -> CalibrationWalk {
     CalibrationWalk {
         distance_m: sim.truth.distance_m,
         step_freqs_hz: r.pipeline.track().iter().map(|s| s.freq_hz).collect(),
+        ..Default::default()
     }
 }
 
@@ -100,6 +101,7 @@ fn the_wizard_makes_the_profile_from_three_paces_or_one() {
     let few = CalibrationWalk {
         distance_m: 10.0,
         step_freqs_hz: vec![1.8; 5],
+        ..Default::default()
     };
     assert!(quick
         .add(Band::Walking, "slow", &few)
@@ -109,6 +111,7 @@ fn the_wizard_makes_the_profile_from_three_paces_or_one() {
     let no_distance = CalibrationWalk {
         distance_m: f64::NAN,
         step_freqs_hz: vec![1.8; 50],
+        ..Default::default()
     };
     assert!(quick.add(Band::Walking, "slow", &no_distance).is_err());
     // A slope that cannot be right falls back to quick mode on the mean point.
@@ -121,4 +124,147 @@ fn the_wizard_makes_the_profile_from_three_paces_or_one() {
     let (p, notes) = wrong.profile(&base);
     assert_eq!(p.walking.a, base.walking.a);
     assert!(notes[0].contains("quick mode"), "{notes:?}");
+}
+
+/// A calibration walk as the page's wizard records it: the simulated walk fed as a phone's
+/// motion events to a live session (the one pipeline, default settings), its distance, its
+/// steps' frequencies and their unscaled fuzzy lengths (`LiveSession::fuzzy_lengths`); and the
+/// session.
+fn wizard_walk_session(
+    f: f64,
+    metres: f64,
+    seed: u64,
+) -> (CalibrationWalk, pdr::live::LiveSession) {
+    use pdr::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
+    let sim = Scenario {
+        seed,
+        ..scenarios::calibration_walk(f, metres, A, B)
+    }
+    .generate();
+    let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
+    for ev in browser_events(&sim.records, Platform::Android) {
+        if let BrowserEvent::Motion {
+            t,
+            x,
+            y,
+            z,
+            alpha,
+            beta,
+            gamma,
+            ..
+        } = ev
+        {
+            live.push_motion(&MotionEvent {
+                time_stamp_ms: t,
+                accel: Some([x, y, z]),
+                rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
+            })
+            .unwrap();
+        }
+    }
+    assert_eq!(live.fuzzy_lengths().len(), live.step_freqs().len());
+    let walk = CalibrationWalk {
+        distance_m: sim.truth.distance_m,
+        step_freqs_hz: live.step_freqs(),
+        fuzzy_lengths_m: live.fuzzy_lengths().to_vec(),
+    };
+    (walk, live)
+}
+
+fn wizard_walk(f: f64, metres: f64, seed: u64) -> CalibrationWalk {
+    wizard_walk_session(f, metres, seed).0
+}
+
+/// The distance the fuzzy model with `profile` (JSON) gives on a separate walk, and the truth.
+fn fuzzy_distance(profile: Option<String>, f: f64, metres: f64, seed: u64) -> (f64, f64) {
+    let sim = Scenario {
+        seed,
+        ..scenarios::calibration_walk(f, metres, A, B)
+    }
+    .generate();
+    let settings = pdr::settings::Settings {
+        profile,
+        ..Default::default()
+    }
+    .with("step_length.kind", "fuzzy");
+    let r = replay(settings.config().unwrap(), &sim.records).unwrap();
+    (r.pipeline.diagnostics().distance_m, sim.truth.distance_m)
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn the_session_s_fuzzy_lengths_are_the_fuzzy_model_s() {
+    // The lengths the live session computes per step (fuzzy model at scale 1, whatever model
+    // runs) are those a pipeline running the fuzzy model gives the same steps: the session's
+    // recording replayed with the fuzzy model, and the recording resumed in a new session.
+    use pdr::io::pdrlog;
+    let (walk, mut live) = wizard_walk_session(1.8, 60.0, 7);
+    let text = live.take_log();
+    let records = pdrlog::read(text.as_bytes(), "walk.pdrlog")
+        .unwrap()
+        .records;
+    let cfg = pdr::settings::Settings::new()
+        .with("step_length.kind", "fuzzy")
+        .config()
+        .unwrap();
+    let fuzzy = replay(cfg, &records).unwrap();
+    let want: Vec<f64> = fuzzy.pipeline.track().iter().map(|s| s.length_m).collect();
+    assert!(want.len() > 60);
+    assert_eq!(walk.fuzzy_lengths_m, want);
+    let resumed = pdr::live::LiveSession::resume(
+        PipelineConfig::default(),
+        pdr::live::Platform::Android,
+        0.0,
+        &text,
+    )
+    .unwrap();
+    assert_eq!(resumed.fuzzy_lengths(), &want[..]);
+}
+
+#[wasm_bindgen_test(unsupported = test)]
+fn the_wizard_fits_the_fuzzy_scale_that_measures_another_walk_within_3_percent() {
+    use pdr::engine::calibration::{Band, ProfileFile, Wizard, PROFILE_VERSION};
+    let mut wiz = Wizard::default();
+    for (i, f) in [1.5, 1.8, 2.1].into_iter().enumerate() {
+        let w = wiz
+            .add(Band::Walking, "pace", &wizard_walk(f, 60.0, 30 + i as u64))
+            .unwrap();
+        assert!(w.fuzzy_sum_m.is_some_and(|l| l > 0.0), "{w:?}");
+    }
+    let k = wiz.fuzzy_scale().unwrap();
+    let (profile, notes) = wiz.profile(&Default::default());
+    assert!(notes.iter().any(|n| n.contains("scale k")), "{notes:?}");
+    let file = ProfileFile {
+        version: PROFILE_VERSION,
+        name: "fuzzy".into(),
+        profile,
+        walking_points: wiz.points(Band::Walking),
+        running_points: vec![],
+        fuzzy_scale: Some(k),
+    };
+    let json = file.to_json().unwrap();
+    assert_eq!(ProfileFile::from_json(&json).unwrap().fuzzy_scale, Some(k));
+    let (with, truth) = fuzzy_distance(Some(json), 1.7, 120.0, 99);
+    let (without, _) = fuzzy_distance(None, 1.7, 120.0, 99);
+    let err = (with - truth).abs() / truth;
+    println!(
+        "fuzzy scale k = {k:.4}; 120 m at 1.7 Hz: {with:.1} m ({:.1} %), {without:.1} m with k = 1 (truth {truth:.1} m)",
+        100.0 * err
+    );
+    assert!(err < 0.03, "{with} m of {truth} m with k = {k}");
+
+    // An old profile without the field still loads (and still serves the line), and a walk
+    // whose fuzzy lengths are unusable is refused with a reason, not fitted to k = ∞.
+    let old = r#"{"version": 1, "name": "old", "profile": {"walking": {"a": 0.3, "b": 0.12, "f_lo": 1.5, "f_hi": 2.2},
+        "running": {"a": 0.9, "b": -1.5, "f_lo": 2.7, "f_hi": 3.5}}}"#;
+    let f = ProfileFile::from_json(old).unwrap();
+    assert_eq!(f.fuzzy_scale, None);
+    let mut zero = wizard_walk(1.8, 40.0, 3);
+    zero.fuzzy_lengths_m.iter_mut().for_each(|l| *l = 0.0);
+    let e = Wizard::default()
+        .add(Band::Walking, "normal", &zero)
+        .unwrap_err();
+    assert!(e.to_string().contains("fuzzy step lengths"), "{e}");
+    assert!(pdr::engine::calibration::fit_fuzzy_scale(&[]).is_err());
+    assert!(pdr::engine::calibration::fit_fuzzy_scale(&[(40.0, 0.0)]).is_err());
+    assert!(Wizard::default().fuzzy_scale().is_none());
 }

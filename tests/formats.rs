@@ -463,7 +463,9 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
         OrientationSource::Os => Attitude::Os,
         OrientationSource::Madgwick { .. } => Attitude::Madgwick,
         OrientationSource::GravityLowPass { .. } => Attitude::Gravity,
-        OrientationSource::Auto => panic!("unresolved"),
+        OrientationSource::Auto | OrientationSource::KfNfa(_) => {
+            panic!("unresolved or not Auto's: {source:?}")
+        }
     };
     assert_eq!(attitude, c.attitude, "{name}: orientation source");
     let diff = n as f64 - reference as f64;

@@ -415,7 +415,7 @@ fn the_hybrid_stage_refuses_bad_input() {
         east_m: 0.0,
         north_m: 0.0,
         up_m: 0.0,
-        peak_rate_rad_s: 8.0,
+        peak_rate_rad_s: 5.0,
     };
     for method in [HybridMethod::MidSwing, HybridMethod::FirCrossing] {
         let mut h = Hybrid::new(HybridConfig {
@@ -425,6 +425,7 @@ fn the_hybrid_stage_refuses_bad_input() {
         .unwrap();
         h.push_heading(0.0, f64::NAN);
         h.push_heading(f64::INFINITY, 0.0);
+        h.push_heading(-1e300, 0.0); // finite, but beyond any clock
         for i in 0..300 {
             h.push_heading(
                 f64::from(i) * 0.01,
@@ -441,10 +442,13 @@ fn the_hybrid_stage_refuses_bad_input() {
         assert!(out[0].heading_rad.is_finite() && out[0].east_m.is_finite());
         assert_eq!(
             h.diagnostics().refused,
-            5,
+            6,
             "{method:?}: {:?}",
             h.diagnostics()
         );
+        // A pause: nothing is interpolated across it, however long.
+        h.push_heading(1e11, 0.5);
+        h.push_heading(1e11 + 0.01, 0.5);
         // A stride long after the trunk stopped: the foot's heading, counted.
         h.push_stride(&stride(60.0, 1.0));
         let late = h.flush();

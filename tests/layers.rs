@@ -20,6 +20,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("io", &["engine"]),
     ("sim", &["engine", "io"]),
     ("eval", &["engine", "io"]),
+    ("compare", &["engine", "io", "eval", "settings"]),
     ("live", &["engine", "io"]),
     ("analysis", &["engine", "io", "eval"]),
     ("plot", &["engine", "analysis"]),

@@ -1,7 +1,7 @@
 // Upload mode: files in (picker, folder, drag & drop), the worker parses and runs the engine,
 // the page draws each analysis (AnalysisView, in wasm) and lets the user zoom, pan, hover,
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
-import { AnalysisView, compare_settings, settings_label } from './pkg/pdr.js';
+import { AnalysisView, compare_settings, profile_summary, settings_label } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import { $, dark, download, fit } from './util.js';
 const PLOTS = [
@@ -25,15 +25,25 @@ function banner(text, kind = 'error') {
   $('upload-banners').append(li);
 }
 
+/** Whether a profile's JSON carries a fuzzy scale (the engine reads it; a bad file has none). */
+function hasFuzzyScale(json) {
+  if (!json) return false;
+  try { return profile_summary(json).fuzzy_scale != null; } catch { return false; }
+}
+
 /** The settings of a row (A or B) for the worker, and how they are described. */
 function config(tag) {
   const row = document.querySelector(`.config[data-config="${tag}"]`);
   const set = {};
   for (const sel of row.querySelectorAll('select[data-choice]')) set[sel.name] = sel.value;
   const profile = row.querySelector('[name=profile]');
-  // A profile is a line in frequency: no other step-length model has one.
-  const line = set['step_length.kind'] === 'frequency';
-  const settings = { set, profile: line && profile.value ? profiles.all()[profile.value] : undefined };
+  // A profile is a line in frequency and, when the wizard's walks measured it, the fuzzy
+  // model's scale: it goes with the line, and with the fuzzy model when it has a scale (else
+  // the fuzzy model runs unscaled). Weinberg has neither.
+  const json = profile.value ? profiles.all()[profile.value] : undefined;
+  const kind = set['step_length.kind'];
+  const usable = kind === 'frequency' || (kind === 'fuzzy' && hasFuzzyScale(json));
+  const settings = { set, profile: usable ? json : undefined };
   return { settings, label: settings_label(settings) };
 }
 
@@ -468,7 +478,7 @@ export function setupUpload() {
   }
   for (const sel of document.querySelectorAll('.config [name="step_length.kind"]')) {
     const profile = sel.closest('.config').querySelector('[name=profile]');
-    sel.addEventListener('change', () => { profile.disabled = sel.value !== 'frequency'; });
+    sel.addEventListener('change', () => { profile.disabled = sel.value !== 'frequency' && sel.value !== 'fuzzy'; });
   }
   $('compare').addEventListener('change', (e) => {
     document.querySelector('.config[data-config="b"]').hidden = !e.target.checked;

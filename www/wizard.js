@@ -1,6 +1,7 @@
 // The step-length calibration wizard and the profiles panel. This only drives the steps: the
 // walks run through live mode's session (sensors, pocket guard, wake lock), and every figure —
-// eq. 1 and 2, the fits, their warnings, the profile, its chart, the refinement — comes from
+// eq. 1 and 2, the fits, their warnings, the fuzzy scale, the profile, its chart, the
+// refinement — comes from
 // the engine (CalibrationWizard, profile_summary, refine_profile in src/web/calibration.rs).
 import { CalibrationWizard, gnss_limit_m, profile_summary, refine_profile } from './pkg/pdr.js';
 import { startWalk, stopWalk } from './live.js';
@@ -68,8 +69,9 @@ async function finish() {
   button.classList.remove('running');
   const distance = w.gnss ? w.session.live.fix_path_m(gnss_limit_m()) : w.target;
   try {
-    const p = wizard.add_walk(w.band, w.pace, distance, w.session.live.step_freqs());
-    result.textContent = `N = ${p.steps} steps over ${p.distance_m.toFixed(1)} m · f̄ = ${p.f_mean_hz.toFixed(2)} Hz (eq. 1) · SL̄ = D/N = ${p.sl_mean_m.toFixed(3)} m (eq. 2) → one point of your ${w.band} line`;
+    const p = wizard.add_walk(w.band, w.pace, distance, w.session.live.step_freqs(), w.session.live.fuzzy_lengths());
+    result.textContent = `N = ${p.steps} steps over ${p.distance_m.toFixed(1)} m · f̄ = ${p.f_mean_hz.toFixed(2)} Hz (eq. 1) · SL̄ = D/N = ${p.sl_mean_m.toFixed(3)} m (eq. 2) → one point of your ${w.band} line`
+      + (p.fuzzy_sum_m != null ? ` · fuzzy Σ = ${p.fuzzy_sum_m.toFixed(1)} m at k = 1` : '');
   } catch (err) {
     result.textContent = String(err?.message ?? err);
     result.classList.add('error');
@@ -114,6 +116,7 @@ function refresh() {
     fits.append(box);
     draw(canvas, band);
   }
+  // The notes end with the fitted fuzzy scale, when the walks measured one (engine's text).
   $('cal-notes').replaceChildren(...st.notes.map((n) => Object.assign(document.createElement('li'), { textContent: n })));
   $('cal-save').disabled = st.walking.points + st.running.points === 0;
   window.__pdrCalibration = st;

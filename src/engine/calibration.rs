@@ -38,13 +38,19 @@ pub const OUTLIER_MIN_M: f64 = 0.03;
 /// The population slope of quick mode, m/Hz (see the module documentation).
 pub const UNIVERSAL_SLOPE: f64 = 0.25;
 
-/// One calibration walk: a known distance, and the step frequencies the engine counted.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+/// One calibration walk: a known distance, and the step frequencies the engine counted (and,
+/// when the caller has them, the steps' unscaled fuzzy lengths).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct CalibrationWalk {
     /// Distance walked, m (typed by the user or measured from the fixes).
     pub distance_m: f64,
     /// f_k = 1/T_k of every step counted, Hz.
     pub step_freqs_hz: Vec<f64>,
+    /// The fuzzy model's length of every step counted, at scale 1 (the centroid; Ibarra 2015,
+    /// `live::LiveSession::fuzzy_lengths`), m; empty when not measured (older callers): the
+    /// walk then fits the line only.
+    #[serde(default)]
+    pub fuzzy_lengths_m: Vec<f64>,
 }
 
 impl CalibrationWalk {
@@ -288,6 +294,57 @@ pub struct ProfileFile {
     /// Calibration points of the running band.
     #[serde(default)]
     pub running_points: Vec<(f64, f64)>,
+    /// The fuzzy step length's output scale k ([`fuzzy_scale`]), when a calibration walk was
+    /// made with that model; absent from files that have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fuzzy_scale: Option<f64>,
+}
+
+/// The fuzzy step length's output scale from a calibration walk (Ibarra 2015 §4.4.2 has no
+/// calibration; ours, as the line's eq. 2 does for SL̄): the walk's known distance over the
+/// sum of the step lengths the fuzzy system gave with scale `current`, times `current`:
+/// k = current · D / Σ SL_k. Refused like a wizard walk: a distance that is not a positive
+/// number of metres, fewer than [`MIN_STEPS`] steps, or lengths that are not finite and
+/// positive.
+pub fn fuzzy_scale(distance_m: f64, lengths_m: &[f64], current: f64) -> Result<f64, WalkError> {
+    if !(distance_m.is_finite() && distance_m > 0.0) {
+        return Err(WalkError::Distance(distance_m));
+    }
+    let sum: f64 = lengths_m.iter().sum();
+    if lengths_m.len() < MIN_STEPS
+        || !(sum.is_finite() && sum > 0.0)
+        || !(current.is_finite() && current > 0.0)
+    {
+        return Err(WalkError::TooFewSteps(lengths_m.len()));
+    }
+    Ok(current * distance_m / sum)
+}
+
+/// The fuzzy scale that fits several calibration walks, each `(D_i, L_i)`: its known distance
+/// and the sum of its steps' unscaled fuzzy lengths, m. Least squares through the origin,
+/// D_i ≈ k·L_i: k = Σ D_i·L_i / Σ L_i² (ours; Ibarra 2015 has no calibration; for one walk it is
+/// [`fuzzy_scale`]'s D / Σ SL_k at scale 1). Errors: no walk, or sums that are not finite and
+/// positive ([`WalkError::FuzzyLengths`]), never an infinite k.
+pub fn fit_fuzzy_scale(walks: &[(f64, f64)]) -> Result<f64, WalkError> {
+    if walks.is_empty() {
+        return Err(WalkError::NoFuzzyWalks);
+    }
+    for &(d, l) in walks {
+        if !(d.is_finite() && d > 0.0) {
+            return Err(WalkError::Distance(d));
+        }
+        if !(l.is_finite() && l > 0.0) {
+            return Err(WalkError::FuzzyLengths(l));
+        }
+    }
+    let dl: f64 = walks.iter().map(|(d, l)| d * l).sum();
+    let ll: f64 = walks.iter().map(|(_, l)| l * l).sum();
+    let k = dl / ll;
+    if k.is_finite() && k > 0.0 {
+        Ok(k)
+    } else {
+        Err(WalkError::FuzzyLengths(ll))
+    }
 }
 
 /// The current profile file version.
@@ -309,6 +366,9 @@ impl ProfileFile {
             ));
         }
         p.profile.validate()?;
+        if let Some(k) = p.fuzzy_scale {
+            super::types::positive("profile.fuzzy_scale", k)?;
+        }
         Ok(p)
     }
 
@@ -318,14 +378,18 @@ impl ProfileFile {
             .map_err(|e| ConfigError::new("profile", format!("cannot be written: {e}")))
     }
 
-    /// Its lines for people: "Walking SL = 0.298·f + 0.203 m (3 walks); running SL = …".
+    /// Its lines for people: "Walking SL = 0.298·f + 0.203 m (3 walks); running SL = … Fuzzy
+    /// scale k = 1.226." (the last sentence when it has one).
     pub fn describe(&self) -> String {
         let line = |l: &Line| {
             let sign = if l.b >= 0.0 { '+' } else { '−' };
             format!("SL = {:.3}·f {sign} {:.3} m", l.a, l.b.abs())
         };
+        let fuzzy = self
+            .fuzzy_scale
+            .map_or(String::new(), |k| format!(" Fuzzy scale k = {k:.3}."));
         format!(
-            "Walking {} ({} walks); running {} ({} runs).",
+            "Walking {} ({} walks); running {} ({} runs).{fuzzy}",
             line(&self.profile.walking),
             self.walking_points.len(),
             line(&self.profile.running),
@@ -377,6 +441,8 @@ pub struct WizardWalk {
     pub f_mean_hz: f64,
     /// SL̄ = D/N by eq. 2, m.
     pub sl_mean_m: f64,
+    /// Σ of the steps' unscaled fuzzy lengths, m, when the walk measured them.
+    pub fuzzy_sum_m: Option<f64>,
 }
 
 /// Why a walk cannot be a calibration point.
@@ -386,6 +452,11 @@ pub enum WalkError {
     Distance(f64),
     /// Too few steps were counted for a mean.
     TooFewSteps(usize),
+    /// The fuzzy lengths are not one finite, non-negative length per step with a positive sum
+    /// (the value is their sum, or their count when it is not the steps').
+    FuzzyLengths(f64),
+    /// No walk of the walking band measured fuzzy lengths.
+    NoFuzzyWalks,
 }
 
 impl std::fmt::Display for WalkError {
@@ -395,6 +466,14 @@ impl std::fmt::Display for WalkError {
             WalkError::TooFewSteps(n) => write!(
                 f,
                 "only {n} steps were counted: walk at least {MIN_STEPS} steps with the phone in the pocket"
+            ),
+            WalkError::FuzzyLengths(x) => write!(
+                f,
+                "the walk's fuzzy step lengths are unusable ({x}): they must be one positive length per step; walk it again"
+            ),
+            WalkError::NoFuzzyWalks => write!(
+                f,
+                "no walking walk measured fuzzy step lengths: the fuzzy scale needs one"
             ),
         }
     }
@@ -429,6 +508,21 @@ impl Wizard {
         let (f, sl) = walk
             .point()
             .ok_or(WalkError::TooFewSteps(walk.step_freqs_hz.len()))?;
+        let fuzzy_sum_m = match walk.fuzzy_lengths_m.as_slice() {
+            [] => None,
+            l if l.len() != walk.step_freqs_hz.len() => {
+                return Err(WalkError::FuzzyLengths(l.len() as f64))
+            }
+            l => {
+                let sum: f64 = l.iter().sum();
+                if l.iter().any(|x| !(x.is_finite() && *x >= 0.0))
+                    || !(sum > 0.0 && sum.is_finite())
+                {
+                    return Err(WalkError::FuzzyLengths(sum));
+                }
+                Some(sum)
+            }
+        };
         self.walks.push(WizardWalk {
             band,
             pace: pace.to_string(),
@@ -436,6 +530,7 @@ impl Wizard {
             steps: walk.step_freqs_hz.len(),
             f_mean_hz: f,
             sl_mean_m: sl,
+            fuzzy_sum_m,
         });
         Ok(&self.walks[self.walks.len() - 1])
     }
@@ -447,6 +542,18 @@ impl Wizard {
             .filter(|w| w.band == band)
             .map(|w| (w.f_mean_hz, w.sl_mean_m))
             .collect()
+    }
+
+    /// The fuzzy step length's output scale the walking band's walks make ([`fit_fuzzy_scale`]
+    /// over the walks that measured fuzzy lengths); `None` when none did.
+    pub fn fuzzy_scale(&self) -> Option<f64> {
+        let walks: Vec<(f64, f64)> = self
+            .walks
+            .iter()
+            .filter(|w| w.band == Band::Walking)
+            .filter_map(|w| Some((w.distance_m, w.fuzzy_sum_m?)))
+            .collect();
+        fit_fuzzy_scale(&walks).ok()
     }
 
     /// The profile the walks make, starting from `base` (the bands' limits and any band without
@@ -499,6 +606,16 @@ impl Wizard {
                     ));
                 }
             }
+        }
+        let n = self
+            .walks
+            .iter()
+            .filter(|w| w.band == Band::Walking && w.fuzzy_sum_m.is_some())
+            .count();
+        if let Some(k) = self.fuzzy_scale() {
+            notes.push(format!(
+                "fuzzy step length (Ibarra 2015): scale k = {k:.3}, least squares over {n} walking walk(s)"
+            ));
         }
         (p, notes)
     }
@@ -561,6 +678,46 @@ mod tests {
     }
 
     #[test]
+    fn fuzzy_scale_least_squares_and_refusals() {
+        // D_i = 1.2·L_i exactly: k = 1.2; with noise, Σ D·L / Σ L².
+        assert!((fit_fuzzy_scale(&[(60.0, 50.0), (36.0, 30.0)]).unwrap() - 1.2).abs() < 1e-12);
+        let k = fit_fuzzy_scale(&[(10.0, 10.0), (20.0, 10.0)]).unwrap();
+        assert!((k - 1.5).abs() < 1e-12);
+        for bad in [
+            &[][..],
+            &[(10.0, 0.0)],
+            &[(10.0, f64::NAN)],
+            &[(f64::INFINITY, 1.0)],
+        ] {
+            assert!(fit_fuzzy_scale(bad).is_err(), "{bad:?}");
+        }
+        let walk = |l: Vec<f64>| CalibrationWalk {
+            distance_m: 30.0,
+            step_freqs_hz: vec![1.8; 40],
+            fuzzy_lengths_m: l,
+        };
+        let mut w = Wizard::default();
+        for l in [
+            vec![0.7; 39],
+            vec![0.0; 40],
+            vec![f64::NAN; 40],
+            vec![-0.1; 40],
+        ] {
+            let e = w.add(Band::Walking, "normal", &walk(l)).unwrap_err();
+            assert!(matches!(e, WalkError::FuzzyLengths(_)) && !e.to_string().is_empty());
+        }
+        assert!(w.walks.is_empty() && w.fuzzy_scale().is_none());
+        // Old callers (no lengths) fit the line only; a running walk does not count.
+        w.add(Band::Walking, "normal", &walk(vec![])).unwrap();
+        assert!(w.fuzzy_scale().is_none());
+        w.add(Band::Running, "jog", &walk(vec![1.0; 40])).unwrap();
+        assert!(w.fuzzy_scale().is_none());
+        w.add(Band::Walking, "fast", &walk(vec![0.6; 40])).unwrap();
+        assert!((w.fuzzy_scale().unwrap() - 1.25).abs() < 1e-12);
+        assert!(w.profile(&Default::default()).1[2].contains("scale k = 1.250"));
+    }
+
+    #[test]
     fn profile_file_round_trip_and_errors() {
         let p = ProfileFile {
             version: PROFILE_VERSION,
@@ -568,6 +725,7 @@ mod tests {
             profile: StepLengthProfile::default(),
             walking_points: vec![(1.6, 0.6), (1.9, 0.68)],
             running_points: vec![],
+            fuzzy_scale: None,
         };
         assert_eq!(ProfileFile::from_json(&p.to_json().unwrap()).unwrap(), p);
         let old = p

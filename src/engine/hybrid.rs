@@ -48,7 +48,7 @@
 
 use super::foot::Stride;
 use super::math::{wrap_2pi, wrap_pi};
-use super::types::{positive, ConfigError};
+use super::types::{positive, time_in_range, ConfigError};
 use nalgebra::{DMatrix, DVector};
 use std::collections::VecDeque;
 use std::f64::consts::PI;
@@ -259,24 +259,27 @@ impl Hybrid {
     }
 
     /// Feeds the trunk sensor's yaw at time `t` (compass radians), for every trunk sample in
-    /// time order. A non-finite value or a time going backwards is refused and counted.
+    /// time order. A non-finite value, a time beyond
+    /// ±[`MAX_TIME_S`](super::types::MAX_TIME_S) or going backwards is
+    /// refused and counted. A pause longer than 0.5 s restarts the filter (nothing is
+    /// interpolated across it).
     pub fn push_heading(&mut self, t: f64, yaw_rad: f64) {
-        if !(t.is_finite() && yaw_rad.is_finite()) || self.last.is_some_and(|(lt, _)| t < lt) {
+        if !(time_in_range(t) && yaw_rad.is_finite()) || self.last.is_some_and(|(lt, _)| t < lt) {
             self.diag.refused += 1;
             return;
         }
-        let x = match self.last {
-            Some((lt, lx)) if t - lt <= GAP_S => lx + wrap_pi(yaw_rad - lx),
+        let (x, bridged) = match self.last {
+            Some((lt, lx)) if t - lt <= GAP_S => (lx + wrap_pi(yaw_rad - lx), true),
             Some((_, lx)) => {
                 self.restart_filter();
-                lx + wrap_pi(yaw_rad - lx)
+                (lx + wrap_pi(yaw_rad - lx), false)
             }
-            None => wrap_pi(yaw_rad),
+            None => (wrap_pi(yaw_rad), false),
         };
-        if let Some(prev) = self.last {
-            if self.cfg.method == HybridMethod::FirCrossing {
-                self.grid_to(prev, (t, x));
-            }
+        if self.cfg.method == HybridMethod::FirCrossing {
+            // Within GAP_S of the previous sample: at most GAP_S × rate grid points.
+            let from = self.last.filter(|_| bridged).unwrap_or((t, x));
+            self.grid_to(from, (t, x));
         }
         self.last = Some((t, x));
         self.trunk.push_back((t, x));

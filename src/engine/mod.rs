@@ -2,13 +2,16 @@
 //! May import: nothing above it (no `io`, `sim`, `plot`, `live`, `web`, …); only crates.
 //!
 //! One file per method of the papers:
-//! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass.
+//! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass;
+//!   [`orientation::kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
 //! - [`motion`]: σ_z motion detection (Basso 2016 §II.B).
 //! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
-//!   [`detector`]: what both are fed and find.
+//!   [`zero_crossing`]: zero crossings + area (Ibarra 2015 §4.4.1, eqs. 4.8–4.9);
+//!   [`detector`]: what all three are fed and find.
 //! - [`heading::tip_to_tail`]: Basso 2016 Algorithm 1; [`heading::closed_form`]: Basso 2021
 //!   eqs. 6–22; [`heading::pca`]: the PCA baseline.
-//! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg.
+//! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg; [`fuzzy_step_length`]: Ibarra
+//!   2015 §4.4.2's fuzzy system.
 //! - [`calibration`]: fitting a user's profile (Basso 2016 §II.D), quick mode, profile files.
 //! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24); [`replay`]: the one
 //!   loop that feeds a log through it.
@@ -26,9 +29,9 @@
 //!
 //! | Stage | Settings | `push` takes | gives | Diagnostics |
 //! |---|---|---|---|---|
-//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not |
+//! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not, KF-NFA R scale and mismatch |
 //! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
-//! | [`pll::Pll`], [`peak::PeakDetector`] | [`pll::PllConfig`], [`peak::PeakConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
+//! | [`pll::Pll`], [`peak::PeakDetector`], [`zero_crossing::ZeroCrossing`] | [`pll::PllConfig`], [`peak::PeakConfig`], [`zero_crossing::ZeroCrossingConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
 //! | [`step_length::StepLength`] | [`StepLengthModel`] | [`step_length::StepLengthInput`] | the length, m | last length |
 //! | [`foot::Foot`] | [`foot::FootConfig`] | a sample and its dt | `Option<`[`foot::Stride`]`>` (T_min late) | stances, strides, distance |
@@ -55,6 +58,7 @@ pub mod calibration;
 pub mod detector;
 pub mod foot;
 pub mod fusion;
+pub mod fuzzy_step_length;
 pub mod geo;
 pub mod heading;
 pub mod hybrid;
@@ -67,6 +71,7 @@ pub mod pll;
 pub mod replay;
 pub mod step_length;
 pub mod types;
+pub mod zero_crossing;
 
 pub use heading::{HeadingConfig, HeadingMethod};
 pub use motion::{Motion, MotionConfig};

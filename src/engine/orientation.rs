@@ -1,13 +1,15 @@
 //! Orientation into the navigation frame (East-North-Up).
 //! May import: the rest of `engine`.
 //!
-//! Three sources (issue "Engine core" item 2):
+//! Four sources (issue "Engine core" item 2; issue 19 for the KF-NFA):
 //! - [`OrientationSource::Os`]: the quaternion the operating system supplies. Basso 2016 §II.A
 //!   relies on the phone's built-in AHRS to cast samples into the navigation frame.
 //! - [`OrientationSource::Madgwick`]: the Madgwick gradient-descent filter on accelerometer and
 //!   gyroscope, with the magnetometer as the optional absolute-yaw reference (Basso 2021 §2.2.1,
 //!   eqs. 1–5). The filter itself is the `ahrs` crate; we set its sample period on every sample
 //!   from the timestamps.
+//! - [`OrientationSource::KfNfa`]: the Kalman filter with fuzzy adaptation of R of Ibarra 2015
+//!   ch. 3, in [`kf_nfa`]; accelerometer and gyroscope, magnetometer optional (off).
 //! - [`OrientationSource::GravityLowPass`]: acceleration only. Gravity is tracked by a low-pass
 //!   filter; this yields vertical acceleration (so steps) but no horizontal axes, so no heading.
 //!   The vertical acceleration is taken as |a| − |g_lp| rather than the projection a·ĝ_lp − |g_lp|:
@@ -19,7 +21,10 @@
 use super::math::OnePole;
 use super::types::{positive, ConfigError, DeviceVec, ImuSample, InputError};
 use ahrs::Ahrs;
+use kf_nfa::{KfNfa, KfNfaConfig, KfNfaDiagnostics};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+
+pub mod kf_nfa;
 
 /// Standard gravity, m/s².
 pub const G0: f64 = 9.806_65;
@@ -47,6 +52,8 @@ pub enum OrientationSource {
         #[serde(default = "default_beta")]
         beta: f64,
     },
+    /// The KF-NFA of Ibarra 2015 ch. 3 (accelerometer and gyroscope; never picked by `Auto`).
+    KfNfa(KfNfaConfig),
     /// Gravity from a low-pass filter of the accelerometer with time constant `tau_s`.
     GravityLowPass {
         /// Time constant of the gravity filter, seconds.
@@ -78,6 +85,7 @@ impl OrientationSource {
         match *self {
             OrientationSource::Madgwick { beta } => positive("orientation.beta", beta),
             OrientationSource::GravityLowPass { tau_s } => positive("orientation.tau_s", tau_s),
+            OrientationSource::KfNfa(c) => c.validate(),
             _ => Ok(()),
         }
     }
@@ -90,6 +98,14 @@ impl OrientationSource {
             OrientationSource::Auto => OrientationSource::GRAVITY,
             other => *other,
         }
+    }
+
+    /// Whether this source needs a gyroscope on every sample.
+    pub fn needs_gyro(&self) -> bool {
+        matches!(
+            self,
+            OrientationSource::Madgwick { .. } | OrientationSource::KfNfa(_)
+        )
     }
 }
 
@@ -117,6 +133,8 @@ pub struct OrientationDiagnostics {
     pub source: OrientationSource,
     /// Whether it gives horizontal axes (and so a heading).
     pub has_heading: bool,
+    /// The KF-NFA's R scale, mismatch and counts, when it is the source.
+    pub kf_nfa: Option<KfNfaDiagnostics>,
 }
 
 enum Kind {
@@ -130,6 +148,7 @@ enum Kind {
     Gravity {
         lp: [OnePole; 3],
     },
+    KfNfa(Box<KfNfa>),
 }
 
 /// Rotation from Madgwick's earth frame (x magnetic north, y west, z up) to ENU.
@@ -177,6 +196,7 @@ impl Orientation {
             OrientationSource::GravityLowPass { tau_s } => Kind::Gravity {
                 lp: [OnePole::new(tau_s); 3],
             },
+            OrientationSource::KfNfa(c) => Kind::KfNfa(Box::new(KfNfa::new(c))),
             _ => Kind::Os { last: None },
         };
         Orientation { source, kind }
@@ -187,6 +207,10 @@ impl Orientation {
         OrientationDiagnostics {
             source: self.source,
             has_heading: self.has_heading(),
+            kf_nfa: match &self.kind {
+                Kind::KfNfa(f) => Some(f.diagnostics()),
+                _ => None,
+            },
         }
     }
 
@@ -207,6 +231,7 @@ impl Orientation {
             Kind::Os { last } => *last = None,
             Kind::Madgwick { filter, .. } => *filter = None,
             Kind::Gravity { lp } => lp.iter_mut().for_each(OnePole::reset),
+            Kind::KfNfa(f) => f.reset(),
         }
     }
 
@@ -216,6 +241,7 @@ impl Orientation {
             Kind::Madgwick {
                 filter: Some(f), ..
             } => Some(nwu_to_enu() * f.quat),
+            Kind::KfNfa(f) => f.attitude(),
             _ => None,
         }
     }
@@ -264,6 +290,22 @@ impl Orientation {
                 }
                 match filter {
                     Some(f) => nwu_to_enu() * f.quat,
+                    None => {
+                        return Ok(NavAccel {
+                            up: 0.0,
+                            horizontal: None,
+                            attitude: None,
+                        })
+                    }
+                }
+            }
+            Kind::KfNfa(f) => {
+                let gyro = s.gyro.ok_or(InputError::MissingField {
+                    t: s.t,
+                    field: "gyro",
+                })?;
+                match f.push(&gyro, &s.accel, s.mag.as_ref(), dt) {
+                    Some(q) => q,
                     None => {
                         return Ok(NavAccel {
                             up: 0.0,

@@ -42,6 +42,7 @@ use super::peak::{PeakConfig, PeakDetector};
 use super::pll::{Pll, PllConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
+use super::zero_crossing::{ZeroCrossing, ZeroCrossingConfig};
 use std::collections::VecDeque;
 
 mod foot;
@@ -55,6 +56,8 @@ pub enum StepDetectorConfig {
     Pll(PllConfig),
     /// The comparison peak detector.
     Peak(PeakConfig),
+    /// Ibarra 2015's zero crossings with the area under each lobe.
+    ZeroCrossing(ZeroCrossingConfig),
 }
 
 impl Default for StepDetectorConfig {
@@ -95,14 +98,14 @@ pub struct PipelineConfig {
     /// Largest interval between samples that is not a gap, s. Default 0.5 s (well above the 67 ms
     /// of 15 Hz sampling, well below a step and a half).
     pub gap_s: f64,
+    /// With a second, foot-mounted IMU (`Record::Foot`): how each stride's heading is taken
+    /// (Strozzi 2017 §4, [`crate::engine::hybrid`]).
+    pub hybrid: HybridConfig,
     /// Where the IMU is worn: `auto` (default; a foot is recognised from the signal,
     /// [`crate::engine::foot::placement`]), `body` or `foot`.
     pub placement: Placement,
     /// Foot mode ([`crate::engine::foot`]).
     pub foot: FootConfig,
-    /// With a second, foot-mounted IMU (`Record::Foot`): how each stride's heading is taken
-    /// (Strozzi 2017 §4, [`crate::engine::hybrid`]).
-    pub hybrid: HybridConfig,
 }
 
 impl Default for PipelineConfig {
@@ -117,9 +120,9 @@ impl Default for PipelineConfig {
             onset_coherence_min: 0.0,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
+            hybrid: HybridConfig::default(),
             placement: Placement::Auto,
             foot: FootConfig::default(),
-            hybrid: HybridConfig::default(),
         }
     }
 }
@@ -143,12 +146,13 @@ impl PipelineConfig {
         match &self.detector {
             StepDetectorConfig::Pll(c) => c.validate()?,
             StepDetectorConfig::Peak(c) => c.validate()?,
+            StepDetectorConfig::ZeroCrossing(c) => c.validate()?,
         }
         self.heading.validate()?;
         self.step_length.validate()?;
         self.fusion.validate()?;
-        self.foot.validate()?;
         self.hybrid.validate()?;
+        self.foot.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
         positive("gap_s", self.gap_s)
     }
@@ -251,6 +255,8 @@ pub struct Diagnostics {
     /// Time the GNSS receiver was (or would have been) on, from the first fix to the last
     /// sample, s; and that whole span, s. Energy saving leaves it on for its windows only.
     pub gnss_on_s: Option<(f64, f64)>,
+    /// The hybrid heading, with a foot-mounted IMU.
+    pub hybrid: Option<HybridDiagnostics>,
     /// The mode that ran: `body` (steps) or `foot` (strides); `auto` while undecided (steps as
     /// `body`).
     pub placement: Placement,
@@ -258,8 +264,6 @@ pub struct Diagnostics {
     pub strides: u64,
     /// The foot stage, while it runs.
     pub foot: Option<FootDiagnostics>,
-    /// The hybrid heading, with a foot-mounted IMU.
-    pub hybrid: Option<HybridDiagnostics>,
 }
 
 /// The step detector the configuration chose. One per pipeline, used on every sample: kept
@@ -268,6 +272,7 @@ pub struct Diagnostics {
 enum Detector {
     Pll(Pll),
     Peak(PeakDetector),
+    ZeroCrossing(ZeroCrossing),
 }
 
 impl Detector {
@@ -275,6 +280,7 @@ impl Detector {
         match cfg {
             StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
             StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
+            StepDetectorConfig::ZeroCrossing(c) => Detector::ZeroCrossing(ZeroCrossing::new(c)),
         }
     }
 
@@ -282,6 +288,7 @@ impl Detector {
         match self {
             Detector::Pll(p) => p.push(x),
             Detector::Peak(p) => p.push(x),
+            Detector::ZeroCrossing(z) => z.push(x),
         }
     }
 
@@ -297,6 +304,7 @@ impl Detector {
                 }
             }
             Detector::Peak(p) => p.restart(),
+            Detector::ZeroCrossing(z) => z.restart(cadence_hz),
         }
     }
 
@@ -306,6 +314,7 @@ impl Detector {
         match self {
             Detector::Pll(p) => p.reset_phase(),
             Detector::Peak(p) => p.reset(),
+            Detector::ZeroCrossing(z) => z.reset(),
         }
     }
 }
@@ -333,6 +342,8 @@ pub struct Pipeline {
     frame: Option<LocalFrame>,
     fusion: Option<Fusion>,
     diag: Diagnostics,
+    /// Foot mode and the hybrid heading, once a foot sample arrived.
+    two: Option<two_sensor::TwoSensor>,
     // Foot mode: the stage (while foot mode runs or the placement is undecided), the resolved
     // placement, the strides held while undecided and the last stride's time.
     foot: Option<Foot>,
@@ -340,8 +351,6 @@ pub struct Pipeline {
     recogniser: Recogniser,
     pending: Vec<Stride>,
     last_stride_t: Option<f64>,
-    /// Foot mode and the hybrid heading, once a foot sample arrived.
-    two: Option<two_sensor::TwoSensor>,
 }
 
 impl Pipeline {
@@ -374,6 +383,7 @@ impl Pipeline {
             frame: None,
             fusion: None,
             diag: Diagnostics::default(),
+            two: None,
             foot: match cfg_placement {
                 Placement::Body => None,
                 _ => Some(Foot::new(cfg_foot)?),
@@ -382,7 +392,6 @@ impl Pipeline {
             recogniser: Recogniser::default(),
             pending: Vec::new(),
             last_stride_t: None,
-            two: None,
         })
     }
 
@@ -543,12 +552,10 @@ impl Pipeline {
                     field: "orientation",
                 })
             }
-            OrientationSource::Madgwick { .. } if s.gyro.is_none() => {
-                Err(InputError::MissingField {
-                    t: s.t,
-                    field: "gyro",
-                })
-            }
+            src if src.needs_gyro() && s.gyro.is_none() => Err(InputError::MissingField {
+                t: s.t,
+                field: "gyro",
+            }),
             _ => Ok(()),
         }
     }
@@ -656,6 +663,20 @@ impl Pipeline {
         self.diag.steps += 1;
         self.t_km2 = cont;
         self.t_km1 = Some(c.t);
+    }
+
+    /// What the step-length stage was given for `step`, one of this pipeline's steps just
+    /// returned by [`push`](Self::push) (before the next sample moves the buffer): its
+    /// frequency, the recent samples and the step's span, T_k = 1/f_k back from its time. Lets a
+    /// caller ask another step-length model about the same step (the calibration wizard's fuzzy
+    /// lengths) without a second pipeline.
+    pub fn step_length_input(&self, step: &StepRecord) -> StepLengthInput<'_> {
+        StepLengthInput {
+            freq_hz: step.freq_hz,
+            buf: &self.buf,
+            t0: step.t - 1.0 / step.freq_hz,
+            t1: step.t,
+        }
     }
 
     /// Feeds one GNSS fix. The first accepted fix becomes the geodetic origin of the track.
@@ -788,6 +809,11 @@ impl Pipeline {
         self.attitude
     }
 
+    /// The orientation stage's diagnostics (the KF-NFA's R scale and mismatch), once started.
+    pub fn orientation_diagnostics(&self) -> Option<super::orientation::OrientationDiagnostics> {
+        self.orientation.as_ref().map(|o| o.diagnostics())
+    }
+
     /// Mean and σ of the vertical acceleration over the motion detector's window, m/s².
     pub fn vertical_stats(&self) -> (f64, f64) {
         (self.motion.mean(), self.motion.sigma())
@@ -797,7 +823,7 @@ impl Pipeline {
     pub fn pll_output(&self) -> Option<f64> {
         match &self.detector {
             Detector::Pll(p) => Some(p.output()),
-            Detector::Peak(_) => None,
+            Detector::Peak(_) | Detector::ZeroCrossing(_) => None,
         }
     }
 }

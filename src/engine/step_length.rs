@@ -8,6 +8,7 @@
 //!   ([`fit_line`], with f̄ by eq. 1 [`harmonic_mean_frequency`] and SL̄ = D/N by eq. 2).
 //! - Weinberg (Analog Devices AN-602, cited by Basso 2016 as [18]): SL = K·(a_max − a_min)^¼ of
 //!   the vertical acceleration over the step.
+//! - Fuzzy (Ibarra 2015 §4.4.2): [`super::fuzzy_step_length`].
 //!
 //! # Default coefficients
 //! The papers publish no numbers for the lines (Basso 2016 Fig. 4 shows two users only). The
@@ -27,6 +28,7 @@
 //! Between the bands the line is chosen by frequency, switching at the midpoint of the gap
 //! (2.45 Hz by default); outside the bands each line is extrapolated, then clamped.
 
+use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStep, FuzzyStepLength};
 use super::heading::NavSample;
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
@@ -140,6 +142,9 @@ pub enum StepLengthModel {
         #[serde(default = "weinberg_k")]
         k: f64,
     },
+    /// Ibarra 2015's fuzzy system on step frequency, activity and the variance of the vertical
+    /// acceleration over the step, times a calibrated scale.
+    Fuzzy(FuzzyConfig),
 }
 
 /// Weinberg's K when none is given: 0.47 gives 0.70 m at a 5 m/s² peak-to-peak.
@@ -161,6 +166,7 @@ impl StepLengthModel {
         match self {
             StepLengthModel::Frequency(p) => p.validate(),
             StepLengthModel::Weinberg { k } => positive("step_length.k", *k),
+            StepLengthModel::Fuzzy(c) => c.validate(),
         }
     }
 }
@@ -216,6 +222,7 @@ pub struct StepLengthDiagnostics {
 #[derive(Debug, Clone)]
 pub struct StepLength {
     model: StepLengthModel,
+    fuzzy: Option<FuzzyStepLength>,
     last_m: Option<f64>,
 }
 
@@ -223,6 +230,10 @@ impl StepLength {
     /// A stage with a validated model.
     pub fn new(model: StepLengthModel) -> Self {
         StepLength {
+            fuzzy: match &model {
+                StepLengthModel::Fuzzy(c) => Some(FuzzyStepLength::new(*c)),
+                _ => None,
+            },
             model,
             last_m: None,
         }
@@ -240,6 +251,10 @@ impl StepLength {
             StepLengthModel::Weinberg { k } => {
                 weinberg(*k, peak_to_peak(step.buf, step.t0, step.t1))
             }
+            StepLengthModel::Fuzzy(_) => self
+                .fuzzy
+                .as_ref()
+                .map_or(0.2, |z| fuzzy_step(z, step).length_m),
         };
         self.last_m = Some(m);
         m
@@ -251,6 +266,15 @@ impl StepLength {
             last_m: self.last_m,
         }
     }
+}
+
+/// The fuzzy system's inference for one step of the step-length stage: the variance of the
+/// vertical acceleration over the step, the activity's σ the step's own (its square root). The
+/// one place the fuzzy model reads a step, for the stage and for the calibration wizard's walks
+/// (`live::LiveSession::fuzzy_lengths`).
+pub fn fuzzy_step(z: &FuzzyStepLength, step: &StepLengthInput) -> FuzzyStep {
+    let v = vertical_variance(step.buf, step.t0, step.t1).map_or(0.0, |m| m.1);
+    z.infer(step.freq_hz, libm::sqrt(v), v)
 }
 
 /// Basso 2016 eq. 1: the mean step frequency of a calibration walk, the harmonic mean

@@ -6,8 +6,10 @@ use super::events::{
     normalise_motion, sensor_sample, EventError, MotionEvent, OrientationEvent, Platform,
     SensorReading,
 };
+use crate::engine::fuzzy_step_length::{FuzzyConfig, FuzzyStepLength};
 use crate::engine::orientation::{OrientationSource, HOLD_S};
 use crate::engine::replay::feed;
+use crate::engine::step_length::fuzzy_step;
 use crate::engine::types::{time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use crate::engine::{Pipeline, PipelineConfig};
 use nalgebra::UnitQuaternion;
@@ -215,6 +217,37 @@ pub struct LiveSession {
     last_error: Option<String>,
     // The smoothed track as of the filter's last correction: (corrections then, positions).
     smoothed: (u64, Vec<(f64, f64)>),
+    // The calibration wizard's fuzzy lengths: the fuzzy model (scale 1) asked about each step
+    // the pipeline emits, one per step of the track.
+    fuzzy: FuzzyLengths,
+}
+
+/// The unscaled fuzzy step length (Ibarra 2015, [`crate::engine::fuzzy_step_length`], scale 1)
+/// of every step of a pipeline's track, whatever its own step-length model: computed as each
+/// step is emitted, from the same buffer and span the step-length stage had
+/// ([`Pipeline::step_length_input`], [`crate::engine::step_length::fuzzy_step`]).
+#[derive(Debug, Clone)]
+struct FuzzyLengths {
+    model: FuzzyStepLength,
+    lengths: Vec<f64>,
+}
+
+impl FuzzyLengths {
+    fn new() -> Self {
+        FuzzyLengths {
+            model: FuzzyStepLength::new(FuzzyConfig::default()),
+            lengths: Vec::new(),
+        }
+    }
+
+    /// Catches up with the steps the pipeline emitted since the last call (call it after every
+    /// record, before the next one moves the buffer).
+    fn observe(&mut self, p: &Pipeline) {
+        for step in p.track().iter().skip(self.lengths.len()) {
+            let l = fuzzy_step(&self.model, &p.step_length_input(step)).centroid_m;
+            self.lengths.push(l);
+        }
+    }
 }
 
 impl LiveSession {
@@ -241,6 +274,7 @@ impl LiveSession {
             waited: 0,
             view: View::default(),
             smoothed: (0, Vec::new()),
+            fuzzy: FuzzyLengths::new(),
             log: crate::io::pdrlog::preamble(),
             recent: VecDeque::new(),
             refused: 0,
@@ -274,12 +308,14 @@ impl LiveSession {
             .iter()
             .any(|r| matches!(r, Record::Imu(i) if i.orientation.is_some()));
         let view = &mut s.view;
+        let fuzzy = &mut s.fuzzy;
         let refusals = feed(
             &mut s.pipeline,
             &parsed.records,
             &mut |p: &Pipeline, _, r: &Record, accepted| {
                 if accepted {
                     view.observe(p, r);
+                    fuzzy.observe(p);
                 }
             },
         );
@@ -375,6 +411,7 @@ impl LiveSession {
         let n = self.pipeline.push(r)?.len();
         self.log.push_str(&crate::io::pdrlog::line(r));
         self.view.observe(&self.pipeline, r);
+        self.fuzzy.observe(&self.pipeline);
         Ok(n)
     }
 
@@ -440,6 +477,13 @@ impl LiveSession {
     /// The frequencies of the steps counted so far, Hz (a calibration walk's f_k).
     pub fn step_freqs(&self) -> Vec<f64> {
         self.pipeline.track().iter().map(|s| s.freq_hz).collect()
+    }
+
+    /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m, in
+    /// the order of the track, whatever step-length model the session runs: a calibration
+    /// walk's L_k for the fuzzy scale ([`crate::engine::calibration::fit_fuzzy_scale`]).
+    pub fn fuzzy_lengths(&self) -> &[f64] {
+        &self.fuzzy.lengths
     }
 
     /// What the walk says about the user's step length: the fusion filter's scale and its
@@ -518,6 +562,7 @@ impl LiveSession {
             orientation: d.orientation.map(|o| match o {
                 OrientationSource::Os => "os",
                 OrientationSource::Madgwick { .. } => "madgwick",
+                OrientationSource::KfNfa(_) => "kf_nfa",
                 OrientationSource::GravityLowPass { .. } => "gravity",
                 OrientationSource::Auto => "auto",
             }),

@@ -35,18 +35,21 @@ impl CalibrationWizard {
         }
     }
 
-    /// Adds a walk of `distance_m` whose steps had the frequencies `step_freqs_hz`; returns
-    /// its `{band, pace, distance_m, steps, f_mean_hz, sl_mean_m}`.
+    /// Adds a walk of `distance_m` whose steps had the frequencies `step_freqs_hz` and, when
+    /// given (`Live.fuzzy_lengths()`), the unscaled fuzzy lengths `fuzzy_lengths_m`; returns its
+    /// `{band, pace, distance_m, steps, f_mean_hz, sl_mean_m, fuzzy_sum_m}`.
     pub fn add_walk(
         &mut self,
         band_name: &str,
         pace: &str,
         distance_m: f64,
         step_freqs_hz: Vec<f64>,
+        fuzzy_lengths_m: Option<Vec<f64>>,
     ) -> Result<JsValue, JsError> {
         let walk = crate::engine::calibration::CalibrationWalk {
             distance_m,
             step_freqs_hz,
+            fuzzy_lengths_m: fuzzy_lengths_m.unwrap_or_default(),
         };
         let w = self
             .wizard
@@ -63,7 +66,8 @@ impl CalibrationWizard {
     }
 
     /// The walks, each band's fit with its warnings (explained, with the walk index of an
-    /// outlier), and the profile's notes: `{walks, walking, running, notes}`.
+    /// outlier), the fuzzy scale when walks measured it, and the profile's notes:
+    /// `{walks, walking, running, fuzzy_scale, notes}`.
     pub fn state(&self) -> Result<JsValue, JsError> {
         use crate::engine::calibration::{fit_band, Band, FitWarning};
         #[derive(serde::Serialize)]
@@ -117,6 +121,7 @@ impl CalibrationWizard {
             walks: &'a [crate::engine::calibration::WizardWalk],
             walking: Fit,
             running: Fit,
+            fuzzy_scale: Option<f64>,
             notes: Vec<String>,
         }
         let (_, notes) = self.wizard.profile(&Default::default());
@@ -124,6 +129,7 @@ impl CalibrationWizard {
             walks: &self.wizard.walks,
             walking: fit(Band::Walking),
             running: fit(Band::Running),
+            fuzzy_scale: self.wizard.fuzzy_scale(),
             notes,
         })
     }
@@ -138,6 +144,7 @@ impl CalibrationWizard {
             profile,
             walking_points: self.wizard.points(Band::Walking),
             running_points: self.wizard.points(Band::Running),
+            fuzzy_scale: self.wizard.fuzzy_scale(),
         }
         .to_json()
         .map_err(to_js)
@@ -171,8 +178,9 @@ impl Default for CalibrationWizard {
 }
 
 /// Reads a profile file (JSON), or the built-in lines for `undefined`: `{name, walking: [a, b],
-/// running: [a, b], walking_points, running_points, text}` (`text` describes the lines for
-/// people), or an error naming the field that is wrong.
+/// running: [a, b], walking_points, running_points, fuzzy_scale, text}` (`text` describes the
+/// lines for people; `fuzzy_scale` is `null` without one), or an error naming the field that is
+/// wrong.
 #[wasm_bindgen]
 pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
     use crate::engine::calibration::{describe_builtin, ProfileFile, PROFILE_VERSION};
@@ -189,6 +197,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
                 profile: Default::default(),
                 walking_points: Vec::new(),
                 running_points: Vec::new(),
+                fuzzy_scale: None,
             },
             describe_builtin(),
         ),
@@ -200,6 +209,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
         running: (f64, f64),
         walking_points: usize,
         running_points: usize,
+        fuzzy_scale: Option<f64>,
         text: String,
     }
     to_value(&Summary {
@@ -208,6 +218,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
         running: (p.profile.running.a, p.profile.running.b),
         walking_points: p.walking_points.len(),
         running_points: p.running_points.len(),
+        fuzzy_scale: p.fuzzy_scale,
         text: described,
     })
 }

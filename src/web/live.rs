@@ -165,6 +165,12 @@ impl Live {
         self.session.step_freqs()
     }
 
+    /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m
+    /// (a calibration walk's L_k for the fuzzy scale), whatever model the session runs.
+    pub fn fuzzy_lengths(&self) -> Vec<f64> {
+        self.session.fuzzy_lengths().to_vec()
+    }
+
     /// The distance along the fixes no worse than `max_accuracy_m`, m.
     pub fn fix_path_m(&self, max_accuracy_m: f64) -> f64 {
         self.session.fix_path_m(max_accuracy_m)

@@ -83,6 +83,14 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   assert.equal(await page.evaluate(() => localStorage.getItem('pdr-profile')), 'tester');
   assert.equal(await page.textContent('#profile-in-use'), 'tester');
   assert.match(await page.textContent('#profile-values'), /Walking SL = 0\.\d{3}·f/);
+  // The walks measured the fuzzy lengths too: the profile carries the fitted fuzzy scale, and
+  // the wizard shows it.
+  const k = JSON.parse(saved).fuzzy_scale;
+  console.log(`fuzzy scale: k ${k}`);
+  assert.ok(Number.isFinite(k) && k > 0.5 && k < 2, `fuzzy_scale ${k}`);
+  assert.ok(Math.abs(st.fuzzy_scale - k) < 1e-12, `state ${st.fuzzy_scale}, saved ${k}`);
+  assert.match(await page.textContent('#cal-notes'), /fuzzy step length \(Ibarra 2015\): scale k = \d\.\d{3}/);
+  assert.match(await page.textContent('#profile-values'), /Fuzzy scale k = \d\.\d{3}/);
 
   // Another walk by the same walker, replayed with and without the profile.
   const other = simulate(1.7, 120, 'other.pdrlog');
@@ -101,6 +109,21 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0]?.a);
   const uploaded = await page.evaluate(() => window.__pdrUpload.logs[0].a.score.distance_m);
   assert.ok(Math.abs(uploaded - withProfile.distance_m) < 1e-9, `upload with the profile: ${uploaded} m`);
+  // The fuzzy model with the profile applies its scale: the replay with the fuzzy model and the
+  // profile, and upload mode's rerun with the fuzzy model chosen, agree and measure 120 m.
+  const fuzzy = await page.evaluate(async ({ text, profile }) => {
+    const { replay_log } = await import('./www/pkg/pdr.js');
+    const set = { 'step_length.kind': 'fuzzy' };
+    return [replay_log(text, { set, profile }), replay_log(text, { set })];
+  }, { text: other, profile: saved });
+  const errFuzzy = Math.abs(fuzzy[0].distance_m - 120) / 120;
+  console.log(`120 m at 1.7 Hz, fuzzy: ${fuzzy[0].distance_m.toFixed(1)} m with the profile's scale (${(100 * errFuzzy).toFixed(1)} %), `
+    + `${fuzzy[1].distance_m.toFixed(1)} m unscaled`);
+  assert.ok(errFuzzy < 0.03, `fuzzy with the profile: ${(100 * errFuzzy).toFixed(1)} %`);
+  await page.selectOption('.config[data-config="a"] [name="step_length.kind"]', 'fuzzy');
+  await page.click('#rerun');
+  await page.waitForFunction((d) => Math.abs(window.__pdrUpload.logs[0].a.score.distance_m - d) < 1e-9, fuzzy[0].distance_m, { timeout: 20_000 });
+  await page.selectOption('.config[data-config="a"] [name="step_length.kind"]', 'frequency');
   // Re-run with the built-in step length chosen instead: the distance becomes the built-in one.
   await page.selectOption('.config[data-config="a"] [name=profile]', '');
   await page.click('#rerun');

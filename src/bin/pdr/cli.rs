@@ -175,6 +175,11 @@ enum Cmd {
         /// Print the effective configuration as JSON and exit.
         #[arg(long)]
         show_config: bool,
+        /// Instead of one configuration, run every step detector, heading method, orientation
+        /// source and step-length model (each alone over the defaults) on each path as a data
+        /// set, and print the comparison table (Markdown, or JSON with `--json`).
+        #[arg(long, conflicts_with = "show_config")]
+        compare: bool,
     },
     /// Serve the built web app: HTTP on localhost and HTTPS (self-signed) on all interfaces.
     Serve {
@@ -256,10 +261,17 @@ pub fn main() -> ExitCode {
             Ok(())
         }
         Cmd::Eval {
+            compare: true,
+            paths,
+            json,
+            ..
+        } => eval::compare(&paths, json),
+        Cmd::Eval {
             paths,
             json,
             settings,
             show_config,
+            ..
         } => settings
             .settings()
             .and_then(|s| eval::eval(&paths, json, &s, show_config)),

@@ -151,3 +151,39 @@ fn print_report(report: &pdr::eval::Report) {
         opt(s.waypoint_p75_pct, 1)
     );
 }
+
+/// `pdr eval --compare`: each path is a data set; every method on each, as one table.
+pub fn compare(paths: &[PathBuf], json: bool) -> Result<(), String> {
+    use pdr::compare::{compare, markdown, DataSet};
+    use pdr::io::import::{import_all, DirSet};
+    let mut sets = Vec::new();
+    for path in paths {
+        let mut dir = DirSet::new(path).map_err(|e| e.to_string())?;
+        let mut logs = Vec::new();
+        for r in import_all(&mut dir) {
+            match r {
+                Ok(log) => logs.push(log),
+                Err(e) => eprintln!("pdr: left out: {e}"),
+            }
+        }
+        if logs.is_empty() {
+            return Err(format!("{}: no recognisable log", path.display()));
+        }
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into(),
+        );
+        eprintln!("pdr: {name}: {} logs", logs.len());
+        sets.push(DataSet { name, logs });
+    }
+    let table = compare(&sets, |key, value| eprintln!("pdr: {key}={value}"));
+    if json {
+        out!(
+            "{}",
+            serde_json::to_string(&table).map_err(|e| e.to_string())?
+        );
+    } else {
+        out!("{}", markdown(&table));
+    }
+    Ok(())
+}

@@ -9,6 +9,7 @@
 //! orientation gives the trunk attitude; its motion state is shown) but emits no steps.
 
 use super::{Pipeline, StepRecord};
+use crate::engine::foot::placement::Placement;
 use crate::engine::foot::Foot;
 use crate::engine::fusion;
 use crate::engine::heading::yaw_aid::device_twist;
@@ -51,6 +52,10 @@ impl Pipeline {
             else {
                 return Ok(&[]);
             };
+            // The first IMU is the trunk's: it is never taken for a foot (`placement`).
+            self.placement = Placement::Body;
+            self.foot = None;
+            self.pending = Vec::new();
             self.two = Some(TwoSensor {
                 foot,
                 hybrid,
