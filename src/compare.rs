@@ -1,5 +1,5 @@
-//! The comparison table: every step detector, heading method, orientation source and
-//! step-length model the engine offers, each run on every data set where it can run, beside the
+//! The comparison table: every step detector, heading method, orientation source, step-length
+//! model and placement (foot mode) the engine offers, each run on every data set where it can run, beside the
 //! paper's own claim. `pdr eval --compare` prints it; the README carries it.
 //! May import: `engine`, `io`, `eval`, `settings`.
 //!
@@ -8,8 +8,11 @@
 //! carries ([`Metric::for_logs`]): step counts (the mean absolute count error), waypoints (the
 //! pooled aligned waypoint p75) or loop closure (the mean distance between the end and the start,
 //! as a share of the distance walked). A method that cannot run on a set (every sample refused
-//! for a field it needs: a gyroscope, an OS orientation) says so instead of a figure.
+//! for a field it needs: a gyroscope, an OS orientation; or no step found in any log, as foot mode
+//! on a phone) says so instead of a figure. The hybrid heading needs a second, foot-mounted sensor,
+//! which no shared data set has: it is measured on the simulator (`examples/hybrid_sim.rs`).
 
+use crate::engine::foot::placement::Placement;
 use crate::engine::{replay, InputError};
 use crate::eval::{score, summarise, LogResult};
 use crate::io::import::Log;
@@ -22,6 +25,7 @@ pub const COMPARED: &[&str] = &[
     "heading.method",
     "orientation.kind",
     "step_length.kind",
+    "placement",
 ];
 
 /// What a data set's figure measures: the truth it carries decides.
@@ -99,6 +103,8 @@ pub enum Cell {
         logs: usize,
         /// Logs of the set it could not run on.
         skipped: usize,
+        /// Logs on which foot mode ran (recognised, or chosen): the row's body method did not.
+        foot: usize,
     },
     /// It ran nowhere in the set; why (the first refusal).
     CannotRun {
@@ -210,11 +216,20 @@ fn cell(set: &DataSet, metric: Option<Metric>, cfg: &crate::engine::PipelineConf
             }
         }
     }
+    if !ran.is_empty() && ran.iter().all(|r| r.steps == 0) {
+        return Cell::CannotRun {
+            why: "no step found in any log".into(),
+        };
+    }
     match metric.of(&ran) {
         Some(value) => Cell::Figure {
             value,
             logs: ran.len(),
             skipped: set.logs.len() - ran.len(),
+            foot: ran
+                .iter()
+                .filter(|r| r.placement == Placement::Foot)
+                .count(),
         },
         None => Cell::CannotRun {
             why: why.unwrap_or_else(|| match ran.iter().all(|r| r.distance_m == 0.0) {
@@ -240,13 +255,24 @@ pub fn markdown(t: &Table) -> String {
         for c in &r.cells {
             s += &match c {
                 Cell::Figure {
-                    value, skipped: 0, ..
-                } => format!(" {value:.2} |"),
-                Cell::Figure {
                     value,
                     logs,
                     skipped,
-                } => format!(" {value:.2} ({logs} of {} logs) |", logs + skipped),
+                    foot,
+                } => {
+                    let mut v = format!(" {value:.2}");
+                    if *skipped > 0 {
+                        v += &format!(" ({logs} of {} logs)", logs + skipped);
+                    }
+                    if *foot > 0 && r.key != "placement" {
+                        v += if foot == logs {
+                            " (foot mode ran)"
+                        } else {
+                            " (foot mode ran on some)"
+                        };
+                    }
+                    v + " |"
+                }
                 Cell::CannotRun { why } => format!(" cannot run: {} |", why.replace('|', "/")),
                 Cell::NoTruth => " – |".to_string(),
             };

@@ -63,6 +63,15 @@ fn every_method_on_every_set_or_why_not() {
         madgwick.cells[0]
     );
     assert!(matches!(madgwick.cells[1], Cell::Figure { skipped: 0, .. }));
+    // The simulated x-io walk is a pocket phone's signal: foot mode is not recognised on it, and
+    // forced on it finds no stride.
+    assert!(matches!(
+        row("placement", "auto").cells[1],
+        Cell::Figure { foot: 0, .. }
+    ));
+    assert!(
+        matches!(&row("placement", "foot").cells[0], Cell::CannotRun { why } if why.contains("no step"))
+    );
     // Neither has an OS orientation.
     let os = row("orientation.kind", "os");
     assert!(os
