@@ -1,8 +1,8 @@
 // The step-length calibration wizard and the profiles panel. This only drives the steps: the
 // walks run through live mode's session (sensors, pocket guard, wake lock), and every figure —
 // eq. 1 and 2, the fits, their warnings, the fuzzy scale, the profile, its chart, the
-// refinement — comes from
-// the engine (CalibrationWizard, profile_summary, refine_profile in src/web/calibration.rs).
+// refinement — comes from the engine (CalibrationWizard, profile_summary, refine_profile in
+// src/web/calibration.rs).
 import { CalibrationWizard, gnss_limit_m, profile_summary, refine_profile } from './pkg/pdr.js';
 import { startWalk, stopWalk } from './live.js';
 import * as profiles from './profiles.js';

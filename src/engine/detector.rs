@@ -1,6 +1,7 @@
 //! What every step detector is fed per sample ([`DetectorInput`]) and what it finds
-//! ([`Candidate`]): the PLL ([`crate::engine::pll`]) and the peak counter
-//! ([`crate::engine::peak`]) have the same contract, so the pipeline can run either.
+//! ([`Candidate`]): the PLL ([`crate::engine::pll`]), the peak counter ([`crate::engine::peak`])
+//! and the zero crossings ([`crate::engine::zero_crossing`]) have the same contract, so the
+//! pipeline can run any of them (`engine/pipeline/step_detector.rs`).
 //! May import: the rest of `engine`.
 
 use super::motion::Motion;

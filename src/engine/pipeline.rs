@@ -38,33 +38,16 @@ use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
-use super::peak::{PeakConfig, PeakDetector};
-use super::pll::{Pll, PllConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
-use super::zero_crossing::{ZeroCrossing, ZeroCrossingConfig};
 use std::collections::VecDeque;
 
 mod foot;
+mod step_detector;
 mod two_sensor;
 
-/// Which step detector to use.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum StepDetectorConfig {
-    /// Basso's phase-locked loop.
-    Pll(PllConfig),
-    /// The comparison peak detector.
-    Peak(PeakConfig),
-    /// Ibarra 2015's zero crossings with the area under each lobe.
-    ZeroCrossing(ZeroCrossingConfig),
-}
-
-impl Default for StepDetectorConfig {
-    fn default() -> Self {
-        StepDetectorConfig::Pll(PllConfig::default())
-    }
-}
+use step_detector::Detector;
+pub use step_detector::StepDetectorConfig;
 
 /// Every choice of the pipeline, with published defaults.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -264,59 +247,6 @@ pub struct Diagnostics {
     pub strides: u64,
     /// The foot stage, while it runs.
     pub foot: Option<FootDiagnostics>,
-}
-
-/// The step detector the configuration chose. One per pipeline, used on every sample: kept
-/// inline rather than boxed.
-#[allow(clippy::large_enum_variant)]
-enum Detector {
-    Pll(Pll),
-    Peak(PeakDetector),
-    ZeroCrossing(ZeroCrossing),
-}
-
-impl Detector {
-    fn new(cfg: StepDetectorConfig) -> Self {
-        match cfg {
-            StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
-            StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
-            StepDetectorConfig::ZeroCrossing(c) => Detector::ZeroCrossing(ZeroCrossing::new(c)),
-        }
-    }
-
-    fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
-        match self {
-            Detector::Pll(p) => p.push(x),
-            Detector::Peak(p) => p.push(x),
-            Detector::ZeroCrossing(z) => z.push(x),
-        }
-    }
-
-    /// Starts afresh on a gait already under way: the PLL at the motion detector's cadence with
-    /// its phase fitted to `samples` (time, vertical acceleration) about their mean `mean`; the
-    /// peak detector empty.
-    fn restart(&mut self, cadence_hz: Option<f64>, samples: &[(f64, f64)], mean: f64) {
-        match self {
-            Detector::Pll(p) => {
-                p.restart();
-                if let Some(f) = cadence_hz {
-                    p.start_on(f, samples, mean);
-                }
-            }
-            Detector::Peak(p) => p.restart(),
-            Detector::ZeroCrossing(z) => z.restart(cadence_hz),
-        }
-    }
-
-    /// After a gap: the PLL's oscillator restarts at a peak; the peak detector forgets the
-    /// signal.
-    fn gap(&mut self) {
-        match self {
-            Detector::Pll(p) => p.reset_phase(),
-            Detector::Peak(p) => p.reset(),
-            Detector::ZeroCrossing(z) => z.reset(),
-        }
-    }
 }
 
 /// The streaming engine.

@@ -1,0 +1,81 @@
+//! The step detector the configuration chooses, and the one enum the pipeline runs it through:
+//! the PLL ([`crate::engine::pll`]), the peak counter ([`crate::engine::peak`]) and the zero
+//! crossings with areas ([`crate::engine::zero_crossing`]) share one contract
+//! ([`crate::engine::detector`]).
+//! May import: the rest of `engine`.
+
+use crate::engine::detector::{Candidate, DetectorInput};
+use crate::engine::peak::{PeakConfig, PeakDetector};
+use crate::engine::pll::{Pll, PllConfig};
+use crate::engine::zero_crossing::{ZeroCrossing, ZeroCrossingConfig};
+
+/// Which step detector to use.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum StepDetectorConfig {
+    /// Basso's phase-locked loop.
+    Pll(PllConfig),
+    /// The comparison peak detector.
+    Peak(PeakConfig),
+    /// Ibarra 2015's zero crossings with the area under each lobe.
+    ZeroCrossing(ZeroCrossingConfig),
+}
+
+impl Default for StepDetectorConfig {
+    fn default() -> Self {
+        StepDetectorConfig::Pll(PllConfig::default())
+    }
+}
+
+/// The step detector the configuration chose. One per pipeline, used on every sample: kept
+/// inline rather than boxed.
+#[allow(clippy::large_enum_variant)]
+pub(super) enum Detector {
+    Pll(Pll),
+    Peak(PeakDetector),
+    ZeroCrossing(ZeroCrossing),
+}
+
+impl Detector {
+    pub(super) fn new(cfg: StepDetectorConfig) -> Self {
+        match cfg {
+            StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
+            StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
+            StepDetectorConfig::ZeroCrossing(c) => Detector::ZeroCrossing(ZeroCrossing::new(c)),
+        }
+    }
+
+    pub(super) fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
+        match self {
+            Detector::Pll(p) => p.push(x),
+            Detector::Peak(p) => p.push(x),
+            Detector::ZeroCrossing(z) => z.push(x),
+        }
+    }
+
+    /// Starts afresh on a gait already under way: the PLL at the motion detector's cadence with
+    /// its phase fitted to `samples` (time, vertical acceleration) about their mean `mean`; the
+    /// peak detector empty.
+    pub(super) fn restart(&mut self, cadence_hz: Option<f64>, samples: &[(f64, f64)], mean: f64) {
+        match self {
+            Detector::Pll(p) => {
+                p.restart();
+                if let Some(f) = cadence_hz {
+                    p.start_on(f, samples, mean);
+                }
+            }
+            Detector::Peak(p) => p.restart(),
+            Detector::ZeroCrossing(z) => z.restart(cadence_hz),
+        }
+    }
+
+    /// After a gap: the PLL's oscillator restarts at a peak; the peak detector forgets the
+    /// signal.
+    pub(super) fn gap(&mut self) {
+        match self {
+            Detector::Pll(p) => p.reset_phase(),
+            Detector::Peak(p) => p.reset(),
+            Detector::ZeroCrossing(z) => z.reset(),
+        }
+    }
+}
