@@ -447,7 +447,7 @@ test('compare two configurations side by side, and re-run', async () => {
   await context.close();
 });
 
-test('shared data sets: an Oxford and a Microsoft trace show the errors `pdr eval` gives', { skip: !existsSync(SHARED) && `${SHARED} is absent` }, async () => {
+test('shared data sets: an Oxford, a Microsoft and an x-io foot trace show the errors `pdr eval` gives', { skip: !existsSync(SHARED) && `${SHARED} is absent` }, async () => {
   const oxRoot = path.join(SHARED, 'oxford-steps');
   const msRoot = path.join(SHARED, 'ms-indoor');
   const findDir = (root, test) => {
@@ -476,6 +476,17 @@ test('shared data sets: an Oxford and a Microsoft trace show the errors `pdr eva
   assert.equal(s2.waypoint_error_m.p75, e2.waypoint_error_m.p75);
   assert.match(await page.textContent('.log-result .summary'), new RegExp(`error p75 ${e2.waypoint_error_m.p75.toFixed(1)} m`));
   await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-ms-desktop.png') });
+  // A shoe-mounted x-io walk: recognised as a foot, its strides and loop closure as `pdr eval`.
+  const xio = path.join(SHARED, 'xio-foot', 'long_walk.csv');
+  const r3 = await upload(page, [xio]);
+  const e3 = evalOf(xio);
+  const s3 = r3.logs[0].a.score;
+  console.log(`x-io ${path.basename(xio)}: ${s3.strides} strides, loop closure ${s3.loop_closure_m?.toFixed(3)} m (pdr eval ${e3.strides} strides, ${e3.loop_closure_m?.toFixed(3)} m)`);
+  assert.equal(e3.placement, 'foot');
+  assert.equal(s3.strides, e3.strides);
+  assert.equal(s3.loop_closure_m, e3.loop_closure_m);
+  assert.match(await page.textContent('.log-result .summary'), /Strides/);
+  await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-xio-foot-desktop.png') });
   await context.close();
 });
 
