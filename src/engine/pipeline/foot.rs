@@ -65,18 +65,30 @@ impl Pipeline {
     /// One step record per stride, at foot flat: the foot's position from the zero-velocity
     /// track, the stride's length and heading; it counts as two steps.
     fn emit_stride(&mut self, st: Stride) {
-        let period = self
-            .last_stride_t
+        let prev = self.last_stride_t.replace(st.t_end);
+        self.record_stride(&st, prev, (st.east_m, st.north_m), st.heading_rad);
+    }
+
+    /// The step record of a stride that ends at foot flat, placed at `(east_m, north_m)` with
+    /// `heading_rad` (foot mode's own, or the hybrid's); `prev_t` is the previous stride's foot
+    /// flat. It counts as two steps, and goes to the fusion as one step.
+    pub(super) fn record_stride(
+        &mut self,
+        st: &Stride,
+        prev_t: Option<f64>,
+        (east_m, north_m): (f64, f64),
+        heading_rad: f64,
+    ) {
+        let period = prev_t
             .map(|l| st.t_end - l)
             .filter(|&p| p > 0.0 && p <= 3.0)
             .unwrap_or((st.t_end - st.t_start) / SWING_SHARE);
-        self.last_stride_t = Some(st.t_end);
-        self.pos = (st.east_m, st.north_m);
+        self.pos = (east_m, north_m);
         self.steps.push(StepRecord {
             t: st.t_end,
-            east_m: st.east_m,
-            north_m: st.north_m,
-            heading_rad: Some(st.heading_rad),
+            east_m,
+            north_m,
+            heading_rad: Some(heading_rad),
             step_heading_rad: Some(st.heading_rad),
             length_m: st.length_m,
             freq_hz: if period > 0.0 { 1.0 / period } else { 0.0 },
@@ -86,7 +98,7 @@ impl Pipeline {
             f.push_step(&fusion::StepInput {
                 t: st.t_end,
                 length_m: st.length_m,
-                heading_rad: Some(st.heading_rad),
+                heading_rad: Some(heading_rad),
             });
         }
         self.diag.steps += 2;

@@ -11,10 +11,8 @@
 use super::{Pipeline, StepRecord};
 use crate::engine::foot::placement::Placement;
 use crate::engine::foot::Foot;
-use crate::engine::fusion;
 use crate::engine::heading::yaw_aid::device_twist;
 use crate::engine::hybrid::{Hybrid, HybridStride};
-use crate::engine::motion::Motion;
 use crate::engine::types::{ImuSample, InputError};
 use nalgebra::UnitQuaternion;
 
@@ -103,40 +101,13 @@ impl Pipeline {
         }
     }
 
-    /// One step record per stride, at foot flat; it counts as two steps.
+    /// One step record per stride, at foot flat, with the hybrid's heading and position.
     fn emit_hybrid(&mut self, h: HybridStride) {
-        let st = h.stride;
         let Some(two) = &mut self.two else {
             return;
         };
-        // The first stride's period from its swing (about 40 % of a gait cycle).
-        let period = two
-            .last_stride_t
-            .map(|l| st.t_end - l)
-            .filter(|&p| p > 0.0 && p <= 3.0)
-            .unwrap_or((st.t_end - st.t_start) / 0.4);
-        two.last_stride_t = Some(st.t_end);
-        self.pos = (h.east_m, h.north_m);
-        self.steps.push(StepRecord {
-            t: st.t_end,
-            east_m: h.east_m,
-            north_m: h.north_m,
-            heading_rad: Some(h.heading_rad),
-            step_heading_rad: Some(st.heading_rad),
-            length_m: st.length_m,
-            freq_hz: if period > 0.0 { 1.0 / period } else { 0.0 },
-            motion: Motion::Walking,
-        });
-        if let Some(f) = &mut self.fusion {
-            f.push_step(&fusion::StepInput {
-                t: st.t_end,
-                length_m: st.length_m,
-                heading_rad: Some(h.heading_rad),
-            });
-        }
-        self.diag.steps += 2;
-        self.diag.strides += 1;
-        self.diag.distance_m += st.length_m;
+        let prev = two.last_stride_t.replace(h.stride.t_end);
+        self.record_stride(&h.stride, prev, (h.east_m, h.north_m), h.heading_rad);
     }
 
     /// The hybrid stage's counters, with a foot sensor.
