@@ -88,6 +88,10 @@ pub struct FusionDemoSummary {
     pub true_heading_correction_deg: f64,
     /// Magnetic declination applied, degrees.
     pub declination_deg: f64,
+    /// The local frame's geodetic origin (latitude°, longitude°, height m): the first usable
+    /// fix, where the base map is placed.
+    #[serde(skip)]
+    pub origin: (f64, f64, f64),
     /// The true path.
     #[serde(skip)]
     pub truth: Vec<(f64, f64)>,
@@ -166,6 +170,7 @@ pub fn run_fusion_demo() -> FusionDemoSummary {
         heading_correction_deg: last.map_or(0.0, |l| l.bias_rad.to_degrees()),
         true_heading_correction_deg: -scenarios::GNSS_CITY_HEADING_BIAS_DEG,
         declination_deg: p.diagnostics().declination_deg.unwrap_or(0.0),
+        origin: (frame.lat0_deg, frame.lon0_deg, frame.h0_m),
         truth: sim
             .truth
             .path

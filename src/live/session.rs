@@ -599,6 +599,9 @@ pub struct MapData {
     pub fixes: Vec<(f64, f64, f64)>,
     /// Where the input stopped.
     pub gaps: Vec<(f64, f64)>,
+    /// The geodetic origin of the positions' frame (the first fix), once there is one: where
+    /// the base map is placed.
+    pub origin: Option<crate::engine::geo::LocalFrame>,
     /// Heading of the last step, rad from north.
     pub heading_rad: Option<f64>,
 }
@@ -655,6 +658,7 @@ impl LiveSession {
                 .map(|g| shift(g.east_m, g.north_m))
                 .collect(),
             heading_rad: track.last().and_then(|s| s.heading_rad),
+            origin: p.frame().copied(),
         }
     }
 

@@ -108,6 +108,25 @@ pub(crate) fn map_chart_in<'a, DB: DrawingBackend>(
     theme: &Theme,
     scale: f64,
 ) -> Result<MapChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
+    map_chart_over(area, points, bounds, None, theme, scale)
+}
+
+/// What is drawn under a map's grid and track, given where the map is (the base map's tiles).
+pub(crate) type Underlay<'u, DB> =
+    &'u mut dyn FnMut(
+        &DrawingArea<DB, Shift>,
+        &MapFrame,
+    ) -> Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+/// [`map_chart_in`] with `under` drawn after the background and before the grid.
+pub(crate) fn map_chart_over<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    points: impl Iterator<Item = (f64, f64)>,
+    bounds: Option<(f64, f64, f64, f64)>,
+    under: Option<Underlay<'_, DB>>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<MapChart<'a, DB>, DrawingAreaErrorKind<DB::ErrorType>> {
     area.fill(&theme.background)?;
     let (w, h) = area.dim_in_pixel();
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
@@ -126,6 +145,9 @@ pub(crate) fn map_chart_in<'a, DB: DrawingBackend>(
         .x_label_area_size(label_area)
         .y_label_area_size(label_area)
         .build_cartesian_2d(x0..x1, y0..y1)?;
+    if let Some(under) = under {
+        under(area, &frame_of(&chart))?;
+    }
     chart
         .configure_mesh()
         .light_line_style(TRANSPARENT)
@@ -138,6 +160,19 @@ pub(crate) fn map_chart_in<'a, DB: DrawingBackend>(
         .y_label_formatter(&|v| tick(*v, 0))
         .draw()?;
     Ok(chart)
+}
+
+/// Where a chart draws: its plotting area in pixels and the metres it shows.
+pub(crate) fn frame_of<DB: DrawingBackend>(chart: &MapChart<'_, DB>) -> MapFrame {
+    let (rx, ry) = chart.plotting_area().get_pixel_range();
+    let (xr, yr) = (
+        chart.plotting_area().get_x_range(),
+        chart.plotting_area().get_y_range(),
+    );
+    MapFrame {
+        px: (rx.start, rx.end, ry.start, ry.end),
+        m: (xr.start, xr.end, yr.start, yr.end),
+    }
 }
 
 /// A north arrow (top right) and a scale bar (bottom left) over the map, in pixel space.

@@ -1,7 +1,8 @@
 //! The fusion demo's map: GNSS fixes, the PDR-only, fused and smoothed tracks and the truth.
-//! May import: the map frame and the theme; never `web`, `live` or `eval`.
+//! May import: the map frame, the base map and the theme; never `web`, `live` or `eval`.
 
-use super::frame::{legend, map_chart, north_and_scale, start_end, MapChart, Mark};
+use super::basemap::{credit_line, map_chart_under, Basemap};
+use super::frame::{legend, north_and_scale, start_end, MapChart, Mark};
 use super::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -21,10 +22,12 @@ pub struct FusionView<'a> {
 }
 
 /// Draws GNSS fixes (dots, with the accuracy circle of every fifth), the PDR-only, fused and
-/// smoothed tracks and the true path, with a legend, a north arrow and a scale bar.
+/// smoothed tracks and the true path, with a legend, a north arrow and a scale bar, over the
+/// `basemap` when there is one.
 pub fn draw_fusion<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     view: &FusionView<'_>,
+    mut basemap: Option<&mut Basemap<'_>>,
     theme: &Theme,
     scale: f64,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
@@ -37,7 +40,7 @@ pub fn draw_fusion<DB: DrawingBackend>(
         .chain(view.pdr)
         .chain(view.truth.unwrap_or(&[]))
         .copied();
-    let mut chart = map_chart(area, pts, theme, scale)?;
+    let mut chart = map_chart_under(area, pts, None, basemap.as_deref_mut(), theme, scale)?;
     let to_px = |chart: &MapChart<'_, DB>, p: (f64, f64)| chart.backend_coord(&p);
     let gnss = ShapeStyle::from(&theme.gnss.mix(0.35)).stroke_width(px(1.0));
     let circles: Vec<Circle<(f64, f64), u32>> = view
@@ -84,7 +87,8 @@ pub fn draw_fusion<DB: DrawingBackend>(
         entries.push(("true path", Mark::Line(theme.reference)));
     }
     legend(area, &chart, &entries, theme, scale)?;
-    north_and_scale(area, &chart, theme, scale)
+    north_and_scale(area, &chart, theme, scale)?;
+    credit_line(area, &chart, basemap.as_deref(), theme, scale)
 }
 
 #[cfg(test)]
@@ -110,7 +114,7 @@ mod tests {
             fused: &demo.fused,
             smoothed: &demo.smoothed,
         };
-        draw_fusion(&area, &view, &Theme::LIGHT, 1.0).unwrap();
+        draw_fusion(&area, &view, None, &Theme::LIGHT, 1.0).unwrap();
         let px = px.borrow();
         let count = |c: RGBColor| px.iter().filter(|p| **p == (c.0, c.1, c.2)).count();
         let t = Theme::LIGHT;

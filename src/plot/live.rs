@@ -1,8 +1,9 @@
 //! Live mode's map: the walk so far, the current position and heading, fixes, gaps.
-//! May import: the map frame and the theme; never `web`, `live` or `eval` (only the test below
+//! May import: the map frame, the base map and the theme; never `web`, `live` or `eval` (only the test below
 //! feeds a simulated walk through `crate::live`, to have a live map to draw).
 
-use super::frame::{legend, map_chart, north_and_scale, Mark};
+use super::basemap::{credit_line, map_chart_under, Basemap};
+use super::frame::{legend, north_and_scale, Mark};
 use super::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -26,10 +27,11 @@ pub struct LiveView<'a> {
 
 /// The live map: the track so far with its start, the current position and heading, every fix
 /// with its accuracy circle, the fused and smoothed tracks, gaps, a legend, a north arrow and a
-/// scale bar.
+/// scale bar, over the `basemap` when there is one.
 pub fn draw_live<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     view: &LiveView<'_>,
+    mut basemap: Option<&mut Basemap<'_>>,
     theme: &Theme,
     scale: f64,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
@@ -44,7 +46,7 @@ pub fn draw_live<DB: DrawingBackend>(
         .chain(view.smoothed)
         .copied()
         .chain(view.fixes.iter().map(|&(e, n, _)| (e, n)));
-    let mut chart = map_chart(area, pts, theme, scale)?;
+    let mut chart = map_chart_under(area, pts, None, basemap.as_deref_mut(), theme, scale)?;
     let ring = ShapeStyle::from(&theme.gnss.mix(0.45)).stroke_width(px(1.0));
     // The newest fixes' circles (a long walk has thousands).
     let circles: Vec<Circle<(f64, f64), u32>> = view
@@ -126,7 +128,8 @@ pub fn draw_live<DB: DrawingBackend>(
     if !entries.is_empty() {
         legend(area, &chart, &entries, theme, scale)?;
     }
-    north_and_scale(area, &chart, theme, scale)
+    north_and_scale(area, &chart, theme, scale)?;
+    credit_line(area, &chart, basemap.as_deref(), theme, scale)
 }
 
 #[cfg(test)]
@@ -186,7 +189,7 @@ mod tests {
             gaps: &d.gaps,
             heading_rad: d.heading_rad,
         };
-        draw_live(&area, &view, &Theme::LIGHT, 1.0).unwrap();
+        draw_live(&area, &view, None, &Theme::LIGHT, 1.0).unwrap();
         let t = Theme::LIGHT;
         let count = |c: RGBColor| {
             px.borrow()

@@ -5,21 +5,25 @@
 //!
 //! One file per drawing: [`Theme`] (`theme`), the map frame every map shares and [`MapFrame`]
 //! (`frame`), the demo's track (`track`), the fusion map (`fusion`), the live map (`live`), the
-//! live scope (`scope`), the calibration chart (`calibration`) and upload mode's plots
-//! ([`upload`]). Plot imports `engine` and `analysis` only, never `web`, `live` or `eval`.
+//! live scope (`scope`), the calibration chart (`calibration`), upload mode's plots
+//! ([`upload`]), and the opt-in base map under the maps (`basemap`, with the Web Mercator tile
+//! maths in [`tiles`]). Plot imports `engine` and `analysis` only, never `web`, `live` or `eval`.
 
+mod basemap;
 mod calibration;
 mod frame;
 mod fusion;
 mod live;
 mod scope;
 mod theme;
+pub mod tiles;
 mod track;
 pub mod upload;
 
 #[cfg(test)]
 pub(crate) mod raster;
 
+pub use basemap::{Basemap, Shown, TileState};
 pub use calibration::draw_calibration;
 pub use frame::{scale_bar_length, wheel_factor, MapFrame};
 pub use fusion::{draw_fusion, FusionView};

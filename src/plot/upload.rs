@@ -38,7 +38,7 @@ mod tests {
         assert_eq!(back.trace.t, a.trace.t);
         let t = Theme::LIGHT;
         let (r, px) = raster::new(500, 400);
-        let f = draw_map(&r.into_drawing_area(), &a, None, Some(10), &t, 1.0).unwrap();
+        let f = draw_map(&r.into_drawing_area(), &a, None, Some(10), None, &t, 1.0).unwrap();
         assert!(raster::count(&px, t.track) > 300 && raster::count(&px, t.gnss) > 100);
         // The frame maps pixels back to metres: the plot's corners are its bounds.
         let (e, n) = f.to_metres(f.px.0 as f64, f.px.2 as f64);

@@ -63,7 +63,7 @@ impl AnalysisView {
     }
 
     /// Draws the map; `bounds` `[min_e, max_e, min_n, max_n]` zooms (empty: fit all);
-    /// `highlight` rings a step.
+    /// `highlight` rings a step. Over the base map when it is on and the log has fixes.
     pub fn draw_map(
         &self,
         canvas: &HtmlCanvasElement,
@@ -73,9 +73,11 @@ impl AnalysisView {
         highlight: Option<usize>,
     ) -> Result<(), JsError> {
         let b = (bounds.len() == 4).then(|| (bounds[0], bounds[1], bounds[2], bounds[3]));
-        on_canvas(canvas, dark, dpr, |area, theme, scale| {
-            crate::plot::upload::draw_map(area, &self.a, b, highlight, theme, scale)
-                .map(|f| self.frame.set(f))
+        super::basemap::with_basemap(canvas, self.a.frame(), |basemap| {
+            on_canvas(canvas, dark, dpr, |area, theme, scale| {
+                crate::plot::upload::draw_map(area, &self.a, b, highlight, basemap, theme, scale)
+                    .map(|f| self.frame.set(f))
+            })
         })
     }
 

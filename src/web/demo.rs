@@ -1,5 +1,5 @@
 //! The page's demo walks: simulated once, run through the engine, drawn on demand.
-//! May import: `demo`, `plot`.
+//! May import: `demo`, `plot`, `engine` (the demo's geodetic origin).
 
 use super::canvas::on_canvas;
 use super::to_value;
@@ -65,7 +65,8 @@ impl FusionDemo {
         to_value(&self.summary)
     }
 
-    /// Draws fixes, PDR-only, fused and smoothed tracks and the truth on `canvas`.
+    /// Draws fixes, PDR-only, fused and smoothed tracks and the truth on `canvas`, over the base
+    /// map when it is on (the walk is placed in Florence).
     pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
         let s = &self.summary;
         let view = FusionView {
@@ -75,8 +76,12 @@ impl FusionDemo {
             fused: &s.fused,
             smoothed: &s.smoothed,
         };
-        on_canvas(canvas, dark, dpr, |area, theme, scale| {
-            draw_fusion(area, &view, theme, scale)
+        let (lat, lon, h) = s.origin;
+        let origin = crate::engine::geo::LocalFrame::new(lat, lon, h);
+        super::basemap::with_basemap(canvas, Some(origin), |basemap| {
+            on_canvas(canvas, dark, dpr, |area, theme, scale| {
+                draw_fusion(area, &view, basemap, theme, scale)
+            })
         })
     }
 }

@@ -203,7 +203,7 @@ impl Live {
         to_value(&self.session.readouts())
     }
 
-    /// Draws the map.
+    /// Draws the map (over the base map when it is on and a fix has placed the walk).
     pub fn draw(
         &mut self,
         canvas: &HtmlCanvasElement,
@@ -219,8 +219,10 @@ impl Live {
             gaps: &d.gaps,
             heading_rad: d.heading_rad,
         };
-        on_canvas(canvas, dark, dpr, |area, theme, scale| {
-            draw_live(area, &view, theme, scale)
+        super::basemap::with_basemap(canvas, d.origin, |basemap| {
+            on_canvas(canvas, dark, dpr, |area, theme, scale| {
+                draw_live(area, &view, basemap, theme, scale)
+            })
         })
     }
 

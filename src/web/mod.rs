@@ -4,6 +4,7 @@
 //! `eval`, `demo`); nothing imports it.
 
 mod analysis_view;
+mod basemap;
 mod blobs;
 mod calibration;
 mod canvas;

@@ -1,8 +1,9 @@
 //! Upload mode's map of an [`Analysis`]: tracks, fixes, truth, the highlighted step.
-//! May import: `analysis` and the map frame; never `web`, `live` or `eval`.
+//! May import: `analysis`, the map frame and the base map; never `web`, `live` or `eval`.
 
 use crate::analysis::Analysis;
-use crate::plot::frame::{legend, map_chart_in, north_and_scale, start_end, MapFrame, Mark};
+use crate::plot::basemap::{credit_line, map_chart_under, Basemap};
+use crate::plot::frame::{frame_of, legend, north_and_scale, start_end, MapFrame, Mark};
 use crate::plot::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -31,12 +32,14 @@ pub fn pick_step(a: &Analysis, frame: &MapFrame, x: f64, y: f64, radius: f64) ->
 
 /// Draws the map of an analysis: the PDR track, the fixes with accuracy circles, the fused and
 /// smoothed tracks, the truth, start and end, the `highlight`ed step, a legend, a north arrow
-/// and a scale bar; `bounds` zooms (None fits everything). Returns where it drew.
+/// and a scale bar, over the `basemap` when there is one; `bounds` zooms (None fits
+/// everything). Returns where it drew.
 pub fn draw_map<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     a: &Analysis,
     bounds: Option<(f64, f64, f64, f64)>,
     highlight: Option<usize>,
+    mut basemap: Option<&mut Basemap<'_>>,
     theme: &Theme,
     scale: f64,
 ) -> Result<MapFrame, DrawingAreaErrorKind<DB::ErrorType>> {
@@ -52,7 +55,7 @@ pub fn draw_map<DB: DrawingBackend>(
         .chain(&truth)
         .copied()
         .chain(a.fixes.iter().map(|f| (f[1], f[2])));
-    let mut chart = map_chart_in(area, pts, bounds, theme, scale)?;
+    let mut chart = map_chart_under(area, pts, bounds, basemap.as_deref_mut(), theme, scale)?;
     let ring = ShapeStyle::from(&theme.gnss.mix(0.35)).stroke_width(px(1.0));
     let step = (a.fixes.len() / 300).max(1);
     let circles: Vec<Circle<(f64, f64), u32>> = a
@@ -144,14 +147,8 @@ pub fn draw_map<DB: DrawingBackend>(
             font,
         ))?;
     }
-    let (xr, yr) = (
-        chart.plotting_area().get_x_range(),
-        chart.plotting_area().get_y_range(),
-    );
-    Ok(MapFrame {
-        px: (rx.start, rx.end, ry.start, ry.end),
-        m: (xr.start, xr.end, yr.start, yr.end),
-    })
+    credit_line(area, &chart, basemap.as_deref(), theme, scale)?;
+    Ok(frame_of(&chart))
 }
 
 #[cfg(test)]
