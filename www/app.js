@@ -4,6 +4,7 @@ import init, { Demo, FusionDemo, choices } from './pkg/pdr.js';
 import { setupLive } from './live.js';
 import { setupWizard } from './wizard.js';
 import { setupUpload } from './upload.js';
+import { setupBasemap } from './basemap.js';
 import { $, dark, fit } from './util.js';
 
 /** Fills every select marked `data-choice` with the options of the setting it is named after. */
@@ -26,6 +27,7 @@ function fail(err) {
 async function main() {
   await init();
   fillChoices();
+  setupBasemap();
   setupLive();
   setupWizard();
   setupUpload();
@@ -58,7 +60,8 @@ async function main() {
   document.documentElement.dataset.fusion = 'ready';
 }
 
-/** Draws `what` on `canvas` at the device pixel ratio, again on resize and scheme change. */
+/** Draws `what` on `canvas` at the device pixel ratio, again on resize, scheme change and base
+ * map change (see basemap.js). */
 function keepDrawn(canvas, what) {
   const draw = () => {
     const dpr = fit(canvas);
@@ -67,6 +70,7 @@ function keepDrawn(canvas, what) {
   draw();
   new ResizeObserver(draw).observe(canvas);
   dark.addEventListener('change', draw);
+  window.addEventListener('pdr-basemap', draw);
 }
 
 main().catch(fail);

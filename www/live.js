@@ -642,5 +642,6 @@ export function setupLive() {
   const redraw = () => { if (current) { current.dirty = true; current.lastDraw = -Infinity; current.tick(performance.now()); } };
   new ResizeObserver(redraw).observe($('live-map'));
   dark.addEventListener('change', redraw);
+  window.addEventListener('pdr-basemap', redraw);
   offerRecovery();
 }

@@ -282,12 +282,17 @@ function show(l, tag, label) {
 }
 
 function drawAll(l) {
+  drawMaps(l);
+  drawPlots(l);
+}
+
+/** The log's maps (A, and B when comparing); alone when base map tiles arrive. */
+function drawMaps(l) {
   for (const [tag, v] of Object.entries(l.views)) {
     const cv = l.card.querySelector(`.mapbox[data-tag="${tag}"] canvas`);
     const dpr = fit(cv);
     if (dpr) v.draw_map(cv, dark.matches, dpr, l.bounds ?? [], l.step ?? undefined);
   }
-  drawPlots(l);
 }
 
 function drawPlots(l) {
@@ -513,4 +518,5 @@ export function setupUpload() {
   const redraw = () => { for (const l of logs) if (l?.views.a) drawAll(l); };
   dark.addEventListener('change', redraw);
   window.addEventListener('resize', redraw);
+  window.addEventListener('pdr-basemap', () => { for (const l of logs) if (l?.views.a) drawMaps(l); });
 }

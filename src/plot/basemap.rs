@@ -6,7 +6,7 @@
 
 use super::frame::{map_chart_over, MapChart, MapFrame};
 use super::theme::Theme;
-use super::tiles::{visible_tiles, Tile, TileTemplate};
+use super::tiles::{visible_tiles, Piece, Tile, TileTemplate};
 use crate::engine::geo::LocalFrame;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -30,8 +30,8 @@ pub struct Basemap<'a> {
     pub origin: LocalFrame,
     /// The tile server.
     pub tiles: &'a TileTemplate,
-    /// Paints the tile (its URL given) over its rectangle, or says why it cannot yet.
-    pub paint: &'a mut dyn FnMut(&Tile, &str) -> TileState,
+    /// Paints the part `Piece` of the tile (its URL given), or says why it cannot yet.
+    pub paint: &'a mut dyn FnMut(&Tile, &Piece, &str) -> TileState,
     /// What the last drawing showed (set by the map that drew it).
     pub shown: Option<Shown>,
 }
@@ -87,8 +87,8 @@ fn under<DB: DrawingBackend>(
         }
     };
     let (mut drawn, mut loading, mut failed) = (0, 0, 0);
-    for t in &tiles {
-        match (basemap.paint)(t, &basemap.tiles.url(t)) {
+    for (t, piece) in tiles.iter().filter_map(|t| Some((t, t.clipped(frame.px)?))) {
+        match (basemap.paint)(t, &piece, &basemap.tiles.url(t)) {
             TileState::Drawn => drawn += 1,
             TileState::Loading => loading += 1,
             TileState::Failed => failed += 1,
@@ -212,12 +212,20 @@ mod tests {
         let (a, b) = (RGBColor(0x40, 0xa0, 0x40), RGBColor(0x40, 0x40, 0xa0));
         let mut urls = Vec::new();
         let shared = pixels.clone();
-        let mut paint = |t: &Tile, url: &str| {
+        let mut plot_area = None;
+        let mut paint = |t: &Tile, piece: &Piece, url: &str| {
             urls.push(url.to_string());
             let c = if (t.x + t.y) % 2 == 0 { a } else { b };
             let mut p = shared.borrow_mut();
-            for y in t.rect.1.max(0)..t.rect.3.min(h_px as i32) {
-                for x in t.rect.0.max(0)..t.rect.2.min(w as i32) {
+            let (l, top, r, bottom) = piece.dst;
+            plot_area = Some(plot_area.map_or(
+                piece.dst,
+                |(l0, t0, r0, b0): (i32, i32, i32, i32)| {
+                    (l0.min(l), t0.min(top), r0.max(r), b0.max(bottom))
+                },
+            ));
+            for y in top.max(0)..bottom.min(h_px as i32) {
+                for x in l.max(0)..r.min(w as i32) {
                     p[(y as u32 * w + x as u32) as usize] = (c.0, c.1, c.2);
                 }
             }
@@ -238,6 +246,12 @@ mod tests {
         };
         crate::plot::draw_fusion(&area, &view, Some(&mut basemap), &Theme::LIGHT, 1.0).unwrap();
         let shown = basemap.shown.expect("a base map was drawn");
+        // Within the plotting area only: the axis labels' margin keeps the background.
+        let (l, t0, r, b0) = plot_area.expect("tiles were painted");
+        assert!(
+            l > 20 && t0 > 0 && r < w as i32 && b0 < h_px as i32 - 20,
+            "{l} {t0} {r} {b0}"
+        );
         assert_eq!(shown.line, "Map tiles: tiles.test");
         assert!(shown.counts.0 >= 1 && shown.counts.1 == 0 && shown.counts.2 == 0);
         // Florence at the zoom of a walk: zoom 14 to 17 tiles around 43.77° N, 11.26° E.

@@ -128,6 +128,34 @@ pub struct Tile {
     pub rect: (i32, i32, i32, i32),
 }
 
+/// The part of a tile inside a clip rectangle: which part of its image, to which pixels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Piece {
+    /// Of the tile's image, as fractions of its width and height: left, top, right, bottom.
+    pub src: (f64, f64, f64, f64),
+    /// Canvas pixels: left, top, right, bottom.
+    pub dst: (i32, i32, i32, i32),
+}
+
+impl Tile {
+    /// The part of the tile inside `clip` (left, right, top, bottom, as [`MapFrame::px`]), or
+    /// None when none of it is: a map's tiles are drawn within its plotting area only.
+    pub fn clipped(&self, clip: (i32, i32, i32, i32)) -> Option<Piece> {
+        let (l, t, r, b) = self.rect;
+        let (cl, cr, ct, cb) = clip;
+        let dst = (l.max(cl), t.max(ct), r.min(cr), b.min(cb));
+        if dst.0 >= dst.2 || dst.1 >= dst.3 || r <= l || b <= t {
+            return None;
+        }
+        let fx = |x: i32| f64::from(x - l) / f64::from(r - l);
+        let fy = |y: i32| f64::from(y - t) / f64::from(b - t);
+        Some(Piece {
+            src: (fx(dst.0), fy(dst.1), fx(dst.2), fy(dst.3)),
+            dst,
+        })
+    }
+}
+
 /// The longitude `lon` moved by whole turns to within 180° of `near`.
 fn unwrap_lon(lon: f64, near: f64) -> f64 {
     near + (lon - near + 180.0).rem_euclid(360.0) - 180.0
@@ -572,6 +600,26 @@ mod tests {
         lefts.sort();
         lefts.dedup();
         assert!(lefts.len() >= 2);
+    }
+
+    #[test]
+    fn tiles_are_clipped_to_the_plotting_area() {
+        let t = Tile {
+            z: 17,
+            x: 1,
+            y: 2,
+            rect: (-50, 100, 150, 300),
+        };
+        // Clip: left 0, right 500, top 0, bottom 250 → the right three quarters, the top quarter.
+        let p = t.clipped((0, 500, 0, 250)).unwrap();
+        assert_eq!(p.dst, (0, 100, 150, 250));
+        assert_eq!(p.src, (0.25, 0.0, 1.0, 0.75));
+        assert_eq!(
+            t.clipped((-100, 500, 0, 400)).unwrap().src,
+            (0.0, 0.0, 1.0, 1.0)
+        );
+        assert_eq!(t.clipped((150, 500, 0, 400)), None);
+        assert_eq!(t.clipped((0, 500, 300, 400)), None);
     }
 
     #[test]

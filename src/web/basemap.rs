@@ -9,7 +9,7 @@
 
 use super::to_js;
 use crate::engine::geo::LocalFrame;
-use crate::plot::tiles::{Tile, TileTemplate, OSM_ATTRIBUTION, OSM_TEMPLATE};
+use crate::plot::tiles::{Piece, Tile, TileTemplate, OSM_ATTRIBUTION, OSM_TEMPLATE};
 use crate::plot::{Basemap, TileState};
 use std::cell::RefCell;
 use wasm_bindgen::prelude::*;
@@ -95,8 +95,9 @@ fn notify_closure() -> Closure<dyn FnMut()> {
     })
 }
 
-/// Paints one tile from the cache, or requests it (the least recently used image makes room).
-fn paint(ctx: &web_sys::CanvasRenderingContext2d, tile: &Tile, url: &str) -> TileState {
+/// Paints the part `piece` of a tile from the cache, or requests the tile (the least recently
+/// used image makes room).
+fn paint(ctx: &web_sys::CanvasRenderingContext2d, piece: &Piece, url: &str) -> TileState {
     STATE.with(|s| {
         let mut guard = s.borrow_mut();
         let s = &mut *guard;
@@ -110,14 +111,24 @@ fn paint(ctx: &web_sys::CanvasRenderingContext2d, tile: &Tile, url: &str) -> Til
             if e.img.natural_width() == 0 {
                 return TileState::Failed;
             }
-            let (l, t, r, b) = tile.rect;
-            return match ctx.draw_image_with_html_image_element_and_dw_and_dh(
-                &e.img,
-                f64::from(l),
-                f64::from(t),
-                f64::from(r - l),
-                f64::from(b - t),
-            ) {
+            let (w, h) = (
+                f64::from(e.img.natural_width()),
+                f64::from(e.img.natural_height()),
+            );
+            let (sl, st, sr, sb) = piece.src;
+            let (l, t, r, b) = piece.dst;
+            return match ctx
+                .draw_image_with_html_image_element_and_sw_and_sh_and_dx_and_dy_and_dw_and_dh(
+                    &e.img,
+                    sl * w,
+                    st * h,
+                    (sr - sl) * w,
+                    (sb - st) * h,
+                    f64::from(l),
+                    f64::from(t),
+                    f64::from(r - l),
+                    f64::from(b - t),
+                ) {
                 Ok(()) => TileState::Drawn,
                 Err(_) => TileState::Failed,
             };
@@ -168,7 +179,7 @@ pub(super) fn with_basemap<R>(
         let _ = el.remove_attribute("data-tiles");
         return draw(None);
     };
-    let mut painter = |t: &Tile, url: &str| paint(&ctx, t, url);
+    let mut painter = |_: &Tile, piece: &Piece, url: &str| paint(&ctx, piece, url);
     let mut basemap = Basemap {
         origin,
         tiles: &template,

@@ -386,7 +386,14 @@ test('installable and private: manifest, service worker, offline reload, CSP', a
   const csp = await page.getAttribute('meta[http-equiv="Content-Security-Policy"]', 'content');
   assert.match(csp, /default-src 'self'/);
   assert.match(csp, /connect-src 'self'/);
-  assert.doesNotMatch(csp, /unsafe-inline|https?:/);
+  assert.doesNotMatch(csp, /unsafe-inline|http:/);
+  // Only images may come from another origin (https:, for the opt-in base map's tiles; see the
+  // README's "Base map"); every other directive stays on the page's origin.
+  const directives = Object.fromEntries(csp.split(';').map((d) => d.trim().split(/\s+/)).filter((d) => d[0]).map(([k, ...v]) => [k, v]));
+  assert.deepEqual(directives['img-src'], ["'self'", 'data:', 'blob:', 'https:']);
+  for (const [k, v] of Object.entries(directives)) {
+    if (k !== 'img-src') assert.ok(!v.some((x) => /^https?:|^\*/.test(x)), `${k} ${v.join(' ')} allows another origin`);
+  }
   assert.match(await page.textContent('#live .lede'), /never leave/);
   assert.deepEqual(errors, []);
   await context.close();
