@@ -14,7 +14,7 @@ import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 import zlib from 'node:zlib';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, holdToUnlock, openPage, useBrowser } from './util.mjs';
 
 // The tile server's certificate is self-signed: the whole browser (the service worker's fetches
 // too, which a context's ignoreHTTPSErrors does not cover) accepts it.
@@ -27,6 +27,8 @@ const ODD = [0x50, 0x60, 0xc8];
 /** The light scheme's background and the veil over the tiles (src/plot/basemap.rs). */
 const LIGHT_BG = [0xfb, 0xfb, 0xf8];
 const LIGHT_VEIL = 0.3;
+const DARK_BG = [0x15, 0x18, 0x1d];
+const DARK_VEIL = 0.6;
 
 /** A 256 × 256 PNG of one colour with a 3-pixel darker border (so tile edges show). */
 function png([r, g, b]) {
@@ -81,6 +83,8 @@ async function certificate() {
 let tiles; // the server
 let TILE_ORIGIN;
 const served = []; // {z, x, y} of every tile request
+// The tiles are sent `no-store`, so that what the browser shows offline can only come from the
+// service worker's tile cache, not from its HTTP cache.
 
 before(async () => {
   const port = await freePort();
@@ -89,7 +93,7 @@ before(async () => {
     if (!m) { res.writeHead(404).end(); return; }
     const [z, x, y] = m.slice(1).map(Number);
     served.push({ z, x, y });
-    res.writeHead(200, { 'Content-Type': 'image/png', 'Access-Control-Allow-Origin': '*', 'Cache-Control': 'max-age=604800' });
+    res.writeHead(200, { 'Content-Type': 'image/png', 'Access-Control-Allow-Origin': '*', 'Cache-Control': 'no-store' });
     res.end((x + y) % 2 ? TILE.odd : TILE.even);
   });
   await new Promise((r) => tiles.listen(port, '127.0.0.1', r));
@@ -189,6 +193,13 @@ test('base map on: the demo map is drawn over the chosen server\'s tiles of Flor
   // page can forget them.
   const cached = await page.evaluate(async () => (await (await caches.open('pdr-tiles-v1')).keys()).map((r) => r.url));
   assert.ok(cached.length > 0 && cached.every((u) => u.startsWith(TILE_ORIGIN)), cached.join('\n'));
+  // Offline, the map is drawn over the same tiles, from that cache.
+  await context.setOffline(true);
+  await page.reload();
+  await page.waitForFunction(() => document.documentElement.dataset.fusion === 'ready', null, { timeout: 30_000 });
+  const offline = await tilesDrawn(page, '#fusion');
+  assert.deepEqual(offline.tiles.slice(1), [0, 0], `offline: ${offline.tiles}`);
+  await context.setOffline(false);
   await page.click('#basemap-forget');
   await page.waitForFunction(() => document.querySelector('#basemap-messages li.ok'));
   assert.equal(await page.evaluate(() => caches.has('pdr-tiles-v1')), false);
@@ -207,14 +218,17 @@ test('base map on a phone, in the dark, and under an uploaded GNSS walk', async 
   const shown = await tilesDrawn(page, '#fusion');
   // Without a credit of its own, the server's host is named.
   assert.equal(shown.credit, `Map tiles: ${new URL(TILE_ORIGIN).host}`);
-  const dark = await page.evaluate(() => getComputedStyle(document.body).backgroundColor);
-  assert.ok(dark, 'dark page');
+  // Under the dark scheme's heavier veil the tiles still show under most of the map.
+  const share = await tileShare(page, '#fusion', DARK_BG, DARK_VEIL);
+  assert.ok(share > 0.3, `tile pixels: ${(share * 100).toFixed(1)} %`);
   await page.locator('#fusion').scrollIntoViewIfNeeded();
   await page.locator('#fusion').screenshot({ path: path.join(ARTIFACTS, 'basemap-demo-phone-dark.png') });
   await page.setInputFiles('#upload-files', [walk]);
   await page.waitForFunction(() => document.documentElement.dataset.upload === 'done', null, { timeout: 60_000 });
   const up = await tilesDrawn(page, '.log-result canvas.map');
   assert.ok(up.tiles[0] > 0 && up.tiles[2] === 0, `upload map tiles ${up.tiles}`);
+  const upShare = await tileShare(page, '.log-result canvas.map', DARK_BG, DARK_VEIL);
+  assert.ok(upShare > 0.3, `upload map tile pixels: ${(upShare * 100).toFixed(1)} %`);
   await page.locator('.log-result canvas.map').scrollIntoViewIfNeeded();
   await page.locator('.log-result canvas.map').screenshot({ path: path.join(ARTIFACTS, 'basemap-upload-phone-dark.png') });
   // A template the page cannot use is refused with the reason, and the map stays plain.
@@ -242,8 +256,7 @@ test('base map under live mode: the setting kept from last time, the tiles of th
   assert.equal(await page.isChecked('#basemap-on'), true);
   await page.click('#start');
   await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
-  // The guard hides the plots; unlocking is not what this test is about.
-  await page.evaluate(() => { document.getElementById('guard').hidden = true; });
+  await holdToUnlock(page, 2200); // the pocket guard hides the plots
   await page.waitForFunction(() => window.__pdrLive?.readouts.fixes > 0, null, { timeout: 10_000 });
   await page.evaluate(() => window.__pdrLive.draw());
   const shown = await tilesDrawn(page, '#live-map');
