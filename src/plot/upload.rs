@@ -2,12 +2,17 @@
 //! time-aligned diagnostics, and the horizontal-acceleration ellipse of one stride (Basso 2016
 //! Fig. 5).
 //!
-//! One file each: the map (`map`), the diagnostics plots (`plots`) and the ellipse (`ellipse`).
+//! One file each: the map (`map`), the diagnostics plots (`plots`), the unwrapping of their
+//! headings (`heading`), their legibility test (`legibility`) and the ellipse (`ellipse`).
 //! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
 
 mod ellipse;
+mod heading;
 mod map;
 mod plots;
+
+#[cfg(test)]
+mod legibility;
 
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
