@@ -15,7 +15,9 @@ pub fn nearest_turn(deg: f64, near: f64) -> f64 {
 /// segment is longer than 180° and a turn through north is a turn, not a jump. A run ends at a
 /// missing heading or where the next is more than `gap_s` later; the next run starts on the
 /// turn nearest where the last one ended (the first in 0…360°), so that bouts of walking in one
-/// direction lie at one height, not a whole turn apart.
+/// direction lie at one height, not a whole turn apart, unless that start leaves −180…540°:
+/// then it starts in 0…360° again, so that a long walk of many loops with stops between them
+/// keeps an axis a few turns high, not tens.
 pub fn unwrap_runs(
     points: impl IntoIterator<Item = (f64, f64)>,
     gap_s: f64,
@@ -35,7 +37,12 @@ pub fn unwrap_runs(
                 if t - last_t > gap_s && !run.is_empty() {
                     runs.push(std::mem::take(&mut run));
                 }
-                nearest_turn(h, last)
+                let v = nearest_turn(h, last);
+                if run.is_empty() && !(-180.0..540.0).contains(&v) {
+                    nearest_turn(h, 180.0)
+                } else {
+                    v
+                }
             }
             None => h.rem_euclid(360.0),
         };
@@ -79,12 +86,15 @@ pub fn grid(y0: f64, y1: f64) -> Vec<f64> {
     (first..=last).map(|k| k as f64 * step).collect()
 }
 
-/// The label of an unwrapped heading: the heading itself and its compass point (`450°` is
-/// `90° E`).
+/// The label of an unwrapped heading: the heading itself in 0…360°, with its compass point on
+/// a cardinal one (`450°` is `90° E`, `-45°` is `315°`: short enough for a phone's axis).
 pub fn label(deg: f64) -> String {
-    let h = deg.rem_euclid(360.0);
-    let point = ["N", "NE", "E", "SE", "S", "SW", "W", "NW"][((h / 45.0).round() as usize) % 8];
-    format!("{:.0}° {point}", h)
+    // `+ 0.0` turns the -0 of a negative whole turn into 0.
+    let h = deg.round().rem_euclid(360.0) + 0.0;
+    match ["N", "E", "S", "W"].get((h / 90.0) as usize) {
+        Some(point) if h % 90.0 == 0.0 => format!("{h:.0}° {point}"),
+        _ => format!("{h:.0}°"),
+    }
 }
 
 #[cfg(test)]
@@ -144,10 +154,16 @@ mod tests {
                 assert!((w[1].1 - w[0].1).abs() <= 10.0 + 1e-9, "{w:?}");
             }
         }
-        // After the stop the line starts on the turn nearest where it stopped.
-        let end = first.last().unwrap().1;
-        assert!((runs[1][0].1 - end).abs() <= 180.0);
+        // Three turns up, the line starts again within 0…360° after the stop; after the missing
+        // heading, on the turn nearest where it broke off.
+        assert!((0.0..=360.0).contains(&runs[1][0].1), "{:?}", runs[1][0]);
         assert!((runs[2][0].1 - runs[1].last().unwrap().1).abs() <= 180.0);
+        // A short stop in the middle of a walk north: the line goes on at the same height.
+        let runs = unwrap_runs([(0.0, 350.0), (1.0, 355.0), (9.0, 5.0)], BOUT_GAP_S);
+        assert_eq!(
+            runs,
+            vec![vec![(0.0, 350.0), (1.0, 355.0)], vec![(9.0, 365.0)]]
+        );
     }
 
     #[test]
@@ -167,6 +183,9 @@ mod tests {
         assert_eq!(grid(-30.0, 400.0), vec![0.0, 90.0, 180.0, 270.0, 360.0]);
         assert_eq!(grid(10.0, 100.0), vec![45.0, 90.0]);
         assert_eq!(label(450.0), "90° E");
-        assert_eq!(label(-45.0), "315° NW");
+        assert_eq!(label(-45.0), "315°");
+        assert_eq!(label(-360.0), "0° N");
+        assert_eq!(label(719.7), "0° N");
+        assert_eq!(label(-540.0), "180° S");
     }
 }

@@ -1,6 +1,7 @@
 //! Upload mode's diagnostics plots of an [`Analysis`] on one time axis, and its zoom and pan.
 //! May import: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
 
+use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
 use super::heading;
 use crate::analysis::Analysis;
 use crate::plot::theme::Theme;
@@ -51,110 +52,6 @@ impl Plot {
     }
 }
 
-/// Columns wider than this (s) cannot show a step's wave (a step takes about half a second):
-/// there [`envelope`] draws the signal's highest and lowest value per column as two lines
-/// rather than a zig-zag between them, which would fill the plot with one colour.
-const COARSE_COLUMN_S: f64 = 0.125;
-
-/// Samples further apart than this (s) are not joined.
-const GAP_S: f64 = 0.5;
-
-/// A pixel column of [`envelope`]: its middle (s from the origin), min, max, and whether a gap
-/// comes before it.
-type Column = (f64, f64, f64, bool);
-
-/// A long signal drawn at any zoom without losing its peaks, as the runs of a line (broken
-/// where there is no finite value for more than [`GAP_S`]): the samples themselves when there
-/// are at most two per pixel column; else the min and max per column between `t0` and `t1`, as
-/// a zig-zag between them while a column is narrower than [`COARSE_COLUMN_S`], and as two lines
-/// (the upper and the lower envelope) beyond. `value(i)` is sample `i`'s value (NaN for none),
-/// asked in time order. The work is linear in the samples in the span.
-fn envelope(
-    t: &[f64],
-    mut value: impl FnMut(usize) -> f64,
-    t0: f64,
-    t1: f64,
-    cols: usize,
-    origin: f64,
-) -> Vec<Vec<(f64, f64)>> {
-    let i0 = t.partition_point(|&x| x < t0);
-    let i1 = t.partition_point(|&x| x <= t1);
-    let mut runs = Vec::new();
-    if i1 <= i0 {
-        return runs;
-    }
-    let n = i1 - i0;
-    let mut run: Vec<(f64, f64)> = Vec::new();
-    if n <= 2 * cols {
-        let mut last = f64::NEG_INFINITY;
-        for (i, &ti) in t.iter().enumerate().take(i1).skip(i0) {
-            let v = value(i);
-            if !v.is_finite() {
-                continue;
-            }
-            if ti - last > GAP_S && !run.is_empty() {
-                runs.push(std::mem::take(&mut run));
-            }
-            last = ti;
-            run.push((ti - origin, v));
-        }
-        if !run.is_empty() {
-            runs.push(run);
-        }
-        return runs;
-    }
-    let width = (t1 - t0) / cols as f64;
-    let mut columns: Vec<Column> = Vec::with_capacity(cols);
-    let mut i = i0;
-    let mut last = f64::NEG_INFINITY;
-    for c in 0..cols {
-        let end = t0 + (c + 1) as f64 * width;
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        let mut gap = false;
-        while i < i1 && t[i] <= end {
-            let v = value(i);
-            if v.is_finite() {
-                gap |= t[i] - last > GAP_S + width;
-                last = t[i];
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-            i += 1;
-        }
-        if lo.is_finite() {
-            columns.push((t0 + (c as f64 + 0.5) * width - origin, lo, hi, gap));
-        }
-    }
-    // Coarse: the lows as one line, the highs as another. Fine: a zig-zag through both.
-    let passes: &[(bool, bool)] = if width > COARSE_COLUMN_S {
-        &[(true, false), (false, true)]
-    } else {
-        &[(true, true)]
-    };
-    for &(low, high) in passes {
-        for c in &columns {
-            if c.3 && !run.is_empty() {
-                runs.push(std::mem::take(&mut run));
-            }
-            if low {
-                run.push((c.0, c.1));
-            }
-            if high {
-                run.push((c.0, c.2));
-            }
-        }
-        if !run.is_empty() {
-            runs.push(std::mem::take(&mut run));
-        }
-    }
-    runs
-}
-
-/// Sample `i` of a signal, for [`envelope`].
-fn of(v: &[f32]) -> impl FnMut(usize) -> f64 + '_ {
-    move |i| f64::from(v[i])
-}
-
 /// Draws one diagnostics plot between `t0` and `t1` (s, the log's clock), with a cursor at a
 /// time when given. The time axis is in seconds from the log's first sample. Returns the
 /// pixel columns where `t0` and `t1` fall, for the page to map a pointer to a time.
@@ -171,9 +68,9 @@ pub fn draw_plot<DB: DrawingBackend>(
 }
 
 /// [`draw_plot`], returning the plot area's pixel columns and rows (the rows from the top of
-/// the first lane to the bottom of the last).
+/// the first lane to the bottom of the last): where the legibility tests look.
 #[allow(clippy::type_complexity)]
-pub(crate) fn draw_plot_area<DB: DrawingBackend>(
+pub fn draw_plot_area<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     a: &Analysis,
     plot: Plot,
@@ -369,6 +266,12 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
     let (columns, mut rows) = ((columns.start, columns.end), (rows.start, rows.end));
     let line = |c: RGBColor, w: f64| ShapeStyle::from(&c).stroke_width(px(w));
     let rel = |t: f64| t - origin;
+    // Envelopes drawn as two lines (coarse) thinner than a signal, so they do not merge.
+    let signal_w = if (t1 - t0) / cols as f64 > COARSE_COLUMN_S {
+        1.0
+    } else {
+        1.5
+    };
     // Steps marked by a line across the plot only while they are at least 6 pixels apart;
     // closer, the lines would fill the plot, and the ticks along its top show them.
     let step_lines = steps_in.len() as i32 * 6 * px(1.0) as i32 <= columns.1 - columns.0;
@@ -391,7 +294,7 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
                     }),
             )?;
             for run in envelope(&tr.t, of(&tr.up), t0, t1, cols, origin) {
-                chart.draw_series(LineSeries::new(run, line(theme.track, 1.5)))?;
+                chart.draw_series(LineSeries::new(run, line(theme.track, signal_w)))?;
             }
         }
         Plot::Sigma => {
@@ -417,7 +320,7 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
                 chart.draw_series(LineSeries::new([(x0, v), (x1, v)], line(c, 1.0)))?;
             }
             for run in envelope(&tr.t, of(&tr.sigma), t0, t1, cols, origin) {
-                chart.draw_series(LineSeries::new(run, line(theme.track, 1.5)))?;
+                chart.draw_series(LineSeries::new(run, line(theme.track, signal_w)))?;
             }
         }
         Plot::Heading => {
@@ -437,6 +340,7 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
                 h.device
                     .iter()
                     .flatten()
+                    .filter(|p| p.1 >= y0 && p.1 <= y1)
                     .map(|&p| Circle::new(p, px(0.8), theme.reference.filled())),
             )?;
             chart.draw_series(
@@ -511,7 +415,7 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
             .x_label_area_size(px(22.0))
             .y_label_area_size(px(40.0))
             .right_y_label_area_size(px(40.0))
-            .build_cartesian_2d(x0..x1, -1.25..1.25)?;
+            .build_cartesian_2d(x0..x1, -1.6..1.6)?;
         pll.configure_mesh()
             .light_line_style(TRANSPARENT)
             .bold_line_style(theme.grid)
@@ -520,22 +424,55 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
             .x_labels(8)
             .y_labels(3)
             .x_label_formatter(&time_label)
-            .y_label_formatter(&|v| format!("{v:.0}"))
+            // ±1 only: the lane is a few labels high.
+            .y_label_formatter(&|v: &f64| {
+                if v.abs() > 0.5 {
+                    format!("{v:.0}")
+                } else {
+                    String::new()
+                }
+            })
             .draw()?;
         if step_lines {
             pll.draw_series(steps_in.iter().map(|s| {
                 PathElement::new(
-                    vec![(rel(s.t), -1.25), (rel(s.t), 1.25)],
+                    vec![(rel(s.t), -1.6), (rel(s.t), 1.6)],
                     line(theme.end, 1.0),
                 )
             }))?;
         }
-        for run in envelope(&tr.t, of(&tr.pll), t0, t1, cols, origin) {
-            pll.draw_series(LineSeries::new(run, line(theme.gnss, 1.0)))?;
+        // Over a long span the wave cannot be followed: a faint band shows where the PLL
+        // ran and how far it swung, and lets the step lines show through.
+        match band(&tr.t, of(&tr.pll), t0, t1, cols, origin) {
+            Some((w, columns)) => {
+                // One polygon per run of columns: rectangles side by side would leave seams.
+                let faint = theme.gnss.mix(0.35).filled();
+                let mut from = 0;
+                for k in 1..=columns.len() {
+                    if k < columns.len() && !columns[k].3 {
+                        continue;
+                    }
+                    let run = &columns[from..k];
+                    let upper = run
+                        .iter()
+                        .flat_map(|c| [(c.0 - w / 2.0, c.2), (c.0 + w / 2.0, c.2)]);
+                    let lower = run
+                        .iter()
+                        .rev()
+                        .flat_map(|c| [(c.0 + w / 2.0, c.1), (c.0 - w / 2.0, c.1)]);
+                    pll.draw_series([Polygon::new(upper.chain(lower).collect::<Vec<_>>(), faint)])?;
+                    from = k;
+                }
+            }
+            None => {
+                for run in envelope(&tr.t, of(&tr.pll), t0, t1, cols, origin) {
+                    pll.draw_series(LineSeries::new(run, line(theme.gnss, 1.0)))?;
+                }
+            }
         }
         if let Some(c) = cursor {
             pll.draw_series([PathElement::new(
-                vec![(c, -1.25), (c, 1.25)],
+                vec![(c, -1.6), (c, 1.6)],
                 line(theme.foreground, 1.0),
             )])?;
         }
@@ -547,7 +484,7 @@ pub(crate) fn draw_plot_area<DB: DrawingBackend>(
 /// The heading plot's series between two times, unwrapped onto one set of turns: the two-step
 /// average's line (unwrapped over the whole log, so that zoom and pan do not move it by a
 /// turn), each step's single-step heading on the turn nearest the line, and the device's
-/// heading followed sample by sample from the line's turn after each gap.
+/// heading on the turn nearest the line.
 struct Headings {
     /// The two-step average's runs within the span (time from the log's start, °).
     line: Vec<Vec<(f64, f64)>>,
@@ -595,16 +532,13 @@ impl Headings {
                 if !h.is_finite() {
                     return f64::NAN;
                 }
-                // Followed sample by sample, except after a gap or a jump no one turns (a
-                // phone in a pocket, its top near vertical, flips its heading by half a turn):
-                // then on the turn nearest the walking line.
-                let near = match last {
-                    Some((lt, lh))
-                        if t - lt <= GAP_S && (heading::nearest_turn(h, lh) - lh).abs() <= 90.0 =>
-                    {
-                        lh
-                    }
-                    _ => heading::line_at(&all, t).unwrap_or(h.rem_euclid(360.0)),
+                // On the turn nearest the walking line (so that the axis spans the walk, and a
+                // device turned by half a turn, as a phone in a pocket with its top near
+                // vertical flips, lies half a turn off it); without one, sample by sample.
+                let near = match (heading::line_at(&all, t), last) {
+                    (Some(l), _) => l,
+                    (None, Some((lt, lh))) if t - lt <= GAP_S => lh,
+                    _ => h.rem_euclid(360.0),
                 };
                 let v = heading::nearest_turn(h, near);
                 last = Some((t, v));
@@ -622,12 +556,15 @@ impl Headings {
         }
     }
 
-    /// The heading axis: everything drawn, and at least 60°.
+    /// The heading axis: the walking heading (the line and the single steps; the device's
+    /// without them), and at least 60°. The device's heading may lie half a turn off the
+    /// walking one (a phone in a pocket): it is drawn where it falls within.
     fn range(&self) -> (f64, f64) {
+        let walking = !self.line.is_empty() || !self.single.is_empty();
         let (lo, hi) = self
             .line
             .iter()
-            .chain(&self.device)
+            .chain(if walking { &[][..] } else { &self.device[..] })
             .flatten()
             .chain(&self.single)
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
