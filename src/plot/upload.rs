@@ -14,7 +14,7 @@ mod map;
 mod plots;
 
 #[cfg(test)]
-mod legibility;
+pub(crate) mod legibility;
 
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
