@@ -74,6 +74,35 @@ pub fn line_at(runs: &[Vec<(f64, f64)>], t: f64) -> Option<f64> {
         .map(|p| p.1)
 }
 
+/// [`line_at`] for times asked in increasing order, in constant time per call (amortised): the
+/// device's heading asks it for every sample drawn.
+pub struct LineCursor<'a> {
+    points: Vec<&'a (f64, f64)>,
+    k: usize,
+}
+
+impl<'a> LineCursor<'a> {
+    /// A cursor over the runs of [`unwrap_runs`].
+    pub fn new(runs: &'a [Vec<(f64, f64)>]) -> Self {
+        LineCursor {
+            points: runs.iter().flatten().collect(),
+            k: 0,
+        }
+    }
+
+    /// The line's value nearest time `t`, as [`line_at`]; `t` must not decrease between calls.
+    pub fn at(&mut self, t: f64) -> Option<f64> {
+        while self.k + 1 < self.points.len() && self.points[self.k + 1].0 <= t {
+            self.k += 1;
+        }
+        let here = self.points.get(self.k)?;
+        Some(match self.points.get(self.k + 1) {
+            Some(next) if (next.0 - t).abs() < (here.0 - t).abs() => next.1,
+            _ => here.1,
+        })
+    }
+}
+
 /// Grid lines of a heading axis from `y0` to `y1` (unwrapped degrees): every 45°, 90° or 180°,
 /// whichever gives two to eight lines.
 pub fn grid(y0: f64, y1: f64) -> Vec<f64> {
@@ -178,6 +207,11 @@ mod tests {
         assert_eq!(line_at(&runs, 6.0), Some(380.0));
         assert_eq!(line_at(&runs, 99.0), Some(380.0));
         assert_eq!(line_at(&[], 1.0), None);
+        let mut cursor = LineCursor::new(&runs);
+        for t in [-5.0, 0.0, 0.4, 0.8, 1.0, 6.0, 9.0, 99.0] {
+            assert_eq!(cursor.at(t), line_at(&runs, t), "{t}");
+        }
+        assert_eq!(LineCursor::new(&[]).at(1.0), None);
         assert_eq!(nearest_turn(5.0, 350.0), 365.0);
         assert_eq!(nearest_turn(355.0, 0.0), -5.0);
         assert_eq!(grid(-30.0, 400.0), vec![0.0, 90.0, 180.0, 270.0, 360.0]);

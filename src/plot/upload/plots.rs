@@ -525,6 +525,7 @@ impl Headings {
             .collect();
         let tr = &a.trace;
         let mut last: Option<(f64, f64)> = None;
+        let mut cursor = heading::LineCursor::new(&all);
         let device = envelope(
             &tr.t,
             |i| {
@@ -535,7 +536,7 @@ impl Headings {
                 // On the turn nearest the walking line (so that the axis spans the walk, and a
                 // device turned by half a turn, as a phone in a pocket with its top near
                 // vertical flips, lies half a turn off it); without one, sample by sample.
-                let near = match (heading::line_at(&all, t), last) {
+                let near = match (cursor.at(t), last) {
                     (Some(l), _) => l,
                     (None, Some((lt, lh))) if t - lt <= GAP_S => lh,
                     _ => h.rem_euclid(360.0),
