@@ -115,6 +115,9 @@ function load(files) {
       return [r.left + left + (t - t0) / (t1 - t0) * (right - left), r.top + r.height / 2];
     },
     span: (k) => [...logs[k].span],
+    // Shows `[t0, t1]` on log `k`'s plots, as a zoom would.
+    setSpan(k, t0, t1) { logs[k].span = [t0, t1]; drawPlots(logs[k]); },
+    full: (k) => [...logs[k].full],
     stepTime: (k, i) => logs[k].views.a.step_info(i).t,
   };
   progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
@@ -301,8 +304,11 @@ function drawPlots(l) {
   const cursor = l.step != null ? v.step_info(l.step).t : undefined;
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
     const dpr = fit(cv);
+    if (!dpr) continue;
+    // [left, right, top, bottom] of the plot area in canvas pixels (for the legibility test).
+    cv.area = v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, l.span[0], l.span[1], cursor);
     // Where the time axis lies, canvas pixels → CSS pixels, for pointer → time.
-    if (dpr) cv.axis = v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, l.span[0], l.span[1], cursor).map((x) => x / dpr);
+    cv.axis = cv.area.slice(0, 2).map((x) => x / dpr);
   }
   const ell = l.card.querySelector('canvas.ellipse');
   const dpr = fit(ell);

@@ -235,5 +235,25 @@ mod tests {
             n(t.gnss),
             n(t.end)
         );
+        // Legible, as upload mode's plots (src/plot/upload/legibility.rs): in the plot area
+        // (left of the labels' 34 + 8 pixels, below the key, above the time labels) no colour
+        // but the background, grid and axes covers 35 % or more, in either theme.
+        use crate::plot::upload::legibility::{dominant_share, MAX_DOMINANT_SHARE};
+        for theme in [Theme::LIGHT, Theme::DARK] {
+            let (r, px) = crate::plot::raster::new(600, 200);
+            draw_scope(
+                &r.into_drawing_area(),
+                &samples,
+                &steps,
+                now,
+                10.0,
+                &theme,
+                1.0,
+            )
+            .unwrap();
+            let (share, colour) = dominant_share(&px, 600, ((42, 592), (22, 168)), &theme);
+            assert!(share < MAX_DOMINANT_SHARE, "{colour:?}: {share}");
+            println!("scope: {colour:?} covers {:.1} %", 100.0 * share);
+        }
     }
 }

@@ -8,8 +8,8 @@ use plotters::prelude::*;
 /// A sample of the scrolling view: time (s), vertical acceleration (m/s²), PLL output.
 pub type ScopePoint = (f64, f64, Option<f64>);
 
-/// The scrolling view of the last `span_s` seconds up to `now`: vertical acceleration (left
-/// axis, m/s²), the PLL output cos φ (right axis) and the detected steps (vertical marks).
+/// The scrolling view of the last `span_s` seconds up to `now`: vertical acceleration (m/s²)
+/// with the detected steps (vertical marks), and the PLL output cos φ in a lane under it.
 /// Samples further apart than 0.5 s (a gap) are not joined.
 pub fn draw_scope<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
@@ -31,14 +31,18 @@ pub fn draw_scope<DB: DrawingBackend>(
         .fold(2.0_f64, f64::max)
         .min(40.0)
         * 1.1;
-    let mut chart = ChartBuilder::on(area)
+    // The PLL output has a lane of its own under the acceleration, as in upload mode's plot:
+    // drawn over it, its ±1 wave covers the signal.
+    let body = area.margin(px(22.0), 0, 0, 0);
+    let h = body.dim_in_pixel().1 as i32;
+    let (main, lane) = body.split_vertically(h * 60 / 100);
+    let mut chart = ChartBuilder::on(&main)
         .margin(px(8.0))
-        .margin_top(px(22.0))
-        .x_label_area_size(px(24.0))
+        .margin_top(0)
+        .margin_bottom(px(2.0))
+        .x_label_area_size(0)
         .y_label_area_size(px(34.0))
-        .right_y_label_area_size(px(30.0))
-        .build_cartesian_2d(-span_s..0.0, -amp..amp)?
-        .set_secondary_coord(-span_s..0.0, -1.25..1.25);
+        .build_cartesian_2d(-span_s..0.0, -amp..amp)?;
     chart
         .configure_mesh()
         .light_line_style(TRANSPARENT)
@@ -47,15 +51,31 @@ pub fn draw_scope<DB: DrawingBackend>(
         .label_style(font.clone())
         .x_labels(6)
         .y_labels(5)
-        .x_label_formatter(&|v| format!("{v:.0} s"))
+        .x_label_formatter(&|_| String::new())
         .y_label_formatter(&|v| format!("{v:.0}"))
         .draw()?;
-    chart
-        .configure_secondary_axes()
+    let mut pll = ChartBuilder::on(&lane)
+        .margin(px(8.0))
+        .margin_top(px(2.0))
+        .x_label_area_size(px(24.0))
+        .y_label_area_size(px(34.0))
+        .build_cartesian_2d(-span_s..0.0, -1.6..1.6)?;
+    pll.configure_mesh()
+        .light_line_style(TRANSPARENT)
+        .bold_line_style(theme.grid)
         .axis_style(theme.foreground)
         .label_style(font.clone())
+        .x_labels(6)
         .y_labels(3)
-        .y_label_formatter(&|v| format!("{v:.0}"))
+        .x_label_formatter(&|v| format!("{v:.0} s"))
+        // ±1 only: the lane is a few labels high.
+        .y_label_formatter(&|v: &f64| {
+            if v.abs() > 0.5 {
+                format!("{v:.0}")
+            } else {
+                String::new()
+            }
+        })
         .draw()?;
     let rel = |t: f64| t - now;
     let visible = |t: f64| rel(t) >= -span_s && rel(t) <= 0.0;
@@ -65,6 +85,12 @@ pub fn draw_scope<DB: DrawingBackend>(
             .iter()
             .filter(|&&t| visible(t))
             .map(|&t| PathElement::new(vec![(rel(t), -amp), (rel(t), amp)], step_style)),
+    )?;
+    pll.draw_series(
+        steps
+            .iter()
+            .filter(|&&t| visible(t))
+            .map(|&t| PathElement::new(vec![(rel(t), -1.6), (rel(t), 1.6)], step_style)),
     )?;
     // Runs of samples without a gap.
     let mut runs: Vec<&[ScopePoint]> = Vec::new();
@@ -78,12 +104,12 @@ pub fn draw_scope<DB: DrawingBackend>(
     let pll_style = ShapeStyle::from(&theme.gnss).stroke_width(px(1.5));
     let acc_style = ShapeStyle::from(&theme.track).stroke_width(px(2.0));
     for run in runs {
-        let pll: Vec<(f64, f64)> = run
+        let wave: Vec<(f64, f64)> = run
             .iter()
             .filter(|s| visible(s.0))
             .filter_map(|s| s.2.map(|p| (rel(s.0), p)))
             .collect();
-        chart.draw_secondary_series(LineSeries::new(pll, pll_style))?;
+        pll.draw_series(LineSeries::new(wave, pll_style))?;
         chart.draw_series(LineSeries::new(
             run.iter().filter(|s| visible(s.0)).map(|s| (rel(s.0), s.1)),
             acc_style,
@@ -94,7 +120,7 @@ pub fn draw_scope<DB: DrawingBackend>(
     let mut x = x0;
     for (label, colour) in [
         ("vertical acc., m/s²", theme.track),
-        ("PLL cos φ, right", theme.gnss),
+        ("PLL cos φ, below", theme.gnss),
         ("steps", theme.end),
     ] {
         area.draw(&PathElement::new(

@@ -2,17 +2,24 @@
 //! time-aligned diagnostics, and the horizontal-acceleration ellipse of one stride (Basso 2016
 //! Fig. 5).
 //!
-//! One file each: the map (`map`), the diagnostics plots (`plots`) and the ellipse (`ellipse`).
+//! One file each: the map (`map`), the diagnostics plots (`plots`), the decimation of their
+//! signals to pixel columns (`decimate`), the unwrapping of their headings (`heading`), their
+//! legibility test (`legibility`) and the ellipse (`ellipse`).
 //! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
 
+mod decimate;
 mod ellipse;
+mod heading;
 mod map;
 mod plots;
+
+#[cfg(test)]
+pub(crate) mod legibility;
 
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
 pub use map::{draw_map, pdr_points, pick_step};
-pub use plots::{draw_plot, Plot, TimeAxis};
+pub use plots::{draw_plot, draw_plot_area, Plot, TimeAxis};
 
 #[cfg(test)]
 mod tests {

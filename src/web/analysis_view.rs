@@ -177,7 +177,7 @@ impl AnalysisView {
 
     /// Draws diagnostics plot `kind` (`accel`, `sigma`, `heading`, `steps`, `gnss`, `fusion`)
     /// between `t0` and `t1` (s), with a cursor at `cursor`. Returns the canvas pixel columns
-    /// of `t0` and `t1`.
+    /// of `t0` and `t1`, then the rows of the plot area's top and bottom.
     pub fn draw_plot(
         &self,
         canvas: &HtmlCanvasElement,
@@ -191,9 +191,9 @@ impl AnalysisView {
         let plot = crate::plot::upload::Plot::parse(kind)
             .ok_or_else(|| to_js(format!("no plot `{kind}`")))?;
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
-            crate::plot::upload::draw_plot(area, &self.a, plot, (t0, t1), cursor, theme, scale)
+            crate::plot::upload::draw_plot_area(area, &self.a, plot, (t0, t1), cursor, theme, scale)
         })
-        .map(|(left, right)| vec![f64::from(left), f64::from(right)])
+        .map(|((left, right), (top, bottom))| [left, right, top, bottom].map(f64::from).to_vec())
     }
 
     /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.

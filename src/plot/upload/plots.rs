@@ -1,10 +1,13 @@
 //! Upload mode's diagnostics plots of an [`Analysis`] on one time axis, and its zoom and pan.
 //! May import: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
 
+use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
+use super::heading;
 use crate::analysis::Analysis;
 use crate::plot::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// The diagnostics plots, all against the same time axis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -25,6 +28,16 @@ pub enum Plot {
 }
 
 impl Plot {
+    /// Every plot, in the page's order.
+    pub const ALL: [Plot; 6] = [
+        Plot::Accel,
+        Plot::Sigma,
+        Plot::Heading,
+        Plot::Steps,
+        Plot::Gnss,
+        Plot::Fusion,
+    ];
+
     /// From its name in the page.
     pub fn parse(name: &str) -> Option<Plot> {
         Some(match name {
@@ -39,68 +52,6 @@ impl Plot {
     }
 }
 
-/// Min and max of `v` per pixel column between `t0` and `t1`, as a zig-zag line: a long signal
-/// drawn at any zoom without losing its peaks.
-fn envelope(
-    t: &[f64],
-    v: &[f32],
-    t0: f64,
-    t1: f64,
-    cols: usize,
-    origin: f64,
-) -> Vec<Vec<(f64, f64)>> {
-    let i0 = t.partition_point(|&x| x < t0);
-    let i1 = t.partition_point(|&x| x <= t1);
-    let mut runs = Vec::new();
-    let mut run: Vec<(f64, f64)> = Vec::new();
-    if i1 <= i0 {
-        return runs;
-    }
-    let n = i1 - i0;
-    if n <= 2 * cols {
-        let mut last = f64::NEG_INFINITY;
-        for i in i0..i1 {
-            if t[i] - last > 0.5 && !run.is_empty() {
-                runs.push(std::mem::take(&mut run));
-            }
-            last = t[i];
-            if v[i].is_finite() {
-                run.push((t[i] - origin, f64::from(v[i])));
-            }
-        }
-    } else {
-        let width = (t1 - t0) / cols as f64;
-        let mut i = i0;
-        let mut last = f64::NEG_INFINITY;
-        for c in 0..cols {
-            let end = t0 + (c + 1) as f64 * width;
-            let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-            let start = i;
-            while i < i1 && t[i] <= end {
-                if v[i].is_finite() {
-                    lo = lo.min(v[i]);
-                    hi = hi.max(v[i]);
-                }
-                i += 1;
-            }
-            if i == start || !lo.is_finite() {
-                continue;
-            }
-            if t[start] - last > 0.5 + width && !run.is_empty() {
-                runs.push(std::mem::take(&mut run));
-            }
-            last = t[i - 1];
-            let tc = t0 + (c as f64 + 0.5) * width - origin;
-            run.push((tc, f64::from(lo)));
-            run.push((tc, f64::from(hi)));
-        }
-    }
-    if !run.is_empty() {
-        runs.push(run);
-    }
-    runs
-}
-
 /// Draws one diagnostics plot between `t0` and `t1` (s, the log's clock), with a cursor at a
 /// time when given. The time axis is in seconds from the log's first sample. Returns the
 /// pixel columns where `t0` and `t1` fall, for the page to map a pointer to a time.
@@ -108,11 +59,26 @@ pub fn draw_plot<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     a: &Analysis,
     plot: Plot,
-    (t0, t1): (f64, f64),
+    span: (f64, f64),
     cursor: Option<f64>,
     theme: &Theme,
     scale: f64,
 ) -> Result<(i32, i32), DrawingAreaErrorKind<DB::ErrorType>> {
+    draw_plot_area(area, a, plot, span, cursor, theme, scale).map(|(columns, _)| columns)
+}
+
+/// [`draw_plot`], returning the plot area's pixel columns and rows (the rows from the top of
+/// the first lane to the bottom of the last): where the legibility tests look.
+#[allow(clippy::type_complexity)]
+pub fn draw_plot_area<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    a: &Analysis,
+    plot: Plot,
+    (t0, t1): (f64, f64),
+    cursor: Option<f64>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<((i32, i32), (i32, i32)), DrawingAreaErrorKind<DB::ErrorType>> {
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
     area.fill(&theme.background)?;
     let font = ("sans-serif", 12.0 * scale)
@@ -124,6 +90,7 @@ pub fn draw_plot<DB: DrawingBackend>(
     let tr = &a.trace;
     let steps_in: Vec<&crate::engine::StepRecord> =
         a.steps.iter().filter(|s| s.t >= t0 && s.t <= t1).collect();
+    let headings = (plot == Plot::Heading).then(|| Headings::new(a, t0, t1, cols, origin));
     #[allow(clippy::type_complexity)]
     let (title, y_label, (y0, y1), right): (
         &str,
@@ -132,21 +99,22 @@ pub fn draw_plot<DB: DrawingBackend>(
         Option<(&str, (f64, f64))>,
     ) = match plot {
         Plot::Accel => {
-            let amp = envelope(&tr.t, &tr.up, t0, t1, cols, 0.0)
+            let amp = envelope(&tr.t, of(&tr.up), t0, t1, cols, 0.0)
                 .iter()
                 .flatten()
                 .fold(2.0_f64, |m, p| m.max(p.1.abs()))
                 .min(40.0)
                 * 1.1;
+            // Room above the signal for the step ticks.
             (
-                "vertical acceleration (m/s²), PLL cos φ (right), steps (red), true steps (grey)",
+                "vertical acceleration (m/s²), steps (red), true steps (grey), PLL cos φ (lower lane)",
                 "m/s²",
-                (-amp, amp),
-                Some(("cos φ", (-1.25, 1.25))),
+                (-amp, 1.3 * amp),
+                None,
             )
         }
         Plot::Sigma => {
-            let top = envelope(&tr.t, &tr.sigma, t0, t1, cols, 0.0)
+            let top = envelope(&tr.t, of(&tr.sigma), t0, t1, cols, 0.0)
                 .iter()
                 .flatten()
                 .fold(a.sigma_thresholds.1 * 1.3, |m, p| m.max(p.1))
@@ -159,9 +127,9 @@ pub fn draw_plot<DB: DrawingBackend>(
             )
         }
         Plot::Heading => (
-            "heading (°): single step (dots), two-step average (line), device (grey)",
+            "heading (°, unwrapped): single step (dots), two-step average (line), device (grey)",
             "°",
-            (0.0, 360.0),
+            headings.as_ref().map_or((0.0, 360.0), Headings::range),
             None,
         ),
         Plot::Steps => {
@@ -210,39 +178,61 @@ pub fn draw_plot<DB: DrawingBackend>(
     };
     let lines = draw_title(area, title, &font, scale)?;
     let body = area.margin(px(5.0 + 15.0 * lines as f64), 0, 0, 0);
-    let mut builder = ChartBuilder::on(&body);
-    // The same label areas on every plot, with a right axis or not, so that their time axes
-    // line up on the page.
+    // The acceleration plot's PLL output has a lane of its own under the acceleration: drawn
+    // over it (as it was) its ±1 wave covers the signal and the steps over a whole walk.
+    let (main, lane) = if plot == Plot::Accel {
+        let h = body.dim_in_pixel().1 as i32;
+        let (main, lane) = body.split_vertically(h * 68 / 100);
+        (main, Some(lane))
+    } else {
+        (body, None)
+    };
+    let mut builder = ChartBuilder::on(&main);
+    // The same label areas on every plot and lane, with a right axis or not, so that their
+    // time axes line up on the page.
     builder
         .margin(px(6.0))
         .x_label_area_size(px(22.0))
         .y_label_area_size(px(40.0))
         .right_y_label_area_size(px(40.0));
+    if lane.is_some() {
+        builder.margin_bottom(px(2.0)).x_label_area_size(0);
+    }
     let (r0, r1) = right.map_or((0.0, 1.0), |r| r.1);
     let mut chart = builder
         .build_cartesian_2d(x0..x1, y0..y1)?
         .set_secondary_coord(x0..x1, r0..r1);
-    chart
-        .configure_mesh()
-        .light_line_style(TRANSPARENT)
+    let time_label = |v: &f64| {
+        if x1 - x0 < 20.0 {
+            format!("{v:.1} s")
+        } else {
+            format!("{v:.0} s")
+        }
+    };
+    let no_label = |_: &f64| String::new();
+    let y_format = |v: &f64| match y_label {
+        "°" => format!("{v:.0}°"),
+        "" => format!("{v:.2}"),
+        _ => format!("{v:.0}"),
+    };
+    let mut mesh = chart.configure_mesh();
+    mesh.light_line_style(TRANSPARENT)
         .bold_line_style(theme.grid)
         .axis_style(theme.foreground)
         .label_style(font.clone())
         .x_labels(8)
         .y_labels(5)
-        .x_label_formatter(&|v| {
-            if x1 - x0 < 20.0 {
-                format!("{v:.1} s")
-            } else {
-                format!("{v:.0} s")
-            }
+        .x_label_formatter(if lane.is_some() {
+            &no_label
+        } else {
+            &time_label
         })
-        .y_label_formatter(&|v| match y_label {
-            "°" => format!("{v:.0}°"),
-            "" => format!("{v:.2}"),
-            _ => format!("{v:.0}"),
-        })
-        .draw()?;
+        .y_label_formatter(&y_format);
+    if plot == Plot::Heading {
+        // Its own grid and labels: whole compass points of the unwrapped heading.
+        mesh.disable_y_mesh().y_labels(0);
+    }
+    mesh.draw()?;
     if right.is_some() {
         chart
             .configure_secondary_axes()
@@ -273,13 +263,24 @@ pub fn draw_plot<DB: DrawingBackend>(
             font.clone(),
         ))?;
     }
-    let columns = (columns.start, columns.end);
+    let (columns, mut rows) = ((columns.start, columns.end), (rows.start, rows.end));
     let line = |c: RGBColor, w: f64| ShapeStyle::from(&c).stroke_width(px(w));
     let rel = |t: f64| t - origin;
+    // Envelopes drawn as two lines (coarse) thinner than a signal, so they do not merge.
+    let signal_w = if (t1 - t0) / cols as f64 > COARSE_COLUMN_S {
+        1.0
+    } else {
+        1.5
+    };
+    // Steps marked by a line across the plot only while they are at least 6 pixels apart;
+    // closer, the lines would fill the plot, and the ticks along its top show them.
+    let step_lines = steps_in.len() as i32 * 6 * px(1.0) as i32 <= columns.1 - columns.0;
     match plot {
         Plot::Accel => {
+            let tick = 0.1 * (y1 - y0);
             chart.draw_series(steps_in.iter().map(|s| {
-                PathElement::new(vec![(rel(s.t), y0), (rel(s.t), y1)], line(theme.end, 1.0))
+                let from = if step_lines { y0 } else { y1 - tick };
+                PathElement::new(vec![(rel(s.t), from), (rel(s.t), y1)], line(theme.end, 1.0))
             }))?;
             chart.draw_series(
                 a.truth_steps
@@ -287,16 +288,13 @@ pub fn draw_plot<DB: DrawingBackend>(
                     .filter(|&&t| t >= t0 && t <= t1)
                     .map(|&t| {
                         PathElement::new(
-                            vec![(rel(t), y0), (rel(t), y0 + 0.15 * (y1 - y0))],
+                            vec![(rel(t), y0), (rel(t), y0 + tick)],
                             line(theme.reference, 2.0),
                         )
                     }),
             )?;
-            for run in envelope(&tr.t, &tr.pll, t0, t1, cols, origin) {
-                chart.draw_secondary_series(LineSeries::new(run, line(theme.gnss, 1.0)))?;
-            }
-            for run in envelope(&tr.t, &tr.up, t0, t1, cols, origin) {
-                chart.draw_series(LineSeries::new(run, line(theme.track, 1.5)))?;
+            for run in envelope(&tr.t, of(&tr.up), t0, t1, cols, origin) {
+                chart.draw_series(LineSeries::new(run, line(theme.track, signal_w)))?;
             }
         }
         Plot::Sigma => {
@@ -321,39 +319,37 @@ pub fn draw_plot<DB: DrawingBackend>(
             ] {
                 chart.draw_series(LineSeries::new([(x0, v), (x1, v)], line(c, 1.0)))?;
             }
-            for run in envelope(&tr.t, &tr.sigma, t0, t1, cols, origin) {
-                chart.draw_series(LineSeries::new(run, line(theme.track, 1.5)))?;
+            for run in envelope(&tr.t, of(&tr.sigma), t0, t1, cols, origin) {
+                chart.draw_series(LineSeries::new(run, line(theme.track, signal_w)))?;
             }
         }
         Plot::Heading => {
-            let wrap = |r: f64| r.to_degrees().rem_euclid(360.0);
-            for run in envelope(&tr.t, &tr.device_heading_deg, t0, t1, cols, origin) {
-                // Not joined across the 0°/360° wrap.
-                chart.draw_series(
-                    run.iter()
-                        .map(|&p| Circle::new(p, px(0.8), theme.reference.filled())),
-                )?;
+            let h = headings.as_ref().expect("made for the heading plot");
+            let base = area.get_base_pixel();
+            for g in heading::grid(y0, y1) {
+                chart.draw_series(LineSeries::new([(x0, g), (x1, g)], line(theme.grid, 1.0)))?;
+                let (x, y) = chart.backend_coord(&(x0, g));
+                area.draw(&Text::new(
+                    heading::label(g),
+                    (x - base.0 - px(4.0) as i32, y - base.1),
+                    font.pos(Pos::new(HPos::Right, VPos::Center)),
+                ))?;
             }
-            chart.draw_series(steps_in.iter().filter_map(|s| {
-                s.step_heading_rad
-                    .map(|h| Circle::new((rel(s.t), wrap(h)), px(2.0), theme.gnss.filled()))
-            }))?;
-            let mut segment: Vec<(f64, f64)> = Vec::new();
-            let mut segs = Vec::new();
-            for s in &steps_in {
-                let Some(h) = s.heading_rad else { continue };
-                let p = (rel(s.t), wrap(h));
-                if segment
-                    .last()
-                    .is_some_and(|l: &(f64, f64)| (l.1 - p.1).abs() > 180.0)
-                {
-                    segs.push(std::mem::take(&mut segment));
-                }
-                segment.push(p);
-            }
-            segs.push(segment);
-            for seg in segs {
-                chart.draw_series(LineSeries::new(seg, line(theme.track, 2.0)))?;
+            // Dots, not a line: the device's heading jumps where a line would draw a bar.
+            chart.draw_series(
+                h.device
+                    .iter()
+                    .flatten()
+                    .filter(|p| p.1 >= y0 && p.1 <= y1)
+                    .map(|&p| Circle::new(p, px(0.8), theme.reference.filled())),
+            )?;
+            chart.draw_series(
+                h.single
+                    .iter()
+                    .map(|&p| Circle::new(p, px(2.0), theme.gnss.filled())),
+            )?;
+            for run in &h.line {
+                chart.draw_series(LineSeries::new(run.clone(), line(theme.track, 2.0)))?;
             }
         }
         Plot::Steps => {
@@ -403,13 +399,184 @@ pub fn draw_plot<DB: DrawingBackend>(
             }))?;
         }
     }
-    if let Some(c) = cursor.filter(|c| *c >= t0 && *c <= t1) {
+    let cursor = cursor.filter(|c| *c >= t0 && *c <= t1).map(rel);
+    if let Some(c) = cursor {
         chart.draw_series([PathElement::new(
-            vec![(rel(c), y0), (rel(c), y1)],
+            vec![(c, y0), (c, y1)],
             line(theme.foreground, 1.0),
         )])?;
     }
-    Ok(columns)
+    if let Some(lane) = lane {
+        // The PLL's lane: its own ±1 scale, the step lines when they are far enough apart
+        // (a step is where cos φ crosses from − to +), and the time axis of the whole plot.
+        let mut pll = ChartBuilder::on(&lane)
+            .margin(px(6.0))
+            .margin_top(px(2.0))
+            .x_label_area_size(px(22.0))
+            .y_label_area_size(px(40.0))
+            .right_y_label_area_size(px(40.0))
+            .build_cartesian_2d(x0..x1, -1.6..1.6)?;
+        pll.configure_mesh()
+            .light_line_style(TRANSPARENT)
+            .bold_line_style(theme.grid)
+            .axis_style(theme.foreground)
+            .label_style(font.clone())
+            .x_labels(8)
+            .y_labels(3)
+            .x_label_formatter(&time_label)
+            // ±1 only: the lane is a few labels high.
+            .y_label_formatter(&|v: &f64| {
+                if v.abs() > 0.5 {
+                    format!("{v:.0}")
+                } else {
+                    String::new()
+                }
+            })
+            .draw()?;
+        if step_lines {
+            pll.draw_series(steps_in.iter().map(|s| {
+                PathElement::new(
+                    vec![(rel(s.t), -1.6), (rel(s.t), 1.6)],
+                    line(theme.end, 1.0),
+                )
+            }))?;
+        }
+        // Over a long span the wave cannot be followed: a faint band shows where the PLL
+        // ran and how far it swung, and lets the step lines show through.
+        match band(&tr.t, of(&tr.pll), t0, t1, cols, origin) {
+            Some((w, columns)) => {
+                // One polygon per run of columns: rectangles side by side would leave seams.
+                let faint = theme.gnss.mix(0.35).filled();
+                let mut from = 0;
+                for k in 1..=columns.len() {
+                    if k < columns.len() && !columns[k].3 {
+                        continue;
+                    }
+                    let run = &columns[from..k];
+                    let upper = run
+                        .iter()
+                        .flat_map(|c| [(c.0 - w / 2.0, c.2), (c.0 + w / 2.0, c.2)]);
+                    let lower = run
+                        .iter()
+                        .rev()
+                        .flat_map(|c| [(c.0 + w / 2.0, c.1), (c.0 - w / 2.0, c.1)]);
+                    pll.draw_series([Polygon::new(upper.chain(lower).collect::<Vec<_>>(), faint)])?;
+                    from = k;
+                }
+            }
+            None => {
+                for run in envelope(&tr.t, of(&tr.pll), t0, t1, cols, origin) {
+                    pll.draw_series(LineSeries::new(run, line(theme.gnss, 1.0)))?;
+                }
+            }
+        }
+        if let Some(c) = cursor {
+            pll.draw_series([PathElement::new(
+                vec![(c, -1.6), (c, 1.6)],
+                line(theme.foreground, 1.0),
+            )])?;
+        }
+        rows.1 = pll.plotting_area().get_pixel_range().1.end;
+    }
+    Ok((columns, rows))
+}
+
+/// The heading plot's series between two times, unwrapped onto one set of turns: the two-step
+/// average's line (unwrapped over the whole log, so that zoom and pan do not move it by a
+/// turn), each step's single-step heading on the turn nearest the line, and the device's
+/// heading on the turn nearest the line.
+struct Headings {
+    /// The two-step average's runs within the span (time from the log's start, °).
+    line: Vec<Vec<(f64, f64)>>,
+    /// The single-step headings.
+    single: Vec<(f64, f64)>,
+    /// The device heading's runs ([`envelope`]).
+    device: Vec<Vec<(f64, f64)>>,
+}
+
+impl Headings {
+    fn new(a: &Analysis, t0: f64, t1: f64, cols: usize, origin: f64) -> Self {
+        let all = heading::unwrap_runs(
+            a.steps
+                .iter()
+                .map(|s| (s.t, s.heading_rad.map_or(f64::NAN, f64::to_degrees))),
+            heading::BOUT_GAP_S,
+        );
+        let inside = |p: &&(f64, f64)| p.0 >= t0 && p.0 <= t1;
+        let line = all
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .filter(inside)
+                    .map(|p| (p.0 - origin, p.1))
+                    .collect()
+            })
+            .filter(|r: &Vec<_>| !r.is_empty())
+            .collect();
+        let single = a
+            .steps
+            .iter()
+            .filter(|s| s.t >= t0 && s.t <= t1)
+            .filter_map(|s| {
+                let h = s.step_heading_rad?.to_degrees();
+                let near = heading::line_at(&all, s.t).unwrap_or(h.rem_euclid(360.0));
+                Some((s.t - origin, heading::nearest_turn(h, near)))
+            })
+            .collect();
+        let tr = &a.trace;
+        let mut last: Option<(f64, f64)> = None;
+        let mut cursor = heading::LineCursor::new(&all);
+        let device = envelope(
+            &tr.t,
+            |i| {
+                let (t, h) = (tr.t[i], f64::from(tr.device_heading_deg[i]));
+                if !h.is_finite() {
+                    return f64::NAN;
+                }
+                // On the turn nearest the walking line (so that the axis spans the walk, and a
+                // device turned by half a turn, as a phone in a pocket with its top near
+                // vertical flips, lies half a turn off it); without one, sample by sample.
+                let near = match (cursor.at(t), last) {
+                    (Some(l), _) => l,
+                    (None, Some((lt, lh))) if t - lt <= GAP_S => lh,
+                    _ => h.rem_euclid(360.0),
+                };
+                let v = heading::nearest_turn(h, near);
+                last = Some((t, v));
+                v
+            },
+            t0,
+            t1,
+            cols,
+            origin,
+        );
+        Headings {
+            line,
+            single,
+            device,
+        }
+    }
+
+    /// The heading axis: the walking heading (the line and the single steps; the device's
+    /// without them), and at least 60°. The device's heading may lie half a turn off the
+    /// walking one (a phone in a pocket): it is drawn where it falls within.
+    fn range(&self) -> (f64, f64) {
+        let walking = !self.line.is_empty() || !self.single.is_empty();
+        let (lo, hi) = self
+            .line
+            .iter()
+            .chain(if walking { &[][..] } else { &self.device[..] })
+            .flatten()
+            .chain(&self.single)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.1), hi.max(p.1))
+            });
+        if !lo.is_finite() {
+            return (0.0, 360.0);
+        }
+        let pad = ((hi - lo).max(60.0) - (hi - lo)) / 2.0 + 0.08 * (hi - lo).max(60.0);
+        (lo - pad, hi + pad)
+    }
 }
 
 /// Draws a plot's title at its top left, on two lines when one is too narrow (a phone), broken
