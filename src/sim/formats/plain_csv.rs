@@ -63,7 +63,8 @@ impl Walk<'_> {
             }
         }
         for (name, text) in [("acc", acc), ("gyr", gyr), ("mag", mag), ("bar", bar)] {
-            if !text.is_empty() {
+            // acc.csv always (empty for a walk without samples); the others when they have any.
+            if name == "acc" || !text.is_empty() {
                 files.push((format!("{dir}/{name}.csv"), text.into_bytes()));
             }
         }

@@ -3,7 +3,9 @@
 //! May import: `engine` and `io`.
 
 use super::read::{delimiter_of, split, time_s, FileData, Samples};
-use super::{Column, Columns, Delimiter, FileRule, Recipe, Sensor, TimeUnit, RECIPE_VERSION};
+use super::schema::{
+    Column, Columns, Delimiter, FileRule, Recipe, Sensor, TimeUnit, RECIPE_VERSION,
+};
 use crate::engine::orientation::G0;
 use crate::io::import::{fileset, number, FileSet};
 use crate::io::ParseError;
@@ -223,7 +225,7 @@ fn sig(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
-    let digits = (2 - v.abs().log10().floor() as i32).max(0) as usize;
+    let digits = (2 - libm::log10(v.abs()).floor() as i32).max(0) as usize;
     format!("{v:.digits$}")
 }
 
@@ -360,7 +362,7 @@ fn guess_time_unit(first_times: &[f64]) -> TimeUnit {
     TimeUnit::ALL
         .into_iter()
         .find(|u| {
-            let hz = 10f64.powi(u.exponent() as i32) / dt;
+            let hz = u.per_second() / dt;
             (RATE_HZ.0..=RATE_HZ.1).contains(&hz)
         })
         .unwrap_or(TimeUnit::Ms)

@@ -11,18 +11,19 @@
 //! - [`Recipe::from_json`]: the JSON, checked (unknown fields, columns the sensor needs, units
 //!   that fit it) with an error naming the file entry and field.
 //! - [`Recipe::match_dir`]: which files of a folder the recipe reads (by name).
-//! - [`read::read_dir`]: the files read into one [`Log`](super::Log) (through the same
+//! - [`read_dir`]: the files read into one [`Log`](super::Log) (through the same
 //!   [`Streams`](super::Streams) merge as every other per-sensor folder), with a
 //!   [`check::Report`]: the first rows as parsed, in SI units, and sanity warnings.
 //! - [`check::describe`]: a first guess (columns, separator, header, sensor, time unit) of the
 //!   files of an unrecognised upload, for the page's form.
 
 pub mod check;
+mod merge;
 pub mod read;
 mod schema;
 
 pub use check::{describe, Description, FileReport, Report};
-pub use read::{read_dir, read_set};
+pub use merge::{read_dir, read_set, RecipeLog};
 pub use schema::{
     Column, Columns, Delimiter, FileRule, Recipe, Sensor, TimeUnit, ValueUnit, RECIPE_VERSION,
 };

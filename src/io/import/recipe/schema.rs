@@ -286,6 +286,16 @@ impl TimeUnit {
         }
     }
 
+    /// Ticks per second.
+    pub fn per_second(self) -> f64 {
+        match self {
+            TimeUnit::S => 1.0,
+            TimeUnit::Ms => 1e3,
+            TimeUnit::Us => 1e6,
+            TimeUnit::Ns => 1e9,
+        }
+    }
+
     /// The name in the JSON.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -400,9 +410,11 @@ impl FileRule {
                 )));
             }
             match c {
-                Column::Number(i) if !(1..=MAX_COLUMN).contains(i) => return Err(at(format!(
+                Column::Number(i) if !(1..=MAX_COLUMN).contains(i) => {
+                    return Err(at(format!(
                     "`columns.{n}`: column numbers start at 1 and go up to {MAX_COLUMN}, not {i}"
-                ))),
+                )))
+                }
                 Column::Name(s) if !self.header => {
                     return Err(at(format!(
                         "`columns.{n}` is the name {s:?}, but the file has no header \
