@@ -3,7 +3,7 @@
 // Copied to the site's root by `./dev build`, so that its scope is the whole app.
 const CACHE = 'pdr-shell-v4';
 const SHELL = [
-  './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/worker.js', 'www/util.js', 'www/style.css',
+  './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/recipes.js', 'www/worker.js', 'www/util.js', 'www/style.css',
   'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/manifest.webmanifest', 'www/icon.svg',
 ];
 

@@ -3,6 +3,7 @@
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
 import { AnalysisView, compare_settings, profile_summary, settings_label } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
+import * as recipes from './recipes.js';
 import { $, dark, download, fit } from './util.js';
 const PLOTS = [
   ['accel', 'Vertical acceleration, PLL output and steps'],
@@ -87,9 +88,14 @@ function startWorker() {
   worker.onerror = (e) => { banner(`The worker failed: ${e.message}`); finish(); };
 }
 
-function load(files) {
+/**
+ * Reads `files`: with the recipes saved on this device (each folder one of them matches is read
+ * by it) and `extra` (recipe JSON texts: the form's mapping, not saved).
+ */
+function load(files, extra = []) {
   if (!files.length) return;
   lastFiles = files;
+  recipes.hideForm();
   for (const l of logs) for (const v of Object.values(l.views)) v?.free();
   logs = [];
   $('upload-results').replaceChildren();
@@ -119,7 +125,7 @@ function load(files) {
   };
   progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
   pending = 1;
-  worker.postMessage({ type: 'load', files, configs: configs() });
+  worker.postMessage({ type: 'load', files, configs: configs(), recipes: [...extra, ...Object.values(recipes.saved())] });
 }
 
 /** The end of a load or a re-run: the bar stays, full, with what was done (or why not). */
@@ -157,7 +163,8 @@ function onWorker(m) {
       banner(`${where}${e.field ? ` (${e.field})` : ''}: ${e.message}`);
       window.__pdrUpload.errors.push(e);
     }
-    if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files.');
+    if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files: describe them below, or choose other files.', 'warn');
+    for (const e of m.parsed.recipe_errors ?? []) banner(`A saved recipe was left out: ${e}`, 'warn');
     for (const info of m.parsed.logs) logs[info.index] = { info, views: {}, card: card(info) };
   } else if (m.type === 'analysis') {
     const l = logs[m.index];
@@ -165,6 +172,13 @@ function onWorker(m) {
     l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
     show(l, m.tag, m.label);
     Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
+  } else if (m.type === 'describe') {
+    recipes.showForm(m.description, {
+      preview: (json) => worker?.postMessage({ type: 'preview', recipe: json }),
+      run: (json) => load(lastFiles, [json]),
+    });
+  } else if (m.type === 'preview') {
+    recipes.showPreview(m.result);
   } else if (m.type === 'pdrlog') {
     download(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`);
   } else if (m.type === 'done') {
@@ -209,7 +223,8 @@ function card(info) {
   c.dataset.index = info.index;
   c.append(el('h3', { textContent: info.source }),
     el('p', { className: 'hint', textContent: `${info.format} · ${info.samples.toLocaleString('en')} IMU samples · ${(info.duration_s / 60).toFixed(1)} min`
-      + (info.warnings ? ` · ${info.warnings} lines skipped` : '') }));
+      + (info.warnings ? ` · ${info.warnings} lines skipped` : '')
+      + (info.recipe ? ` · read with your recipe "${info.recipe}"` : '') }));
   c.append(el('div', { className: 'maps' }));
   c.append(el('div', { className: 'stepinfo', textContent: 'Hover or tap a step on the track, or click a plot, to see its values.' }));
   const plots = el('div', { className: 'plots' });
