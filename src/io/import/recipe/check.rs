@@ -101,7 +101,7 @@ fn rate(times: &[f64]) -> Option<f64> {
         .map(|w| w[1] - w[0])
         .filter(|d| *d > 0.0)
         .collect();
-    median(dt).map(|d| 1.0 / d)
+    median(dt).map(|d| 1.0 / d).filter(|r| r.is_finite())
 }
 
 /// The report of the files read by a recipe: preview, counts, and the sanity checks.
