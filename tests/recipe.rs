@@ -713,3 +713,32 @@ fn pdr_run_and_eval_take_a_recipe() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn recipes_apply_inside_zip_archives() {
+    use std::io::Write as _;
+    let sim = scenarios::straight_walk(1.8, 30.0).generate();
+    let plain = formats::write(&sim, Format::Recipe, Platform::Android);
+    let mut w = zip::ZipWriter::new(std::io::Cursor::new(Vec::new()));
+    let opts = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated);
+    for (name, bytes) in &plain.files {
+        w.start_file(name.as_str(), opts).unwrap();
+        w.write_all(bytes).unwrap();
+    }
+    let zip = w.finish().unwrap().into_inner();
+    let r = Recipe::from_json(formats::PLAIN_CSV_RECIPE).unwrap();
+    let direct = import_with(&mut MemSet::new(plain.files), std::slice::from_ref(&r))
+        .pop()
+        .unwrap()
+        .unwrap();
+    let mut zipped = import_with(
+        &mut MemSet::new(vec![("walk.zip".into(), zip)]),
+        std::slice::from_ref(&r),
+    );
+    assert_eq!(zipped.len(), 1);
+    let zipped = zipped.pop().unwrap().unwrap();
+    assert_eq!(zipped.format, Format::Recipe);
+    assert_eq!(zipped.records, direct.records);
+    assert!(zipped.source.starts_with("walk.zip/"), "{}", zipped.source);
+}

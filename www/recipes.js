@@ -23,6 +23,25 @@ export function save(json) {
   localStorage.setItem(LIST, JSON.stringify(all));
 }
 
+/**
+ * Splits uploaded files into recipes (small `.json` files the engine reads as a recipe) and the
+ * rest: a recipe uploaded beside its files is applied to them, without saving it.
+ */
+export async function splitUploaded(files) {
+  const recipes = [];
+  const rest = [];
+  for (const f of files) {
+    if (/\.json$/i.test(f.name) && f.file.size < 65536) {
+      try {
+        recipes.push(recipe_normalise(await f.file.text()));
+        continue;
+      } catch { /* not a recipe: a recording's JSON */ }
+    }
+    rest.push(f);
+  }
+  return { files: rest, recipes };
+}
+
 function el(tag, props = {}, ...children) {
   const e = Object.assign(document.createElement(tag), props);
   e.append(...children);

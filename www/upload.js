@@ -17,6 +17,7 @@ const PLOTS = [
 let worker = null;
 let logs = []; // [{info, card, views: {a, b}, span, cursor, step, bounds}]
 let lastFiles = null;
+let lastRecipes = []; // recipes uploaded with lastFiles (JSON), applied again on a re-run
 let pending = 0; // worker jobs not yet done
 
 function banner(text, kind = 'error') {
@@ -95,6 +96,7 @@ function startWorker() {
 function load(files, extra = []) {
   if (!files.length) return;
   lastFiles = files;
+  lastRecipes = extra;
   recipes.hideForm();
   for (const l of logs) for (const v of Object.values(l.views)) v?.free();
   logs = [];
@@ -188,6 +190,12 @@ function onWorker(m) {
     banner(m.message);
     finish();
   }
+}
+
+/** Loads uploaded files, a recipe among them applied to the others (recipes.splitUploaded). */
+async function loadUploaded(files) {
+  const split = await recipes.splitUploaded(files);
+  load(split.files.length ? split.files : files, split.recipes);
 }
 
 /** Files from a drop, folders walked (their paths kept, so that folder formats are found). */
@@ -466,11 +474,11 @@ export function setupUpload() {
   window.addEventListener('pdr-profiles-changed', () => fillProfiles(true));
   for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', () => fillProfiles());
   $('upload-files').addEventListener('change', (e) => {
-    load([...e.target.files].map((file) => ({ name: file.name, file })));
+    loadUploaded([...e.target.files].map((file) => ({ name: file.name, file })));
     e.target.value = '';
   });
   $('upload-folder').addEventListener('change', (e) => {
-    load([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
+    loadUploaded([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
     e.target.value = '';
   });
   const drop = $('drop');
@@ -479,7 +487,7 @@ export function setupUpload() {
   drop.addEventListener('drop', async (e) => {
     e.preventDefault();
     drop.classList.remove('over');
-    load(await dropped(e.dataTransfer));
+    loadUploaded(await dropped(e.dataTransfer));
   });
   $('upload-cancel').addEventListener('click', () => {
     worker?.terminate();
@@ -500,7 +508,7 @@ export function setupUpload() {
   });
   $('rerun').addEventListener('click', () => {
     fillProfiles();
-    if (!worker || !logs.length) { if (lastFiles) load(lastFiles); return; }
+    if (!worker || !logs.length) { if (lastFiles) load(lastFiles, lastRecipes); return; }
     const c = configs();
     for (const l of logs) {
       if (!c.b && l.views.b) {

@@ -16,10 +16,16 @@ const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-recipe-'));
 
 /** A simulated straight walk as a header-less folder (acc, gyr, mag, bar) and its recipe. */
 function plainFolder() {
+  const { folder, recipe } = plainWalk();
+  return { folder, recipe };
+}
+
+/** The simulated folder and its recipe, and the directory holding both. */
+function plainWalk() {
   const out = mkdtempSync(path.join(tmp, 'walk-'));
   execFileSync(BIN, ['simulate', '--scenario', 'straight', '--format', 'plain-csv', '--out', out]);
   const dir = readdirSync(out).find((n) => n.startsWith('plain_'));
-  return { folder: path.join(out, dir), recipe: path.join(out, 'recipe.json') };
+  return { folder: path.join(out, dir), recipe: path.join(out, 'recipe.json'), both: out };
 }
 
 const done = (page) => page.waitForFunction(() => document.documentElement.dataset.upload === 'done', null, { timeout: 30_000 });
@@ -102,6 +108,24 @@ test('the recipe form on a phone, dark: fits the width', async () => {
     await page.screenshot({ path: path.join(ARTIFACTS, 'recipe-form-phone-top.png') });
     await page.evaluate(() => document.getElementById('recipe-warnings').scrollIntoView());
     await page.screenshot({ path: path.join(ARTIFACTS, 'recipe-preview-phone.png') });
+    assert.deepEqual(errors, []);
+  } finally {
+    await context.close();
+  }
+});
+
+test('a recipe uploaded beside its files is applied to them', async () => {
+  const { recipe, both } = plainWalk();
+  const native = execFileSync(BIN, ['run', both, '--recipe', recipe], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+  const { context, page, errors } = await openPage(browser(), URL_HTTP, { options: { viewport: { width: 1100, height: 900 } } });
+  try {
+    await page.setInputFiles('#upload-folder', both);
+    await done(page);
+    const logs = await page.evaluate(() => window.__pdrUpload.logs);
+    assert.equal(logs.length, 1);
+    assert.equal(logs[0].a.steps, Number(native.match(/^steps\s+(\d+)/m)[1]));
+    assert.equal(await page.locator('#recipe-form').isHidden(), true);
+    assert.match(await page.locator('.log-result .hint').first().textContent(), /read with your recipe "plain CSV, ms"/);
     assert.deepEqual(errors, []);
   } finally {
     await context.close();

@@ -469,7 +469,7 @@ pub fn import_with(
             }
         };
         if fileset::is_zip(head.as_bytes()) {
-            out.extend(import_zip(set, name));
+            out.extend(import_zip(set, name, recipes));
             continue;
         }
         let Some(format) = sniff(name, &head) else {
@@ -510,7 +510,12 @@ pub fn import_with(
 /// archive on disk or in memory (an upload) is read in place; one inside another archive as a
 /// stream ([`StreamZipSet`]). Its members are decompressed as they are read. A limit hit by
 /// the archive as a whole is one error naming it; one hit by a member is that member's error.
-fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>> {
+/// The recipes apply inside the archive as outside.
+fn import_zip(
+    set: &mut dyn FileSet,
+    name: &str,
+    recipes: &[recipe::Recipe],
+) -> Vec<Result<Log, ParseError>> {
     let label = set.label(name);
     let depth = set.depth() + 1;
     let budget = set
@@ -525,12 +530,12 @@ fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>>
     };
     if let Some(r) = set.open_seekable(name) {
         return match r.and_then(|r| ZipSet::within(r, &label, depth, budget.clone())) {
-            Ok(mut zip) => import_all(&mut zip),
+            Ok(mut zip) => import_with(&mut zip, recipes),
             Err(e) => refused(e),
         };
     }
     match StreamZipSet::new(set, name, depth, budget) {
-        Ok(mut zip) => import_all(&mut zip),
+        Ok(mut zip) => import_with(&mut zip, recipes),
         Err(e) => refused(e),
     }
 }
