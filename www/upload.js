@@ -168,6 +168,7 @@ function onWorker(m) {
     if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files: describe them below, or choose other files.', 'warn');
     for (const e of m.parsed.recipe_errors ?? []) banner(`A saved recipe was left out: ${e}`, 'warn');
     for (const info of m.parsed.logs) logs[info.index] = { info, views: {}, card: card(info) };
+    for (const info of m.parsed.logs) for (const c of info.checks ?? []) banner(`${info.source}, read with the recipe "${info.recipe}": ${c}`, 'warn');
   } else if (m.type === 'analysis') {
     const l = logs[m.index];
     l.views[m.tag]?.free();

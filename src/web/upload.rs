@@ -60,6 +60,7 @@ impl Upload {
             duration_s: f64,
             warnings: usize,
             recipe: Option<String>,
+            checks: Vec<String>,
         }
         #[derive(serde::Serialize)]
         struct Parsed {
@@ -82,6 +83,7 @@ impl Upload {
                         duration_s: log.time_span().map_or(0.0, |(a, b)| b - a),
                         warnings: log.skipped as usize,
                         recipe: log.recipe.clone(),
+                        checks: log.checks.clone(),
                     });
                     self.logs.push(log);
                 }

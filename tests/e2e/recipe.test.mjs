@@ -6,7 +6,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readdirSync } from 'node:fs';
+import { mkdtempSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { ARTIFACTS, BIN, PHONE, URL_HTTP, openPage, useBrowser } from './util.mjs';
@@ -126,6 +126,13 @@ test('a recipe uploaded beside its files is applied to them', async () => {
     assert.equal(logs[0].a.steps, Number(native.match(/^steps\s+(\d+)/m)[1]));
     assert.equal(await page.locator('#recipe-form').isHidden(), true);
     assert.match(await page.locator('.log-result .hint').first().textContent(), /read with your recipe "plain CSV, ms"/);
+    assert.equal(await page.locator('#upload-banners li.warn').count(), 0, 'right units: no warning');
+    // The same with a recipe that says g for the m/s² data: read, and the warning shown.
+    writeFileSync(recipe, readFileSync(recipe, 'utf8').replace('"unit": "m/s2"', '"unit": "g"'));
+    await page.setInputFiles('#upload-folder', both);
+    await done(page);
+    const banners = await page.locator('#upload-banners li.warn').allTextContents();
+    assert.ok(banners.some((b) => /read with the recipe "plain CSV, ms": acc\.csv: the median acceleration is .* not near 9\.81/.test(b)), banners.join('\n'));
     assert.deepEqual(errors, []);
   } finally {
     await context.close();

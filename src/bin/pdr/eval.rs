@@ -46,7 +46,12 @@ pub fn eval(
         }
         for r in found {
             logs.push(match r {
-                Ok(log) => evaluate(&log, &cfg),
+                Ok(log) => {
+                    for c in &log.checks {
+                        eprintln!("pdr: {}: check: {c}", log.source);
+                    }
+                    evaluate(&log, &cfg)
+                }
                 Err(e) => LogResult::failed(&e.file, "", e.to_string()),
             });
         }

@@ -247,6 +247,9 @@ pub struct Log {
     pub group: Option<String>,
     /// The name of the [`recipe`] the log was read with, if any.
     pub recipe: Option<String>,
+    /// The recipe's sanity warnings about the files (a likely wrong unit or column, see
+    /// [`recipe::check`]), each naming its file; empty for the other formats.
+    pub checks: Vec<String>,
 }
 
 impl Log {
@@ -262,6 +265,7 @@ impl Log {
             skipped: 0,
             group: None,
             recipe: None,
+            checks: Vec::new(),
         }
     }
 
@@ -408,8 +412,8 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
 
 /// [`import_all`] with the user's recipes: a folder that a recipe matches
 /// ([`recipe::Recipe::match_dir`]) is read by the first one that does, before any format is
-/// sniffed, so a recipe also overrides a format we would otherwise recognise. The recipe's sanity
-/// report is dropped here; [`recipe::read_dir`] gives it.
+/// sniffed, so a recipe also overrides a format we would otherwise recognise. The report's
+/// sanity warnings are kept in [`Log::checks`]; [`recipe::read_dir`] gives the whole report.
 pub fn import_with(
     set: &mut dyn FileSet,
     recipes: &[recipe::Recipe],
@@ -427,7 +431,10 @@ pub fn import_with(
                 for (i, n) in names.iter().enumerate() {
                     used[i] |= files.contains(n);
                 }
-                out.push(read.map(|(log, _)| log));
+                out.push(read.map(|(mut log, report)| {
+                    log.checks = report.warnings;
+                    log
+                }));
                 continue 'dirs;
             }
         }

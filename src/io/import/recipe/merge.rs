@@ -138,5 +138,6 @@ fn build(
         ));
     }
     set_records(&mut log, s, &accel_file);
+    log.checks = report.warnings.clone();
     Ok((log, report))
 }
