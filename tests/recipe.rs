@@ -742,3 +742,71 @@ fn recipes_apply_inside_zip_archives() {
     assert_eq!(zipped.records, direct.records);
     assert!(zipped.source.starts_with("walk.zip/"), "{}", zipped.source);
 }
+
+#[test]
+fn one_file_of_several_sensors_reads_as_its_own_reader_does() {
+    // The x-io Gait-Tracking CSV (a real recording's first lines, tests/fixtures/import): time,
+    // gyroscope in deg/s and accelerometer in g in one headed file. Read by a recipe with an
+    // entry per sensor, it gives the records of the dedicated reader.
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/import/xio_foot.csv"
+    );
+    let bytes = std::fs::read(path).unwrap();
+    let json = r#"{"recipe": 1, "name": "x-io", "files": [
+      {"match": "*.csv", "sensor": "accelerometer", "header": true, "time_unit": "s", "unit": "g",
+       "columns": {"t": "Time (s)", "x": "Accelerometer X (g)", "y": "Accelerometer Y (g)", "z": "Accelerometer Z (g)"}},
+      {"match": "*.csv", "sensor": "gyroscope", "header": true, "time_unit": "s", "unit": "deg/s",
+       "columns": {"t": "Time (s)", "x": "Gyroscope X (deg/s)", "y": "Gyroscope Y (deg/s)", "z": "Gyroscope Z (deg/s)"}}]}"#;
+    let r = Recipe::from_json(json).unwrap();
+    let files = vec![("xio/walk.csv".to_string(), bytes.clone())];
+    let (by_recipe, report) = read(files, &r);
+    let native = pdr::io::import::xio::read_xio(&bytes[..], "walk.csv").unwrap();
+    assert_eq!(by_recipe.records.len(), native.records.len());
+    for (a, b) in imu(&by_recipe).iter().zip(imu(&native)) {
+        assert_eq!(a.t, b.t);
+        assert!(
+            (a.accel - b.accel).norm() < 1e-9,
+            "{} vs {}",
+            a.accel,
+            b.accel
+        );
+        assert!((a.gyro.unwrap() - b.gyro.unwrap()).norm() < 1e-9);
+    }
+    // (A foot at rest and swinging: no unit warning for gravity or rates.)
+    assert!(report.warnings.is_empty(), "{:?}", report.warnings);
+    // Two entries reading one file as the same sensor are refused.
+    let twice = json
+        .replace("\"sensor\": \"gyroscope\"", "\"sensor\": \"accelerometer\"")
+        .replace("\"unit\": \"deg/s\"", "\"unit\": \"g\"");
+    let e = Recipe::from_json(&twice)
+        .unwrap()
+        .match_dir(&["xio/walk.csv".to_string()], "xio/")
+        .unwrap_err();
+    assert!(e.contains("both read walk.csv as accelerometer"), "{e}");
+}
+
+#[test]
+fn shared_xio_walks_read_by_a_recipe_as_by_their_reader() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/xio-foot");
+    if !dir.exists() {
+        eprintln!(
+            "skipped: {} is absent (see /work/shared/data/README.md)",
+            dir.display()
+        );
+        return;
+    }
+    let json = r#"{"recipe": 1, "name": "x-io", "files": [
+      {"match": "*_walk.csv", "sensor": "accelerometer", "header": true, "time_unit": "s", "unit": "g",
+       "columns": {"t": "Time (s)", "x": "Accelerometer X (g)", "y": "Accelerometer Y (g)", "z": "Accelerometer Z (g)"}},
+      {"match": "*_walk.csv", "sensor": "gyroscope", "header": true, "time_unit": "s", "unit": "deg/s",
+       "columns": {"t": "Time (s)", "x": "Gyroscope X (deg/s)", "y": "Gyroscope Y (deg/s)", "z": "Gyroscope Z (deg/s)"}}]}"#;
+    let r = Recipe::from_json(json).unwrap();
+    for name in ["short_walk.csv", "long_walk.csv"] {
+        let bytes = std::fs::read(dir.join(name)).unwrap();
+        let native = pdr::io::import::xio::read_xio(&bytes[..], name).unwrap();
+        let (log, report) = read(vec![(format!("x/{name}"), bytes)], &r);
+        assert_eq!(log.records, native.records, "{name}");
+        assert!(report.warnings.is_empty(), "{name}: {:?}", report.warnings);
+    }
+}

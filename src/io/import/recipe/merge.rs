@@ -26,11 +26,12 @@ pub fn read_dir(
     limit: Option<usize>,
 ) -> Option<(Vec<String>, RecipeLog)> {
     let matched = recipe.match_dir(names, dir).ok()?;
-    let consumed: Vec<String> = matched
+    let mut consumed: Vec<String> = matched
         .iter()
         .flatten()
         .map(|&i| names[i].clone())
         .collect();
+    consumed.dedup();
     let source = {
         let l = set.label(dir.trim_end_matches('/'));
         if l.trim_end_matches('/').is_empty() {

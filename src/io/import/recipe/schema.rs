@@ -533,8 +533,10 @@ impl Recipe {
     }
 
     /// Which file of the folder `dir` each entry reads (by index of `names`; `None` for an
-    /// optional entry without a file). `Err` says why the recipe does not match the folder: an
-    /// entry that is not optional matches no file there, or an entry matches several.
+    /// optional entry without a file). Several entries may read one file when their sensors
+    /// differ (a file of accelerometer and gyroscope columns). `Err` says why the recipe does not
+    /// match the folder: an entry that is not optional matches no file there, an entry matches
+    /// several, or two entries read one file as the same sensor.
     pub fn match_dir(&self, names: &[String], dir: &str) -> Result<Vec<Option<usize>>, String> {
         let mut out = Vec::with_capacity(self.files.len());
         for f in &self.files {
@@ -548,12 +550,19 @@ impl Recipe {
                 [] if f.optional => out.push(None),
                 [] => return Err(format!("no file matches {:?}", f.pattern)),
                 [i] => {
-                    if let Some(k) = out.iter().position(|o| *o == Some(*i)) {
+                    // One file may hold several sensors (t, ax, ay, az, gx, gy, gz): an entry
+                    // per sensor. Two entries of one sensor on one file are a mistake.
+                    let same = out
+                        .iter()
+                        .zip(&self.files)
+                        .position(|(o, g)| *o == Some(*i) && g.sensor == f.sensor);
+                    if let Some(k) = same {
                         return Err(format!(
-                            "{:?} and {:?} both match {}: make the patterns narrower",
+                            "{:?} and {:?} both read {} as {}: make the patterns narrower",
                             self.files[k].pattern,
                             f.pattern,
-                            fileset::base(&names[*i])
+                            fileset::base(&names[*i]),
+                            f.sensor.as_str()
                         ));
                     }
                     out.push(Some(*i))
