@@ -810,3 +810,37 @@ fn shared_xio_walks_read_by_a_recipe_as_by_their_reader() {
         assert!(report.warnings.is_empty(), "{name}: {:?}", report.warnings);
     }
 }
+
+#[test]
+fn describe_reads_headers_and_separators() {
+    let files = vec![
+        (
+            "r/Accel.txt".to_string(),
+            b"timestamp_us;ax;ay;az\n1000000;0,1;9,8;0,2\n1010000;0,1;9,8;0,2\n1020000;0,1;9,8;0,2\n"
+                .to_vec(),
+        ),
+        (
+            "r/gyro.tsv".to_string(),
+            b"1.00\t0.1\t0.2\t0.3\n1.01\t0.1\t0.2\t0.3\n1.02\t0.1\t0.2\t0.3\n".to_vec(),
+        ),
+        ("r/notes.md".to_string(), b"# my walk\n".to_vec()),
+    ];
+    let d = recipe::describe(&mut MemSet::new(files.clone()));
+    let acc = d.files.iter().find(|f| f.name == "r/Accel.txt").unwrap();
+    assert!(acc.header);
+    assert_eq!(acc.columns, ["timestamp_us", "ax", "ay", "az"]);
+    assert_eq!(acc.first[0], ["1000000", "0,1", "9,8", "0,2"]);
+    let gyr = d.files.iter().find(|f| f.name == "r/gyro.tsv").unwrap();
+    assert!(!gyr.header);
+    assert_eq!(gyr.columns, ["1", "2", "3", "4"]);
+    // One column only: not offered.
+    assert!(d.files.iter().all(|f| f.name != "r/notes.md"));
+    let draft = d.draft.unwrap();
+    let units: Vec<&str> = draft.files.iter().map(|f| f.time_unit.as_str()).collect();
+    assert_eq!(units, ["us", "s"]);
+    // The draft reads them: names for the headed file, numbers for the other; decimal commas.
+    let (log, report) = read(files, &draft);
+    assert_eq!(imu(&log).len(), 3);
+    assert!((imu(&log)[0].accel.y - 9.8).abs() < 1e-12);
+    assert_eq!(report.files[0].rows[0], vec![1.0, 0.1, 9.8, 0.2]);
+}

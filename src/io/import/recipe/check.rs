@@ -297,6 +297,10 @@ pub fn describe(set: &mut dyn FileSet) -> Description {
         } else {
             (1..=rows[0].len()).map(|i| i.to_string()).collect()
         };
+        // A file without a data row holding a number (a note, a README) is not offered.
+        if !rows.iter().any(|r| r.iter().any(|f| number(f).is_some())) {
+            continue;
+        }
         rows.truncate(3);
         let delimiter = match d {
             Some(b'\t') => Delimiter::Tab,
