@@ -318,7 +318,17 @@ fn recipe_json_errors_name_the_entry_and_field() {
     let err = e(&ok.replace("\"x\": 2,", "\"x\": \"ax\","));
     assert!(err.contains("no header"), "{err}");
     let err = e(&ok.replace("\"x\": 2,", "\"x\": 0,"));
-    assert!(err.contains("column numbers start at 1"), "{err}");
+    assert!(
+        err.contains("a 1-based number or a header name, not 0"),
+        "{err}"
+    );
+    let err = e(&ok.replace("\"x\": 2,", "\"x\": -1,"));
+    assert!(
+        err.contains("a column is a 1-based number or a header name, not -1"),
+        "{err}"
+    );
+    let err = e(&ok.replace("\"x\": 2,", "\"x\": [2],"));
+    assert!(err.contains("not [2]"), "{err}");
     let err = e(&ok.replace("\"y\": 3, ", ""));
     assert!(err.contains("needs `columns.y`"), "{err}");
     let err = e(&ok.replace("\"sensor\": \"accelerometer\"", "\"sensor\": \"barometer\""));

@@ -63,12 +63,31 @@ pub struct FileRule {
 
 /// A column: a 1-based number, or a header name (files with a header only).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
+#[serde(untagged, try_from = "serde_json::Value")]
 pub enum Column {
     /// 1-based column number.
     Number(usize),
     /// Header name (case-insensitive, trimmed).
     Name(String),
+}
+
+impl TryFrom<serde_json::Value> for Column {
+    type Error = String;
+    /// A whole number from 1, or a string; anything else is named in the error.
+    fn try_from(v: serde_json::Value) -> Result<Self, String> {
+        match &v {
+            serde_json::Value::String(s) => Ok(Column::Name(s.clone())),
+            serde_json::Value::Number(n) => match n.as_u64() {
+                Some(i) if i >= 1 => Ok(Column::Number(i.min(usize::MAX as u64) as usize)),
+                _ => Err(format!(
+                    "a column is a 1-based number or a header name, not {v}"
+                )),
+            },
+            _ => Err(format!(
+                "a column is a 1-based number or a header name, not {v}"
+            )),
+        }
+    }
 }
 
 impl std::fmt::Display for Column {
