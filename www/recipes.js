@@ -24,14 +24,19 @@ export function save(json) {
 }
 
 /**
- * Splits uploaded files into recipes (small `.json` files the engine reads as a recipe) and the
- * rest: a recipe uploaded beside its files is applied to them, without saving it.
+ * Whether uploaded files may hold recipes: small `.json` files, which the engine may read as a
+ * recipe; a recipe uploaded beside its files is applied to them, without saving it.
  */
+export function mayHoldRecipes(files) {
+  return files.some((f) => /\.json$/i.test(f.name) && f.file.size < 65536);
+}
+
+/** See [`mayHoldRecipes`]: the recipes among the files, and the other files. */
 export async function splitUploaded(files) {
   const recipes = [];
   const rest = [];
   for (const f of files) {
-    if (/\.json$/i.test(f.name) && f.file.size < 65536) {
+    if (mayHoldRecipes([f])) {
       try {
         recipes.push(recipe_normalise(await f.file.text()));
         continue;

@@ -195,6 +195,9 @@ function onWorker(m) {
 
 /** Loads uploaded files, a recipe among them applied to the others (recipes.splitUploaded). */
 async function loadUploaded(files) {
+  if (!recipes.mayHoldRecipes(files)) { load(files); return; }
+  // The page is busy from the pick on (the tests and the user see it), while the recipes are read.
+  document.documentElement.dataset.upload = 'loading';
   const split = await recipes.splitUploaded(files);
   load(split.files.length ? split.files : files, split.recipes);
 }
