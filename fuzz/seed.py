@@ -30,6 +30,15 @@ def read(path):
 def one(target, path, prefix=b""):
     put(target, prefix + cut(read(path), MAX))
 
+def cut_folder(names, dirs):
+    """The files of a folder, each cut to its share of 60 KiB, joined by NUL."""
+    per = (MAX - 4096) // len(names)
+    pieces = []
+    for n in names:
+        p = next((os.path.join(d, n) for d in dirs if os.path.exists(os.path.join(d, n))), None)
+        pieces.append(cut(read(p), per) if p else b"")
+    return b"\0".join(pieces)
+
 def folder(target, names, dirs):
     """One seed from the files of a folder, each cut to its share of 64 KiB."""
     per = MAX // len(names)
@@ -66,6 +75,11 @@ for sc in ["straight", "gnss-city"]:
         folder("sensor_logger_csv", SL, glob.glob(f"{s}/{f}/*/"))
     folder("phyphox", PHY, glob.glob(f"{s}/phyphox/*/"))
     folder("oxford", OX, glob.glob(f"{s}/oxford/*/"))
+    # recipe: the recipe's JSON, then the header-less files it reads.
+    plain = glob.glob(f"{s}/plain-csv/*/")
+    rec = read(f"{s}/plain-csv/recipe.json")
+    put("recipe", rec + b"\0" + cut_folder(["acc.csv", "gyr.csv", "mag.csv", "bar.csv"], plain))
+    put("recipe", b"\0" + cut_folder(["acc.csv", "gyr.csv", "mag.csv", "bar.csv"], plain))
     # sniff: one file, its name chosen by the first byte (SNIFF_NAMES in lib.rs).
     for k, f in [(1, "pdr-log"), (2, "sensor-logger-json"), (0, "gnss-logger"),
                  (0, "get-sensor-data"), (0, "ms-indoor"), (3, "xio")]:

@@ -13,7 +13,7 @@ SIM=$(mktemp -d)
 trap 'rm -rf "$SIM"' EXIT
 for scenario in straight gnss-city; do
   for f in pdr-log sensor-logger sensor-logger-ios sensor-logger-json phyphox gnss-logger \
-           get-sensor-data oxford ms-indoor xio; do
+           get-sensor-data oxford ms-indoor xio plain-csv; do
     mkdir -p "$SIM/$scenario"
     "$PDR" simulate --scenario "$scenario" --format "$f" --out "$SIM/$scenario/$f" >/dev/null
   done

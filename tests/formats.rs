@@ -637,6 +637,7 @@ fn empty_simulation_gives_headers_only() {
         Format::OxfordSteps,
         Format::MsIndoor,
         Format::XioFoot,
+        Format::Recipe,
         Format::PdrLog,
     ] {
         let rec = formats::write(&sim, f, Platform::Android);

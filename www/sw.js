@@ -9,7 +9,7 @@ const CACHE = 'pdr-shell-v5';
 const TILES = 'pdr-tiles-v1';
 const TILES_MAX = 2000;
 const SHELL = [
-  './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/worker.js', 'www/util.js', 'www/style.css',
+  './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/recipes.js', 'www/worker.js', 'www/util.js', 'www/style.css',
   'www/basemap.js',
   'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/manifest.webmanifest', 'www/icon.svg',
 ];

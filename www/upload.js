@@ -3,6 +3,7 @@
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
 import { AnalysisView, compare_settings, profile_summary, settings_label } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
+import * as recipes from './recipes.js';
 import { $, dark, download, fit } from './util.js';
 const PLOTS = [
   ['accel', 'Vertical acceleration, PLL output and steps'],
@@ -16,6 +17,7 @@ const PLOTS = [
 let worker = null;
 let logs = []; // [{info, card, views: {a, b}, span, cursor, step, bounds}]
 let lastFiles = null;
+let lastRecipes = []; // recipes uploaded with lastFiles (JSON), applied again on a re-run
 let pending = 0; // worker jobs not yet done
 
 function banner(text, kind = 'error') {
@@ -87,9 +89,15 @@ function startWorker() {
   worker.onerror = (e) => { banner(`The worker failed: ${e.message}`); finish(); };
 }
 
-function load(files) {
+/**
+ * Reads `files`: with the recipes saved on this device (each folder one of them matches is read
+ * by it) and `extra` (recipe JSON texts: the form's mapping, not saved).
+ */
+function load(files, extra = []) {
   if (!files.length) return;
   lastFiles = files;
+  lastRecipes = extra;
+  recipes.hideForm();
   for (const l of logs) for (const v of Object.values(l.views)) v?.free();
   logs = [];
   $('upload-results').replaceChildren();
@@ -122,7 +130,7 @@ function load(files) {
   };
   progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
   pending = 1;
-  worker.postMessage({ type: 'load', files, configs: configs() });
+  worker.postMessage({ type: 'load', files, configs: configs(), recipes: [...extra, ...Object.values(recipes.saved())] });
 }
 
 /** The end of a load or a re-run: the bar stays, full, with what was done (or why not). */
@@ -160,14 +168,23 @@ function onWorker(m) {
       banner(`${where}${e.field ? ` (${e.field})` : ''}: ${e.message}`);
       window.__pdrUpload.errors.push(e);
     }
-    if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files.');
+    if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files: describe them below, or choose other files.', 'warn');
+    for (const e of m.parsed.recipe_errors ?? []) banner(`A saved recipe was left out: ${e}`, 'warn');
     for (const info of m.parsed.logs) logs[info.index] = { info, views: {}, card: card(info) };
+    for (const info of m.parsed.logs) for (const c of info.checks ?? []) banner(`${info.source}, read with the recipe "${info.recipe}": ${c}`, 'warn');
   } else if (m.type === 'analysis') {
     const l = logs[m.index];
     l.views[m.tag]?.free();
     l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
     show(l, m.tag, m.label);
     Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
+  } else if (m.type === 'describe') {
+    recipes.showForm(m.description, {
+      preview: (json) => worker?.postMessage({ type: 'preview', recipe: json }),
+      run: (json) => load(lastFiles, [json]),
+    });
+  } else if (m.type === 'preview') {
+    recipes.showPreview(m.result);
   } else if (m.type === 'pdrlog') {
     download(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`);
   } else if (m.type === 'done') {
@@ -177,6 +194,15 @@ function onWorker(m) {
     banner(m.message);
     finish();
   }
+}
+
+/** Loads uploaded files, a recipe among them applied to the others (recipes.splitUploaded). */
+async function loadUploaded(files) {
+  if (!recipes.mayHoldRecipes(files)) { load(files); return; }
+  // The page is busy from the pick on (the tests and the user see it), while the recipes are read.
+  document.documentElement.dataset.upload = 'loading';
+  const split = await recipes.splitUploaded(files);
+  load(split.files.length ? split.files : files, split.recipes);
 }
 
 /** Files from a drop, folders walked (their paths kept, so that folder formats are found). */
@@ -212,7 +238,8 @@ function card(info) {
   c.dataset.index = info.index;
   c.append(el('h3', { textContent: info.source }),
     el('p', { className: 'hint', textContent: `${info.format} · ${info.samples.toLocaleString('en')} IMU samples · ${(info.duration_s / 60).toFixed(1)} min`
-      + (info.warnings ? ` · ${info.warnings} lines skipped` : '') }));
+      + (info.warnings ? ` · ${info.warnings} lines skipped` : '')
+      + (info.recipe ? ` · read with your recipe "${info.recipe}"` : '') }));
   c.append(el('div', { className: 'maps' }));
   c.append(el('div', { className: 'stepinfo', textContent: 'Hover or tap a step on the track, or click a plot, to see its values.' }));
   const plots = el('div', { className: 'plots' });
@@ -462,11 +489,11 @@ export function setupUpload() {
   window.addEventListener('pdr-profiles-changed', () => fillProfiles(true));
   for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', () => fillProfiles());
   $('upload-files').addEventListener('change', (e) => {
-    load([...e.target.files].map((file) => ({ name: file.name, file })));
+    loadUploaded([...e.target.files].map((file) => ({ name: file.name, file })));
     e.target.value = '';
   });
   $('upload-folder').addEventListener('change', (e) => {
-    load([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
+    loadUploaded([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
     e.target.value = '';
   });
   const drop = $('drop');
@@ -475,7 +502,7 @@ export function setupUpload() {
   drop.addEventListener('drop', async (e) => {
     e.preventDefault();
     drop.classList.remove('over');
-    load(await dropped(e.dataTransfer));
+    loadUploaded(await dropped(e.dataTransfer));
   });
   $('upload-cancel').addEventListener('click', () => {
     worker?.terminate();
@@ -496,7 +523,7 @@ export function setupUpload() {
   });
   $('rerun').addEventListener('click', () => {
     fillProfiles();
-    if (!worker || !logs.length) { if (lastFiles) load(lastFiles); return; }
+    if (!worker || !logs.length) { if (lastFiles) load(lastFiles, lastRecipes); return; }
     const c = configs();
     for (const l of logs) {
       if (!c.b && l.views.b) {

@@ -1,8 +1,9 @@
 // Upload mode's worker: the files are read, parsed and run through the engine here, off the
 // page's thread. Messages in: {type: 'load', files: [{name, file}], configs: {a, b}} and
 // {type: 'rerun', index, config, tag} and {type: 'pdrlog', index}, a config being
-// {settings, label}. Out: 'progress', 'parsed',
-// 'analysis' (bytes, transferred), 'pdrlog', 'done', 'failed'.
+// {settings, label}; 'load' may carry recipes: [json], and {type: 'preview', recipe} asks what a
+// recipe makes of the loaded files. Out: 'progress', 'parsed', 'describe' (when nothing was
+// recognised), 'preview', 'analysis' (bytes, transferred), 'pdrlog', 'done', 'failed'.
 import init, { Upload } from './pkg/pdr.js';
 
 let upload = null;
@@ -32,13 +33,17 @@ onmessage = async ({ data }) => {
     await ready;
     if (data.type === 'load') {
       upload = new Upload();
+      const recipeErrors = upload.set_recipes(data.recipes ?? []);
       // The files stay where they are: the parser reads them a slice at a time.
       const total = data.files.reduce((s, f) => s + f.file.size, 0);
       for (const { name, file } of data.files) upload.add_file(name, file);
       postMessage({ type: 'progress', phase: 'read', done: 0, total });
       const t0 = performance.now();
       const parsed = upload.parse((read) => postMessage({ type: 'progress', phase: 'read', done: Math.min(read, total), total }));
+      parsed.recipe_errors = recipeErrors;
       postMessage({ type: 'parsed', parsed, parse_ms: performance.now() - t0, bytes: total });
+      // Nothing recognised: the files described for the recipe form.
+      if (!parsed.logs.length) postMessage({ type: 'describe', description: upload.describe(() => {}) });
       for (const log of parsed.logs) {
         for (const [tag, config] of Object.entries(data.configs)) analyse(log.index, config, tag);
       }
@@ -46,6 +51,8 @@ onmessage = async ({ data }) => {
     } else if (data.type === 'rerun') {
       analyse(data.index, data.config, data.tag);
       postMessage({ type: 'done' });
+    } else if (data.type === 'preview') {
+      postMessage({ type: 'preview', result: upload.preview(data.recipe, () => {}) });
     } else if (data.type === 'pdrlog') {
       postMessage({ type: 'pdrlog', index: data.index, text: upload.pdrlog(data.index) });
     }

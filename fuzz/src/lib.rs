@@ -17,7 +17,7 @@ use pdr::io::ParseError;
 use pdr::live::{LiveSession, MotionEvent, OrientationEvent, Platform, SensorReading};
 
 /// Every target, by name (the names of `fuzz_targets/*.rs`).
-pub const TARGETS: [&str; 13] = [
+pub const TARGETS: [&str; 14] = [
     "pdrlog",
     "sniff",
     "sensor_logger_csv",
@@ -31,6 +31,7 @@ pub const TARGETS: [&str; 13] = [
     "profile_json",
     "live",
     "zip",
+    "recipe",
 ];
 
 /// Runs the target `name` on `data`. Panics (the finding) when a check fails.
@@ -49,6 +50,7 @@ pub fn run(name: &str, data: &[u8]) {
         "profile_json" => profile_json(data),
         "live" => live(data),
         "zip" => zip(data),
+        "recipe" => recipe(data),
         _ => panic!("no fuzz target `{name}`"),
     }
 }
@@ -620,4 +622,53 @@ pub fn zip(data: &[u8]) {
     w.write_all(data).expect("in memory");
     let outer = w.finish().expect("in memory").into_inner();
     import_files(vec![("outer.zip".to_string(), outer)]);
+}
+
+/// The files of a recipe input after the recipe itself, in order.
+pub const RECIPE_FILES: [&str; 4] = ["acc.csv", "gyr.csv", "mag.csv", "bar.csv"];
+
+/// A recipe and the files it reads: the input split at NUL bytes into the recipe's JSON (when it
+/// is not an accepted recipe, the simulator's plain-CSV recipe is used, so that the CSV reading
+/// is fuzzed too) and [`RECIPE_FILES`]. An accepted recipe writes to JSON and reads back the
+/// same; the logs read by it pass the import checks; the report's figures are finite; the
+/// form's description of the files does not panic.
+pub fn recipe(data: &[u8]) {
+    use pdr::io::import::recipe::{self, Recipe};
+    let mut pieces = data.splitn(2, |&b| b == 0);
+    let json = pieces.next().unwrap_or_default();
+    let rest = pieces.next().unwrap_or_default();
+    let parsed = std::str::from_utf8(json)
+        .ok()
+        .and_then(|t| Recipe::from_json(t).ok());
+    if let Some(r) = &parsed {
+        let back = Recipe::from_json(&r.to_json()).expect("a written recipe reads back");
+        assert_eq!(&back, r, "the recipe changed through JSON");
+    }
+    let r = parsed.unwrap_or_else(|| {
+        Recipe::from_json(pdr::sim::formats::PLAIN_CSV_RECIPE).expect("the built-in recipe")
+    });
+    let files = split_files("rec/", &RECIPE_FILES, rest);
+    let mut set = MemSet::new(files);
+    for res in recipe::read_set(&mut set, &r) {
+        match res {
+            Ok((log, report)) => {
+                check_log(&log);
+                for f in &report.files {
+                    finite_opt("report.rate_hz", f.rate_hz);
+                    finite_opt("report.median", f.median);
+                    f.rows
+                        .iter()
+                        .flatten()
+                        .for_each(|v| finite("report.row", *v));
+                }
+            }
+            Err(e) => check_error(&e),
+        }
+    }
+    let d = recipe::describe(&mut set);
+    if let Some(draft) = d.draft {
+        if !draft.files.is_empty() {
+            let _ = draft.check();
+        }
+    }
 }

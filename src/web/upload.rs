@@ -3,7 +3,9 @@
 //! May import: `analysis`, `engine`, `io`, `settings`.
 
 use super::blobs;
-use super::{settings_from, to_js, to_value};
+use super::{settings_from, to_js, to_json_value, to_value};
+use crate::io::import::recipe::{self, Recipe};
+use crate::io::import::FileSet as _;
 use wasm_bindgen::prelude::*;
 
 /// Upload mode, the web worker's side: files in, logs parsed, each analysed into bytes for the
@@ -13,6 +15,8 @@ pub struct Upload {
     files: Vec<(String, web_sys::Blob)>,
     logs: Vec<crate::io::import::Log>,
     engine_ms: f64,
+    /// The user's saved recipes, tried on every folder before the formats are sniffed.
+    recipes: Vec<Recipe>,
 }
 
 #[wasm_bindgen]
@@ -24,6 +28,7 @@ impl Upload {
             files: Vec::new(),
             logs: Vec::new(),
             engine_ms: 0.0,
+            recipes: Vec::new(),
         }
     }
 
@@ -54,21 +59,20 @@ impl Upload {
             samples: usize,
             duration_s: f64,
             warnings: usize,
+            recipe: Option<String>,
+            checks: Vec<String>,
         }
         #[derive(serde::Serialize)]
         struct Parsed {
             logs: Vec<Info>,
             errors: Vec<crate::io::ParseError>,
         }
-        let mut set =
-            blobs::BlobSet::new(std::mem::take(&mut self.files), progress).map_err(|_| {
-                JsError::new("FileReaderSync is missing: upload parsing runs in a worker")
-            })?;
+        let mut set = self.blob_set(progress)?;
         let mut out = Parsed {
             logs: Vec::new(),
             errors: Vec::new(),
         };
-        for r in crate::io::import::import_all(&mut set) {
+        for r in crate::io::import::import_with(&mut set, &self.recipes) {
             match r {
                 Ok(log) => {
                     out.logs.push(Info {
@@ -78,6 +82,8 @@ impl Upload {
                         samples: log.imu_samples(),
                         duration_s: log.time_span().map_or(0.0, |(a, b)| b - a),
                         warnings: log.skipped as usize,
+                        recipe: log.recipe.clone(),
+                        checks: log.checks.clone(),
                     });
                     self.logs.push(log);
                 }
@@ -114,6 +120,72 @@ impl Upload {
         a.to_bytes().map_err(to_js)
     }
 
+    /// Sets the recipes (JSON texts, as the page saved them) that [`Upload::parse`] tries on every
+    /// folder before sniffing formats. Returns the errors of those that do not read (each left
+    /// out).
+    pub fn set_recipes(&mut self, recipes: Vec<String>) -> Vec<String> {
+        let mut errors = Vec::new();
+        self.recipes = recipes
+            .iter()
+            .filter_map(|t| Recipe::from_json(t).map_err(|e| errors.push(e)).ok())
+            .collect();
+        errors
+    }
+
+    /// The files as the recipe form shows them: `{files: [{name, delimiter, header, columns,
+    /// first}], draft}` ([`recipe::describe`]), reading only each file's first bytes.
+    pub fn describe(&self, progress: js_sys::Function) -> Result<JsValue, JsError> {
+        let mut set = self.blob_set(progress)?;
+        to_json_value(&recipe::describe(&mut set))
+    }
+
+    /// What a recipe (JSON) makes of the files, reading at most [`PREVIEW_SAMPLES`] samples
+    /// per file: `{report: {files: [{file, sensor, columns, rows, samples, skipped, errors,
+    /// rate_hz, median}], warnings, notes}}`, or `{error}` for a recipe that does not read, does
+    /// not match the files, or a file it cannot read.
+    pub fn preview(
+        &self,
+        recipe_json: &str,
+        progress: js_sys::Function,
+    ) -> Result<JsValue, JsError> {
+        #[derive(serde::Serialize)]
+        struct Preview {
+            report: Option<recipe::Report>,
+            error: Option<String>,
+        }
+        let fail = |e: String| Preview {
+            report: None,
+            error: Some(e),
+        };
+        let out = match Recipe::from_json(recipe_json) {
+            Err(e) => fail(e),
+            Ok(r) => {
+                let mut set = self.blob_set(progress)?;
+                let names = set.names().to_vec();
+                let mut dirs: Vec<&str> = names
+                    .iter()
+                    .map(|n| crate::io::import::fileset::parent(n))
+                    .collect();
+                dirs.dedup();
+                let found = dirs
+                    .into_iter()
+                    .find_map(|d| recipe::read_dir(&mut set, &names, d, &r, Some(PREVIEW_SAMPLES)));
+                match found {
+                    None => fail(format!(
+                        "the mapping matches no folder: {}",
+                        recipe::why_not(&set, &r)
+                    )),
+                    Some((_, Err(e))) => fail(e.to_string()),
+                    Some((_, Ok((_, report)))) => Preview {
+                        report: Some(report),
+                        error: None,
+                    },
+                }
+            }
+        };
+        to_json_value(&out)
+    }
+
     /// Log `index` in the project's own format (pdr-log).
     pub fn pdrlog(&self, index: usize) -> Result<String, JsError> {
         let log = self
@@ -122,6 +194,53 @@ impl Upload {
             .ok_or_else(|| to_js(format!("no log {index}")))?;
         Ok(crate::io::pdrlog::to_string(&log.records))
     }
+}
+
+/// Samples per file the recipe form's live preview reads (its checks look at these): 20 s at
+/// 100 Hz, enough for a sample rate, a median gravity and a rotation rate, and quick to redo at
+/// every change of the form.
+pub const PREVIEW_SAMPLES: usize = 2000;
+
+impl Upload {
+    /// The files as a set read a slice at a time (workers only).
+    fn blob_set(&self, progress: js_sys::Function) -> Result<blobs::BlobSet, JsError> {
+        blobs::BlobSet::new(self.files.clone(), progress)
+            .map_err(|_| JsError::new("FileReaderSync is missing: upload parsing runs in a worker"))
+    }
+}
+
+/// What the recipe form offers: `[{sensor, needs, units}]`, every sensor with the columns it
+/// needs (besides `t`) and the units it takes (the first is the default), and `time_units`.
+#[wasm_bindgen]
+pub fn recipe_choices() -> Result<JsValue, JsError> {
+    #[derive(serde::Serialize)]
+    struct Choice {
+        sensor: &'static str,
+        needs: &'static [&'static str],
+        units: Vec<&'static str>,
+    }
+    #[derive(serde::Serialize)]
+    struct Choices {
+        sensors: Vec<Choice>,
+        time_units: Vec<&'static str>,
+    }
+    to_json_value(&Choices {
+        sensors: recipe::Sensor::ALL
+            .iter()
+            .map(|s| Choice {
+                sensor: s.as_str(),
+                needs: s.needs(),
+                units: s.units().iter().map(|u| u.as_str()).collect(),
+            })
+            .collect(),
+        time_units: recipe::TimeUnit::ALL.iter().map(|u| u.as_str()).collect(),
+    })
+}
+
+/// Checks a recipe's JSON and returns it normalised (pretty, as the CLI reads it), or the error.
+#[wasm_bindgen]
+pub fn recipe_normalise(json: &str) -> Result<String, JsError> {
+    Recipe::from_json(json).map(|r| r.to_json()).map_err(to_js)
 }
 
 impl Default for Upload {

@@ -81,6 +81,9 @@ pub enum FormatArg {
     MsIndoor,
     /// x-io Gait-Tracking CSV.
     Xio,
+    /// A folder of header-less CSVs `acc.csv`, `gyr.csv`, `mag.csv`, `bar.csv` (time in ms,
+    /// then x y z), with the recipe that reads it (`recipe.json` beside the folder).
+    PlainCsv,
 }
 
 #[derive(Subcommand)]
@@ -99,6 +102,10 @@ enum Cmd {
         /// Write the fused and smoothed tracks as CSV.
         #[arg(long)]
         fused: Option<PathBuf>,
+        /// Read the log with a recipe (column mapping, JSON; see README, "Logs from any
+        /// recorder"): the files it matches are read by it, whatever their format.
+        #[arg(long)]
+        recipe: Option<PathBuf>,
         #[command(flatten)]
         settings: SettingsArgs,
     },
@@ -115,7 +122,7 @@ enum Cmd {
         #[arg(long, value_enum, default_value = "demo")]
         scenario: ScenarioArg,
         /// The output file; for a folder format (sensor-logger, sensor-logger-ios, phyphox,
-        /// oxford) a new or empty directory, which gets the recording's folder.
+        /// oxford, plain-csv) a new or empty directory, which gets the recording's folder.
         #[arg(long, required_unless_present = "events")]
         out: Option<PathBuf>,
         /// The format of `--out`.
@@ -175,6 +182,10 @@ enum Cmd {
         /// Print the effective configuration as JSON and exit.
         #[arg(long)]
         show_config: bool,
+        /// Read the logs with a recipe (column mapping, JSON): each folder it matches is one
+        /// log read by it; other files are read as usual.
+        #[arg(long, conflicts_with = "compare")]
+        recipe: Option<PathBuf>,
         /// Instead of one configuration, run every step detector, heading method, orientation
         /// source and step-length model (each alone over the defaults) on each path as a data
         /// set, and print the comparison table (Markdown, or JSON with `--json`).
@@ -206,8 +217,13 @@ pub fn main() -> ExitCode {
             track,
             geojson,
             fused,
+            recipe,
             settings,
         } => settings.settings().and_then(|s| {
+            let recipe = recipe
+                .as_deref()
+                .map(pdr::io::import::recipe::load)
+                .transpose()?;
             run::run(
                 &file,
                 run::Outputs {
@@ -216,6 +232,7 @@ pub fn main() -> ExitCode {
                     fused: fused.as_deref(),
                 },
                 &s,
+                recipe.as_ref(),
             )
         }),
         Cmd::Demo { json } => demo::demo(json),
@@ -271,10 +288,15 @@ pub fn main() -> ExitCode {
             json,
             settings,
             show_config,
+            recipe,
             ..
-        } => settings
-            .settings()
-            .and_then(|s| eval::eval(&paths, json, &s, show_config)),
+        } => settings.settings().and_then(|s| {
+            let recipe = recipe
+                .as_deref()
+                .map(pdr::io::import::recipe::load)
+                .transpose()?;
+            eval::eval(&paths, json, &s, show_config, recipe.as_ref())
+        }),
         Cmd::Serve {
             root,
             http_port,

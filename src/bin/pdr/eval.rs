@@ -10,9 +10,10 @@ pub fn eval(
     json: bool,
     settings: &Settings,
     show_config: bool,
+    recipe: Option<&pdr::io::import::recipe::Recipe>,
 ) -> Result<(), String> {
     use pdr::eval::{evaluate, summarise, LogResult, Report};
-    use pdr::io::import::{import_all, DirSet};
+    use pdr::io::import::{import_with, DirSet};
     let cfg = settings.config().map_err(|e| e.to_string())?;
     if show_config {
         out!(
@@ -31,13 +32,26 @@ pub fn eval(
                 continue;
             }
         };
-        let found = import_all(&mut set);
+        let found = import_with(&mut set, recipe.map(std::slice::from_ref).unwrap_or(&[]));
         if found.is_empty() {
-            logs.push(LogResult::failed(&label, "", "no recognisable log".into()));
+            let why = match recipe {
+                Some(r) => format!(
+                    "no recognisable log, and recipe {:?} matches no folder: {}",
+                    r.name,
+                    pdr::io::import::recipe::why_not(&set, r)
+                ),
+                None => "no recognisable log".into(),
+            };
+            logs.push(LogResult::failed(&label, "", why));
         }
         for r in found {
             logs.push(match r {
-                Ok(log) => evaluate(&log, &cfg),
+                Ok(log) => {
+                    for c in &log.checks {
+                        eprintln!("pdr: {}: check: {c}", log.source);
+                    }
+                    evaluate(&log, &cfg)
+                }
                 Err(e) => LogResult::failed(&e.file, "", e.to_string()),
             });
         }

@@ -3,16 +3,52 @@
 
 use pdr::engine::replay;
 use pdr::io::export;
+use pdr::io::import::recipe::Recipe;
 use pdr::settings::Settings;
 use std::path::Path;
 
-pub fn run(file: &Path, outputs: Outputs, settings: &Settings) -> Result<(), String> {
+pub fn run(
+    file: &Path,
+    outputs: Outputs,
+    settings: &Settings,
+    recipe: Option<&Recipe>,
+) -> Result<(), String> {
     let cfg = settings.config().map_err(|e| e.to_string())?;
     let name = file.display().to_string();
     let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
-    let mut logs = pdr::io::import::import_all(&mut set);
+    let mut logs = match recipe {
+        Some(r) => {
+            let read = pdr::io::import::recipe::read_set(&mut set, r);
+            if read.is_empty() {
+                return Err(format!(
+                    "{name}: recipe {:?} matches no folder: {}",
+                    r.name,
+                    pdr::io::import::recipe::why_not(&set, r)
+                ));
+            }
+            read.into_iter()
+                .map(|r| {
+                    r.map(|(log, report)| {
+                        for w in &report.warnings {
+                            eprintln!("check: {w}");
+                        }
+                        for n in &report.notes {
+                            eprintln!("note: {n}");
+                        }
+                        log
+                    })
+                })
+                .collect()
+        }
+        None => pdr::io::import::import_all(&mut set),
+    };
     let parsed = match logs.len() {
-        0 => return Err(format!("{name}: no recognisable log (see README, Import)")),
+        0 => {
+            return Err(format!(
+                "{name}: no recognisable log (see README, Import; for another recorder's files, \
+                 describe them with `--recipe FILE`, see \"Logs from any recorder\")"
+            ))
+        }
         1 => logs.pop().expect("one log").map_err(|e| e.to_string())?,
         n => {
             return Err(format!(
@@ -42,7 +78,10 @@ pub fn run(file: &Path, outputs: Outputs, settings: &Settings) -> Result<(), Str
     let track = p.track();
     let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
     out!("file          {name}");
-    out!("format        {}", parsed.format.as_str());
+    match &parsed.recipe {
+        Some(r) => out!("format        {} ({r:?})", parsed.format.as_str()),
+        None => out!("format        {}", parsed.format.as_str()),
+    }
     out!(
         "records       {} ({} lines skipped, {} records refused)",
         parsed.records.len(),

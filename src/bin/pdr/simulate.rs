@@ -112,7 +112,15 @@ fn write_recording(
             .first()
             .and_then(|(n, _)| n.split('/').next())
             .unwrap_or("");
-        format!("{} files in {}/", rec.files.len(), out.join(top).display())
+        let mut written = format!("{} files in {}/", rec.files.len(), out.join(top).display());
+        if f == pdr::io::import::Format::Recipe {
+            // The plain CSV folder is read by a recipe: written beside the folder.
+            let path = out.join("recipe.json");
+            std::fs::write(&path, formats::PLAIN_CSV_RECIPE)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            written += &format!(" and its recipe {}", path.display());
+        }
+        written
     } else {
         let bytes = rec.files.first().map_or(&[][..], |f| f.1.as_slice());
         std::fs::write(out, bytes).map_err(|e| format!("{shown}: {e}"))?;
@@ -138,6 +146,7 @@ fn write_recording(
         pdr::io::import::Format::OxfordSteps
         | pdr::io::import::Format::MsIndoor
         | pdr::io::import::Format::XioFoot
+        | pdr::io::import::Format::Recipe
             if fixes > 0 =>
         {
             format!("no fixes (the format has none; the walk has {fixes})")
@@ -166,6 +175,7 @@ impl FormatArg {
             FormatArg::Oxford => Format::OxfordSteps,
             FormatArg::MsIndoor => Format::MsIndoor,
             FormatArg::Xio => Format::XioFoot,
+            FormatArg::PlainCsv => Format::Recipe,
         }
     }
 }

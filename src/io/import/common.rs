@@ -46,6 +46,16 @@ impl Warnings {
     pub fn first(&self) -> Option<&ParseError> {
         self.kept.first()
     }
+
+    /// How many lines were skipped.
+    pub fn count(&self) -> u64 {
+        self.count
+    }
+
+    /// The warnings kept (the first [`MAX_WARNINGS`]).
+    pub fn kept(&self) -> &[ParseError] {
+        &self.kept
+    }
 }
 
 /// Picks the field separator of a header line: the most frequent of tab, semicolon and comma
@@ -286,6 +296,35 @@ pub(crate) fn rotation_vector(
         }
     };
     unit_quaternion(w, x, y, z)
+}
+
+/// Pairs each sample of `a` with the sample of `b` nearest in time (both sorted by time), when
+/// it is at most `max_dt` away, and combines them with `f`; returns the combined samples and how
+/// many of `a` had no partner. Sensor Logger's linear acceleration + gravity, and a recipe's
+/// linear accelerometer + gravity or orientation, are made whole so.
+pub(crate) fn pair_nearest<T: Copy>(
+    a: &[(f64, Vector3<f64>)],
+    b: &[(f64, T)],
+    max_dt: f64,
+    mut f: impl FnMut(Vector3<f64>, T) -> Vector3<f64>,
+) -> (Vec<(f64, Vector3<f64>)>, u64) {
+    let mut out = Vec::with_capacity(a.len());
+    let mut unpaired = 0u64;
+    let mut j = 0usize;
+    for &(t, v) in a {
+        while j + 1 < b.len() && b[j + 1].0 <= t {
+            j += 1;
+        }
+        let best = [j, j + 1]
+            .into_iter()
+            .filter(|&k| k < b.len())
+            .min_by(|&p, &q| (b[p].0 - t).abs().total_cmp(&(b[q].0 - t).abs()));
+        match best {
+            Some(k) if (b[k].0 - t).abs() <= max_dt => out.push((t, f(v, b[k].1))),
+            _ => unpaired += 1,
+        }
+    }
+    (out, unpaired)
 }
 
 /// Drops samples with a non-finite value (sums and unit conversions of huge numbers can

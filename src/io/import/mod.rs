@@ -32,6 +32,7 @@ pub mod gnss_logger;
 pub mod ms_indoor;
 pub mod oxford;
 pub mod phyphox;
+pub mod recipe;
 pub mod sensor_logger;
 pub mod stream_zip;
 pub mod xio;
@@ -79,6 +80,8 @@ pub enum Format {
     MsIndoor,
     /// x-io Gait-Tracking foot-mounted CSV.
     XioFoot,
+    /// Any recorder's per-sensor files, read by a user's [`recipe`] (column mapping).
+    Recipe,
 }
 
 impl Format {
@@ -94,6 +97,7 @@ impl Format {
             Format::OxfordSteps => "oxford-steps",
             Format::MsIndoor => "ms-indoor",
             Format::XioFoot => "xio-foot",
+            Format::Recipe => "recipe",
         }
     }
 }
@@ -241,6 +245,11 @@ pub struct Log {
     /// The condition the recording belongs to within its data set, for per-group figures
     /// (Oxford: where the phone was carried, e.g. `FrontPocket`).
     pub group: Option<String>,
+    /// The name of the [`recipe`] the log was read with, if any.
+    pub recipe: Option<String>,
+    /// The recipe's sanity warnings about the files (a likely wrong unit or column, see
+    /// [`recipe::check`]), each naming its file; empty for the other formats.
+    pub checks: Vec<String>,
 }
 
 impl Log {
@@ -255,6 +264,8 @@ impl Log {
             warnings: Vec::new(),
             skipped: 0,
             group: None,
+            recipe: None,
+            checks: Vec::new(),
         }
     }
 
@@ -396,6 +407,17 @@ pub fn number(s: &str) -> Option<f64> {
 /// empty when nothing was recognised. A log that fails to read is an `Err` in the list, and
 /// never stops the others.
 pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
+    import_with(set, &[])
+}
+
+/// [`import_all`] with the user's recipes: a folder that a recipe matches
+/// ([`recipe::Recipe::match_dir`]) is read by the first one that does, before any format is
+/// sniffed, so a recipe also overrides a format we would otherwise recognise. The report's
+/// sanity warnings are kept in [`Log::checks`]; [`recipe::read_dir`] gives the whole report.
+pub fn import_with(
+    set: &mut dyn FileSet,
+    recipes: &[recipe::Recipe],
+) -> Vec<Result<Log, ParseError>> {
     let mut out = Vec::new();
     let names: Vec<String> = set.names().to_vec();
     let mut used = vec![false; names.len()];
@@ -403,7 +425,19 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
     let mut dirs: Vec<&str> = names.iter().map(|n| fileset::parent(n)).collect();
     dirs.sort_unstable();
     dirs.dedup();
-    for dir in dirs {
+    'dirs: for dir in dirs {
+        for r in recipes {
+            if let Some((files, read)) = recipe::read_dir(set, &names, dir, r, None) {
+                for (i, n) in names.iter().enumerate() {
+                    used[i] |= files.contains(n);
+                }
+                out.push(read.map(|(mut log, report)| {
+                    log.checks = report.warnings;
+                    log
+                }));
+                continue 'dirs;
+            }
+        }
         let in_dir = |f: &str| names.iter().any(|n| n.as_str() == format!("{dir}{f}"));
         let read = if in_dir("accelerometer.csv") && in_dir("stepcounter.csv") {
             Some(oxford::read_oxford(set, dir))
@@ -442,7 +476,7 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
             }
         };
         if fileset::is_zip(head.as_bytes()) {
-            out.extend(import_zip(set, name));
+            out.extend(import_zip(set, name, recipes));
             continue;
         }
         let Some(format) = sniff(name, &head) else {
@@ -483,7 +517,12 @@ pub fn import_all(set: &mut dyn FileSet) -> Vec<Result<Log, ParseError>> {
 /// archive on disk or in memory (an upload) is read in place; one inside another archive as a
 /// stream ([`StreamZipSet`]). Its members are decompressed as they are read. A limit hit by
 /// the archive as a whole is one error naming it; one hit by a member is that member's error.
-fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>> {
+/// The recipes apply inside the archive as outside.
+fn import_zip(
+    set: &mut dyn FileSet,
+    name: &str,
+    recipes: &[recipe::Recipe],
+) -> Vec<Result<Log, ParseError>> {
     let label = set.label(name);
     let depth = set.depth() + 1;
     let budget = set
@@ -498,12 +537,12 @@ fn import_zip(set: &mut dyn FileSet, name: &str) -> Vec<Result<Log, ParseError>>
     };
     if let Some(r) = set.open_seekable(name) {
         return match r.and_then(|r| ZipSet::within(r, &label, depth, budget.clone())) {
-            Ok(mut zip) => import_all(&mut zip),
+            Ok(mut zip) => import_with(&mut zip, recipes),
             Err(e) => refused(e),
         };
     }
     match StreamZipSet::new(set, name, depth, budget) {
-        Ok(mut zip) => import_all(&mut zip),
+        Ok(mut zip) => import_with(&mut zip, recipes),
         Err(e) => refused(e),
     }
 }

@@ -4,7 +4,8 @@
 //! [`write`] turns a [`Simulation`] into the files an app (or a data set) would have produced for
 //! the same walk: file and folder names, header lines, column names and order, units, clocks,
 //! sign and quaternion conventions. The readers of [`crate::io::import`] are the specification:
-//! every recording written here reads back through [`crate::io::import::import_all`] without a
+//! every recording written here reads back through [`crate::io::import::import_all`] (the plain
+//! CSV folder through [`PLAIN_CSV_RECIPE`] with [`crate::io::import::import_with`]) without a
 //! warning, one IMU record per simulated IMU sample, with the values of the simulation to the
 //! precision the format writes. The tests in `tests/formats.rs` hold both ends together.
 //!
@@ -20,6 +21,7 @@
 //! | Oxford Step Counter | folder | accelerometer only | none | none | foot contacts |
 //! | Microsoft Indoor 2.0 | file | accel., gyro, mag | rotation vector | none | `TYPE_WAYPOINT` |
 //! | x-io Gait-Tracking | file | gyro (deg/s), accel. (g): the foot IMU's when the walk has one | none | none | (loop closure, claimed by the reader) |
+//! | plain CSV (read by a recipe) | folder | `acc`, `gyr`, `mag` (ms, no header); `bar` | none | none | – |
 //! | pdr-log | file | everything, lossless | | | |
 //!
 //! Where a format has no place for something the simulation has, it is left out: phyphox, Oxford
@@ -59,8 +61,11 @@ mod gnss_logger;
 mod ms_indoor;
 mod oxford;
 mod phyphox;
+mod plain_csv;
 mod sensor_logger;
 mod xio;
+
+pub use plain_csv::RECIPE_JSON as PLAIN_CSV_RECIPE;
 
 use super::Simulation;
 use crate::engine::types::{GnssFix, ImuSample};
@@ -98,7 +103,7 @@ pub struct Recording {
 pub fn is_folder(format: Format) -> bool {
     matches!(
         format,
-        Format::SensorLogger | Format::Phyphox | Format::OxfordSteps
+        Format::SensorLogger | Format::Phyphox | Format::OxfordSteps | Format::Recipe
     )
 }
 
@@ -130,6 +135,7 @@ pub fn write(sim: &Simulation, format: Format, platform: Platform) -> Recording 
         Format::OxfordSteps => (w.oxford(sim), BOOT_NS as f64 * 1e-9 - w.start),
         Format::MsIndoor => (w.ms_indoor(sim), unix_offset),
         Format::XioFoot => (w.xio(), relative),
+        Format::Recipe => (w.plain_csv(), unix_offset),
     };
     Recording {
         files,

@@ -3,7 +3,7 @@
 
 use super::Raw;
 use crate::engine::orientation::{G0, HOLD_S};
-use crate::io::import::common::{add_warnings, drop_non_finite, warn_count};
+use crate::io::import::common::{add_warnings, drop_non_finite, pair_nearest, warn_count};
 use crate::io::import::{file_error, Log, Platform, Streams};
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -77,23 +77,10 @@ impl Raw {
         if !self.total.is_empty() {
             s.accel = self.total.iter().map(|&(t, v)| (t, v * sign)).collect();
         } else {
-            let g = &self.gravity;
-            let mut j = 0usize;
-            for &(t, a) in &self.accel {
-                while j + 1 < g.len() && g[j + 1].0 <= t {
-                    j += 1;
-                }
-                let best = [j, j + 1]
-                    .into_iter()
-                    .filter(|&k| k < g.len())
-                    .min_by(|&p, &q| (g[p].0 - t).abs().total_cmp(&(g[q].0 - t).abs()));
-                match best {
-                    Some(k) if (g[k].0 - t).abs() <= HOLD_S => {
-                        s.accel.push((t, (a + g[k].1) * sign));
-                    }
-                    _ => unpaired += 1,
-                }
-            }
+            let (paired, n) =
+                pair_nearest(&self.accel, &self.gravity, HOLD_S, |a, g| (a + g) * sign);
+            s.accel = paired;
+            unpaired = n;
         }
         s.gyro = std::mem::take(&mut self.gyro);
         s.mag = std::mem::take(&mut self.mag);

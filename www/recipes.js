@@ -1,0 +1,226 @@
+// Recipes (README, "Logs from any recorder"): the form upload mode offers when no recording is
+// recognised, and the recipes saved on this device (localStorage). The parsing, the preview and
+// the sanity checks are the engine's (src/io/import/recipe, through the worker); this file only
+// builds the form, keeps the saved recipes and hands the recipe JSON around.
+import { recipe_choices, recipe_normalise } from './pkg/pdr.js';
+import { $, download } from './util.js';
+
+const LIST = 'pdr-recipes';
+
+/** `{name: json}` of every saved recipe. */
+export function saved() {
+  try {
+    const v = JSON.parse(localStorage.getItem(LIST) ?? '{}');
+    return v && typeof v === 'object' ? v : {};
+  } catch { return {}; }
+}
+
+/** Saves a recipe (its JSON, checked by the engine) under its own name. */
+export function save(json) {
+  const text = recipe_normalise(json);
+  const all = saved();
+  all[JSON.parse(text).name] = text;
+  localStorage.setItem(LIST, JSON.stringify(all));
+}
+
+/**
+ * Whether uploaded files may hold recipes: small `.json` files, which the engine may read as a
+ * recipe; a recipe uploaded beside its files is applied to them, without saving it.
+ */
+export function mayHoldRecipes(files) {
+  return files.some((f) => /\.json$/i.test(f.name) && f.file.size < 65536);
+}
+
+/** See [`mayHoldRecipes`]: the recipes among the files, and the other files. */
+export async function splitUploaded(files) {
+  const recipes = [];
+  const rest = [];
+  for (const f of files) {
+    if (mayHoldRecipes([f])) {
+      try {
+        recipes.push(recipe_normalise(await f.file.text()));
+        continue;
+      } catch { /* not a recipe: a recording's JSON */ }
+    }
+    rest.push(f);
+  }
+  return { files: rest, recipes };
+}
+
+function el(tag, props = {}, ...children) {
+  const e = Object.assign(document.createElement(tag), props);
+  e.append(...children);
+  return e;
+}
+
+const base = (name) => name.split('/').pop();
+const DELIMITERS = { comma: 'comma-separated', tab: 'tab-separated', semicolon: 'semicolon-separated', whitespace: 'space-separated' };
+
+let form = null; // {files: [{guess, rule}], preview(json), run(json)}
+let timer = 0;
+
+/** The recipe the form describes now (files marked "not used" left out). */
+function current() {
+  const box = $('recipe-form');
+  const files = [];
+  for (const f of form.files) {
+    const fs = box.querySelector(`fieldset[data-file="${CSS.escape(f.guess.name)}"]`);
+    const get = (k) => fs.querySelector(`[data-k="${k}"]`)?.value;
+    const sensor = get('sensor');
+    if (!sensor) continue;
+    const columns = {};
+    for (const s of fs.querySelectorAll('[data-col]')) {
+      columns[s.dataset.col] = f.guess.header ? s.value : Number(s.value);
+    }
+    const rule = { match: base(f.guess.name), sensor, delimiter: f.guess.delimiter, header: f.guess.header, columns, time_unit: get('time_unit') };
+    const unit = get('unit');
+    if (unit) rule.unit = unit;
+    files.push(rule);
+  }
+  return JSON.stringify({ recipe: 1, name: $('recipe-name').value.trim() || 'my logger', files });
+}
+
+/** The column and unit selects of one file, for its sensor. */
+function fields(fs, f, rule) {
+  const choices = recipe_choices();
+  const sensor = fs.querySelector('[data-k="sensor"]').value;
+  const box = fs.querySelector('.recipe-fields');
+  box.replaceChildren();
+  if (!sensor) return;
+  const spec = choices.sensors.find((c) => c.sensor === sensor);
+  const options = () => f.guess.columns.map((c, i) => {
+    const first = f.guess.first[0]?.[i];
+    const label = f.guess.header ? c : `column ${c}${first != null ? ` (${first})` : ''}`;
+    return new Option(label, f.guess.header ? c : String(i + 1));
+  });
+  const want = (k, i) => {
+    const c = rule?.columns?.[k];
+    if (c != null) return String(c);
+    const v = options()[Math.min(i, f.guess.columns.length - 1)]?.value;
+    return v;
+  };
+  ['t', ...spec.needs].forEach((k, i) => {
+    const sel = el('select', {}, ...options());
+    sel.dataset.col = k;
+    sel.value = want(k, i);
+    box.append(el('label', {}, k === 't' ? 'time ' : `${k} `, sel));
+  });
+  const tu = el('select', {}, ...choices.time_units.map((u) => new Option(u === 'us' ? 'µs' : u, u)));
+  tu.dataset.k = 'time_unit';
+  tu.value = rule?.time_unit ?? 'ms';
+  box.append(el('label', {}, 'time in ', tu));
+  if (spec.units.length) {
+    const u = el('select', {}, ...spec.units.map((x) => new Option(x.replace('m/s2', 'm/s²').replace('uT', 'µT').replace('deg/s', '°/s'), x)));
+    u.dataset.k = 'unit';
+    u.value = rule?.sensor === sensor && rule?.unit ? rule.unit : spec.units[0];
+    box.append(el('label', {}, 'unit ', u));
+  }
+}
+
+function changed() {
+  clearTimeout(timer);
+  timer = setTimeout(() => form.preview(current()), 150);
+}
+
+/**
+ * Shows the form for the files of `description` (`Upload.describe`): `preview(json)` asks the
+ * worker for a preview, `run(json)` reads the files with the recipe.
+ */
+export function showForm(description, { preview, run }) {
+  const box = $('recipe-form');
+  const draft = description.draft ?? { files: [] };
+  form = {
+    files: description.files.map((guess) => ({ guess, rule: draft.files.find((r) => r.match === base(guess.name)) })),
+    preview,
+    run,
+  };
+  const sensors = recipe_choices().sensors.map((s) => s.sensor);
+  const list = el('div', { className: 'recipe-files' });
+  for (const f of form.files) {
+    const g = f.guess;
+    const fs = el('fieldset', { className: 'recipe-file' });
+    fs.dataset.file = g.name;
+    const sensor = el('select', {}, new Option('not used', ''), ...sensors.map((s) => new Option(s.replace('-', ' '), s)));
+    sensor.dataset.k = 'sensor';
+    sensor.value = f.rule?.sensor ?? '';
+    const first = g.first[0]?.join(', ') ?? '';
+    fs.append(el('legend', { textContent: base(g.name) }),
+      el('p', { className: 'hint', textContent: `${DELIMITERS[g.delimiter] ?? g.delimiter}, ${g.header ? `header: ${g.columns.join(', ')}` : 'no header'}${first ? ` · first row: ${first}` : ''}` }),
+      el('div', { className: 'controls' }, el('label', {}, 'sensor ', sensor), el('span', { className: 'recipe-fields controls' })));
+    sensor.addEventListener('change', () => { fields(fs, f, f.rule); changed(); });
+    list.append(fs);
+    fields(fs, f, f.rule);
+  }
+  list.addEventListener('change', (e) => { if (e.target.dataset.k !== 'sensor') changed(); });
+  const name = el('input', { id: 'recipe-name', type: 'text', value: 'my logger', maxLength: 100 });
+  name.setAttribute('aria-label', 'Recipe name');
+  const runB = el('button', { id: 'recipe-run', type: 'button', className: 'primary', textContent: 'Read with this mapping' });
+  const saveB = el('button', { id: 'recipe-save', type: 'button', textContent: 'Save as recipe' });
+  const dlB = el('button', { id: 'recipe-download', type: 'button', className: 'small', textContent: 'Download recipe (JSON)' });
+  runB.addEventListener('click', () => form.run(current()));
+  saveB.addEventListener('click', () => {
+    const msg = $('recipe-saved');
+    try {
+      save(current());
+      msg.className = 'hint';
+      msg.textContent = `Saved as recipe "${JSON.parse(current()).name}" on this device: files that match it are read with it from now on.`;
+    } catch (err) {
+      msg.className = 'error';
+      msg.textContent = String(err?.message ?? err);
+    }
+  });
+  dlB.addEventListener('click', () => {
+    try {
+      const text = recipe_normalise(current());
+      download(text, `${JSON.parse(text).name.replace(/[^\w.-]+/g, '_')}.recipe.json`, 'application/json');
+    } catch (err) { $('recipe-saved').textContent = String(err?.message ?? err); }
+  });
+  box.replaceChildren(
+    el('h3', { textContent: 'Describe these files' }),
+    el('p', { className: 'hint', textContent: 'No known recorder wrote these files. Say what each holds: the preview below shows the first rows as they will be read, in SI units, and warns when a unit looks wrong. The same mapping works with pdr run --recipe FILE.' }),
+    list,
+    el('div', { className: 'controls' }, el('label', {}, 'name ', name), runB, saveB, dlB),
+    el('p', { id: 'recipe-saved', className: 'hint' }),
+    el('ul', { id: 'recipe-warnings', className: 'messages', ariaLive: 'polite' }),
+    el('div', { id: 'recipe-preview' }),
+  );
+  box.hidden = false;
+  preview(current());
+}
+
+/** Hides the form (a new upload). */
+export function hideForm() {
+  $('recipe-form').hidden = true;
+  $('recipe-form').replaceChildren();
+  form = null;
+}
+
+const fmt = (v) => (Math.abs(v) >= 1e6 ? v.toFixed(3) : Number(v.toPrecision(6)).toString());
+
+/** Shows the worker's preview: `{report}` or `{error}`. */
+export function showPreview(result) {
+  if (!form) return;
+  const warnings = $('recipe-warnings');
+  const box = $('recipe-preview');
+  warnings.replaceChildren();
+  box.replaceChildren();
+  $('recipe-run').disabled = !!result.error;
+  if (result.error) {
+    warnings.append(el('li', { className: 'error', textContent: result.error }));
+    return;
+  }
+  const r = result.report;
+  for (const w of r.warnings) warnings.append(el('li', { className: 'warn', textContent: w }));
+  for (const n of r.notes) warnings.append(el('li', { className: 'note', textContent: n }));
+  for (const f of r.files) {
+    const head = el('tr', {}, ...f.columns.map((c) => el('th', { textContent: c })));
+    const rows = f.rows.map((row) => el('tr', {}, ...row.map((v) => el('td', { textContent: fmt(v) }))));
+    const facts = [`${f.sensor}`, `${f.samples.toLocaleString('en')} samples previewed`];
+    if (f.rate_hz != null) facts.push(`${fmt(f.rate_hz)} Hz`);
+    if (f.median != null) facts.push(`median |v| ${fmt(f.median)}`);
+    if (f.skipped) facts.push(`${f.skipped} lines skipped (${f.errors[0]?.message ?? ''})`);
+    box.append(el('div', { className: 'recipe-table' },
+      el('h4', { textContent: `${base(f.file)} — ${facts.join(' · ')}` }),
+      el('table', {}, el('thead', {}, head), el('tbody', {}, ...rows))));
+  }
+}
