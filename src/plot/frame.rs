@@ -130,9 +130,6 @@ pub(crate) fn map_chart_over<'a, DB: DrawingBackend>(
     area.fill(&theme.background)?;
     let (w, h) = area.dim_in_pixel();
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
-    let font = ("sans-serif", 13.0 * scale)
-        .into_font()
-        .color(&theme.foreground);
     let label_area = px(34.0);
     let plot_w = (w as f64 - label_area as f64 - px(12.0) as f64).max(10.0);
     let plot_h = (h as f64 - label_area as f64 - px(12.0) as f64).max(10.0);
@@ -148,18 +145,61 @@ pub(crate) fn map_chart_over<'a, DB: DrawingBackend>(
     if let Some(under) = under {
         under(area, &frame_of(&chart))?;
     }
-    chart
-        .configure_mesh()
-        .light_line_style(TRANSPARENT)
+    axes(&mut chart, true, theme, scale)?;
+    Ok(chart)
+}
+
+/// A map's axes and their labels, with the grid when `grid`.
+fn axes<DB: DrawingBackend>(
+    chart: &mut MapChart<'_, DB>,
+    grid: bool,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let font = ("sans-serif", 13.0 * scale)
+        .into_font()
+        .color(&theme.foreground);
+    let mut mesh = chart.configure_mesh();
+    mesh.light_line_style(TRANSPARENT)
         .bold_line_style(theme.grid)
         .axis_style(theme.foreground)
         .label_style(font)
         .x_labels(6)
         .y_labels(6)
         .x_label_formatter(&|v| tick(*v, 0))
-        .y_label_formatter(&|v| tick(*v, 0))
-        .draw()?;
-    Ok(chart)
+        .y_label_formatter(&|v| tick(*v, 0));
+    if !grid {
+        mesh.disable_mesh();
+    }
+    mesh.draw()
+}
+
+/// Masks what the series drew past the plotting area and draws the axes again: plotters does
+/// not clip, so a zoomed map's track, or a far fix's accuracy ring, would cover the axes and
+/// their labels.
+fn mask_margins<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    chart: &mut MapChart<'_, DB>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let (w, h) = area.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    let (ox, oy) = area.get_base_pixel();
+    let (rx, ry) = chart.plotting_area().get_pixel_range();
+    let (l, r, t, b) = (rx.start - ox, rx.end - ox, ry.start - oy, ry.end - oy);
+    let fill = theme.background.filled();
+    for (a, c) in [
+        ((0, 0), (w, t - 1)),
+        ((0, b), (w, h)),
+        ((0, 0), (l - 1, h)),
+        ((r, 0), (w, h)),
+    ] {
+        if a.0 <= c.0 && a.1 <= c.1 {
+            area.draw(&Rectangle::new([a, c], fill))?;
+        }
+    }
+    axes(chart, false, theme, scale)
 }
 
 /// Where a chart draws: its plotting area in pixels and the metres it shows.
@@ -175,13 +215,16 @@ pub(crate) fn frame_of<DB: DrawingBackend>(chart: &MapChart<'_, DB>) -> MapFrame
     }
 }
 
-/// A north arrow (top right) and a scale bar (bottom left) over the map, in pixel space.
+/// Finishes a map once its series are drawn: masks what spilled past the plotting area (see
+/// [`mask_margins`]), then a north arrow (top right) and a scale bar (bottom left) over the
+/// map, in pixel space.
 pub(crate) fn north_and_scale<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
-    chart: &MapChart<'_, DB>,
+    chart: &mut MapChart<'_, DB>,
     theme: &Theme,
     scale: f64,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    mask_margins(area, chart, theme, scale)?;
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
     let font = ("sans-serif", 13.0 * scale)
         .into_font()

@@ -87,7 +87,7 @@ pub fn draw_fusion<DB: DrawingBackend>(
         entries.push(("true path", Mark::Line(theme.reference)));
     }
     legend(area, &chart, &entries, theme, scale)?;
-    north_and_scale(area, &chart, theme, scale)?;
+    north_and_scale(area, &mut chart, theme, scale)?;
     credit_line(area, &chart, basemap.as_deref(), theme, scale)
 }
 

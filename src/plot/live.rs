@@ -128,7 +128,7 @@ pub fn draw_live<DB: DrawingBackend>(
     if !entries.is_empty() {
         legend(area, &chart, &entries, theme, scale)?;
     }
-    north_and_scale(area, &chart, theme, scale)?;
+    north_and_scale(area, &mut chart, theme, scale)?;
     credit_line(area, &chart, basemap.as_deref(), theme, scale)
 }
 

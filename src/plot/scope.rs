@@ -68,14 +68,7 @@ pub fn draw_scope<DB: DrawingBackend>(
         .x_labels(6)
         .y_labels(3)
         .x_label_formatter(&|v| format!("{v:.0} s"))
-        // ±1 only: the lane is a few labels high.
-        .y_label_formatter(&|v: &f64| {
-            if v.abs() > 0.5 {
-                format!("{v:.0}")
-            } else {
-                String::new()
-            }
-        })
+        .y_label_formatter(&pll_lane_label)
         .draw()?;
     let rel = |t: f64| t - now;
     let visible = |t: f64| rel(t) >= -span_s && rel(t) <= 0.0;
@@ -135,4 +128,14 @@ pub fn draw_scope<DB: DrawingBackend>(
         x += px(32.0) as i32 + w as i32;
     }
     Ok(())
+}
+
+/// The label of a PLL lane's axis (live scope and upload plot): ±1 only, the lane being a few
+/// labels high.
+pub(crate) fn pll_lane_label(v: &f64) -> String {
+    if v.abs() > 0.5 {
+        format!("{v:.0}")
+    } else {
+        String::new()
+    }
 }

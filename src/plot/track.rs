@@ -37,7 +37,7 @@ pub fn draw_track<DB: DrawingBackend>(
         ShapeStyle::from(&theme.track).stroke_width(px(3.0)),
     ))?;
     start_end(&mut chart, &path, theme, scale)?;
-    north_and_scale(area, &chart, theme, scale)
+    north_and_scale(area, &mut chart, theme, scale)
 }
 
 #[cfg(test)]

@@ -132,7 +132,7 @@ pub fn draw_map<DB: DrawingBackend>(
         entries.push(("truth (aligned)", Mark::Line(theme.reference)));
     }
     legend(area, &chart, &entries, theme, scale)?;
-    north_and_scale(area, &chart, theme, scale)?;
+    north_and_scale(area, &mut chart, theme, scale)?;
     let (rx, ry) = chart.plotting_area().get_pixel_range();
     if a.has_steps_without_any_heading() {
         let font = ("sans-serif", 13.0 * scale)
@@ -154,6 +154,56 @@ pub fn draw_map<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Zoomed into the middle of a walk, the tracks and the fixes' rings run far past the
+    /// plotting area: nothing of them may be left over the axes, labels or margins (plotters
+    /// does not clip; `north_and_scale` masks the margins and draws the axes again).
+    #[test]
+    fn a_zoomed_map_draws_nothing_past_its_plotting_area() {
+        use crate::plot::raster;
+        let s = crate::sim::scenarios::gnss_city_walk();
+        let mut log = crate::io::import::Log::new("demo.pdrlog", crate::io::import::Format::PdrLog);
+        log.records = s.generate().records;
+        let a = crate::analysis::analyse(&log, &Default::default(), &mut |_, _| {}).unwrap();
+        let t = crate::plot::theme::Theme::LIGHT;
+        let (w, h) = (500usize, 400usize);
+        let (r, px) = raster::new(w as u32, h as u32);
+        let (e, n) = a.step_position(a.steps.len() / 2).unwrap();
+        let bounds = (e - 10.0, e + 10.0, n - 8.0, n + 8.0);
+        let f = draw_map(
+            &r.into_drawing_area(),
+            &a,
+            Some(bounds),
+            None,
+            None,
+            &t,
+            1.0,
+        )
+        .unwrap();
+        let (l, rt, tp, b) = f.px;
+        let series = [t.track, t.pdr, t.smoothed, t.gnss, t.reference];
+        let mut inside = 0;
+        let mut outside = Vec::new();
+        for (i, p) in px.borrow().iter().enumerate() {
+            let (x, y) = ((i % w) as i32, (i / w) as i32);
+            if !series.iter().any(|c| *p == (c.0, c.1, c.2)) {
+                continue;
+            }
+            if x >= l && x < rt && y >= tp && y < b {
+                inside += 1;
+            } else {
+                outside.push((x, y));
+            }
+        }
+        assert!(inside > 200, "the zoomed map shows the walk: {inside} px");
+        assert!(
+            outside.is_empty(),
+            "{} series pixels past the plotting area {:?}, e.g. {:?}",
+            outside.len(),
+            f.px,
+            &outside[..outside.len().min(5)]
+        );
+    }
 
     #[test]
     fn picks_the_step_under_the_pointer() {

@@ -424,14 +424,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             .x_labels(8)
             .y_labels(3)
             .x_label_formatter(&time_label)
-            // ±1 only: the lane is a few labels high.
-            .y_label_formatter(&|v: &f64| {
-                if v.abs() > 0.5 {
-                    format!("{v:.0}")
-                } else {
-                    String::new()
-                }
-            })
+            .y_label_formatter(&crate::plot::scope::pll_lane_label)
             .draw()?;
         if step_lines {
             pll.draw_series(steps_in.iter().map(|s| {
