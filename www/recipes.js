@@ -56,35 +56,44 @@ function el(tag, props = {}, ...children) {
 const base = (name) => name.split('/').pop();
 const DELIMITERS = { comma: 'comma-separated', tab: 'tab-separated', semicolon: 'semicolon-separated', whitespace: 'space-separated' };
 
-let form = null; // {files: [{guess, rule}], preview(json), run(json)}
+let form = null; // {files: [{guess, rules}], preview(json), run(json)}
 let timer = 0;
 
-/** The recipe the form describes now (files marked "not used" left out). */
+/**
+ * The recipe the form describes now: an entry for each sensor of each file (a file may hold
+ * several, e.g. `t, ax, ay, az, gx, gy, gz`); sensors marked "not used" left out.
+ */
 function current() {
   const box = $('recipe-form');
   const files = [];
   for (const f of form.files) {
     const fs = box.querySelector(`fieldset[data-file="${CSS.escape(f.guess.name)}"]`);
-    const get = (k) => fs.querySelector(`[data-k="${k}"]`)?.value;
-    const sensor = get('sensor');
-    if (!sensor) continue;
-    const columns = {};
-    for (const s of fs.querySelectorAll('[data-col]')) {
-      columns[s.dataset.col] = f.guess.header ? s.value : Number(s.value);
+    for (const row of fs.querySelectorAll('.recipe-sensor')) {
+      const get = (k) => row.querySelector(`[data-k="${k}"]`)?.value;
+      const sensor = get('sensor');
+      if (!sensor) continue;
+      const columns = {};
+      for (const s of row.querySelectorAll('[data-col]')) {
+        columns[s.dataset.col] = f.guess.header ? s.value : Number(s.value);
+      }
+      const rule = { match: base(f.guess.name), sensor, delimiter: f.guess.delimiter, header: f.guess.header, columns, time_unit: get('time_unit') };
+      const unit = get('unit');
+      if (unit) rule.unit = unit;
+      files.push(rule);
     }
-    const rule = { match: base(f.guess.name), sensor, delimiter: f.guess.delimiter, header: f.guess.header, columns, time_unit: get('time_unit') };
-    const unit = get('unit');
-    if (unit) rule.unit = unit;
-    files.push(rule);
   }
   return JSON.stringify({ recipe: 1, name: $('recipe-name').value.trim() || 'my logger', files });
 }
 
-/** The column and unit selects of one file, for its sensor. */
-function fields(fs, f, rule) {
+/**
+ * The column and unit selects of one sensor row of a file, for its sensor. Without a rule, the
+ * columns follow the time column in order, the `index`-th sensor of the file three columns on
+ * from the one before it.
+ */
+function fields(row, f, rule, index) {
   const choices = recipe_choices();
-  const sensor = fs.querySelector('[data-k="sensor"]').value;
-  const box = fs.querySelector('.recipe-fields');
+  const sensor = row.querySelector('[data-k="sensor"]').value;
+  const box = row.querySelector('.recipe-fields');
   box.replaceChildren();
   if (!sensor) return;
   const spec = choices.sensors.find((c) => c.sensor === sensor);
@@ -96,8 +105,8 @@ function fields(fs, f, rule) {
   const want = (k, i) => {
     const c = rule?.columns?.[k];
     if (c != null) return String(c);
-    const v = options()[Math.min(i, f.guess.columns.length - 1)]?.value;
-    return v;
+    const at = i === 0 ? 0 : i + 3 * index;
+    return options()[Math.min(at, f.guess.columns.length - 1)]?.value;
   };
   ['t', ...spec.needs].forEach((k, i) => {
     const sel = el('select', {}, ...options());
@@ -130,7 +139,7 @@ export function showForm(description, { preview, run }) {
   const box = $('recipe-form');
   const draft = description.draft ?? { files: [] };
   form = {
-    files: description.files.map((guess) => ({ guess, rule: draft.files.find((r) => r.match === base(guess.name)) })),
+    files: description.files.map((guess) => ({ guess, rules: draft.files.filter((r) => r.match === base(guess.name)) })),
     preview,
     run,
   };
@@ -140,16 +149,25 @@ export function showForm(description, { preview, run }) {
     const g = f.guess;
     const fs = el('fieldset', { className: 'recipe-file' });
     fs.dataset.file = g.name;
-    const sensor = el('select', {}, new Option('not used', ''), ...sensors.map((s) => new Option(s.replace('-', ' '), s)));
-    sensor.dataset.k = 'sensor';
-    sensor.value = f.rule?.sensor ?? '';
     const first = g.first[0]?.join(', ') ?? '';
+    const rows = el('div', { className: 'recipe-sensors' });
+    const addRow = (rule) => {
+      const index = rows.children.length;
+      const sensor = el('select', {}, new Option('not used', ''), ...sensors.map((s) => new Option(s.replace('-', ' '), s)));
+      sensor.dataset.k = 'sensor';
+      sensor.value = rule?.sensor ?? '';
+      const row = el('div', { className: 'recipe-sensor controls' }, el('label', {}, 'sensor ', sensor), el('span', { className: 'recipe-fields controls' }));
+      sensor.addEventListener('change', () => { fields(row, f, rule, index); changed(); });
+      rows.append(row);
+      fields(row, f, rule, index);
+    };
+    const more = el('button', { type: 'button', className: 'small recipe-more', textContent: '+ another sensor in this file' });
+    more.addEventListener('click', () => { addRow(null); changed(); });
     fs.append(el('legend', { textContent: base(g.name) }),
       el('p', { className: 'hint', textContent: `${DELIMITERS[g.delimiter] ?? g.delimiter}, ${g.header ? `header: ${g.columns.join(', ')}` : 'no header'}${first ? ` · first row: ${first}` : ''}` }),
-      el('div', { className: 'controls' }, el('label', {}, 'sensor ', sensor), el('span', { className: 'recipe-fields controls' })));
-    sensor.addEventListener('change', () => { fields(fs, f, f.rule); changed(); });
+      rows, more);
     list.append(fs);
-    fields(fs, f, f.rule);
+    for (const rule of f.rules.length ? f.rules : [null]) addRow(rule);
   }
   list.addEventListener('change', (e) => { if (e.target.dataset.k !== 'sensor') changed(); });
   const name = el('input', { id: 'recipe-name', type: 'text', value: 'my logger', maxLength: 100 });

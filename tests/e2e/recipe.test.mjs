@@ -138,3 +138,50 @@ test('a recipe uploaded beside its files is applied to them', async () => {
     await context.close();
   }
 });
+
+test('one file with several sensors: a row per sensor, run, and the downloaded recipe reads the same', async () => {
+  // t, ax, ay, az, gx, gy, gz in one header-less file, joined from the simulated folder.
+  const { folder } = plainFolder();
+  const acc = readFileSync(path.join(folder, 'acc.csv'), 'utf8').trim().split('\n');
+  const gyr = readFileSync(path.join(folder, 'gyr.csv'), 'utf8').trim().split('\n');
+  assert.equal(acc.length, gyr.length);
+  const lines = acc.map((a, i) => {
+    const [t, ...g] = gyr[i].split(',');
+    assert.equal(a.split(',')[0], t, `line ${i + 1}: the same time in both files`);
+    return `${a},${g.join(',')}`;
+  });
+  const dir = mkdtempSync(path.join(tmp, 'imu-'));
+  const file = path.join(dir, 'imu.csv');
+  writeFileSync(file, `${lines.join('\n')}\n`);
+  const { context, page, errors } = await openPage(browser(), URL_HTTP, { options: { viewport: { width: 1100, height: 900 }, acceptDownloads: true } });
+  try {
+    await page.setInputFiles('#upload-files', file);
+    await done(page);
+    await page.locator('#recipe-form').waitFor({ state: 'visible' });
+    const fs = page.locator('fieldset.recipe-file[data-file$="imu.csv"]');
+    // No sensor in the name: nothing guessed. The accelerometer on columns 2–4, then a second
+    // row for the gyroscope, which takes the next three columns (5–7).
+    await fs.locator('.recipe-sensor').nth(0).locator('select[data-k="sensor"]').selectOption('accelerometer');
+    await fs.locator('.recipe-more').click();
+    await fs.locator('.recipe-sensor').nth(1).locator('select[data-k="sensor"]').selectOption('gyroscope');
+    const cols = await fs.locator('.recipe-sensor').nth(1).locator('[data-col]').evaluateAll((s) => s.map((x) => `${x.dataset.col}=${x.value}`));
+    assert.deepEqual(cols, ['t=1', 'x=5', 'y=6', 'z=7']);
+    await page.waitForFunction(() => document.querySelectorAll('.recipe-table').length === 2);
+    assert.deepEqual(await warnings(page), [], 'right columns and units: no warning');
+    const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#recipe-download')]);
+    const saved = path.join(dir, 'imu.recipe.json');
+    await dl.saveAs(saved);
+    assert.deepEqual(JSON.parse(readFileSync(saved, 'utf8')).files.map((f) => [f.match, f.sensor]), [['imu.csv', 'accelerometer'], ['imu.csv', 'gyroscope']]);
+    await fs.screenshot({ path: path.join(ARTIFACTS, 'recipe-two-sensors-desktop.png') });
+    await page.click('#recipe-run');
+    await done(page);
+    const logs = await page.evaluate(() => window.__pdrUpload.logs);
+    const native = execFileSync(BIN, ['run', file, '--recipe', saved], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
+    const steps = Number(native.match(/^steps\s+(\d+)/m)[1]);
+    assert.ok(steps > 50, `${steps} steps`);
+    assert.equal(logs[0].a.steps, steps, 'the page counts the steps pdr run --recipe counts');
+    assert.deepEqual(errors, []);
+  } finally {
+    await context.close();
+  }
+});
