@@ -48,15 +48,21 @@ impl Pipeline {
         }
     }
 
-    /// Foot recognised: the step detector's steps so far give way to the strides.
-    fn become_foot(&mut self) {
-        self.placement = Placement::Foot;
+    /// The step detector's steps so far, their counts and the position they reached, forgotten:
+    /// strides (foot mode, or a second, foot-mounted sensor) take their place.
+    pub(super) fn forget_body_steps(&mut self) {
         self.steps.clear();
         self.diag.steps = 0;
         self.diag.onset_steps = 0;
         self.diag.steps_without_heading = 0;
         self.diag.distance_m = 0.0;
         self.pos = (0.0, 0.0);
+    }
+
+    /// Foot recognised: the step detector's steps so far give way to the strides.
+    fn become_foot(&mut self) {
+        self.placement = Placement::Foot;
+        self.forget_body_steps();
         for st in std::mem::take(&mut self.pending) {
             self.emit_stride(st);
         }

@@ -60,12 +60,7 @@ impl Pipeline {
                 last_t: None,
                 last_stride_t: None,
             });
-            self.steps.clear();
-            self.diag.steps = 0;
-            self.diag.onset_steps = 0;
-            self.diag.steps_without_heading = 0;
-            self.diag.distance_m = 0.0;
-            self.pos = (0.0, 0.0);
+            self.forget_body_steps();
         }
         let first = self.steps.len();
         let gap_s = self.cfg.gap_s;
