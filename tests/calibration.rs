@@ -7,6 +7,8 @@ use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::{scenarios, Scenario};
 use wasm_bindgen_test::wasm_bindgen_test;
 
+mod common;
+
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 /// The walker's true line.
@@ -135,33 +137,14 @@ fn wizard_walk_session(
     metres: f64,
     seed: u64,
 ) -> (CalibrationWalk, pdr::live::LiveSession) {
-    use pdr::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
+    use pdr::live::{LiveSession, Platform};
     let sim = Scenario {
         seed,
         ..scenarios::calibration_walk(f, metres, A, B)
     }
     .generate();
     let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
-    for ev in browser_events(&sim.records, Platform::Android) {
-        if let BrowserEvent::Motion {
-            t,
-            x,
-            y,
-            z,
-            alpha,
-            beta,
-            gamma,
-            ..
-        } = ev
-        {
-            live.push_motion(&MotionEvent {
-                time_stamp_ms: t,
-                accel: Some([x, y, z]),
-                rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
-            })
-            .unwrap();
-        }
-    }
+    common::push_motion_only(&mut live, &sim.records, Platform::Android);
     assert_eq!(live.fuzzy_lengths().len(), live.step_freqs().len());
     let walk = CalibrationWalk {
         distance_m: sim.truth.distance_m,

@@ -10,28 +10,8 @@ use wasm_bindgen_test::wasm_bindgen_test;
 
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
-fn run(sim: &Simulation, cfg: PipelineConfig) -> Vec<StepRecord> {
-    let r = replay(cfg, &sim.records).expect("valid config");
-    assert!(
-        r.errors.is_empty(),
-        "clean input refused: {:?}",
-        r.errors.first()
-    );
-    r.pipeline.track().to_vec()
-}
-
-/// Allowed count error: ±1 step per 100 (at least 1).
-fn tolerance(truth: usize) -> usize {
-    (truth / 100).max(1)
-}
-
-fn assert_count(label: &str, counted: usize, truth: usize) {
-    let err = counted.abs_diff(truth);
-    assert!(
-        err <= tolerance(truth),
-        "{label}: counted {counted} steps, truth {truth}"
-    );
-}
+mod common;
+use common::{assert_count, run};
 
 /// Mean absolute heading error in degrees over the steps of the walking bout, skipping the first
 /// two steps (the two-step average needs a previous step).
@@ -66,15 +46,7 @@ fn pll_counts_walking_and_running_cadences() {
 
 #[wasm_bindgen_test(unsupported = test)]
 fn pll_follows_cadence_changes() {
-    let sc = Scenario::new(vec![
-        Segment::still(3.0),
-        Segment::walk(25.0, 1.6),
-        Segment::walk(10.0, 1.6).ramp_to(2.1),
-        Segment::walk(25.0, 2.1),
-        Segment::walk(4.0, 2.1).ramp_to(2.9),
-        Segment::run(20.0, 2.9),
-        Segment::still(3.0),
-    ]);
+    let sc = common::cadence_change();
     let sim = sc.generate();
     let track = run(&sim, PipelineConfig::default());
     assert_count("cadence change", track.len(), sim.truth.steps.len());

@@ -10,13 +10,15 @@
 // Tolerances computed with std's `cos` and `hypot` are fine in tests (see clippy.toml).
 #![allow(clippy::disallowed_methods)]
 
-use pdr::engine::types::{GnssFix, ImuSample};
 use pdr::engine::OrientationSource;
 use pdr::engine::{replay, PipelineConfig, Record};
 use pdr::io::import::{import_all, Format, Log, MemSet, Platform};
 use pdr::sim::formats::{self, Recording};
 use pdr::sim::{scenarios, Simulation};
 use std::sync::OnceLock;
+
+mod common;
+use common::{fixes, imu};
 
 fn demo() -> &'static Simulation {
     static S: OnceLock<Simulation> = OnceLock::new();
@@ -248,28 +250,6 @@ fn check_value<T: std::fmt::Debug + Copy>(
         (None, _) if !carried => {}
         (a, b) => panic!("{name}: sample {i} {what} {a:?} vs {b:?}"),
     }
-}
-
-/// The IMU samples of a list of records.
-fn imu(records: &[Record]) -> Vec<ImuSample> {
-    records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Imu(s) => Some(*s),
-            _ => None,
-        })
-        .collect()
-}
-
-/// The fixes of a list of records.
-fn fixes(records: &[Record]) -> Vec<GnssFix> {
-    records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Gnss(f) => Some(*f),
-            _ => None,
-        })
-        .collect()
 }
 
 /// Expected ground-truth waypoints: the start of the true path, every 10 s, and its end.

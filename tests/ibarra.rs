@@ -27,19 +27,8 @@ fn fuzzy(scale: f64) -> PipelineConfig {
     }
 }
 
-fn run(sim: &Simulation, cfg: PipelineConfig) -> Vec<StepRecord> {
-    let r = replay(cfg, &sim.records).expect("valid config");
-    assert!(r.errors.is_empty(), "clean input refused");
-    r.pipeline.track().to_vec()
-}
-
-/// ±1 step per 100 (at least 1), as the PLL's and peak counter's tests in `tests/engine.rs`.
-fn assert_count(label: &str, counted: usize, truth: usize) {
-    assert!(
-        counted.abs_diff(truth) <= (truth / 100).max(1),
-        "{label}: counted {counted} steps, truth {truth}"
-    );
-}
+mod common;
+use common::{assert_count, run};
 
 #[wasm_bindgen_test(unsupported = test)]
 fn zero_crossing_counts_walking_and_running_cadences() {
@@ -63,15 +52,7 @@ fn zero_crossing_counts_walking_and_running_cadences() {
 
 #[wasm_bindgen_test(unsupported = test)]
 fn zero_crossing_counts_the_demo_walk_and_cadence_changes() {
-    let sc = Scenario::new(vec![
-        Segment::still(3.0),
-        Segment::walk(25.0, 1.6),
-        Segment::walk(10.0, 1.6).ramp_to(2.1),
-        Segment::walk(25.0, 2.1),
-        Segment::walk(4.0, 2.1).ramp_to(2.9),
-        Segment::run(20.0, 2.9),
-        Segment::still(3.0),
-    ]);
+    let sc = common::cadence_change();
     let sim = sc.generate();
     assert_count(
         "cadence change",

@@ -7,9 +7,8 @@
 #![allow(clippy::disallowed_methods)]
 
 mod common;
-use common::peak_rss;
+use common::{fixes, imu, peak_rss};
 use nalgebra::Vector3;
-use pdr::engine::types::ImuSample;
 use pdr::engine::Record;
 use pdr::io::import::{import_all, DirSet, Format, Log, MemSet, Platform, ZipSet};
 use pdr::io::pdrlog;
@@ -69,26 +68,6 @@ fn one(results: Vec<Result<Log, ParseError>>) -> Log {
     let log = results.into_iter().next().unwrap().unwrap();
     assert_sane(&log);
     log
-}
-
-fn imu(log: &Log) -> Vec<ImuSample> {
-    log.records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Imu(s) => Some(*s),
-            _ => None,
-        })
-        .collect()
-}
-
-fn fixes(log: &Log) -> Vec<pdr::engine::types::GnssFix> {
-    log.records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Gnss(f) => Some(*f),
-            _ => None,
-        })
-        .collect()
 }
 
 /// Finite values everywhere, records in time order, warnings naming a file.
@@ -151,7 +130,7 @@ fn sensor_logger_android_folder() {
     assert_eq!(log.format, Format::SensorLogger);
     assert_eq!(log.platform, Some(Platform::Android));
     assert_eq!(log.source, "rec");
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 40, "40 good accelerometer lines, one bad");
     // ns → s, on the `time` clock with no offset.
     assert!(close(s[0].t, 1698745673.473, 1e-6), "{}", s[0].t);
@@ -170,7 +149,7 @@ fn sensor_logger_android_folder() {
     assert!(s[5].mag.is_some());
     assert!(s[0].orientation.is_some());
     // Location: one fix of three has a negative accuracy.
-    let f = fixes(&log);
+    let f = fixes(&log.records);
     assert_eq!(f.len(), 2);
     assert_eq!(f[0].h_accuracy_m, 4.7);
     assert_eq!(f[0].bearing_deg, Some(271.5));
@@ -220,7 +199,7 @@ fn sensor_logger_columns_matched_by_name() {
 fn sensor_logger_ios_g_units_flipped_to_android() {
     let log = one(import_mem(load("sensor_logger_ios", "")));
     assert_eq!(log.platform, Some(Platform::Ios));
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 30);
     // iOS gravity face up is −1 g on z; with user acceleration −(0.35 sin 0.4) g/9.80665 on x.
     // After import: Android sign, m/s²: z = +9.80665.
@@ -255,7 +234,7 @@ fn sensor_logger_ios_platform_detected_without_metadata() {
         .collect();
     let log = one(import_mem(files));
     assert_eq!(log.platform, Some(Platform::Ios), "g units mean iOS");
-    assert!(close(imu(&log)[0].accel.z, 9.80665, 1e-5));
+    assert!(close(imu(&log.records)[0].accel.z, 9.80665, 1e-5));
 }
 
 #[test]
@@ -278,7 +257,7 @@ fn sensor_logger_total_acceleration_and_old_header() {
     ];
     let log = one(import_mem(files));
     assert_eq!(log.platform, Some(Platform::Android));
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(
         s.len(),
         20,
@@ -314,8 +293,8 @@ fn sensor_logger_damaged_optional_file_is_a_warning() {
         })
         .collect();
     let log = one(import_mem(files));
-    assert_eq!(imu(&log).len(), 40);
-    assert!(imu(&log).iter().all(|s| s.mag.is_none()));
+    assert_eq!(imu(&log.records).len(), 40);
+    assert!(imu(&log.records).iter().all(|s| s.mag.is_none()));
     assert!(
         has_warning(&log, "rec/Magnetometer.csv", 1, None),
         "{:#?}",
@@ -344,7 +323,7 @@ fn sensor_logger_json() {
     let log = one(import_mem(load("sensor_logger.json", "")));
     assert_eq!(log.format, Format::SensorLoggerJson);
     assert_eq!(log.platform, Some(Platform::Android));
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 20);
     assert!(close(s[0].t, 1698745673.473, 1e-6));
     let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
@@ -355,7 +334,7 @@ fn sensor_logger_json() {
         "gyro not carried back"
     );
     assert!(s[0].orientation.unwrap().angle() < 1e-12);
-    assert_eq!(fixes(&log).len(), 1);
+    assert_eq!(fixes(&log.records).len(), 1);
     // The `n/a` element: field `z` named, line of the element.
     let w = &log.warnings[0];
     assert_eq!(w.file, "sensor_logger.json");
@@ -370,7 +349,7 @@ fn sensor_logger_json_cut_short_keeps_what_was_read() {
     let (name, bytes) = load("sensor_logger.json", "").remove(0);
     let cut = bytes[..bytes.len() * 2 / 3].to_vec();
     let log = one(import_mem(vec![(name, cut)]));
-    assert!(imu(&log).len() > 5);
+    assert!(imu(&log.records).len() > 5);
     assert!(log
         .warnings
         .iter()
@@ -386,7 +365,7 @@ fn phyphox_folder_and_zip() {
     let files = load("phyphox", "phyphox 2023-10-31 09-47-53/");
     let log = one(import_mem(files.clone()));
     assert_eq!(log.format, Format::Phyphox);
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 30);
     assert!(
         close(s[0].t, 0.0048, 1e-12),
@@ -396,7 +375,7 @@ fn phyphox_folder_and_zip() {
     assert!(s[0].gyro.is_some() && s[2].mag.is_some());
     assert!(close(s[5].gyro.unwrap().x, 0.05, 1e-12), "{:?}", s[5].gyro);
     assert!(close(s[2].mag.unwrap().y, -38.1, 1e-12));
-    let f = fixes(&log);
+    let f = fixes(&log.records);
     assert_eq!(f.len(), 2);
     assert_eq!(f[1].speed_mps, None, "NaN is a missing value");
     assert_eq!(f[0].altitude_m, Some(52.4));
@@ -414,7 +393,7 @@ fn phyphox_folder_and_zip() {
 #[test]
 fn phyphox_semicolon_and_decimal_comma() {
     let log = one(import_mem(load("phyphox_semicolon", "")));
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 25);
     assert!(close(s[0].t, 0.009364549, 1e-12));
     assert_eq!(s[0].accel, Vector3::new(0.05, 9.364549, 2.81));
@@ -438,7 +417,7 @@ fn phyphox_linear_acceleration_only_is_refused() {
 fn gnss_logger() {
     let log = one(import_mem(load("gnss_logger.txt", "")));
     assert_eq!(log.format, Format::GnssLogger);
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 30);
     // utcTimeMillis → s.
     assert!(close(s[0].t, 1698745673.473, 1e-9));
@@ -453,7 +432,7 @@ fn gnss_logger() {
     let q = s[0].orientation.unwrap();
     assert!((q * Vector3::y() - Vector3::x()).norm() < 1e-9);
     // Fixes: GPS preferred over FLP; the one without accuracy skipped.
-    let f = fixes(&log);
+    let f = fixes(&log.records);
     assert_eq!(f.len(), 2);
     assert_eq!(f[0].h_accuracy_m, 4.7);
     assert!(close(f[0].t, 1698745673.573, 1e-9));
@@ -476,7 +455,7 @@ fn gnss_logger_old_fix_layout() {
         "old.txt".into(),
         text.as_bytes().to_vec(),
     )]));
-    let f = fixes(&log);
+    let f = fixes(&log.records);
     assert_eq!(f.len(), 1);
     assert_eq!(
         (f[0].t, f[0].lat_deg, f[0].h_accuracy_m),
@@ -493,7 +472,7 @@ fn gnss_logger_old_fix_layout() {
 fn get_sensor_data() {
     let log = one(import_mem(load("get_sensor_data.txt", "")));
     assert_eq!(log.format, Format::GetSensorData);
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 30);
     // Spacing from SensorTimestamp (exactly 20 ms), placed on the app clock by the least delay
     // (4 ms for the first sample).
@@ -512,7 +491,7 @@ fn get_sensor_data() {
     let q = s[1].orientation.unwrap();
     assert!(close(q.angle(), 30f64.to_radians(), 1e-4), "{}", q.angle());
     // Each GNSS fix is written twice.
-    let f = fixes(&log);
+    let f = fixes(&log.records);
     assert_eq!(f.len(), 2);
     assert_eq!(f[0].h_accuracy_m, 4.0);
     // POSI → waypoints in metres east/north of the first.
@@ -546,13 +525,13 @@ fn pdr_log_every_record_kind() {
     assert_eq!(log.format, Format::PdrLog);
     assert_sane(&log);
     assert_eq!(log.skipped, 0);
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 300);
     // Optional groups: every third sample carries gyroscope, magnetometer and attitude.
     assert!(s[0].gyro.is_some() && s[0].mag.is_some() && s[0].orientation.is_some());
     assert!(s[1].gyro.is_none() && s[1].mag.is_none() && s[1].orientation.is_none());
     assert_eq!(s[0].mag.unwrap(), Vector3::new(20.5, -3.25, -40.0));
-    let f = fixes(&log);
+    let f = fixes(&log.records);
     assert_eq!(f.len(), 2);
     assert_eq!((f[0].altitude_m, f[1].altitude_m), (Some(12.0), None));
     assert_eq!(
@@ -573,7 +552,7 @@ fn pdr_log_bad_lines_name_line_and_field() {
         text.as_bytes().to_vec(),
     )]));
     assert_eq!(
-        imu(&log).len(),
+        imu(&log.records).len(),
         2,
         "the good lines before and after are kept"
     );
@@ -595,7 +574,7 @@ fn oxford_trace_folder() {
     assert_eq!(log.platform, Some(Platform::Android));
     assert_eq!(log.group.as_deref(), Some("FrontPocket"));
     assert_sane(&log);
-    let s = imu(&log);
+    let s = imu(&log.records);
     // Nanoseconds since boot become seconds on the same clock; gravity on +y stays.
     assert!(close(s[0].t, 263239.144953734, 1e-6), "{}", s[0].t);
     assert!(close(s[0].accel.y, 9.81, 1e-6));
@@ -611,7 +590,7 @@ fn ms_indoor_trace() {
     let log = one(import_mem(load("ms_indoor.txt", "")));
     assert_eq!(log.format, Format::MsIndoor);
     assert_sane(&log);
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(
         s.len(),
         400,
@@ -634,7 +613,7 @@ fn xio_foot_units() {
     assert_eq!(log.format, Format::XioFoot);
     assert!(log.truth.loop_closure);
     assert_sane(&log);
-    let s = imu(&log);
+    let s = imu(&log.records);
     assert_eq!(s.len(), 500);
     // g become m/s², deg/s become rad/s.
     assert!(close(s[0].accel.z, 9.80665, 1e-9));

@@ -11,6 +11,8 @@ use pdr::live::{
 use pdr::sim::scenarios;
 use wasm_bindgen_test::wasm_bindgen_test;
 
+mod common;
+
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 /// Feeds the events a phone of `platform` would fire for `records` to a session.
@@ -274,26 +276,7 @@ fn motion_waits_briefly_for_the_attitude_and_the_scope_keeps_ten_seconds() {
 
     // No attitude at all: after a second the engine goes on with the gyroscope (Madgwick).
     let mut live = LiveSession::new(PipelineConfig::default(), Platform::Android, 0.0).unwrap();
-    for ev in browser_events(&sim.records, Platform::Android) {
-        if let BrowserEvent::Motion {
-            t,
-            x,
-            y,
-            z,
-            alpha,
-            beta,
-            gamma,
-            ..
-        } = ev
-        {
-            live.push_motion(&MotionEvent {
-                time_stamp_ms: t,
-                accel: Some([x, y, z]),
-                rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
-            })
-            .unwrap();
-        }
-    }
+    common::push_motion_only(&mut live, &sim.records, Platform::Android);
     let r = live.readouts();
     assert_eq!(r.orientation, Some("madgwick"));
     assert!(!r.absolute_heading);

@@ -10,6 +10,9 @@ use pdr::sim::formats;
 use pdr::sim::scenarios;
 use std::f64::consts::PI;
 
+mod common;
+use common::imu;
+
 /// A recipe of one accelerometer file, header-less, columns 1–4, and a gyroscope file.
 fn recipe_json(delimiter: &str, time_unit: &str, acc_unit: &str, gyr_unit: &str) -> String {
     format!(
@@ -92,19 +95,9 @@ fn read(files: Vec<(String, Vec<u8>)>, recipe: &Recipe) -> (Log, Report) {
     r.pop().unwrap().expect("reads")
 }
 
-fn imu(log: &Log) -> Vec<pdr::engine::types::ImuSample> {
-    log.records
-        .iter()
-        .filter_map(|r| match r {
-            Record::Imu(s) => Some(*s),
-            _ => None,
-        })
-        .collect()
-}
-
 /// Checks that the log holds the signal to within the text's precision.
 fn same_as_signal(log: &Log) {
-    let s = imu(log);
+    let s = imu(&log.records);
     let want = signal();
     assert_eq!(s.len(), want.len());
     for (got, (t, a, g)) in s.iter().zip(&want) {
@@ -197,7 +190,7 @@ fn every_value_unit_converts() {
             );
             let r = Recipe::from_json(&json).unwrap();
             let (log, report) = read(files, &r);
-            let m = imu(&log)[10].mag.expect("mag merged");
+            let m = imu(&log.records)[10].mag.expect("mag merged");
             assert!(
                 (m - nalgebra::Vector3::new(20.0, -5.0, -40.0)).norm() < 1e-6,
                 "{unit}: {m}"
@@ -373,7 +366,7 @@ fn axes_remap_and_flip() {
        "time_unit": "s", "axes": ["-y", "x", "z"]}]}"#;
     let r = Recipe::from_json(json).unwrap();
     let (log, _) = read(vec![("rec/acc.csv".into(), acc.into_bytes())], &r);
-    for (s, (_, a, _)) in imu(&log).iter().zip(&sig) {
+    for (s, (_, a, _)) in imu(&log.records).iter().zip(&sig) {
         assert!((s.accel - nalgebra::Vector3::from(*a)).norm() < 1e-6);
     }
 }
@@ -494,7 +487,7 @@ fn linear_acceleration_gets_gravity_back() {
             ],
             &r,
         );
-        for (s, (_, a, _)) in imu(&log).iter().zip(&sig) {
+        for (s, (_, a, _)) in imu(&log.records).iter().zip(&sig) {
             assert!(
                 (s.accel - nalgebra::Vector3::from(*a)).norm() < 1e-6,
                 "{name}: {}",
@@ -773,7 +766,7 @@ fn one_file_of_several_sensors_reads_as_its_own_reader_does() {
     let (by_recipe, report) = read(files, &r);
     let native = pdr::io::import::xio::read_xio(&bytes[..], "walk.csv").unwrap();
     assert_eq!(by_recipe.records.len(), native.records.len());
-    for (a, b) in imu(&by_recipe).iter().zip(imu(&native)) {
+    for (a, b) in imu(&by_recipe.records).iter().zip(imu(&native.records)) {
         assert_eq!(a.t, b.t);
         assert!(
             (a.accel - b.accel).norm() < 1e-9,
@@ -850,7 +843,7 @@ fn describe_reads_headers_and_separators() {
     assert_eq!(units, ["us", "s"]);
     // The draft reads them: names for the headed file, numbers for the other; decimal commas.
     let (log, report) = read(files, &draft);
-    assert_eq!(imu(&log).len(), 3);
-    assert!((imu(&log)[0].accel.y - 9.8).abs() < 1e-12);
+    assert_eq!(imu(&log.records).len(), 3);
+    assert!((imu(&log.records)[0].accel.y - 9.8).abs() < 1e-12);
     assert_eq!(report.files[0].rows[0], vec![1.0, 0.1, 9.8, 0.2]);
 }

@@ -1,4 +1,11 @@
-//! Helpers shared by the native integration tests.
+//! Helpers shared by the integration tests (natively, and in Chromium for the wasm-bindgen
+//! tests). Each test crate uses some of them.
+#![allow(dead_code)]
+
+use pdr::engine::types::{GnssFix, ImuSample};
+use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
+use pdr::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
+use pdr::sim::{Scenario, Segment, Simulation};
 
 /// Peak resident memory of this process, bytes (Linux only; `None` elsewhere).
 pub fn peak_rss() -> Option<u64> {
@@ -11,4 +18,90 @@ pub fn peak_rss() -> Option<u64> {
         .parse()
         .ok()?;
     Some(kb * 1024)
+}
+
+/// The track of a simulated walk replayed with `cfg`, which must refuse none of its records.
+pub fn run(sim: &Simulation, cfg: PipelineConfig) -> Vec<StepRecord> {
+    let r = replay(cfg, &sim.records).expect("valid config");
+    assert!(
+        r.errors.is_empty(),
+        "clean input refused: {:?}",
+        r.errors.first()
+    );
+    r.pipeline.track().to_vec()
+}
+
+/// Allowed count error: ±1 step per 100 (at least 1).
+pub fn tolerance(truth: usize) -> usize {
+    (truth / 100).max(1)
+}
+
+/// A step count within [`tolerance`] of the truth.
+pub fn assert_count(label: &str, counted: usize, truth: usize) {
+    let err = counted.abs_diff(truth);
+    assert!(
+        err <= tolerance(truth),
+        "{label}: counted {counted} steps, truth {truth}"
+    );
+}
+
+/// A walk whose cadence changes: 1.6 Hz, ramp to 2.1 Hz, ramp to a 2.9 Hz run, with stills at
+/// both ends.
+pub fn cadence_change() -> Scenario {
+    Scenario::new(vec![
+        Segment::still(3.0),
+        Segment::walk(25.0, 1.6),
+        Segment::walk(10.0, 1.6).ramp_to(2.1),
+        Segment::walk(25.0, 2.1),
+        Segment::walk(4.0, 2.1).ramp_to(2.9),
+        Segment::run(20.0, 2.9),
+        Segment::still(3.0),
+    ])
+}
+
+/// The IMU samples of a list of records.
+pub fn imu(records: &[Record]) -> Vec<ImuSample> {
+    records
+        .iter()
+        .filter_map(|r| match r {
+            Record::Imu(s) => Some(*s),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The fixes of a list of records.
+pub fn fixes(records: &[Record]) -> Vec<GnssFix> {
+    records
+        .iter()
+        .filter_map(|r| match r {
+            Record::Gnss(f) => Some(*f),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Feeds the records to a live session as a browser's motion events alone (acceleration and
+/// rotation rate, no attitude event).
+pub fn push_motion_only(live: &mut LiveSession, records: &[Record], platform: Platform) {
+    for ev in browser_events(records, platform) {
+        if let BrowserEvent::Motion {
+            t,
+            x,
+            y,
+            z,
+            alpha,
+            beta,
+            gamma,
+            ..
+        } = ev
+        {
+            live.push_motion(&MotionEvent {
+                time_stamp_ms: t,
+                accel: Some([x, y, z]),
+                rotation_rate_deg_s: alpha.zip(beta).zip(gamma).map(|((a, b), g)| [a, b, g]),
+            })
+            .unwrap();
+        }
+    }
 }
