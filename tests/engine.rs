@@ -284,26 +284,16 @@ fn os_attitude_on_a_slower_stream_is_held() {
 }
 
 fn digest(track: &[StepRecord]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    let mut eat = |x: u64| {
-        for b in x.to_le_bytes() {
-            h ^= b as u64;
-            h = h.wrapping_mul(0x0100_0000_01b3);
-        }
-    };
-    for s in track {
-        for v in [
+    common::fnv1a(track.iter().flat_map(|s| {
+        [
             s.t,
             s.east_m,
             s.north_m,
             s.heading_rad.unwrap_or(-1.0),
             s.length_m,
             s.freq_hz,
-        ] {
-            eat(v.to_bits());
-        }
-    }
-    h
+        ]
+    }))
 }
 
 /// The demo walk's track, bit for bit. The same constant is checked natively and in Chromium, so

@@ -8,6 +8,8 @@ use pdr::engine::{replay, Pipeline, PipelineConfig};
 use pdr::sim::{scenarios, Simulation};
 use wasm_bindgen_test::wasm_bindgen_test;
 
+mod common;
+
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 fn run(sim: &Simulation, cfg: PipelineConfig) -> Pipeline {
@@ -165,16 +167,12 @@ fn energy_saving_switches_the_receiver_off_and_keeps_the_corrections() {
 
 /// FNV-1a over the bits of the fused and smoothed positions and corrections.
 fn digest(tracks: [&[FusedStep]; 2]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for s in tracks.into_iter().flatten() {
-        for v in [s.t, s.east_m, s.north_m, s.scale, s.bias_rad, s.cov[0]] {
-            for b in v.to_bits().to_le_bytes() {
-                h ^= b as u64;
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
-        }
-    }
-    h
+    common::fnv1a(
+        tracks
+            .into_iter()
+            .flatten()
+            .flat_map(|s| [s.t, s.east_m, s.north_m, s.scale, s.bias_rad, s.cov[0]]),
+    )
 }
 
 /// The fused and smoothed tracks, bit for bit: the same constant natively and in Chromium (the

@@ -10,6 +10,8 @@ use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
 use pdr::sim::{scenarios, Simulation};
 use wasm_bindgen_test::wasm_bindgen_test;
 
+mod common;
+
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 /// Angle between the true and estimated vertical, degrees.
@@ -353,22 +355,15 @@ fn every_real_log_runs_without_nan_refusal_or_restart() {
 
 /// FNV-1a over the bits of a track's steps.
 fn digest(track: &[StepRecord]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for s in track {
-        for v in [
+    common::fnv1a(track.iter().flat_map(|s| {
+        [
             s.t,
             s.east_m,
             s.north_m,
             s.heading_rad.unwrap_or(-1.0),
             s.length_m,
-        ] {
-            for b in v.to_bits().to_le_bytes() {
-                h ^= b as u64;
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
-        }
-    }
-    h
+        ]
+    }))
 }
 
 /// The demo walk through the KF-NFA, bit for bit: the same constant is checked natively and in

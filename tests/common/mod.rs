@@ -20,6 +20,19 @@ pub fn peak_rss() -> Option<u64> {
     Some(kb * 1024)
 }
 
+/// FNV-1a over the bits of a sequence of numbers: the digests that the bit-identical replay
+/// tests check natively and in Chromium against one constant.
+pub fn fnv1a(values: impl IntoIterator<Item = f64>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for v in values {
+        for b in v.to_bits().to_le_bytes() {
+            h ^= b as u64;
+            h = h.wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    h
+}
+
 /// The track of a simulated walk replayed with `cfg`, which must refuse none of its records.
 pub fn run(sim: &Simulation, cfg: PipelineConfig) -> Vec<StepRecord> {
     let r = replay(cfg, &sim.records).expect("valid config");

@@ -301,13 +301,14 @@ pub(crate) fn rotation_vector(
 /// Pairs each sample of `a` with the sample of `b` nearest in time (both sorted by time), when
 /// it is at most `max_dt` away, and combines them with `f`; returns the combined samples and how
 /// many of `a` had no partner. Sensor Logger's linear acceleration + gravity, and a recipe's
-/// linear accelerometer + gravity or orientation, are made whole so.
-pub(crate) fn pair_nearest<T: Copy>(
+/// linear accelerometer + gravity or orientation, are made whole so; Sensor Logger's platform
+/// guess turns its gravity by the attitude nearest each sample so.
+pub(crate) fn pair_nearest<T: Copy, U>(
     a: &[(f64, Vector3<f64>)],
     b: &[(f64, T)],
     max_dt: f64,
-    mut f: impl FnMut(Vector3<f64>, T) -> Vector3<f64>,
-) -> (Vec<(f64, Vector3<f64>)>, u64) {
+    mut f: impl FnMut(Vector3<f64>, T) -> U,
+) -> (Vec<(f64, U)>, u64) {
     let mut out = Vec::with_capacity(a.len());
     let mut unpaired = 0u64;
     let mut j = 0usize;

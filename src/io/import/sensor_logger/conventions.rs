@@ -164,27 +164,16 @@ pub fn decide_platform(
         return Some(Platform::Ios);
     }
     if !gravity.is_empty() && !orientation.is_empty() {
-        let (mut sum, mut n) = (0.0, 0usize);
-        let mut j = 0usize;
-        for &(t, g) in gravity {
-            while j + 1 < orientation.len() && orientation[j + 1].0 <= t {
-                j += 1;
-            }
-            let best = [j, j + 1]
-                .into_iter()
-                .filter(|&k| k < orientation.len())
-                .min_by(|&p, &q| {
-                    (orientation[p].0 - t)
-                        .abs()
-                        .total_cmp(&(orientation[q].0 - t).abs())
-                });
+        // The up component of each gravity sample's direction turned by the nearest attitude
+        // (none for a gravity sample of no usable size).
+        let (up, _) = pair_nearest(gravity, orientation, HOLD_S, |g, q| {
             let norm = g.norm();
-            if let Some(k) = best {
-                if (orientation[k].0 - t).abs() <= HOLD_S && norm > 0.0 && norm.is_finite() {
-                    sum += (orientation[k].1 * g).z / norm;
-                    n += 1;
-                }
-            }
+            (norm > 0.0 && norm.is_finite()).then(|| (q * g).z / norm)
+        });
+        let (mut sum, mut n) = (0.0, 0usize);
+        for z in up.iter().filter_map(|(_, z)| *z) {
+            sum += z;
+            n += 1;
         }
         if n > 0 {
             let mean = sum / n as f64;
