@@ -562,6 +562,9 @@ mod tests {
             length_m: 0.7,
             freq_hz: 1.8,
             motion: Motion::Walking,
+            activity: crate::engine::Activity::Walking,
+            up_m: 0.0,
+            floor: 0,
         }
     }
 

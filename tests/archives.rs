@@ -392,6 +392,7 @@ fn damaged_nested_archives_never_panic() {
                             }
                             pdr::engine::Record::Gnss(f) => f.check().is_ok(),
                             pdr::engine::Record::Gap(a, b) => a.is_finite() && b.is_finite(),
+                            pdr::engine::Record::Pressure(p) => p.check().is_ok(),
                         };
                         assert!(ok, "round {round}: {rec:?}");
                     }

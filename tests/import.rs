@@ -90,6 +90,10 @@ fn assert_sane(log: &Log) {
                 assert!(a.is_finite() && b.is_finite());
                 *a
             }
+            Record::Pressure(p) => {
+                p.check().unwrap();
+                p.t
+            }
         };
         assert!(t >= last, "records out of order: {t} after {last}");
         last = t;

@@ -363,7 +363,7 @@ fn live_smoothed_track_equals_the_smoother_at_any_time() {
         match r {
             Record::Gnss(f) => live.push_fix(f).unwrap(),
             Record::Imu(_) => feed_into(&mut live, std::slice::from_ref(r), Platform::Android),
-            Record::Gap(..) | Record::Foot(_) => {}
+            Record::Gap(..) | Record::Foot(_) | Record::Pressure(_) => {}
         }
         if i % 3000 == 0 || i + 1 == sim.records.len() {
             let shown = live.map_data().smoothed;
@@ -495,7 +495,7 @@ fn hostile_event_streams_keep_the_session_consistent() {
                     continue;
                 }
                 Record::Imu(_) => browser_events(std::slice::from_ref(r), Platform::Android),
-                Record::Foot(_) => continue,
+                Record::Foot(_) | Record::Pressure(_) => continue,
             };
             if rng.chance(0.0005) {
                 burst = 30;

@@ -102,6 +102,10 @@ pub fn check_record(r: &Record) {
             finite("gap.t0", *a);
             finite("gap.t1", *b);
         }
+        Record::Pressure(p) => {
+            finite("pressure.t", p.t);
+            finite("pressure.hpa", p.hpa);
+        }
     }
 }
 

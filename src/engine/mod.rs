@@ -54,6 +54,7 @@
 //!   ([`fusion::schedule::Schedule`]) is pushed the time of each fix and step.
 //! - [`calibration`] fits lines to whole walks; it is a set of functions, not a stage.
 
+pub mod activity;
 pub mod calibration;
 pub mod detector;
 pub mod foot;
@@ -73,10 +74,11 @@ pub mod step_length;
 pub mod types;
 pub mod zero_crossing;
 
+pub use activity::Activity;
 pub use heading::{HeadingConfig, HeadingMethod};
 pub use motion::{Motion, MotionConfig};
 pub use orientation::OrientationSource;
 pub use pipeline::{Diagnostics, Pipeline, PipelineConfig, StepDetectorConfig, StepRecord};
 pub use replay::{replay, Replay};
 pub use step_length::{StepLengthModel, StepLengthProfile};
-pub use types::{ConfigError, GnssFix, ImuSample, InputError, Record};
+pub use types::{ConfigError, GnssFix, ImuSample, InputError, PressureSample, Record};

@@ -27,6 +27,7 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
+use super::activity::Activity;
 use super::detector::{Candidate, DetectorInput};
 use super::foot::placement::{Placement, Recogniser};
 use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
@@ -39,7 +40,9 @@ use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
-use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
+use super::types::{
+    positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, PressureSample, Record,
+};
 use std::collections::VecDeque;
 
 mod foot;
@@ -160,6 +163,16 @@ pub struct StepRecord {
     pub freq_hz: f64,
     /// Motion state when the step was counted.
     pub motion: Motion,
+    /// The activity of the step (Munoz Diaz 2015 §4.3; without a leg pitch, from `motion`).
+    #[serde(default)]
+    pub activity: Activity,
+    /// Height after the step above the walk's start, m (Munoz Diaz 2015 §6, and the barometer
+    /// where the log has one).
+    #[serde(default)]
+    pub up_m: f64,
+    /// Floor after the step, relative to the walk's start (0), from the height's level changes.
+    #[serde(default)]
+    pub floor: i32,
 }
 
 /// The estimated position (east, north) at time `t`, interpolated between steps.
@@ -247,6 +260,17 @@ pub struct Diagnostics {
     pub strides: u64,
     /// The foot stage, while it runs.
     pub foot: Option<FootDiagnostics>,
+    /// Barometer readings accepted.
+    pub pressure_samples: u64,
+    /// The activity now (Munoz Diaz 2015 §4.3), once a sample arrived.
+    pub activity: Option<Activity>,
+    /// Leg pitch now, degrees (thigh forward positive), when the phone is in a pocket and the
+    /// log has a gyroscope.
+    pub pitch_deg: Option<f64>,
+    /// Height now above the walk's start, m.
+    pub up_m: f64,
+    /// Floor now, relative to the walk's start.
+    pub floor: i32,
 }
 
 /// The streaming engine.
@@ -259,6 +283,7 @@ pub struct Pipeline {
     history_s: f64,
     last_t: Option<f64>,
     last_gnss_t: Option<f64>,
+    last_pressure_t: Option<f64>,
     prev_state: Motion,
     // Step history of the current bout.
     t_km1: Option<f64>,
@@ -303,6 +328,7 @@ impl Pipeline {
             buf: VecDeque::new(),
             last_t: None,
             last_gnss_t: None,
+            last_pressure_t: None,
             prev_state: Motion::Still,
             t_km1: None,
             t_km2: None,
@@ -342,6 +368,7 @@ impl Pipeline {
                 Ok(&[])
             }
             Record::Foot(s) => self.push_foot_imu(s),
+            Record::Pressure(p) => self.push_pressure(p).map(|()| &[][..]),
         }
     }
 
@@ -582,6 +609,13 @@ impl Pipeline {
             } else {
                 Motion::Walking
             },
+            activity: if state == Motion::Running {
+                Activity::Running
+            } else {
+                Activity::Walking
+            },
+            up_m: 0.0,
+            floor: 0,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {
@@ -732,6 +766,26 @@ impl Pipeline {
     /// The motion state now.
     pub fn motion_state(&self) -> Motion {
         self.motion.state()
+    }
+
+    /// Feeds one barometer reading. Refused (state untouched) when out of range or earlier than
+    /// the previous reading.
+    pub fn push_pressure(&mut self, p: &PressureSample) -> Result<(), InputError> {
+        let refused = p.check().err().or_else(|| {
+            self.last_pressure_t
+                .filter(|&last| p.t < last)
+                .map(|last| InputError::TimeWentBackwards { t: p.t, last })
+        });
+        if let Some(e) = refused {
+            match e {
+                InputError::TimeWentBackwards { .. } => self.diag.rejected_backwards += 1,
+                _ => self.diag.rejected_non_finite += 1,
+            }
+            return Err(e);
+        }
+        self.last_pressure_t = Some(p.t);
+        self.diag.pressure_samples += 1;
+        Ok(())
     }
 
     /// The device → ENU attitude of the latest sample, when the orientation source has one.

@@ -184,6 +184,49 @@ pub enum Record {
     /// two-sensor walks): fed to foot mode while the first IMU (trunk or pocket) gives the
     /// heading. Its own stream: its times are checked against the previous foot sample.
     Foot(ImuSample),
+    /// A barometer reading (Munoz Diaz 2015 §2: the usual aid for the vertical; here fused with
+    /// the leg pitch's vertical displacement, [`crate::engine::vertical`]).
+    Pressure(PressureSample),
+}
+
+impl Record {
+    /// The record's time, s (a gap's start).
+    pub fn t(&self) -> f64 {
+        match self {
+            Record::Imu(s) | Record::Foot(s) => s.t,
+            Record::Gnss(f) => f.t,
+            Record::Gap(t0, _) => *t0,
+            Record::Pressure(p) => p.t,
+        }
+    }
+}
+
+/// One barometer reading.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PressureSample {
+    /// Time, seconds on the log's clock.
+    pub t: f64,
+    /// Static air pressure, hPa (= mbar).
+    pub hpa: f64,
+}
+
+/// The range of pressures the engine accepts, hPa: beyond any place a person walks (the Dead
+/// Sea's shore is about 1070 hPa, Everest's summit about 330).
+pub const PRESSURE_RANGE_HPA: (f64, f64) = (100.0, 1200.0);
+
+impl PressureSample {
+    /// Checks finiteness and range (the time within ±[`MAX_TIME_S`], the pressure within
+    /// [`PRESSURE_RANGE_HPA`]); names the first bad field.
+    pub fn check(&self) -> Result<(), InputError> {
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
+        if !time_in_range(self.t) {
+            return bad("t");
+        }
+        if !(self.hpa >= PRESSURE_RANGE_HPA.0 && self.hpa <= PRESSURE_RANGE_HPA.1) {
+            return bad("pressure_hpa");
+        }
+        Ok(())
+    }
 }
 
 fn all_finite<'a>(mut it: impl Iterator<Item = &'a f64>) -> bool {

@@ -12,6 +12,7 @@
 //! gnss,t_s,lat_deg,lon_deg,acc_m,alt_m,speed_mps,bearing_deg
 //! gap,t0_s,t1_s
 //! foot,t_s,ax,ay,az,gx,gy,gz,mx,my,mz,qw,qx,qy,qz
+//! pressure,t_s,hpa
 //! ```
 //!
 //! Units: `t_s` seconds on the recorder's clock (any origin, increasing); `a*` m/s², specific
@@ -23,6 +24,7 @@
 //! present or empty as a whole. `gap` records say the recorder saw no samples between two times
 //! (for example while the page was hidden). `foot` records are the samples of a second IMU strapped on
 //! a foot (Strozzi 2017 §4's two-sensor walks), with the fields of `imu` in the foot sensor's frame.
+//! `pressure` records are barometer readings, `hpa` hectopascals (= mbar).
 //!
 //! Reading is lenient per line: a bad line is reported with its file, line, column and field and
 //! skipped; every good line before and after it is kept. A missing or unknown version tag is
@@ -54,14 +56,16 @@ const GNSS_FIELDS: [&str; 8] = [
     "bearing_deg",
 ];
 const GAP_FIELDS: [&str; 3] = ["kind", "t0_s", "t1_s"];
+const PRESSURE_FIELDS: [&str; 3] = ["kind", "t_s", "hpa"];
 
 /// The text a new log starts with: the version tag and the schema as comments.
 pub fn preamble() -> String {
     format!(
-        "{HEADER}\n# {}\n# {}\n# {}\n# units: s, m/s^2 (gravity included, Android sign, device x right/y up/z out), rad/s, uT, quaternion device->ENU, WGS84 deg, m, m/s, deg from north\n",
+        "{HEADER}\n# {}\n# {}\n# {}\n# {}\n# units: s, m/s^2 (gravity included, Android sign, device x right/y up/z out), rad/s, uT, quaternion device->ENU, WGS84 deg, m, m/s, deg from north, hPa\n",
         IMU_FIELDS.join(","),
         GNSS_FIELDS.join(","),
-        GAP_FIELDS.join(",")
+        GAP_FIELDS.join(","),
+        PRESSURE_FIELDS.join(",")
     )
 }
 
@@ -115,6 +119,9 @@ pub fn line(r: &Record) -> String {
         }
         Record::Gap(a, b) => {
             let _ = write!(s, "gap,{a},{b}");
+        }
+        Record::Pressure(p) => {
+            let _ = write!(s, "pressure,{},{}", p.t, p.hpa);
         }
     }
     s.push('\n');
@@ -231,11 +238,7 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
         ControlFlow::Continue(())
     })?;
     // Records are put in time order (a damaged or hand-edited file); the engine needs it.
-    let time = |r: &Record| match r {
-        Record::Imu(s) | Record::Foot(s) => s.t,
-        Record::Gnss(f) => f.t,
-        Record::Gap(t0, _) => *t0,
-    };
+    let time = Record::t;
     let mut latest = f64::NEG_INFINITY;
     let mut late = 0u64;
     for r in &out.records {
@@ -388,9 +391,8 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
         }
         if gap_before {
             let t0 = out.records.last().map(|r| match *r {
-                Record::Imu(s) | Record::Foot(s) => s.t,
-                Record::Gnss(f) => f.t,
                 Record::Gap(_, t1) => t1,
+                r => r.t(),
             });
             let t1 = parsed.records.first().map(record_time);
             if let (Some(t0), Some(t1)) = (t0, t1) {
@@ -425,11 +427,7 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
 
 /// The time a record is ordered by: its own, a gap's start.
 fn record_time(r: &Record) -> f64 {
-    match r {
-        Record::Imu(s) | Record::Foot(s) => s.t,
-        Record::Gnss(f) => f.t,
-        Record::Gap(t0, _) => *t0,
-    }
+    r.t()
 }
 
 type FieldErr = (Option<usize>, Option<&'static str>, String);
@@ -440,11 +438,14 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
         "imu" | "foot" => &IMU_FIELDS,
         "gnss" => &GNSS_FIELDS,
         "gap" => &GAP_FIELDS,
+        "pressure" => &PRESSURE_FIELDS,
         other => {
             return Err((
                 Some(1),
                 Some("kind"),
-                format!("unknown record kind `{other}` (expected imu, foot, gnss or gap)"),
+                format!(
+                    "unknown record kind `{other}` (expected imu, foot, gnss, gap or pressure)"
+                ),
             ))
         }
     };
@@ -550,6 +551,10 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
             altitude_m: num(5)?,
             speed_mps: num(6)?,
             bearing_deg: num(7)?,
+        }),
+        "pressure" => Record::Pressure(crate::engine::PressureSample {
+            t: req(1)?,
+            hpa: req(2)?,
         }),
         _ => Record::Gap(req(1)?, req(2)?),
     })

@@ -108,7 +108,7 @@ impl View {
         let t = match *r {
             Record::Imu(s) => s.t,
             Record::Gap(_, t1) => t1,
-            Record::Gnss(_) | Record::Foot(_) => return,
+            Record::Gnss(_) | Record::Foot(_) | Record::Pressure(_) => return,
         };
         let gaps = p.diagnostics().gaps;
         if gaps > self.gaps_seen {

@@ -85,11 +85,7 @@ impl Scenario {
 
 /// Merges two time-ordered record lists (a stable merge: at equal times `a` comes first).
 pub(super) fn merge_in_time(a: Vec<Record>, b: Vec<Record>) -> Vec<Record> {
-    let time = |r: &Record| match r {
-        Record::Imu(s) | Record::Foot(s) => s.t,
-        Record::Gnss(f) => f.t,
-        Record::Gap(t, _) => *t,
-    };
+    let time = Record::t;
     let mut out = Vec::with_capacity(a.len() + b.len());
     let mut b = b.into_iter().peekable();
     for r in a {

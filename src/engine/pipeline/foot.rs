@@ -2,6 +2,7 @@
 //! stride. May import: the rest of `engine`.
 
 use super::{Pipeline, StepRecord};
+use crate::engine::activity::Activity;
 use crate::engine::foot::placement::{Placement, DECIDE_WITHIN_S};
 use crate::engine::foot::Stride;
 use crate::engine::fusion;
@@ -99,6 +100,9 @@ impl Pipeline {
             length_m: st.length_m,
             freq_hz: if period > 0.0 { 1.0 / period } else { 0.0 },
             motion: Motion::Walking,
+            activity: Activity::Walking,
+            up_m: 0.0,
+            floor: 0,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {

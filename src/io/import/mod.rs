@@ -300,12 +300,7 @@ impl Log {
 
     /// First and last record time, s.
     pub fn time_span(&self) -> Option<(f64, f64)> {
-        let t = |r: &Record| match r {
-            Record::Imu(s) | Record::Foot(s) => s.t,
-            Record::Gnss(f) => f.t,
-            Record::Gap(a, _) => *a,
-        };
-        Some((t(self.records.first()?), t(self.records.last()?)))
+        Some((self.records.first()?.t(), self.records.last()?.t()))
     }
 }
 
