@@ -565,6 +565,7 @@ mod tests {
             activity: crate::engine::Activity::Walking,
             up_m: 0.0,
             floor: 0,
+            pitch_amplitude_deg: None,
         }
     }
 

@@ -72,6 +72,7 @@ pub mod pll;
 pub mod replay;
 pub mod step_length;
 pub mod types;
+pub mod vertical;
 pub mod zero_crossing;
 
 pub use activity::Activity;

@@ -173,6 +173,10 @@ pub struct StepRecord {
     /// Floor after the step, relative to the walk's start (0), from the height's level changes.
     #[serde(default)]
     pub floor: i32,
+    /// The leg pitch amplitude Δθ = θ_max − θ_min of the stride this step belongs to, degrees
+    /// (Munoz Diaz 2015 eq. 4), when the leg pitch is known.
+    #[serde(default)]
+    pub pitch_amplitude_deg: Option<f64>,
 }
 
 /// The estimated position (east, north) at time `t`, interpolated between steps.
@@ -271,6 +275,8 @@ pub struct Diagnostics {
     pub up_m: f64,
     /// Floor now, relative to the walk's start.
     pub floor: i32,
+    /// What the height comes from, once a step changed it or a barometer reading arrived.
+    pub vertical: Option<super::vertical::VerticalSource>,
 }
 
 /// The streaming engine.
@@ -616,6 +622,7 @@ impl Pipeline {
             },
             up_m: 0.0,
             floor: 0,
+            pitch_amplitude_deg: None,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {

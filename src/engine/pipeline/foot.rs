@@ -103,6 +103,7 @@ impl Pipeline {
             activity: Activity::Walking,
             up_m: 0.0,
             floor: 0,
+            pitch_amplitude_deg: None,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {
