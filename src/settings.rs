@@ -135,6 +135,8 @@ impl Settings {
             let file = ProfileFile::from_json(text).map_err(SettingsError::Profile)?;
             match &mut cfg.step_length {
                 StepLengthModel::Frequency(p) => *p = file.profile,
+                // The profile's line is the pitch model's line for steps without a pitch.
+                StepLengthModel::Pitch(p) => p.fallback = file.profile,
                 StepLengthModel::Fuzzy(c) => match file.fuzzy_scale {
                     Some(k) => c.scale = k,
                     None => return Err(SettingsError::ProfileWithoutLine),
@@ -168,6 +170,9 @@ impl Settings {
         let length = match &cfg.step_length {
             StepLengthModel::Weinberg { k } => format!("Weinberg step length (K = {k})"),
             StepLengthModel::Fuzzy(c) => format!("fuzzy step length (scale {:.3})", c.scale),
+            StepLengthModel::Pitch(p) => {
+                format!("leg-pitch step length (a = {} m/°, b = {:.3} m)", p.a, p.b)
+            }
             StepLengthModel::Frequency(_) => match &self.profile {
                 Some(text) => {
                     let file = ProfileFile::from_json(text).map_err(SettingsError::Profile)?;
@@ -262,6 +267,7 @@ pub const CHOICES: &[Choice] = &[
             ("pll", "PLL (Basso 2016)"),
             ("peak", "peak counter"),
             ("zero_crossing", "zero crossing + area (Ibarra 2015)"),
+            ("pitch", "leg pitch (Munoz Diaz 2015)"),
         ],
     },
     Choice {
@@ -282,6 +288,7 @@ pub const CHOICES: &[Choice] = &[
             ("frequency", "line in frequency (2016)"),
             ("weinberg", "Weinberg"),
             ("fuzzy", "fuzzy (Ibarra 2015)"),
+            ("pitch", "leg pitch (Munoz Diaz 2015)"),
         ],
     },
     Choice {

@@ -23,6 +23,9 @@ pub struct DetectorInput {
     pub motion: Motion,
     /// The cadence of the periodic gait the motion detector sees, Hz.
     pub cadence_hz: Option<f64>,
+    /// The leg pitch's raw angle about the swing axis, degrees, when known
+    /// ([`super::leg_pitch::LegPitch::push`]; its sign is arbitrary).
+    pub pitch_deg: Option<f64>,
 }
 
 /// A step candidate from a detector: its time, and the detector's period estimate for it.

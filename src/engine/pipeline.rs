@@ -27,7 +27,7 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
-use super::activity::Activity;
+use super::activity::{Activity, ActivityClassifier, ActivityConfig};
 use super::detector::{Candidate, DetectorInput};
 use super::foot::placement::{Placement, Recogniser};
 use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
@@ -37,15 +37,17 @@ use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
+use super::leg_pitch::{LegPitch, LegPitchConfig};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
+use super::pitch_detector::{PitchDetector, PitchDetectorConfig};
 use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
-use super::types::{
-    positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, PressureSample, Record,
-};
+use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
+use super::vertical::{Vertical, VerticalConfig};
 use std::collections::VecDeque;
 
 mod foot;
+mod pocket;
 mod step_detector;
 mod two_sensor;
 
@@ -92,6 +94,12 @@ pub struct PipelineConfig {
     pub placement: Placement,
     /// Foot mode ([`crate::engine::foot`]).
     pub foot: FootConfig,
+    /// The leg pitch ([`crate::engine::leg_pitch`], Munoz Diaz 2015).
+    pub leg_pitch: LegPitchConfig,
+    /// The activities from the leg pitch ([`crate::engine::activity`]).
+    pub activity: ActivityConfig,
+    /// The height, the stairs and the floors ([`crate::engine::vertical`]).
+    pub vertical: VerticalConfig,
 }
 
 impl Default for PipelineConfig {
@@ -109,6 +117,9 @@ impl Default for PipelineConfig {
             hybrid: HybridConfig::default(),
             placement: Placement::Auto,
             foot: FootConfig::default(),
+            leg_pitch: LegPitchConfig::default(),
+            activity: ActivityConfig::default(),
+            vertical: VerticalConfig::default(),
         }
     }
 }
@@ -133,7 +144,11 @@ impl PipelineConfig {
             StepDetectorConfig::Pll(c) => c.validate()?,
             StepDetectorConfig::Peak(c) => c.validate()?,
             StepDetectorConfig::ZeroCrossing(c) => c.validate()?,
+            StepDetectorConfig::Pitch(c) => c.validate()?,
         }
+        self.leg_pitch.validate()?;
+        self.activity.validate()?;
+        self.vertical.validate()?;
         self.heading.validate()?;
         self.step_length.validate()?;
         self.fusion.validate()?;
@@ -264,6 +279,8 @@ pub struct Diagnostics {
     pub strides: u64,
     /// The foot stage, while it runs.
     pub foot: Option<FootDiagnostics>,
+    /// The pitch detector was chosen, but the log has no gyroscope: the PLL counted its steps.
+    pub detector_fallback: bool,
     /// Barometer readings accepted.
     pub pressure_samples: u64,
     /// The activity now (Munoz Diaz 2015 §4.3), once a sample arrived.
@@ -271,6 +288,8 @@ pub struct Diagnostics {
     /// Leg pitch now, degrees (thigh forward positive), when the phone is in a pocket and the
     /// log has a gyroscope.
     pub pitch_deg: Option<f64>,
+    /// The leg pitch stage: the swing axis's share and the sign's vote.
+    pub leg_pitch: Option<super::leg_pitch::LegPitchDiagnostics>,
     /// Height now above the walk's start, m.
     pub up_m: f64,
     /// Floor now, relative to the walk's start.
@@ -312,6 +331,7 @@ pub struct Pipeline {
     recogniser: Recogniser,
     pending: Vec<Stride>,
     last_stride_t: Option<f64>,
+    pocket: pocket::Pocket,
 }
 
 impl Pipeline {
@@ -319,6 +339,8 @@ impl Pipeline {
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
         let (cfg_placement, cfg_foot) = (cfg.placement, cfg.foot);
+        let (cfg_leg, cfg_activity, cfg_vertical, cfg_detector) =
+            (cfg.leg_pitch, cfg.activity, cfg.vertical, cfg.detector);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             history_s: cfg
@@ -354,6 +376,15 @@ impl Pipeline {
             recogniser: Recogniser::default(),
             pending: Vec::new(),
             last_stride_t: None,
+            pocket: pocket::Pocket {
+                leg: LegPitch::new(cfg_leg),
+                strides: (!matches!(cfg_detector, StepDetectorConfig::Pitch(_)))
+                    .then(|| PitchDetector::new(PitchDetectorConfig::default())),
+                activity: ActivityClassifier::new(cfg_activity),
+                vertical: Vertical::new(cfg_vertical),
+                last: None,
+                pitch: None,
+            },
         })
     }
 
@@ -404,22 +435,17 @@ impl Pipeline {
             Orientation::new(src)
         });
         let nav = orientation.push(s, dt)?;
+        if s.gyro.is_none() && matches!(self.detector, Detector::Pitch(_)) {
+            // The leg pitch needs a gyroscope: the PLL counts this log's steps.
+            self.detector = Detector::new(StepDetectorConfig::default());
+            self.diag.detector_fallback = true;
+        }
         self.heading.push_attitude(nav.attitude);
         self.push_trunk_attitude(s.t, nav.attitude);
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
-        let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
-        self.buf.push_back(NavSample {
-            t: s.t,
-            e,
-            n,
-            up: nav.up,
-        });
-        while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
-            self.buf.pop_front();
-        }
         let m = self.motion.diagnostics();
-        let cand = self.detector.push(&DetectorInput {
+        let mut x = DetectorInput {
             t: s.t,
             dt,
             up: nav.up,
@@ -427,7 +453,22 @@ impl Pipeline {
             sigma: m.sigma_z,
             motion: state,
             cadence_hz: m.cadence_hz,
+            pitch_deg: None,
+        };
+        self.pocket_sample(s, dt, state, &x);
+        x.pitch_deg = self.pocket.pitch;
+        let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
+        self.buf.push_back(NavSample {
+            t: s.t,
+            e,
+            n,
+            up: nav.up,
+            pitch: x.pitch_deg,
         });
+        while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
+            self.buf.pop_front();
+        }
+        let cand = self.detector.push(&x);
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
@@ -460,17 +501,18 @@ impl Pipeline {
     /// peak detector starts empty.
     fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
         let since = t - self.cfg.onset_lookback_s;
-        let samples: Vec<(f64, f64)> = self
+        let samples: Vec<(f64, f64, Option<f64>)> = self
             .buf
             .iter()
             .filter(|x| x.t >= since)
-            .map(|x| (x.t, x.up))
+            .map(|x| (x.t, x.up, x.pitch))
             .collect();
         let m = self.motion.diagnostics();
-        self.detector.restart(m.cadence_hz, &samples, m.mean_z);
+        let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.0, s.1)).collect();
+        self.detector.restart(m.cadence_hz, &ups, m.mean_z);
         let mut out = Vec::new();
         let mut last = None;
-        for &(ts, up) in &samples {
+        for &(ts, up, pitch_deg) in &samples {
             let dt = last.map_or(0.0, |l| ts - l);
             last = Some(ts);
             out.extend(self.detector.push(&DetectorInput {
@@ -481,6 +523,7 @@ impl Pipeline {
                 sigma: m.sigma_z,
                 motion: state,
                 cadence_hz: m.cadence_hz,
+                pitch_deg,
             }));
         }
         // The gait began after the last step that does not follow its rhythm.
@@ -586,13 +629,26 @@ impl Pipeline {
             has_heading,
         });
         let heading_used = h.used;
+        if let Some(h) = heading_used {
+            self.pocket_heading(h);
+        }
+        let pocket = self.step_pocket(c.t, state);
         let freq = 1.0 / period;
-        let length = self.step_length.push(&StepLengthInput {
+        let modelled = self.step_length.push(&StepLengthInput {
             freq_hz: freq,
             buf: &self.buf,
             t0: t_km1,
             t1: c.t,
+            // Eq. 5 is a line for level walking (Munoz Diaz 2015 §5).
+            pitch_amplitude_deg: pocket
+                .amplitude_deg
+                .filter(|_| pocket.activity == Activity::Walking),
         });
+        // Stairs: a tread per footfall, whatever the model (the line is for level ground).
+        let length = match pocket.activity {
+            Activity::Upstairs | Activity::Downstairs => self.cfg.vertical.stair_tread_m,
+            _ => modelled,
+        };
         match heading_used {
             Some(h) => {
                 let (sh, ch) = libm::sincos(h);
@@ -615,14 +671,10 @@ impl Pipeline {
             } else {
                 Motion::Walking
             },
-            activity: if state == Motion::Running {
-                Activity::Running
-            } else {
-                Activity::Walking
-            },
-            up_m: 0.0,
-            floor: 0,
-            pitch_amplitude_deg: None,
+            activity: pocket.activity,
+            up_m: self.pocket.vertical.up_m(),
+            floor: self.pocket.vertical.floor(),
+            pitch_amplitude_deg: pocket.amplitude_deg,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {
@@ -647,6 +699,7 @@ impl Pipeline {
             buf: &self.buf,
             t0: step.t - 1.0 / step.freq_hz,
             t1: step.t,
+            pitch_amplitude_deg: step.pitch_amplitude_deg,
         }
     }
 
@@ -757,6 +810,19 @@ impl Pipeline {
             d.pll_freq_hz = Some(p.freq_hz);
             d.pll_locked = Some(p.locked);
         }
+        d.activity = self.orientation.as_ref().map(|_| {
+            if m.state.is_moving() {
+                self.steps.last().map_or(Activity::Walking, |s| s.activity)
+            } else {
+                self.pocket.activity.diagnostics().activity
+            }
+        });
+        d.pitch_deg = self.pocket.pitch.map(|r| self.pocket.leg.signed(r));
+        d.leg_pitch = Some(self.pocket.leg.diagnostics());
+        let v = self.pocket.vertical.diagnostics();
+        d.up_m = v.up_m;
+        d.floor = v.floor;
+        d.vertical = v.source;
         d
     }
 
@@ -773,26 +839,6 @@ impl Pipeline {
     /// The motion state now.
     pub fn motion_state(&self) -> Motion {
         self.motion.state()
-    }
-
-    /// Feeds one barometer reading. Refused (state untouched) when out of range or earlier than
-    /// the previous reading.
-    pub fn push_pressure(&mut self, p: &PressureSample) -> Result<(), InputError> {
-        let refused = p.check().err().or_else(|| {
-            self.last_pressure_t
-                .filter(|&last| p.t < last)
-                .map(|last| InputError::TimeWentBackwards { t: p.t, last })
-        });
-        if let Some(e) = refused {
-            match e {
-                InputError::TimeWentBackwards { .. } => self.diag.rejected_backwards += 1,
-                _ => self.diag.rejected_non_finite += 1,
-            }
-            return Err(e);
-        }
-        self.last_pressure_t = Some(p.t);
-        self.diag.pressure_samples += 1;
-        Ok(())
     }
 
     /// The device → ENU attitude of the latest sample, when the orientation source has one.
@@ -814,7 +860,7 @@ impl Pipeline {
     pub fn pll_output(&self) -> Option<f64> {
         match &self.detector {
             Detector::Pll(p) => Some(p.output()),
-            Detector::Peak(_) | Detector::ZeroCrossing(_) => None,
+            Detector::Peak(_) | Detector::ZeroCrossing(_) | Detector::Pitch(_) => None,
         }
     }
 }

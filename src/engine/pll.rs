@@ -357,6 +357,7 @@ impl Pll {
             sigma,
             motion,
             cadence_hz: cadence,
+            pitch_deg: _,
         } = *x;
         if self.s.band_key != Some((motion, cadence)) {
             self.s.band_key = Some((motion, cadence));
@@ -525,6 +526,7 @@ mod tests {
                 sigma: 3.0 / 2f64.sqrt(),
                 motion: Motion::Walking,
                 cadence_hz: None,
+                pitch_deg: None,
             };
             if p.push(&x).is_some() {
                 n += 1;

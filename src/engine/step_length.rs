@@ -30,6 +30,7 @@
 
 use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStep, FuzzyStepLength};
 use super::heading::NavSample;
+use super::pitch_step_length::PitchStepLength;
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
 
@@ -145,6 +146,8 @@ pub enum StepLengthModel {
     /// Ibarra 2015's fuzzy system on step frequency, activity and the variance of the vertical
     /// acceleration over the step, times a calibrated scale.
     Fuzzy(FuzzyConfig),
+    /// Munoz Diaz 2015 eq. 5 on the leg pitch amplitude ([`super::pitch_step_length`]).
+    Pitch(PitchStepLength),
 }
 
 /// Weinberg's K when none is given: 0.47 gives 0.70 m at a 5 m/s² peak-to-peak.
@@ -167,6 +170,7 @@ impl StepLengthModel {
             StepLengthModel::Frequency(p) => p.validate(),
             StepLengthModel::Weinberg { k } => positive("step_length.k", *k),
             StepLengthModel::Fuzzy(c) => c.validate(),
+            StepLengthModel::Pitch(p) => p.validate(),
         }
     }
 }
@@ -208,6 +212,8 @@ pub struct StepLengthInput<'a> {
     pub t0: f64,
     /// The end of the step, s.
     pub t1: f64,
+    /// The leg pitch amplitude Δθ of the step's stride, degrees, when known.
+    pub pitch_amplitude_deg: Option<f64>,
 }
 
 /// The step-length stage's current values; read-only.
@@ -255,6 +261,7 @@ impl StepLength {
                 .fuzzy
                 .as_ref()
                 .map_or(0.2, |z| fuzzy_step(z, step).length_m),
+            StepLengthModel::Pitch(p) => p.length(step.pitch_amplitude_deg, step.freq_hz),
         };
         self.last_m = Some(m);
         m

@@ -307,6 +307,7 @@ mod tests {
             sigma: 1.0,
             motion: Motion::Walking,
             cadence_hz: None,
+            pitch_deg: None,
         }
     }
 

@@ -48,6 +48,8 @@ pub struct NavSample {
     pub n: f64,
     /// Vertical linear acceleration, m/s², up positive.
     pub up: f64,
+    /// The leg pitch, degrees, when known ([`crate::engine::leg_pitch`]).
+    pub pitch: Option<f64>,
 }
 
 impl NavSample {
@@ -62,6 +64,7 @@ impl NavSample {
             e: a.e + w * (b.e - a.e),
             n: a.n + w * (b.n - a.n),
             up: a.up + w * (b.up - a.up),
+            pitch: a.pitch,
         }
     }
 }
@@ -404,6 +407,7 @@ mod tests {
                 e: 1.5 * (w * tau).cos() - 0.5 * (2.0 * w * tau).sin(),
                 n: 0.7 * (w * tau).sin() + 0.2,
                 up: 2.0 * (2.0 * w * tau).cos(),
+                pitch: None,
             });
             i += 1;
             t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;

@@ -6,6 +6,7 @@
 
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::peak::{PeakConfig, PeakDetector};
+use crate::engine::pitch_detector::{PitchDetector, PitchDetectorConfig};
 use crate::engine::pll::{Pll, PllConfig};
 use crate::engine::zero_crossing::{ZeroCrossing, ZeroCrossingConfig};
 
@@ -19,6 +20,9 @@ pub enum StepDetectorConfig {
     Peak(PeakConfig),
     /// Ibarra 2015's zero crossings with the area under each lobe.
     ZeroCrossing(ZeroCrossingConfig),
+    /// Munoz Diaz 2015's maxima of the leg pitch. Needs a gyroscope: on a log without one the
+    /// pipeline runs the PLL instead and says so ([`crate::engine::Diagnostics::detector_fallback`]).
+    Pitch(PitchDetectorConfig),
 }
 
 impl Default for StepDetectorConfig {
@@ -34,6 +38,7 @@ pub(super) enum Detector {
     Pll(Pll),
     Peak(PeakDetector),
     ZeroCrossing(ZeroCrossing),
+    Pitch(PitchDetector),
 }
 
 impl Detector {
@@ -42,6 +47,7 @@ impl Detector {
             StepDetectorConfig::Pll(c) => Detector::Pll(Pll::new(c)),
             StepDetectorConfig::Peak(c) => Detector::Peak(PeakDetector::new(c)),
             StepDetectorConfig::ZeroCrossing(c) => Detector::ZeroCrossing(ZeroCrossing::new(c)),
+            StepDetectorConfig::Pitch(c) => Detector::Pitch(PitchDetector::new(c)),
         }
     }
 
@@ -50,6 +56,7 @@ impl Detector {
             Detector::Pll(p) => p.push(x),
             Detector::Peak(p) => p.push(x),
             Detector::ZeroCrossing(z) => z.push(x),
+            Detector::Pitch(p) => p.push(x),
         }
     }
 
@@ -66,6 +73,7 @@ impl Detector {
             }
             Detector::Peak(p) => p.restart(),
             Detector::ZeroCrossing(z) => z.restart(cadence_hz),
+            Detector::Pitch(p) => p.restart(),
         }
     }
 
@@ -76,6 +84,7 @@ impl Detector {
             Detector::Pll(p) => p.reset_phase(),
             Detector::Peak(p) => p.reset(),
             Detector::ZeroCrossing(z) => z.reset(),
+            Detector::Pitch(p) => p.restart(),
         }
     }
 }

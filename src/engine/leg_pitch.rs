@@ -1,0 +1,372 @@
+//! The leg pitch: the opening angle of the thigh a phone in a trouser pocket rides on (Munoz
+//! Diaz 2015 §4.1, Fig. 2), whatever way round the phone sits in the pocket.
+//! May import: the rest of `engine`.
+//!
+//! # Method
+//! The paper reads the pitch from its attitude filter with the sensor mounted one way. A phone
+//! goes into a pocket upright or upside down, screen in or out, turned; so the angle is taken
+//! about the axis the thigh swings about, found from the data:
+//! - **Swing axis.** The gyroscope's second moment
+//!   C = Σ e^(−Δt/τ) ω ωᵀ Δt (device frame, τ = [`LegPitchConfig::axis_tau_s`]); its principal
+//!   eigenvector is the thigh's lateral axis `a` (the swing dominates a pocket's rotation: about
+//!   ±20° at the stride frequency against a few degrees of pelvis yaw). Its share of C's trace
+//!   says whether a swing dominates at all ([`LegPitchConfig::min_axis_share`]): a phone in the
+//!   hand or a bag has no single axis, and gets no pitch.
+//! - **Angle.** The world's up direction seen from the device, u = Rᵀ ẑ from the attitude, and
+//!   a reference u_ref, both projected onto the plane normal to `a`. The phone turns with the
+//!   thigh by θ about `a`, so u turns by −θ: θ = −atan2(a·(u_ref × u), u_ref·u).
+//! - **Reference.** The paper's zero is the thigh vertical (standing). While walking the thigh
+//!   swings about a mean a few degrees forward of vertical (hip flexion ranges about +30° to
+//!   −10° over the gait cycle in published gait data), so u_ref is the mean of u over the level
+//!   strides ([`LegPitch::commit_level_stride`]; over all moving samples before the first), and
+//!   the angle is offset by [`LegPitchConfig::level_mean_deg`]: θ = 0 is standing, as in the
+//!   paper, and a seated thigh reads 70–90°.
+//! - **Sign.** The eigenvector's sign is arbitrary; forward (hip flexion) is positive rotation
+//!   about the walker's right, d × ẑ for a walking direction d. Each step's heading votes
+//!   ([`LegPitch::push_heading`]): the sign follows the sum of a_world·(d × ẑ). The step count
+//!   and Δθ do not depend on the sign, so the step detector is given the raw angle; the
+//!   activities' θ_max and θ_min, and standing against sitting, take the sign
+//!   ([`LegPitch::signed`]).
+
+use super::types::{positive, ConfigError, DeviceVec};
+use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
+
+/// Settings of the leg pitch.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct LegPitchConfig {
+    /// Time constant of the gyroscope's second moment, s. Default 4 s: several strides.
+    pub axis_tau_s: f64,
+    /// Share of the second moment's trace the swing axis must hold for a pitch to be given.
+    /// Default 0.6: the simulated pocket in every pose holds 0.85–0.97 while walking; a
+    /// rotation spread evenly over three axes holds 1/3.
+    pub min_axis_share: f64,
+    /// The mean thigh angle of level walking, degrees forward of standing. Default 7°: hip
+    /// flexion spans about +30° to −10° over a gait cycle (Winter's gait data), and the thigh
+    /// spends longer behind the mid-point than a sinusoid would.
+    pub level_mean_deg: f64,
+    /// Weight of a level stride's mean up direction in the reference. Default 0.2 (about the
+    /// last five level strides).
+    pub reference_weight: f64,
+    /// A thigh is recognised (and the activities, stairs and heights follow the pitch) when the
+    /// median Δθ of the last [`Self::thigh_strides`] strides reaches this, degrees. Default
+    /// 25°: a thigh swings 30–50° on the level and 27° down stairs (the paper's §6.1); a phone
+    /// held in the hand sways 9–24° (10th–90th percentile of the strides found on
+    /// `../shared/data/ms-indoor`, median 13.5°).
+    pub thigh_min_amplitude_deg: f64,
+    /// ... and the swing axis holds at least this share of the gyroscope's second moment.
+    /// Default 0.8: the thigh's sagittal rate (3–4 rad/s peaks) dwarfs its roll and yaw; the
+    /// hand-held Microsoft walks hold a median of 0.70.
+    pub thigh_min_axis_share: f64,
+    /// Strides the thigh test looks at. Default 5.
+    pub thigh_strides: usize,
+}
+
+impl Default for LegPitchConfig {
+    fn default() -> Self {
+        LegPitchConfig {
+            axis_tau_s: 4.0,
+            min_axis_share: 0.6,
+            level_mean_deg: 7.0,
+            reference_weight: 0.2,
+            thigh_min_amplitude_deg: 25.0,
+            thigh_min_axis_share: 0.8,
+            thigh_strides: 5,
+        }
+    }
+}
+
+impl LegPitchConfig {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("leg_pitch.axis_tau_s", self.axis_tau_s)?;
+        if !(self.min_axis_share > 0.0 && self.min_axis_share < 1.0) {
+            return Err(ConfigError::new(
+                "leg_pitch.min_axis_share",
+                "must lie strictly between 0 and 1",
+            ));
+        }
+        if !(self.level_mean_deg.is_finite() && self.level_mean_deg.abs() < 45.0) {
+            return Err(ConfigError::new(
+                "leg_pitch.level_mean_deg",
+                "must be a finite angle within ±45°",
+            ));
+        }
+        positive(
+            "leg_pitch.thigh_min_amplitude_deg",
+            self.thigh_min_amplitude_deg,
+        )?;
+        if !(self.thigh_min_axis_share > 0.0 && self.thigh_min_axis_share < 1.0) {
+            return Err(ConfigError::new(
+                "leg_pitch.thigh_min_axis_share",
+                "must lie strictly between 0 and 1",
+            ));
+        }
+        if self.thigh_strides == 0 {
+            return Err(ConfigError::new(
+                "leg_pitch.thigh_strides",
+                "must be at least 1",
+            ));
+        }
+        if !(self.reference_weight > 0.0 && self.reference_weight <= 1.0) {
+            return Err(ConfigError::new(
+                "leg_pitch.reference_weight",
+                "must lie in (0, 1]",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// What the leg pitch is given per sample.
+#[derive(Debug, Clone, Copy)]
+pub struct LegPitchInput {
+    /// Time since the previous sample, s.
+    pub dt: f64,
+    /// Angular rate, rad/s, device frame.
+    pub gyro: Option<DeviceVec>,
+    /// The device → ENU attitude.
+    pub attitude: Option<UnitQuaternion<f64>>,
+    /// Whether the motion detector sees a gait.
+    pub moving: bool,
+}
+
+/// The leg pitch's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct LegPitchDiagnostics {
+    /// The last pitch, degrees.
+    pub pitch_deg: Option<f64>,
+    /// The swing axis's share of the gyroscope's second moment.
+    pub axis_share: f64,
+    /// The sign's vote so far (positive: the eigenvector points to the walker's right).
+    pub sign_vote: f64,
+    /// Whether the phone rides on a thigh.
+    pub on_thigh: bool,
+}
+
+/// The leg pitch stage.
+#[derive(Debug, Clone)]
+pub struct LegPitch {
+    cfg: LegPitchConfig,
+    moment: Matrix3<f64>,
+    axis: Option<Vector3<f64>>,
+    share: f64,
+    since_axis: u32,
+    reference: Option<Vector3<f64>>,
+    level_refs: u32,
+    stride_sum: Vector3<f64>,
+    vote: f64,
+    up: Option<Vector3<f64>>,
+    last: Option<f64>,
+    amplitudes: std::collections::VecDeque<f64>,
+    thigh: bool,
+}
+
+/// The largest Δθ of a thigh's stride, degrees: a hip flexes to about 120° and extends to
+/// about −20°, and no gait uses all of it (stairs up: about 55–70°).
+const THIGH_MAX_AMPLITUDE_DEG: f64 = 100.0;
+
+/// The shortest stride of a thigh, s: two steps at 2.5 Hz, beyond brisk walking (1.6–2.2 Hz).
+const THIGH_MIN_STRIDE_S: f64 = 0.8;
+
+/// Samples between two eigen-decompositions of the second moment (about 0.1–0.2 s).
+const AXIS_EVERY: u32 = 10;
+
+impl LegPitch {
+    /// A stage with validated settings.
+    pub fn new(cfg: LegPitchConfig) -> Self {
+        LegPitch {
+            cfg,
+            moment: Matrix3::zeros(),
+            axis: None,
+            share: 0.0,
+            since_axis: 0,
+            reference: None,
+            level_refs: 0,
+            stride_sum: Vector3::zeros(),
+            vote: 0.0,
+            up: None,
+            last: None,
+            amplitudes: std::collections::VecDeque::new(),
+            thigh: false,
+        }
+    }
+
+    /// Feeds one sample; returns the raw angle about the swing axis from the reference, degrees,
+    /// once a swing axis is known and dominant and the sample has an attitude. Its sign is the
+    /// eigenvector's: the step detector counts on it as it is (a stride has one maximum either
+    /// way, and a sign learnt later must not turn a stride's signal over mid-walk);
+    /// [`Self::signed`] gives the pitch.
+    pub fn push(&mut self, x: &LegPitchInput) -> Option<f64> {
+        // Every sample counts, moving or not: a still phone adds nothing, and the axis is
+        // known a second into a walk, before the motion detector confirms it, so the onset
+        // look-back finds the first strides.
+        if let Some(w) = x.gyro {
+            if x.dt > 0.0 {
+                let decay = libm::exp(-x.dt / self.cfg.axis_tau_s);
+                self.moment = self.moment * decay + w * w.transpose() * x.dt;
+                self.since_axis += 1;
+                if self.axis.is_none() || self.since_axis >= AXIS_EVERY {
+                    self.since_axis = 0;
+                    self.update_axis();
+                }
+            }
+        }
+        self.up = x
+            .attitude
+            .map(|q| q.inverse_transform_vector(&Vector3::z()));
+        self.last = self.angle(x.moving);
+        self.last
+    }
+
+    fn update_axis(&mut self) {
+        let trace = self.moment.trace();
+        if !(trace > 0.0) || !self.moment.iter().all(|v| v.is_finite()) {
+            return;
+        }
+        let eig = SymmetricEigen::new(self.moment);
+        let i = eig.eigenvalues.imax();
+        let mut a: Vector3<f64> = eig.eigenvectors.column(i).into_owned();
+        if let Some(prev) = self.axis {
+            // The same axis as before, not its opposite: the vote's sign refers to it.
+            if a.dot(&prev) < 0.0 {
+                a = -a;
+            }
+        }
+        self.share = eig.eigenvalues[i] / trace;
+        self.axis = Some(a);
+    }
+
+    fn angle(&mut self, moving: bool) -> Option<f64> {
+        let (a, u) = (self.axis?, self.up?);
+        let project = |v: Vector3<f64>| {
+            let p = v - a * a.dot(&v);
+            let n = p.norm();
+            (n > 1e-6).then(|| p / n)
+        };
+        let p = project(u)?;
+        if moving {
+            self.stride_sum += p;
+        }
+        if self.level_refs == 0 && self.share >= self.cfg.min_axis_share {
+            {
+                // Before the first level stride: the running mean while a swing dominates.
+                let r = self.reference.unwrap_or(p);
+                self.reference = project(r * 0.995 + p * 0.005);
+            }
+        }
+        if self.share < self.cfg.min_axis_share {
+            return None;
+        }
+        let r = project(self.reference?)?;
+        Some(-libm::atan2(a.dot(&r.cross(&p)), r.dot(&p)).to_degrees())
+    }
+
+    fn sign(&self) -> f64 {
+        if self.vote >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
+    /// The pitch (degrees, thigh forward positive, 0 standing) of a raw angle [`Self::push`]
+    /// gave, with the sign as voted so far.
+    pub fn signed(&self, raw_deg: f64) -> f64 {
+        self.sign() * raw_deg + self.cfg.level_mean_deg
+    }
+
+    /// A stride's (θ_max, θ_min), degrees, from the raw angle's extremes: with a negative sign
+    /// the raw minimum is the thigh's forward extreme.
+    pub fn signed_extremes(&self, raw_max_deg: f64, raw_min_deg: f64) -> (f64, f64) {
+        let (a, b) = (self.signed(raw_max_deg), self.signed(raw_min_deg));
+        (a.max(b), a.min(b))
+    }
+
+    /// A step's heading (rad from north) with the attitude at that time: votes on the sign.
+    pub fn push_heading(&mut self, heading_rad: f64, attitude: Option<UnitQuaternion<f64>>) {
+        let (Some(a), Some(q)) = (self.axis, attitude) else {
+            return;
+        };
+        if self.share < self.cfg.min_axis_share {
+            return;
+        }
+        let aw = q.transform_vector(&a);
+        let (s, c) = libm::sincos(heading_rad);
+        // Walking direction d = (east, north, 0); the walker's right is d × ẑ = (c, −s, 0).
+        self.vote += aw.x * c - aw.y * s;
+    }
+
+    /// The stride that just ended was level: its mean up direction joins the reference.
+    /// Another kind of stride only starts the next one afresh ([`Self::skip_stride`]).
+    pub fn commit_level_stride(&mut self) {
+        let n = self.stride_sum.norm();
+        if n > 1e-9 {
+            let m = self.stride_sum / n;
+            let w = if self.level_refs == 0 {
+                1.0
+            } else {
+                self.cfg.reference_weight
+            };
+            let r = self.reference.map_or(m, |r| r * (1.0 - w) + m * w);
+            let rn = r.norm();
+            if rn > 1e-9 {
+                self.reference = Some(r / rn);
+                self.level_refs += 1;
+            }
+        }
+        self.stride_sum = Vector3::zeros();
+    }
+
+    /// The stride that just ended is not level (stairs): it does not move the reference.
+    pub fn skip_stride(&mut self) {
+        self.stride_sum = Vector3::zeros();
+    }
+
+    /// A stride of amplitude Δθ (degrees) and period (s, since the previous maximum) ended:
+    /// whether the phone rides on a thigh, by the last [`LegPitchConfig::thigh_strides`]
+    /// strides.
+    ///
+    /// A thigh's strides are regular, last two steps, and swing a leg's angle. Three tests say
+    /// no: a stride beyond [`THIGH_MAX_AMPLITUDE_DEG`] (no thigh swings that far: the angle is
+    /// about another axis, a turning hand), a stride shorter than [`THIGH_MIN_STRIDE_S`] (a hand
+    /// rocks once per step, a thigh once per two), and amplitudes that spread by more than
+    /// their median (the hand-held IPIN walks' strides range 8–70° within five).
+    pub fn push_stride(&mut self, amplitude_deg: f64, period_s: Option<f64>) -> bool {
+        if amplitude_deg > THIGH_MAX_AMPLITUDE_DEG
+            || period_s.is_some_and(|p| p < THIGH_MIN_STRIDE_S)
+        {
+            self.amplitudes.clear();
+            self.thigh = false;
+            return false;
+        }
+        if self.amplitudes.len() == self.cfg.thigh_strides {
+            self.amplitudes.pop_front();
+        }
+        self.amplitudes.push_back(amplitude_deg);
+        let mut a: Vec<f64> = self.amplitudes.iter().copied().collect();
+        a.sort_by(f64::total_cmp);
+        let median = a[a.len() / 2];
+        let spread = a[a.len() - 1] - a[0];
+        self.thigh = a.len() == self.cfg.thigh_strides
+            && median >= self.cfg.thigh_min_amplitude_deg
+            && spread <= median
+            && self.share >= self.cfg.thigh_min_axis_share;
+        self.thigh
+    }
+
+    /// Whether the phone rides on a thigh ([`Self::push_stride`]).
+    pub fn on_thigh(&self) -> bool {
+        self.thigh
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> LegPitchDiagnostics {
+        LegPitchDiagnostics {
+            pitch_deg: self.last,
+            axis_share: self.share,
+            sign_vote: self.vote,
+            on_thigh: self.thigh,
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! The pocket's own signal in the pipeline (Munoz Diaz 2015): the leg pitch of each sample,
+//! the strides it shows, each stride's activity, the stairs' step length and the height with
+//! the barometer. May import: the rest of `engine`.
+//!
+//! The leg pitch runs whenever the samples have a gyroscope and an attitude and a single swing
+//! axis dominates; its strides count only once they show a thigh's swing
+//! ([`LegPitch::push_stride`]: a phone in a trouser pocket, not in the hand). Strides come from
+//! the pitch step detector,
+//! the configured one (`detector.kind=pitch`) or a second one beside the configured detector,
+//! whose strides then give the activity, the height and the length of that detector's steps.
+//! Without a leg pitch the activity is the motion state's, a step's height change is unknown
+//! (the barometer alone moves the height) and the step length is the configured model's.
+
+use super::step_detector::Detector;
+use super::Pipeline;
+use crate::engine::activity::{Activity, ActivityClassifier};
+use crate::engine::detector::DetectorInput;
+use crate::engine::leg_pitch::{LegPitch, LegPitchInput};
+use crate::engine::motion::Motion;
+use crate::engine::pitch_detector::{PitchDetector, PitchStride};
+use crate::engine::types::{ImuSample, InputError, PressureSample};
+use crate::engine::vertical::{StepHeight, Vertical};
+
+/// A stride's classification, kept for the steps that fall in it.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct ClassifiedStride {
+    stride: PitchStride,
+    activity: Activity,
+    thigh: bool,
+}
+
+/// What the pocket stages say about one step.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct StepPocket {
+    /// The step's activity.
+    pub activity: Activity,
+    /// Its stride's Δθ, degrees, when the leg pitch is known.
+    pub amplitude_deg: Option<f64>,
+}
+
+/// The pocket stages of a pipeline.
+pub(super) struct Pocket {
+    pub leg: LegPitch,
+    /// Strides beside a detector that is not the pitch detector.
+    pub strides: Option<PitchDetector>,
+    pub activity: ActivityClassifier,
+    pub vertical: Vertical,
+    pub last: Option<ClassifiedStride>,
+    /// The raw angle of the last sample ([`LegPitch::push`]).
+    pub pitch: Option<f64>,
+}
+
+/// Longest time after a stride's maximum that a step still belongs to it, s.
+const STRIDE_HOLD_S: f64 = 1.5;
+
+impl Pipeline {
+    /// The leg pitch of sample `s` (its attitude just computed), and the stride finder beside
+    /// the configured detector.
+    pub(super) fn pocket_sample(
+        &mut self,
+        s: &ImuSample,
+        dt: f64,
+        state: Motion,
+        x: &DetectorInput,
+    ) {
+        let p = &mut self.pocket;
+        p.pitch = p.leg.push(&LegPitchInput {
+            dt,
+            gyro: s.gyro,
+            attitude: self.attitude,
+            moving: state.is_moving(),
+        });
+        if let Some(d) = &mut p.strides {
+            d.push(&DetectorInput {
+                pitch_deg: p.pitch,
+                ..*x
+            });
+        }
+        if !state.is_moving() {
+            let signed = p.pitch.map(|r| p.leg.signed(r));
+            p.activity.push_still(signed);
+        }
+    }
+
+    fn newest_stride(&self) -> Option<PitchStride> {
+        match (&self.detector, &self.pocket.strides) {
+            (Detector::Pitch(d), _) => d.last_stride(),
+            (_, Some(d)) => d.last_stride(),
+            _ => None,
+        }
+    }
+
+    /// The activity and stride amplitude of a step at `t`: a stride found since the last step
+    /// is classified (Munoz Diaz 2015 §4.3), its height change given to the height stage and
+    /// its mean attitude, if level, to the leg pitch's reference.
+    pub(super) fn step_pocket(&mut self, t: f64, state: Motion) -> StepPocket {
+        if let Some(st) = self.newest_stride() {
+            if self.pocket.last.map_or(true, |l| l.stride.t_max < st.t_max) {
+                let p = &mut self.pocket;
+                let thigh = p.leg.push_stride(st.amplitude_deg, st.period_s);
+                let activity = if !thigh {
+                    // Not a thigh's swing (a phone in the hand): the motion state's word.
+                    p.activity.push_step(state == Motion::Running)
+                } else if state == Motion::Running {
+                    p.activity.push_step(true)
+                } else {
+                    let (max, min) = p.leg.signed_extremes(st.max_deg, st.min_deg);
+                    p.activity.push_stride(max, min, st.amplitude_deg)
+                };
+                if activity == Activity::Walking {
+                    p.leg.commit_level_stride();
+                } else {
+                    p.leg.skip_stride();
+                }
+                if thigh {
+                    let dz = self
+                        .cfg
+                        .vertical
+                        .stride_height_m(activity, st.amplitude_deg);
+                    p.vertical.push_step(StepHeight::Pitch(dz));
+                }
+                p.last = Some(ClassifiedStride {
+                    stride: st,
+                    activity,
+                    thigh,
+                });
+            }
+        }
+        match self
+            .pocket
+            .last
+            .filter(|l| l.thigh && (t - l.stride.t_max).abs() <= STRIDE_HOLD_S)
+        {
+            Some(l) => StepPocket {
+                activity: l.activity,
+                amplitude_deg: Some(l.stride.amplitude_deg),
+            },
+            None => {
+                self.pocket.vertical.push_step(StepHeight::Unknown);
+                StepPocket {
+                    activity: self.pocket.activity.push_step(state == Motion::Running),
+                    amplitude_deg: None,
+                }
+            }
+        }
+    }
+
+    /// After a step's heading is known: its vote on the leg pitch's sign.
+    pub(super) fn pocket_heading(&mut self, heading_rad: f64) {
+        self.pocket.leg.push_heading(heading_rad, self.attitude);
+    }
+
+    /// Feeds one barometer reading. Refused (state untouched) when out of range or earlier than
+    /// the previous reading.
+    pub fn push_pressure(&mut self, p: &PressureSample) -> Result<(), InputError> {
+        let refused = p.check().err().or_else(|| {
+            self.last_pressure_t
+                .filter(|&last| p.t < last)
+                .map(|last| InputError::TimeWentBackwards { t: p.t, last })
+        });
+        if let Some(e) = refused {
+            match e {
+                InputError::TimeWentBackwards { .. } => self.diag.rejected_backwards += 1,
+                _ => self.diag.rejected_non_finite += 1,
+            }
+            return Err(e);
+        }
+        self.last_pressure_t = Some(p.t);
+        self.diag.pressure_samples += 1;
+        self.pocket.vertical.push_pressure(p.t, p.hpa);
+        Ok(())
+    }
+}
