@@ -26,7 +26,13 @@ fn main() {
                     }
                     for s in &p.track()[p.track().len() - n..] {
                         if s.pitch_amplitude_deg.is_some() {
-                            println!("   {} t {:.1} amp {:?} {}", log.source, s.t, s.pitch_amplitude_deg, s.activity.as_str());
+                            println!(
+                                "   {} t {:.1} amp {:?} {}",
+                                log.source,
+                                s.t,
+                                s.pitch_amplitude_deg,
+                                s.activity.as_str()
+                            );
                         }
                         amps.extend(s.pitch_amplitude_deg);
                         *acts.entry(s.activity.as_str()).or_default() += 1;

@@ -28,20 +28,20 @@
 //!   leaves the state untouched.
 
 use super::activity::{Activity, ActivityClassifier, ActivityConfig};
-use super::detector::{Candidate, DetectorInput};
+use super::detector::DetectorInput;
 use super::foot::placement::{Placement, Recogniser};
 use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
 use super::fusion::GnssMode;
-use super::fusion::{self, declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
+use super::fusion::{declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
 use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
-use super::heading::{self, Heading, HeadingConfig, NavSample, StepWindow};
+use super::heading::{self, Heading, HeadingConfig, NavSample};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::leg_pitch::{LegPitch, LegPitchConfig};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::pitch_detector::{PitchDetector, PitchDetectorConfig};
-use super::step_length::{StepLength, StepLengthInput, StepLengthModel};
+use super::step_length::{StepLength, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use super::vertical::{Vertical, VerticalConfig};
 use std::collections::VecDeque;
@@ -49,6 +49,7 @@ use std::collections::VecDeque;
 mod foot;
 mod pocket;
 mod step_detector;
+mod steps;
 mod two_sensor;
 
 use step_detector::Detector;
@@ -495,45 +496,6 @@ impl Pipeline {
         Ok(&self.steps[first..])
     }
 
-    /// Restarts the step detector at time `t` on the samples of the last
-    /// [`PipelineConfig::onset_lookback_s`] and returns the steps it finds in them. The PLL
-    /// starts at the motion detector's cadence with its phase fitted to those samples; the
-    /// peak detector starts empty.
-    fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
-        let since = t - self.cfg.onset_lookback_s;
-        let samples: Vec<(f64, f64, Option<f64>)> = self
-            .buf
-            .iter()
-            .filter(|x| x.t >= since)
-            .map(|x| (x.t, x.up, x.pitch))
-            .collect();
-        let m = self.motion.diagnostics();
-        let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.0, s.1)).collect();
-        self.detector.restart(m.cadence_hz, &ups, m.mean_z);
-        let mut out = Vec::new();
-        let mut last = None;
-        for &(ts, up, pitch_deg) in &samples {
-            let dt = last.map_or(0.0, |l| ts - l);
-            last = Some(ts);
-            out.extend(self.detector.push(&DetectorInput {
-                t: ts,
-                dt,
-                up,
-                mean: m.mean_z,
-                sigma: m.sigma_z,
-                motion: state,
-                cadence_hz: m.cadence_hz,
-                pitch_deg,
-            }));
-        }
-        // The gait began after the last step that does not follow its rhythm.
-        let first = out
-            .iter()
-            .rposition(|c| c.coherence < self.cfg.onset_coherence_min)
-            .map_or(0, |i| i + 1);
-        out.split_off(first)
-    }
-
     fn check(&self, s: &ImuSample) -> Result<(), InputError> {
         s.check()?;
         if let Some(last) = self.last_t {
@@ -595,111 +557,6 @@ impl Pipeline {
             self.gap(t1 - t0);
             // The interval is now accounted for; the next sample must not count it again.
             self.last_t = Some(self.last_t.map_or(t1, |l| l.max(t1)));
-        }
-    }
-
-    fn emit(&mut self, c: Candidate, state: Motion) {
-        if self.two.is_some() {
-            // With a foot sensor, the track is its strides (see `two_sensor`).
-            return;
-        }
-        // Continuous with the previous step unless a cycle was skipped or a stop intervened.
-        let cont = self
-            .t_km1
-            .filter(|&p| c.t - p > 0.0 && c.t - p < 1.6 * c.period_s);
-        let period = cont.map_or(c.period_s, |p| c.t - p);
-        let t_km1 = c.t - period;
-        let t_km2 = match (cont, self.t_km2) {
-            (Some(p1), Some(p2)) if p1 - p2 > 0.0 && p1 - p2 < 1.6 * c.period_s => p2,
-            _ => t_km1 - period,
-        };
-        let w = StepWindow {
-            t_km2,
-            t_km1,
-            t_k: c.t,
-        };
-        let has_heading = self
-            .orientation
-            .as_ref()
-            .is_some_and(Orientation::has_heading);
-        let h = self.heading.push(&heading::StepInput {
-            buf: &self.buf,
-            window: w,
-            continued: cont.is_some(),
-            has_heading,
-        });
-        let heading_used = h.used;
-        if let Some(h) = heading_used {
-            self.pocket_heading(h);
-        }
-        let pocket = self.step_pocket(c.t, state);
-        let freq = 1.0 / period;
-        let modelled = self.step_length.push(&StepLengthInput {
-            freq_hz: freq,
-            buf: &self.buf,
-            t0: t_km1,
-            t1: c.t,
-            // Eq. 5 is a line for level walking (Munoz Diaz 2015 §5).
-            pitch_amplitude_deg: pocket
-                .amplitude_deg
-                .filter(|_| pocket.activity == Activity::Walking),
-        });
-        // Stairs: a tread per footfall, whatever the model (the line is for level ground).
-        let length = match pocket.activity {
-            Activity::Upstairs | Activity::Downstairs => self.cfg.vertical.stair_tread_m,
-            _ => modelled,
-        };
-        match heading_used {
-            Some(h) => {
-                let (sh, ch) = libm::sincos(h);
-                self.pos.0 += length * sh;
-                self.pos.1 += length * ch;
-                self.diag.distance_m += length;
-            }
-            None => self.diag.steps_without_heading += 1,
-        }
-        self.steps.push(StepRecord {
-            t: c.t,
-            east_m: self.pos.0,
-            north_m: self.pos.1,
-            heading_rad: heading_used,
-            step_heading_rad: h.single,
-            length_m: length,
-            freq_hz: freq,
-            motion: if state.is_moving() {
-                state
-            } else {
-                Motion::Walking
-            },
-            activity: pocket.activity,
-            up_m: self.pocket.vertical.up_m(),
-            floor: self.pocket.vertical.floor(),
-            pitch_amplitude_deg: pocket.amplitude_deg,
-        });
-        if let Some(f) = &mut self.fusion {
-            f.push_step(&fusion::StepInput {
-                t: c.t,
-                length_m: length,
-                heading_rad: heading_used,
-            });
-        }
-        self.diag.steps += 1;
-        self.t_km2 = cont;
-        self.t_km1 = Some(c.t);
-    }
-
-    /// What the step-length stage was given for `step`, one of this pipeline's steps just
-    /// returned by [`push`](Self::push) (before the next sample moves the buffer): its
-    /// frequency, the recent samples and the step's span, T_k = 1/f_k back from its time. Lets a
-    /// caller ask another step-length model about the same step (the calibration wizard's fuzzy
-    /// lengths) without a second pipeline.
-    pub fn step_length_input(&self, step: &StepRecord) -> StepLengthInput<'_> {
-        StepLengthInput {
-            freq_hz: step.freq_hz,
-            buf: &self.buf,
-            t0: step.t - 1.0 / step.freq_hz,
-            t1: step.t,
-            pitch_amplitude_deg: step.pitch_amplitude_deg,
         }
     }
 
