@@ -191,9 +191,30 @@ impl Body {
             .sum()
     }
 
+    /// Height of the stair the walker stands on at `t`, m: one riser per footfall completed on
+    /// each flight (footfalls at t₀ + k/f). The smooth [`Body::height`] meets it at every
+    /// footfall but the first and the last of a flight, where its blend is 0.078 riser short.
+    pub fn stair_height(&self, t: f64) -> f64 {
+        self.flights
+            .iter()
+            .map(|fl| {
+                let n = libm::round((fl.t1 - fl.t0) * fl.f);
+                let k = libm::round((t - fl.t0) * fl.f).clamp(0.0, n);
+                if fl.up {
+                    k * fl.riser_m
+                } else {
+                    -k * fl.riser_m
+                }
+            })
+            .sum()
+    }
+
     /// Vertical acceleration of the body from the stairs, m/s².
     pub fn stairs_accel(&self, t: f64) -> f64 {
-        self.flights.iter().map(|fl| fl.climb_rate() * fl.weight(t).1).sum()
+        self.flights
+            .iter()
+            .map(|fl| fl.climb_rate() * fl.weight(t).1)
+            .sum()
     }
 
     /// Forward speed and its rate, from the level speed and its rate: on a flight one tread per

@@ -614,9 +614,15 @@ impl Scenario {
         };
         // Angles as functions of time near t (first order in the phase).
         // Pelvis yaw and thigh flexion both peak at the heel strike of the pocket leg.
-        let waist = |dt: f64| yaw_amp * libm::cos(half + 0.5 * omega * dt);
-        let path = |dt: f64| st.psi + st.psi_dot * dt + 0.5 * st.psi_ddot * dt * dt;
         let real = matches!(w.thigh, ThighModel::Gait(_));
+        let waist = |dt: f64| match ext {
+            // With the realistic thigh the pelvis's rotation fades in and out with the bout too.
+            Some((_, body, t)) if real => {
+                yaw_amp * body.walk_envelope(t + dt) * libm::cos(half + 0.5 * omega * dt)
+            }
+            _ => yaw_amp * libm::cos(half + 0.5 * omega * dt),
+        };
+        let path = |dt: f64| st.psi + st.psi_dot * dt + 0.5 * st.psi_ddot * dt * dt;
         let pitch = |dt: f64| match ext {
             // The body frame's y is the walker's left: flexion is a negative rotation about it.
             Some((tl, body, t)) if real => -self.thigh_deg(tl, body, t + dt).to_radians(),

@@ -191,7 +191,9 @@ mod tests {
     /// Local extrema of a shape over a stride: (phase, value, is_max).
     fn extrema(shape: Shape) -> Vec<(f64, f64, bool)> {
         let n = 4000;
-        let v: Vec<f64> = (0..n).map(|i| unit_shape(shape, i as f64 / n as f64)).collect();
+        let v: Vec<f64> = (0..n)
+            .map(|i| unit_shape(shape, i as f64 / n as f64))
+            .collect();
         (0..n)
             .filter_map(|i| {
                 let (a, b, c) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);

@@ -24,7 +24,8 @@ pub struct TruthStep {
     pub observed: bool,
     /// What the walker did during the step (the activity at its middle).
     pub activity: Activity,
-    /// Height of the ground under the walker after the step, relative to the start, m.
+    /// Height of the stair under the walker after the step, relative to the start, m: one riser
+    /// per footfall on a flight.
     pub up_m: f64,
     /// Floor after the step, relative to the start (0 without a floor height).
     pub floor: i32,
@@ -157,7 +158,7 @@ impl Scenario {
                     let frac = (k - prev.phi) / (st.phi - prev.phi);
                     let tc = t + frac * (t1 - t);
                     let observed = !self.sensors.gaps.iter().any(|&(a, b)| tc > a && tc < b);
-                    let up_m = body.height(tc);
+                    let up_m = body.stair_height(tc);
                     tr.steps.push(TruthStep {
                         t: tc,
                         east_m: e,
