@@ -31,17 +31,34 @@
 //!
 //! A foot-mounted IMU on the same walker, on request: [`foot`].
 //!
+//! Opt-in, for the pocket's own signal (Munoz Diaz 2015), none of which changes a scenario that
+//! does not ask for it: a realistic thigh ([`ThighModel::Gait`], [`thigh`]: the paper's pitch
+//! shape tied to the stride, stairs and sitting; its angle replaces the sinusoid in the attitude,
+//! the rate and the lever arm), flights of stairs and sitting ([`Gait::StairsUp`],
+//! [`Gait::StairsDown`], [`Gait::Sit`]; heights, tread-paced speed and hip drop in [`body`]),
+//! eight pocket poses in either front pocket ([`PocketPose`]), a barometer ([`BaroSim`]), and a
+//! truth with heights, floors, activities and the thigh's pitch ([`Truth`]).
+//!
 //! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,
 //! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
 //! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
 
+mod baro;
+pub mod body;
 pub mod foot;
 pub mod formats;
 mod gnss;
+pub mod pose;
 pub mod scenarios;
+pub mod thigh;
+mod truth;
 
+pub use baro::{standard_pressure_hpa, BaroSim};
 pub use foot::{FootImu, FootSimulation, FootStride};
 pub use gnss::GnssSim;
+pub use pose::PocketPose;
+pub use thigh::{GaitThigh, ThighModel};
+pub use truth::{Truth, TruthStep};
 
 use crate::engine::step_length::StepLengthProfile;
 use crate::engine::types::ImuSample;
@@ -65,12 +82,30 @@ pub enum Gait {
     Walk,
     /// Running.
     Run,
+    /// Walking up a flight of stairs ([`Segment::stair`] gives riser and tread).
+    StairsUp,
+    /// Walking down a flight of stairs.
+    StairsDown,
+    /// Sitting: sits down over the first [`GaitThigh::transition_s`], stands up over the last.
+    Sit,
 }
 
 impl Gait {
     fn moving(self) -> bool {
-        matches!(self, Gait::Walk | Gait::Run)
+        matches!(
+            self,
+            Gait::Walk | Gait::Run | Gait::StairsUp | Gait::StairsDown
+        )
     }
+}
+
+/// The steps of a flight of stairs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stair {
+    /// Height of a step, m.
+    pub riser_m: f64,
+    /// Depth of a step, m.
+    pub tread_m: f64,
 }
 
 /// One piece of the script.
@@ -84,6 +119,8 @@ pub struct Segment {
     pub cadence_hz: (f64, f64),
     /// Total heading change over the segment, degrees, clockwise positive.
     pub turn_deg: f64,
+    /// The stairs' riser and tread (stairs segments only).
+    pub stair: Option<Stair>,
 }
 
 impl Segment {
@@ -94,6 +131,38 @@ impl Segment {
             duration_s: s,
             cadence_hz: (0.0, 0.0),
             turn_deg: 0.0,
+            stair: None,
+        }
+    }
+
+    /// Sitting for `s` seconds, sitting down and standing up included.
+    pub fn sit(s: f64) -> Self {
+        Segment {
+            gait: Gait::Sit,
+            ..Segment::still(s)
+        }
+    }
+
+    /// Walking `n` steps (may be fractional) at cadence `f`.
+    pub fn walk_steps(n: f64, f: f64) -> Self {
+        Segment::walk(n / f, f)
+    }
+
+    /// `n` steps up a flight of stairs at cadence `f`: each footfall one `riser_m` up and one
+    /// `tread_m` forward.
+    pub fn stairs_up(n: usize, f: f64, riser_m: f64, tread_m: f64) -> Self {
+        Segment {
+            gait: Gait::StairsUp,
+            stair: Some(Stair { riser_m, tread_m }),
+            ..Segment::walk(n as f64 / f, f)
+        }
+    }
+
+    /// `n` steps down a flight of stairs at cadence `f`.
+    pub fn stairs_down(n: usize, f: f64, riser_m: f64, tread_m: f64) -> Self {
+        Segment {
+            gait: Gait::StairsDown,
+            ..Segment::stairs_up(n, f, riser_m, tread_m)
         }
     }
 
@@ -112,6 +181,7 @@ impl Segment {
             duration_s: s,
             cadence_hz: (f, f),
             turn_deg: 0.0,
+            stair: None,
         }
     }
 
@@ -158,6 +228,8 @@ pub struct Walker {
     pub lever_m: f64,
     /// Lateral sway amplitude, m/s².
     pub sway: f64,
+    /// How the thigh pitches (the historic sinusoid by default).
+    pub thigh: ThighModel,
 }
 
 impl Default for Walker {
@@ -168,6 +240,7 @@ impl Default for Walker {
             thigh_pitch_deg: 20.0,
             lever_m: 0.12,
             sway: 0.6,
+            thigh: ThighModel::Sinusoid,
         }
     }
 }
@@ -202,6 +275,8 @@ pub struct Sensors {
     /// Constant yaw error of the OS orientation, degrees: the OS heading reads this much
     /// clockwise (east) of the truth.
     pub os_yaw_bias_deg: f64,
+    /// The barometer, if the phone has one on.
+    pub barometer: Option<BaroSim>,
 }
 
 impl Default for Sensors {
@@ -220,6 +295,7 @@ impl Default for Sensors {
             os_orientation: true,
             os_yaw_error_deg: 0.0,
             os_yaw_bias_deg: 0.0,
+            barometer: None,
         }
     }
 }
@@ -244,6 +320,12 @@ pub struct Scenario {
     /// Added to every time written out (samples, fixes, truth), s: a Unix time puts the walk on
     /// a date (for the magnetic declination).
     pub clock_offset_s: f64,
+    /// How the phone sits in the pocket (before `pocket_yaw_deg`).
+    pub pose: PocketPose,
+    /// The phone is in the left front pocket (default the right one).
+    pub left_pocket: bool,
+    /// Height of one floor, m, for the truth's floor numbers (None: no floors).
+    pub floor_height_m: Option<f64>,
 }
 
 impl Scenario {
@@ -258,7 +340,16 @@ impl Scenario {
             seed: 1,
             gnss: None,
             clock_offset_s: 0.0,
+            pose: PocketPose::UprightOut,
+            left_pocket: false,
+            floor_height_m: None,
         }
+    }
+
+    /// The same scenario with the realistic thigh ([`ThighModel::Gait`], default parameters).
+    pub fn with_gait_thigh(mut self) -> Self {
+        self.walker.thigh = ThighModel::Gait(GaitThigh::default());
+        self
     }
 
     /// Total duration, s.
@@ -290,63 +381,6 @@ impl Scenario {
             cycles += out[i].duration_s * f;
         }
         out
-    }
-}
-
-/// One true step.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct TruthStep {
-    /// End of the step, s.
-    pub t: f64,
-    /// Position after the step, m.
-    pub east_m: f64,
-    /// Position after the step, m.
-    pub north_m: f64,
-    /// Path heading at the step, rad from north.
-    pub heading_rad: f64,
-    /// Step length, m.
-    pub length_m: f64,
-    /// Cadence, Hz.
-    pub freq_hz: f64,
-    /// Whether the step was observable (not inside a sampling gap).
-    pub observed: bool,
-}
-
-/// The truth of a simulated walk.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Truth {
-    /// Every step taken.
-    pub steps: Vec<TruthStep>,
-    /// Path length, m.
-    pub distance_m: f64,
-    /// Final position (east, north), m.
-    pub end: (f64, f64),
-    /// (start, end, gait) of each segment.
-    pub segments: Vec<(f64, f64, Gait)>,
-    /// The path every 0.1 s: (time, east, north), s and m.
-    pub path: Vec<(f64, f64, f64)>,
-    /// The geodetic frame of `path` and `steps` (origin at the start), when there is GNSS.
-    pub frame: Option<crate::engine::geo::LocalFrame>,
-}
-
-impl Truth {
-    /// The true position at time `t` (east, north), interpolated along the path.
-    pub fn position_at(&self, t: f64) -> (f64, f64) {
-        let i = self.path.partition_point(|p| p.0 <= t);
-        match (i.checked_sub(1).map(|k| self.path[k]), self.path.get(i)) {
-            (Some(a), Some(b)) if b.0 > a.0 => {
-                let w = (t - a.0) / (b.0 - a.0);
-                (a.1 + w * (b.1 - a.1), a.2 + w * (b.2 - a.2))
-            }
-            (Some(a), _) => (a.1, a.2),
-            (None, Some(b)) => (b.1, b.2),
-            (None, None) => (0.0, 0.0),
-        }
-    }
-
-    /// Steps that fall outside sampling gaps.
-    pub fn observed_steps(&self) -> usize {
-        self.steps.iter().filter(|s| s.observed).count()
     }
 }
 
@@ -427,6 +461,12 @@ impl Timeline {
         Timeline { segs }
     }
 
+    /// The state at `t`, found by bisection (for evaluations on either side of `t`).
+    fn state_at(&self, t: f64) -> State {
+        let mut i = self.segs.partition_point(|s| s.0 <= t).saturating_sub(1);
+        self.state(t, &mut i)
+    }
+
     fn state(&self, t: f64, hint: &mut usize) -> State {
         while *hint + 1 < self.segs.len() && t >= self.segs[*hint + 1].0 {
             *hint += 1;
@@ -498,16 +538,67 @@ fn rx(a: f64) -> Matrix3<f64> {
 impl Scenario {
     /// The phone-in-body mount: upright (device y up), screen facing out of the right thigh,
     /// then yawed by `pocket_yaw_deg` about the vertical. Body frame: x forward, y left, z up.
-    fn mount(&self) -> Matrix3<f64> {
-        let base = Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+    /// Other poses and the left pocket: [`PocketPose`].
+    pub fn mount(&self) -> Matrix3<f64> {
+        let base = self.pose.mount(self.left_pocket);
         rz(self.pocket_yaw_deg.to_radians()) * base
     }
 
-    /// World attitude, world angular velocity and world acceleration of the phone.
+    /// The slow motions of the script (bouts, flights, sitting, activities).
+    pub(super) fn body(&self) -> body::Body {
+        let (tr, drop) = match &self.walker.thigh {
+            ThighModel::Gait(g) => (g.transition_s, g.sit_drop_m),
+            ThighModel::Sinusoid => (GaitThigh::default().transition_s, 0.0),
+        };
+        body::Body::new(&self.timed_segments(), tr, drop)
+    }
+
+    /// The thigh's true pitch at `t` (simulation time), degrees, positive with the knee forward.
+    fn thigh_deg(&self, tl: &Timeline, body: &body::Body, t: f64) -> f64 {
+        let st = tl.state_at(t);
+        let g = match &self.walker.thigh {
+            ThighModel::Sinusoid => {
+                if !st.gait.moving() {
+                    return 0.0;
+                }
+                let k = if st.gait == Gait::Run { 1.4 } else { 1.0 };
+                return -k * self.walker.thigh_pitch_deg * libm::cos(0.5 * st.phi);
+            }
+            ThighModel::Gait(g) => g,
+        };
+        let mut theta = 0.0;
+        let e = body.walk_envelope(t);
+        if e > 0.0 && st.f > 0.0 {
+            // Stride phase: 0 at the pocket leg's heel strike (φ ≡ 0 mod 4π on the right).
+            let mut s = st.phi / (2.0 * TAU) + if self.left_pocket { 0.5 } else { 0.0 };
+            s -= libm::floor(s);
+            let mut dh = g.level_amplitude_deg(2.0 * self.walker.step_length.length(st.f));
+            if st.gait == Gait::Run {
+                dh = dh.min(g.run_max_deg);
+            }
+            let (mut level, mut stairs) = (1.0, 0.0);
+            for (w, fl) in body.flights_at(t) {
+                let shape = if fl.up {
+                    thigh::Shape::Up
+                } else {
+                    thigh::Shape::Down
+                };
+                level -= w;
+                stairs += w * g.pitch_deg(shape, s, dh, fl.riser_m);
+            }
+            theta = e * (level * g.pitch_deg(thigh::Shape::Level, s, dh, 0.0) + stairs);
+        }
+        theta + body.sit(t).0 * g.sit_deg_at(t)
+    }
+
+    /// World attitude, world angular velocity and world acceleration of the phone. `ext` (the
+    /// timeline, the body's slow motions and the time) turns on the opt-in models: the realistic
+    /// thigh, stairs and sitting; without it the historic model runs untouched.
     fn kinematics(
         &self,
         st: &State,
         mount: &Matrix3<f64>,
+        ext: Option<(&Timeline, &body::Body, f64)>,
     ) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
         let w = &self.walker;
         let omega = TAU * st.f;
@@ -523,9 +614,20 @@ impl Scenario {
         };
         // Angles as functions of time near t (first order in the phase).
         // Pelvis yaw and thigh flexion both peak at the heel strike of the pocket leg.
-        let waist = |dt: f64| yaw_amp * libm::cos(half + 0.5 * omega * dt);
+        let real = matches!(w.thigh, ThighModel::Gait(_));
+        let waist = |dt: f64| match ext {
+            // With the realistic thigh the pelvis's rotation fades in and out with the bout too.
+            Some((_, body, t)) if real => {
+                yaw_amp * body.walk_envelope(t + dt) * libm::cos(half + 0.5 * omega * dt)
+            }
+            _ => yaw_amp * libm::cos(half + 0.5 * omega * dt),
+        };
         let path = |dt: f64| st.psi + st.psi_dot * dt + 0.5 * st.psi_ddot * dt * dt;
-        let pitch = |dt: f64| pitch_amp * libm::cos(half + 0.5 * omega * dt);
+        let pitch = |dt: f64| match ext {
+            // The body frame's y is the walker's left: flexion is a negative rotation about it.
+            Some((tl, body, t)) if real => -self.thigh_deg(tl, body, t + dt).to_radians(),
+            _ => pitch_amp * libm::cos(half + 0.5 * omega * dt),
+        };
         let handled = st.gait == Gait::Handled;
         let attitude = |dt: f64| {
             let heading = path(dt) + waist(dt);
@@ -564,15 +666,26 @@ impl Scenario {
             let sl = &w.step_length;
             let v = sl.length(st.f) * st.f;
             let dv = (sl.length(st.f + 1e-4) * (st.f + 1e-4) - v) / 1e-4 * st.fdot;
-            a += path_fwd * dv + right * (v * st.psi_dot);
-            // Thigh lever: second derivative of the pocket offset, by central differences.
-            let offset = |dt: f64| {
-                let heading = path(dt) + waist(dt);
-                rz(FRAC_PI_2 - heading) * ry(pitch(dt)) * Vector3::new(0.0, 0.0, -w.lever_m)
+            let (v, dv) = match ext {
+                Some((_, body, t)) => body.speed(t, v, dv),
+                None => (v, dv),
             };
-            let hh = 1e-3;
+            a += path_fwd * dv + right * (v * st.psi_dot);
+        }
+        // Thigh lever: second derivative of the pocket offset, by central differences.
+        let offset = |dt: f64| {
+            let heading = path(dt) + waist(dt);
+            rz(FRAC_PI_2 - heading) * ry(pitch(dt)) * Vector3::new(0.0, 0.0, -w.lever_m)
+        };
+        let hh = 1e-3;
+        if let Some((_, body, t)) = ext {
+            // The lever at all times (the thigh moves sitting down), the climb, the hip's drop.
             a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
-        } else if handled {
+            a += Vector3::z() * (body.stairs_accel(t) - body.sit_drop_m * body.sit(t).2);
+        } else if st.gait.moving() {
+            a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
+        }
+        if handled {
             let tt = st.tau;
             a += Vector3::new(
                 0.3 * libm::sin(TAU * 0.9 * tt),
@@ -586,6 +699,10 @@ impl Scenario {
     /// Generates the samples and the truth.
     pub fn generate(&self) -> Simulation {
         let tl = Timeline::new(self);
+        let body = self.body();
+        let extended = matches!(self.walker.thigh, ThighModel::Gait(_))
+            || !body.flights.is_empty()
+            || !body.sits.is_empty();
         let mut rng = Rng(self.seed ^ 0x5EED_0F0D);
         let mount = self.mount();
         let dur = self.duration_s();
@@ -613,7 +730,8 @@ impl Scenario {
         while t <= dur {
             if !in_gap(t) {
                 let st = tl.state(t, &mut hint);
-                let (r, w_world, a) = self.kinematics(&st, &mount);
+                let ext = extended.then_some((&tl, &body, t));
+                let (r, w_world, a) = self.kinematics(&st, &mount, ext);
                 let rt = r.transpose();
                 let mut accel =
                     rt * (a + Vector3::new(0.0, 0.0, G)) + rng.vec3(self.sensors.accel_noise);
@@ -657,69 +775,16 @@ impl Scenario {
                 g.origin.0, g.origin.1, g.origin.2,
             ));
         }
+        if let Some(b) = &self.sensors.barometer {
+            let p = b.samples(
+                self.seed,
+                dur,
+                self.clock_offset_s,
+                &self.sensors.gaps,
+                |t| body.phone_height(t),
+            );
+            records = merge_in_time(records, p);
+        }
         Simulation { records, truth }
-    }
-
-    fn truth(&self, tl: &Timeline) -> Truth {
-        let mut tr = Truth::default();
-        let dt = 1e-3;
-        let dur = self.duration_s();
-        let mut hint = 0;
-        let (mut e, mut n, mut dist) = (0.0, 0.0, 0.0);
-        let mut last_step_dist = 0.0;
-        let mut prev = tl.state(0.0, &mut hint);
-        let mut t = 0.0;
-        let mut ticks = 0u64;
-        tr.path.push((0.0, 0.0, 0.0));
-        while t < dur {
-            let t1 = (t + dt).min(dur);
-            ticks += 1;
-            let st = tl.state(t1, &mut hint);
-            if st.gait.moving() {
-                let mid = tl.state(0.5 * (t + t1), &mut hint.clone());
-                let v = self.walker.step_length.length(mid.f) * mid.f;
-                let ds = v * (t1 - t);
-                e += ds * libm::sin(mid.psi);
-                n += ds * libm::cos(mid.psi);
-                dist += ds;
-                if prev.gait.moving() && (st.phi / TAU).floor() > (prev.phi / TAU).floor() {
-                    // Interpolate the crossing of the multiple of 2π.
-                    let k = (st.phi / TAU).floor() * TAU;
-                    let frac = (k - prev.phi) / (st.phi - prev.phi);
-                    let tc = t + frac * (t1 - t);
-                    let observed = !self.sensors.gaps.iter().any(|&(a, b)| tc > a && tc < b);
-                    tr.steps.push(TruthStep {
-                        t: tc,
-                        east_m: e,
-                        north_m: n,
-                        heading_rad: crate::engine::math::wrap_2pi(st.psi),
-                        length_m: dist - last_step_dist,
-                        freq_hz: st.f,
-                        observed,
-                    });
-                    last_step_dist = dist;
-                }
-            }
-            prev = st;
-            t = t1;
-            if ticks % 100 == 0 || t >= dur {
-                tr.path.push((t, e, n));
-            }
-        }
-        let off = self.clock_offset_s;
-        for s in &mut tr.steps {
-            s.t += off;
-        }
-        for p in &mut tr.path {
-            p.0 += off;
-        }
-        tr.distance_m = dist;
-        tr.end = (e, n);
-        let mut t0 = self.clock_offset_s;
-        for s in &self.timed_segments() {
-            tr.segments.push((t0, t0 + s.duration_s, s.gait));
-            t0 += s.duration_s;
-        }
-        tr
     }
 }

@@ -1,7 +1,8 @@
-//! Named scenarios used by the tests, the benchmark and the demo page.
+//! Named scenarios used by the tests, the benchmark and the demo page; the pocket scenarios of
+//! Munoz Diaz 2015 (realistic thigh, stairs, sitting, a pose, a barometer).
 //! May import: `engine` and `io`.
 
-use super::{GnssSim, Scenario, Segment, Walker};
+use super::{BaroSim, GnssSim, PocketPose, Scenario, Segment, Walker};
 
 /// A straight walk of `seconds` at cadence `f` Hz, preceded and followed by 3 s still.
 pub fn straight_walk(f: f64, seconds: f64) -> Scenario {
@@ -188,4 +189,158 @@ pub fn athletic_track(laps: usize) -> Scenario {
     sc.sensors.os_yaw_error_deg = 2.0;
     sc.seed = 2017;
     sc
+}
+
+/// Riser of the pocket scenarios' stairs, m (the paper's office stairs, §6.1).
+pub const POCKET_RISER_M: f64 = 0.17;
+/// Tread of the pocket scenarios' stairs, m.
+pub const POCKET_TREAD_M: f64 = 0.28;
+/// Steps per floor of the pocket scenarios (two flights of nine): a floor is 3.06 m.
+pub const POCKET_STEPS_PER_FLOOR: usize = 18;
+/// Cadence on the pocket scenarios' stairs, Hz (the default walker's level amplitude there is
+/// 37.7°, near the 38° at which its stair amplitudes are the paper's 53.07° and 26.62°).
+pub const POCKET_STAIRS_HZ: f64 = 1.7;
+
+/// `n` steps walked while the cadence ramps from `f0` to `f1` (a whole number of steps keeps the
+/// next segment starting at a footfall).
+fn steps(n: f64, f0: f64, f1: f64) -> Segment {
+    Segment::walk(n / (0.5 * (f0 + f1)), f0).ramp_to(f1)
+}
+
+/// Pelvic rotation of the pocket scenarios' walker, degrees each way (Perry & Burnfield, *Gait
+/// Analysis*: about 4° at a comfortable speed; the historic walker's 6° is kept elsewhere).
+/// It peaks with the thigh's flexion, so the gyroscope's principal axis leans from the thigh's
+/// lateral axis towards the vertical: by 6.2° at 4°, 9.4° at 6° (pocket_flat).
+pub const POCKET_WAIST_YAW_DEG: f64 = 4.0;
+
+/// A pocket scenario: the realistic thigh, the phone in `pose` in the right front pocket, a
+/// barometer, floors of [`POCKET_STEPS_PER_FLOOR`] risers.
+fn pocket(segments: Vec<Segment>, pose: PocketPose, seed: u64) -> Scenario {
+    Scenario {
+        walker: Walker {
+            waist_yaw_deg: POCKET_WAIST_YAW_DEG,
+            ..Walker::default()
+        },
+        pose,
+        seed,
+        floor_height_m: Some(POCKET_STEPS_PER_FLOOR as f64 * POCKET_RISER_M),
+        sensors: super::Sensors {
+            barometer: Some(BaroSim::default()),
+            ..super::Sensors::default()
+        },
+        ..Scenario::new(segments)
+    }
+    .with_gait_thigh()
+}
+
+/// `floors` floors up (or down): per floor two flights of nine steps with a four-step landing
+/// turning 180° between them and after them (the last landing is left to the caller).
+fn floors(segs: &mut Vec<Segment>, floors: usize, up: bool) {
+    let f = POCKET_STAIRS_HZ;
+    let n = POCKET_STEPS_PER_FLOOR / 2;
+    for k in 0..2 * floors {
+        segs.push(if up {
+            Segment::stairs_up(n, f, POCKET_RISER_M, POCKET_TREAD_M)
+        } else {
+            Segment::stairs_down(n, f, POCKET_RISER_M, POCKET_TREAD_M)
+        });
+        if k + 1 < 2 * floors {
+            segs.push(steps(4.0, f, f).turning(180.0));
+        }
+    }
+}
+
+/// Level walk, three floors up, a level stretch there and back, three floors down, and the
+/// level walk back; 3 s standing at both ends (about 2 min 20 s).
+pub fn stairs_walk(pose: PocketPose) -> Scenario {
+    let (f, fs) = (1.8, POCKET_STAIRS_HZ);
+    let mut segs = vec![Segment::still(3.0), steps(16.5, f, f), steps(4.0, f, fs)];
+    floors(&mut segs, 3, true);
+    segs.push(steps(4.0, fs, f).turning(90.0));
+    segs.push(steps(24.0, f, f));
+    segs.push(steps(5.0, f, f).turning(180.0));
+    segs.push(steps(24.0, f, f));
+    segs.push(steps(4.0, f, fs).turning(90.0));
+    floors(&mut segs, 3, false);
+    segs.push(steps(4.0, fs, f).turning(180.0));
+    segs.push(steps(20.0, f, f));
+    segs.push(Segment::still(3.0));
+    pocket(segs, pose, 1815)
+}
+
+/// Standing, a walk, sitting for 20 s (sitting down and standing up 1.5 s each), standing, a
+/// walk back and standing.
+pub fn sit_stand(pose: PocketPose) -> Scenario {
+    let f = 1.8;
+    let segs = vec![
+        Segment::still(4.0),
+        steps(20.5, f, f),
+        steps(4.0, f, f).turning(90.0),
+        Segment::still(3.0),
+        Segment::sit(23.0),
+        Segment::still(3.0),
+        steps(4.5, f, f).turning(180.0),
+        steps(24.0, f, f),
+        Segment::still(4.0),
+    ];
+    pocket(segs, pose, 1816)
+}
+
+/// About 2.5 minutes of level walking with cadence changes (1.6–2.0 Hz, as ramps) and turns.
+pub fn pocket_flat(pose: PocketPose) -> Scenario {
+    let segs = vec![
+        Segment::still(3.0),
+        steps(40.5, 1.8, 1.8),
+        steps(4.0, 1.8, 1.8).turning(90.0),
+        steps(40.0, 1.8, 2.0),
+        steps(5.0, 2.0, 2.0).turning(-120.0),
+        steps(40.0, 2.0, 1.6),
+        steps(30.0, 1.6, 1.6).turning(45.0),
+        steps(4.0, 1.6, 1.7).turning(90.0),
+        steps(50.0, 1.7, 1.9),
+        steps(5.0, 1.9, 1.9).turning(-90.0),
+        steps(40.0, 1.9, 1.8),
+        Segment::still(3.0),
+    ];
+    pocket(segs, pose, 1817)
+}
+
+/// Everything: standing, a walk, sitting, two floors up, a walk with a cadence change, two
+/// floors down, a walk with turns, a stop, a walk, standing.
+pub fn pocket_mixed(pose: PocketPose) -> Scenario {
+    let (f, fs) = (1.8, POCKET_STAIRS_HZ);
+    let mut segs = vec![
+        Segment::still(3.0),
+        steps(12.5, f, f),
+        Segment::still(2.0),
+        Segment::sit(15.0),
+        Segment::still(2.0),
+        steps(10.5, f, f),
+        steps(4.0, f, fs).turning(-90.0),
+    ];
+    floors(&mut segs, 2, true);
+    segs.push(steps(4.0, fs, f).turning(90.0));
+    segs.push(steps(20.0, f, 2.0));
+    segs.push(steps(5.0, 2.0, 2.0).turning(180.0));
+    segs.push(steps(20.0, 2.0, f));
+    segs.push(steps(4.0, f, fs).turning(90.0));
+    floors(&mut segs, 2, false);
+    segs.push(steps(4.0, fs, f).turning(180.0));
+    segs.push(steps(16.0, f, 1.65).turning(60.0));
+    segs.push(Segment::still(4.0));
+    segs.push(steps(12.5, 1.65, 1.65));
+    segs.push(Segment::still(3.0));
+    pocket(segs, pose, 1818)
+}
+
+/// The pitch calibration walk of Munoz Diaz 2015 §5.1: `metres` straight at a comfortable 1.75
+/// Hz with the realistic thigh (upright, screen out), between 3 s of standing.
+pub fn pitch_calibration_walk(metres: f64) -> Scenario {
+    let w = Walker::default();
+    let segs = vec![
+        Segment::still(3.0),
+        Segment::walk_distance(metres, 1.75, &w),
+        Segment::still(3.0),
+    ];
+    pocket(segs, PocketPose::UprightOut, 1819)
 }
