@@ -1,65 +1,72 @@
-//! Probe: the leg pitch and the pitch detector on a simulated pocket walk (exploration).
-use pdr::engine::{replay, PipelineConfig, StepDetectorConfig};
-use pdr::sim::scenarios;
+//! The Munoz Diaz 2015 methods on the simulated pocket walks, every pose: step counts, the
+//! activity of each step, the height and the floors, with the PLL and the pitch detector.
+//! `cargo run --release --example pitch_probe`
+use pdr::engine::{replay, Activity, PipelineConfig, StepDetectorConfig};
+use pdr::sim::{scenarios, PocketPose, Scenario};
 
 fn main() {
-    let sim = scenarios::square(60.0).generate();
-    for kind in ["pll", "pitch"] {
-        let mut cfg = PipelineConfig::default();
-        if kind == "pitch" {
-            cfg.detector = StepDetectorConfig::Pitch(Default::default());
-        }
-        let r = replay(cfg, &sim.records).unwrap();
-        let t = r.pipeline.track();
-        let acts: std::collections::BTreeMap<&str, usize> =
-            t.iter().fold(Default::default(), |mut m, s| {
-                *m.entry(s.activity.as_str()).or_default() += 1;
-                m
-            });
-        let d = r.pipeline.diagnostics();
-        println!(
-            "{kind}: {} steps (truth {}), dist {:.1} (truth {:.1}) acts {:?} amp {:?} pitch_now {:?}",
-            t.len(),
-            sim.truth.steps.len(),
-            d.distance_m,
-            sim.truth.distance_m,
-            acts,
-            t.get(40).and_then(|s| s.pitch_amplitude_deg),
-            d.pitch_deg
-        );
-        println!("  leg {:?}", d.leg_pitch);
-        if kind == "pitch" {
-            let mut j = 0;
-            for ts in &sim.truth.steps {
-                while j < t.len() && t[j].t < ts.t - 0.2 {
-                    println!("  extra step at {:.2}", t[j].t);
-                    j += 1;
-                }
-                if j < t.len() && (t[j].t - ts.t).abs() <= 0.2 {
-                    j += 1;
-                } else {
-                    println!("  missed truth step at {:.2}", ts.t);
-                }
+    let walks: [(&str, fn(PocketPose) -> Scenario); 4] = [
+        ("flat", scenarios::pocket_flat),
+        ("stairs", scenarios::stairs_walk),
+        ("sit/stand", scenarios::sit_stand),
+        ("mixed", scenarios::pocket_mixed),
+    ];
+    let baro = std::env::args().any(|a| a == "--no-baro");
+    for (name, make) in walks {
+        for pose in PocketPose::ALL {
+            let mut sc = make(pose);
+            if baro {
+                sc.sensors.barometer = None;
             }
-            println!(
-                "  first steps {:?}",
-                t.iter()
-                    .take(8)
-                    .map(|s| (s.t * 100.0).round() / 100.0)
-                    .collect::<Vec<_>>()
-            );
-            println!(
-                "  truth first {:?}",
-                sim.truth
-                    .steps
+            let sim = sc.generate();
+            let truth = &sim.truth;
+            let mut line = format!("{name:9} {:28}", pose.as_str());
+            for kind in ["pll", "pitch"] {
+                let mut cfg = PipelineConfig::default();
+                if kind == "pitch" {
+                    cfg.detector = StepDetectorConfig::Pitch(Default::default());
+                }
+                let r = replay(cfg, &sim.records).unwrap();
+                let t = r.pipeline.track();
+                // Each step against the truth's nearest footfall.
+                let nearest = |t: f64| {
+                    truth
+                        .steps
+                        .iter()
+                        .min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs()))
+                        .map_or(Activity::Still, |s| s.activity)
+                };
+                let right = t.iter().filter(|s| s.activity == nearest(s.t)).count();
+                let top = t.iter().map(|s| s.up_m).fold(f64::MIN, f64::max);
+                let last = t.last().map_or(0.0, |s| s.up_m);
+                let floors = t.iter().map(|s| s.floor).max().unwrap_or(0);
+                let wrong: Vec<String> = t
                     .iter()
-                    .take(4)
-                    .map(|s| s.t)
-                    .collect::<Vec<_>>()
-            );
+                    .filter(|s| s.activity != nearest(s.t))
+                    .take(3)
+                    .map(|s| {
+                        format!(
+                            "{:.1}:{}≠{}",
+                            s.t,
+                            s.activity.as_str(),
+                            nearest(s.t).as_str()
+                        )
+                    })
+                    .collect();
+                line += &format!(
+                    " | {kind}: {}/{}, act {:.1} %, top {:.2}/{:.2} m, end {:.2}, fl {} {:?}",
+                    t.len(),
+                    truth.steps.len(),
+                    100.0 * right as f64 / t.len().max(1) as f64,
+                    top,
+                    truth.steps.iter().map(|s| s.up_m).fold(f64::MIN, f64::max),
+                    last,
+                    floors,
+                    wrong
+                );
+                let _ = Activity::Walking;
+            }
+            println!("{}", line.replace(" | pitch", "\n{:38} | pitch"));
         }
     }
 }
-
-#[allow(dead_code)]
-fn unused() {}

@@ -79,7 +79,7 @@ pub struct ActivityConfig {
     pub up_max_margin_deg: f64,
     /// Down stairs: Δθ < this × Δθ̄_H. Default 0.85.
     pub down_amplitude_ratio: f64,
-    /// Down stairs: θ_min > θ̄_Hmin + this, degrees. Default 6°.
+    /// Down stairs: θ_min > θ̄_Hmin + this, degrees. Default 8°.
     pub down_min_margin_deg: f64,
     /// Without steps, sitting when the pitch exceeds this, degrees; standing below. Default 35°:
     /// the paper has standing "around zero" and sitting "around 45–90 degrees".
@@ -94,7 +94,7 @@ impl Default for ActivityConfig {
             up_amplitude_ratio: 1.15,
             up_max_margin_deg: 8.0,
             down_amplitude_ratio: 0.85,
-            down_min_margin_deg: 6.0,
+            down_min_margin_deg: 8.0,
             sitting_deg: 35.0,
         }
     }
@@ -202,6 +202,13 @@ impl ActivityClassifier {
         }
         self.now = a;
         a
+    }
+
+    /// Forgets the level reference and starts the warm-up again (the leg pitch's sign turned
+    /// over: the reference's extremes are the other way round).
+    pub fn reset(&mut self) {
+        self.level.clear();
+        self.strides = 0;
     }
 
     /// A step without a stride of its own (running, or no leg pitch): the motion state's word.

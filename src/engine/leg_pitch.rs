@@ -6,10 +6,11 @@
 //! The paper reads the pitch from its attitude filter with the sensor mounted one way. A phone
 //! goes into a pocket upright or upside down, screen in or out, turned; so the angle is taken
 //! about the axis the thigh swings about, found from the data:
-//! - **Swing axis.** The gyroscope's second moment
-//!   C = Σ e^(−Δt/τ) ω ωᵀ Δt (device frame, τ = [`LegPitchConfig::axis_tau_s`]); its principal
-//!   eigenvector is the thigh's lateral axis `a` (the swing dominates a pocket's rotation: about
-//!   ±20° at the stride frequency against a few degrees of pelvis yaw). Its share of C's trace
+//! - **Swing axis.** The gyroscope's second moment C = Σ e^(−Δt/τ) ω_h ω_hᵀ Δt of the rate
+//!   without its vertical part, ω_h = ω − (ω·u)u (device frame, τ =
+//!   [`LegPitchConfig::axis_tau_s`], u the up direction below); its principal eigenvector is the
+//!   thigh's lateral axis `a`, which is horizontal. Leaving the vertical out keeps turns and the
+//!   pelvis's yaw out: with them a landing's turn dropped the share below 0.6. Its share of C's trace
 //!   says whether a swing dominates at all ([`LegPitchConfig::min_axis_share`]): a phone in the
 //!   hand or a bag has no single axis, and gets no pitch.
 //! - **Angle.** The world's up direction seen from the device, u = Rᵀ ẑ from the attitude, and
@@ -21,13 +22,20 @@
 //!   strides ([`LegPitch::commit_level_stride`]; over all moving samples before the first), and
 //!   the angle is offset by [`LegPitchConfig::level_mean_deg`]: θ = 0 is standing, as in the
 //!   paper, and a seated thigh reads 70–90°.
-//! - **Sign.** The eigenvector's sign is arbitrary; forward (hip flexion) is positive rotation
-//!   about the walker's right, d × ẑ for a walking direction d. Each step's heading votes
-//!   ([`LegPitch::push_heading`]): the sign follows the sum of a_world·(d × ẑ). The step count
+//! - **Sign.** The eigenvector's sign is arbitrary. A thigh swings forward fast (the swing
+//!   phase, about 40 % of the gait cycle) and back slowly (the stance, about 60 %): in a stride
+//!   whose raw maximum is the forward extreme, the rise from the minimum to the maximum takes
+//!   less than half the stride. Each of a thigh's strides votes by how much
+//!   ([`LegPitch::push_stride`]), and the sign follows the votes' decaying sum. This needs no
+//!   heading, which in a pocket can be 180° off for a while (a first version voted with each
+//!   step's heading and turned over mid-walk on the simulated mixed walk when the heading did;
+//!   a second used the skewness of the rate about the axis, which the heel strike's jolt and
+//!   the stairs' shapes made unreliable). The step count
 //!   and Δθ do not depend on the sign, so the step detector is given the raw angle; the
 //!   activities' θ_max and θ_min, and standing against sitting, take the sign
 //!   ([`LegPitch::signed`]).
 
+use super::pitch_detector::PitchStride;
 use super::types::{positive, ConfigError, DeviceVec};
 use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 
@@ -138,7 +146,9 @@ pub struct LegPitchDiagnostics {
     pub pitch_deg: Option<f64>,
     /// The swing axis's share of the gyroscope's second moment.
     pub axis_share: f64,
-    /// The sign's vote so far (positive: the eigenvector points to the walker's right).
+    /// The sign's vote: the decaying sum over strides of half the stride less the rise from
+    /// the minimum to the maximum, s (positive: forward is a positive rotation about the
+    /// eigenvector).
     pub sign_vote: f64,
     /// Whether the phone rides on a thigh.
     pub on_thigh: bool,
@@ -169,6 +179,9 @@ const THIGH_MAX_AMPLITUDE_DEG: f64 = 100.0;
 /// The shortest stride of a thigh, s: two steps at 2.5 Hz, beyond brisk walking (1.6–2.2 Hz).
 const THIGH_MIN_STRIDE_S: f64 = 0.8;
 
+/// Weight kept by the sign's vote per stride (about the last 30 strides count).
+const SIGN_KEEP: f64 = 0.97;
+
 /// Samples between two eigen-decompositions of the second moment (about 0.1–0.2 s).
 const AXIS_EVERY: u32 = 10;
 
@@ -198,11 +211,19 @@ impl LegPitch {
     /// way, and a sign learnt later must not turn a stride's signal over mid-walk);
     /// [`Self::signed`] gives the pitch.
     pub fn push(&mut self, x: &LegPitchInput) -> Option<f64> {
+        self.up = x
+            .attitude
+            .map(|q| q.inverse_transform_vector(&Vector3::z()));
         // Every sample counts, moving or not: a still phone adds nothing, and the axis is
         // known a second into a walk, before the motion detector confirms it, so the onset
-        // look-back finds the first strides.
+        // look-back finds the first strides. The rate about the vertical is left out: turns
+        // and the pelvis's yaw are not the thigh's swing, whose axis is horizontal.
         if let Some(w) = x.gyro {
             if x.dt > 0.0 {
+                let w = match self.up {
+                    Some(u) => w - u * u.dot(&w),
+                    None => w,
+                };
                 let decay = libm::exp(-x.dt / self.cfg.axis_tau_s);
                 self.moment = self.moment * decay + w * w.transpose() * x.dt;
                 self.since_axis += 1;
@@ -212,9 +233,6 @@ impl LegPitch {
                 }
             }
         }
-        self.up = x
-            .attitude
-            .map(|q| q.inverse_transform_vector(&Vector3::z()));
         self.last = self.angle(x.moving);
         self.last
     }
@@ -262,7 +280,8 @@ impl LegPitch {
         Some(-libm::atan2(a.dot(&r.cross(&p)), r.dot(&p)).to_degrees())
     }
 
-    fn sign(&self) -> f64 {
+    /// The sign the votes give now: +1 when forward is a positive raw angle.
+    pub fn sign(&self) -> f64 {
         if self.vote >= 0.0 {
             1.0
         } else {
@@ -281,20 +300,6 @@ impl LegPitch {
     pub fn signed_extremes(&self, raw_max_deg: f64, raw_min_deg: f64) -> (f64, f64) {
         let (a, b) = (self.signed(raw_max_deg), self.signed(raw_min_deg));
         (a.max(b), a.min(b))
-    }
-
-    /// A step's heading (rad from north) with the attitude at that time: votes on the sign.
-    pub fn push_heading(&mut self, heading_rad: f64, attitude: Option<UnitQuaternion<f64>>) {
-        let (Some(a), Some(q)) = (self.axis, attitude) else {
-            return;
-        };
-        if self.share < self.cfg.min_axis_share {
-            return;
-        }
-        let aw = q.transform_vector(&a);
-        let (s, c) = libm::sincos(heading_rad);
-        // Walking direction d = (east, north, 0); the walker's right is d × ẑ = (c, −s, 0).
-        self.vote += aw.x * c - aw.y * s;
     }
 
     /// The stride that just ended was level: its mean up direction joins the reference.
@@ -323,8 +328,8 @@ impl LegPitch {
         self.stride_sum = Vector3::zeros();
     }
 
-    /// A stride of amplitude Δθ (degrees) and period (s, since the previous maximum) ended:
-    /// whether the phone rides on a thigh, by the last [`LegPitchConfig::thigh_strides`]
+    /// A stride ended (its Δθ, period, and the times of its extremes): its vote on the sign,
+    /// and whether the phone rides on a thigh, by the last [`LegPitchConfig::thigh_strides`]
     /// strides.
     ///
     /// A thigh's strides are regular, last two steps, and swing a leg's angle. Three tests say
@@ -332,7 +337,14 @@ impl LegPitch {
     /// about another axis, a turning hand), a stride shorter than [`THIGH_MIN_STRIDE_S`] (a hand
     /// rocks once per step, a thigh once per two), and amplitudes that spread by more than
     /// their median (the hand-held IPIN walks' strides range 8–70° within five).
-    pub fn push_stride(&mut self, amplitude_deg: f64, period_s: Option<f64>) -> bool {
+    pub fn push_stride(&mut self, stride: &PitchStride) -> bool {
+        let (amplitude_deg, period_s) = (stride.amplitude_deg, stride.period_s);
+        if let Some(p) = period_s {
+            let rise = stride.t_max - stride.t_min;
+            if rise > 0.0 && rise < p {
+                self.vote = self.vote * SIGN_KEEP + (0.5 * p - rise);
+            }
+        }
         if amplitude_deg > THIGH_MAX_AMPLITUDE_DEG
             || period_s.is_some_and(|p| p < THIGH_MIN_STRIDE_S)
         {

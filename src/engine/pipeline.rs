@@ -384,6 +384,7 @@ impl Pipeline {
                 activity: ActivityClassifier::new(cfg_activity),
                 vertical: Vertical::new(cfg_vertical),
                 last: None,
+                sign: None,
                 pitch: None,
             },
         })

@@ -8,8 +8,12 @@
 //! (its §1, and the 0.52 m "step" on stairs of 0.26 m treads in §7.3). The engine counts every
 //! footfall, as every other detector here and every truth it is scored on, so each maximum
 //! gives two steps: the other foot's at the stride's mid-time, and the pocket leg's at the
-//! maximum. The first maximum of a bout gives one step: the walk's first stride has no other
-//! footfall known before it.
+//! maximum. A bout's ends are decided by the pitch too (the paper is silent on them):
+//! - the first maximum gives one step, or two when the rise to it is a whole stride's
+//!   ([`FULL_RISE`] of the last amplitude): the thigh first went back while the other foot took
+//!   the first step, at the thigh's backward extreme;
+//! - when no maximum follows for [`STOP_PERIODS`] stride periods, the walk stopped, and the
+//!   other foot's closing step is given half a stride after the last maximum.
 //!
 //! A maximum is taken once the pitch has fallen [`PitchDetectorConfig::hysteresis_deg`] below
 //! it, and the next one is looked for once the pitch has risen as far above the minimum in
@@ -62,6 +66,8 @@ pub struct PitchStride {
     pub max_deg: f64,
     /// θ_min, the minimum before the maximum, degrees.
     pub min_deg: f64,
+    /// Time of that minimum, s.
+    pub t_min: f64,
     /// Δθ = θ_max − θ_min, degrees.
     pub amplitude_deg: f64,
     /// Time since the previous maximum, s, when the stride continues a bout.
@@ -82,11 +88,26 @@ pub struct PitchDetector {
     cfg: PitchDetectorConfig,
     phase: Option<Phase>,
     ext: (f64, f64),
-    min_deg: Option<f64>,
+    min_deg: Option<(f64, f64)>,
     last_max_t: Option<f64>,
     pending: Option<Candidate>,
     stride: Option<PitchStride>,
+    /// The amplitude of the last stride that continued a bout, degrees.
+    ref_amp: f64,
+    /// The bout's last stride period, s, until its closing step is given.
+    open_period: Option<f64>,
 }
+
+/// The amplitude expected of a first stride before any was seen, degrees (a level stride of
+/// the paper's Fig. 2 and of gait data: 35–40°).
+const FIRST_AMPLITUDE_DEG: f64 = 35.0;
+
+/// A bout's first rise from a minimum this share of a stride's amplitude or more began behind
+/// the standing position: the other leg stepped first.
+const FULL_RISE: f64 = 0.85;
+
+/// No maximum for this many stride periods after the last: the walk stopped.
+const STOP_PERIODS: f64 = 1.25;
 
 impl PitchDetector {
     /// A detector with validated settings.
@@ -99,6 +120,8 @@ impl PitchDetector {
             last_max_t: None,
             pending: None,
             stride: None,
+            ref_amp: FIRST_AMPLITUDE_DEG,
+            open_period: None,
         }
     }
 
@@ -112,7 +135,10 @@ impl PitchDetector {
         let h = self.cfg.hysteresis_deg;
         match self.phase {
             None => {
-                self.phase = Some(Phase::Rising);
+                // A bout starts by looking for a minimum: from a standing thigh (0°) the first
+                // forward swing is then a maximum with the start as its minimum, whichever leg
+                // moves first.
+                self.phase = Some(Phase::Falling);
                 self.ext = (x.t, p);
             }
             Some(Phase::Rising) => {
@@ -126,10 +152,24 @@ impl PitchDetector {
                 }
             }
             Some(Phase::Falling) => {
+                if let (Some(period), Some(last)) = (self.open_period, self.last_max_t) {
+                    if x.t - last > STOP_PERIODS * period {
+                        // The walk stopped after the pocket leg's footfall: the other foot
+                        // closed half a stride later (or made the footfall whose maximum never
+                        // came). The next maximum starts a new bout.
+                        self.open_period = None;
+                        self.last_max_t = None;
+                        return out.or(Some(Candidate {
+                            t: last + 0.5 * period,
+                            period_s: 0.5 * period,
+                            coherence: 1.0,
+                        }));
+                    }
+                }
                 if p < self.ext.1 {
                     self.ext = (x.t, p);
                 } else if p > self.ext.1 + h {
-                    self.min_deg = Some(self.ext.1);
+                    self.min_deg = Some((self.ext.0, self.ext.1));
                     self.phase = Some(Phase::Rising);
                     self.ext = (x.t, p);
                 }
@@ -141,7 +181,7 @@ impl PitchDetector {
     /// A maximum at `self.ext` is confirmed: the stride, and its steps.
     fn maximum(&mut self, cadence_hz: Option<f64>) -> Option<Candidate> {
         let (t_max, max_deg) = self.ext;
-        let min_deg = self.min_deg?;
+        let (t_min, min_deg) = self.min_deg?;
         let prev = self.last_max_t.replace(t_max);
         let period_s = prev
             .map(|l| t_max - l)
@@ -150,6 +190,7 @@ impl PitchDetector {
             t_max,
             max_deg,
             min_deg,
+            t_min,
             amplitude_deg: max_deg - min_deg,
             period_s,
         });
@@ -158,13 +199,26 @@ impl PitchDetector {
             period_s,
             coherence: 1.0,
         };
+        let amplitude = max_deg - min_deg;
         match period_s {
             Some(p) => {
+                self.ref_amp = amplitude;
+                self.open_period = Some(p);
                 let half = 0.5 * p;
                 self.pending = Some(step(t_max, half));
                 Some(step(t_max - half, half))
             }
-            None => Some(step(t_max, 1.0 / cadence_hz.unwrap_or(1.8))),
+            None => {
+                let period = 1.0 / cadence_hz.unwrap_or(1.8);
+                if amplitude >= FULL_RISE * self.ref_amp && t_max - t_min < 2.0 * period {
+                    // A full stride's rise from standing: the thigh went back first, while the
+                    // other foot took the walk's first step (at the thigh's extreme).
+                    self.pending = Some(step(t_max, t_max - t_min));
+                    Some(step(t_min, period))
+                } else {
+                    Some(step(t_max, period))
+                }
+            }
         }
     }
 
@@ -175,7 +229,9 @@ impl PitchDetector {
 
     /// Starts afresh (the onset look-back replays the samples since the gait began).
     pub fn restart(&mut self) {
+        let ref_amp = self.ref_amp;
         *self = PitchDetector::new(self.cfg);
+        self.ref_amp = ref_amp;
     }
 }
 

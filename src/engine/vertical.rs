@@ -65,10 +65,11 @@ pub struct VerticalConfig {
     pub floor_switch: f64,
     /// σ of a barometric height (1 s mean of the readings), m. Default 0.5 m.
     pub baro_sigma_m: f64,
-    /// Random walk of the barometer's offset (weather, ventilation), m/√s. Default 0.02
-    /// (about 1.5 m in an hour's random walk; weather moves 0.5 hPa ≈ 4 m in a few hours).
+    /// Random walk of the barometer's offset (weather, ventilation), m/√s. Default 0.07: a
+    /// front moves the pressure about 0.5 hPa (≈ 4.2 m) in an hour, 4.2 m/√3600 s.
     pub baro_drift_m_per_sqrt_s: f64,
-    /// σ of a level stride's height change, m, when the leg pitch says level. Default 0.02 m.
+    /// σ of a level stride's height change, m, when the leg pitch says level. Default 0.005 m:
+    /// a floor is level, and this is what tells the barometer's drift from a climb.
     pub level_sigma_m: f64,
     /// σ of a step's height change, m, when nothing says level or stairs (no leg pitch).
     /// Default 0.25 m: a step up a stair is about 0.17 m.
@@ -86,8 +87,8 @@ impl Default for VerticalConfig {
             floor_height_m: 4.0,
             floor_switch: 0.6,
             baro_sigma_m: 0.5,
-            baro_drift_m_per_sqrt_s: 0.02,
-            level_sigma_m: 0.02,
+            baro_drift_m_per_sqrt_s: 0.07,
+            level_sigma_m: 0.005,
             step_sigma_m: 0.25,
         }
     }

@@ -46,6 +46,8 @@ pub(super) struct Pocket {
     pub activity: ActivityClassifier,
     pub vertical: Vertical,
     pub last: Option<ClassifiedStride>,
+    /// The leg pitch's sign at the last stride.
+    pub sign: Option<f64>,
     /// The raw angle of the last sample ([`LegPitch::push`]).
     pub pitch: Option<f64>,
 }
@@ -97,7 +99,11 @@ impl Pipeline {
         if let Some(st) = self.newest_stride() {
             if self.pocket.last.map_or(true, |l| l.stride.t_max < st.t_max) {
                 let p = &mut self.pocket;
-                let thigh = p.leg.push_stride(st.amplitude_deg, st.period_s);
+                let thigh = p.leg.push_stride(&st);
+                let sign = p.leg.sign();
+                if p.sign.replace(sign).is_some_and(|s| s != sign) {
+                    p.activity.reset();
+                }
                 let activity = if !thigh {
                     // Not a thigh's swing (a phone in the hand): the motion state's word.
                     p.activity.push_step(state == Motion::Running)
@@ -143,11 +149,6 @@ impl Pipeline {
                 }
             }
         }
-    }
-
-    /// After a step's heading is known: its vote on the leg pitch's sign.
-    pub(super) fn pocket_heading(&mut self, heading_rad: f64) {
-        self.pocket.leg.push_heading(heading_rad, self.attitude);
     }
 
     /// Feeds one barometer reading. Refused (state untouched) when out of range or earlier than

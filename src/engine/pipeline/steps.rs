@@ -81,9 +81,6 @@ impl Pipeline {
             has_heading,
         });
         let heading_used = h.used;
-        if let Some(h) = heading_used {
-            self.pocket_heading(h);
-        }
         let pocket = self.step_pocket(c.t, state);
         let freq = 1.0 / period;
         let modelled = self.step_length.push(&StepLengthInput {
