@@ -578,18 +578,21 @@ mod tests {
                 x_m: 5.0,
                 y_m: 5.0,
                 geo: None,
+                floor: None,
             },
             Waypoint {
                 t: 30.0,
                 x_m: 35.0,
                 y_m: 5.0,
                 geo: None,
+                floor: None,
             },
             Waypoint {
                 t: 60.0,
                 x_m: 35.0,
                 y_m: 35.0,
                 geo: None,
+                floor: None,
             },
         ];
         let (s, c) = libm::sincos(0.7);
