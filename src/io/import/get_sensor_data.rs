@@ -316,6 +316,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
                     y_m: e[1],
                     geo: Some((lat, lon)),
                     floor,
+                    height_m: None,
                 }
             })
             .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())

@@ -157,6 +157,9 @@ pub struct Waypoint {
     /// The floor the landmark is on, when the truth says (GetSensorData `POSI` floor ID: 0 the
     /// ground floor, −1 the one below, …). `pdr eval` scores the track's floor against it.
     pub floor: Option<i32>,
+    /// The true height, m (any fixed origin), when the truth has one; `pdr eval` scores the
+    /// track's height change against it. No imported format carries one today.
+    pub height_m: Option<f64>,
 }
 
 /// One step reported by a truth device.
@@ -378,11 +381,18 @@ impl Streams {
         let mut fixes = self.fixes.iter().peekable();
         let mut pressure = self.pressure.iter().peekable();
         for &(t, a) in &self.accel {
-            while let Some(f) = fixes.next_if(|f| f.t <= t) {
-                out.push(Record::Gnss(*f));
-            }
-            while let Some(p) = pressure.next_if(|p| p.t <= t) {
-                out.push(Record::Pressure(*p));
+            // The fixes and readings up to this sample, the earlier first (a fix first at a tie).
+            loop {
+                let tf = fixes.peek().map(|f| f.t).filter(|&x| x <= t);
+                let tp = pressure.peek().map(|p| p.t).filter(|&x| x <= t);
+                match (tf, tp) {
+                    (Some(a), Some(b)) if b < a => {
+                        out.extend(pressure.next().copied().map(Record::Pressure))
+                    }
+                    (Some(_), _) => out.extend(fixes.next().copied().map(Record::Gnss)),
+                    (None, Some(_)) => out.extend(pressure.next().copied().map(Record::Pressure)),
+                    (None, None) => break,
+                }
             }
             out.push(Record::Imu(ImuSample {
                 t,

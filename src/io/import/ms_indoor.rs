@@ -62,6 +62,7 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
                     y_m: y,
                     geo: None,
                     floor: None,
+                    height_m: None,
                 });
             })
         } else {
