@@ -154,8 +154,9 @@ pub struct LogResult {
     #[serde(default)]
     pub pressure_samples: u64,
     /// Floors (and heights) against the truth's landmarks, for a log whose landmarks have
-    /// floors ([`floors::score_floors`]); absent otherwise.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// floors ([`floors::score_floors`]); `null` otherwise. (Always written: the analysis
+    /// crosses to the page as bincode, which cannot skip fields.)
+    #[serde(default)]
     pub floors: Option<FloorResult>,
     /// Why the log could not be evaluated.
     pub error: Option<String>,

@@ -1,7 +1,7 @@
 //! `pdr eval`'s floor scoring and barometer count on simulated walks written as the apps write
 //! them: a GetSensorData log (landmarks with floors, a barometer) gets a `floors` object and
 //! its `pressure_samples`; a Microsoft Indoor log (waypoints without floors, no barometer) gets
-//! neither.
+//! `floors: null` and 0 readings.
 
 use pdr::engine::{PipelineConfig, PressureSample, Record};
 use pdr::eval::{evaluate, summarise};
@@ -57,14 +57,14 @@ fn landmarks_with_floors_are_scored_and_others_are_not() {
     assert_eq!(gsd.pressure_samples, readings);
     let json = serde_json::to_value(&gsd).unwrap();
     assert_eq!(json["floors"]["landmarks"], f.landmarks);
-    assert!(json["floors"].get("height_error_m").is_none());
+    assert!(json["floors"]["height_error_m"].is_null());
 
     let ms = evaluate(&import(&sim, Format::MsIndoor), &cfg);
     assert!(ms.waypoints > 2);
     assert_eq!(ms.floors, None);
     assert_eq!(ms.pressure_samples, 0);
     let json = serde_json::to_value(&ms).unwrap();
-    assert!(json.get("floors").is_none(), "{json}");
+    assert!(json["floors"].is_null(), "{json}");
     assert_eq!(json["pressure_samples"], 0);
 
     let s = summarise(&[gsd.clone(), ms, gsd]);

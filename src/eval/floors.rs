@@ -29,8 +29,8 @@ pub struct FloorResult {
     /// `right / landmarks` (0 when there is none).
     pub share: f64,
     /// Height error at the landmarks after the first that have a true height, m: mean, 75th
-    /// percentile, largest. `None` when the truth has no heights.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// percentile, largest. `None` (`null`) when the truth has no heights.
+    #[serde(default)]
     pub height_error_m: Option<super::ErrorSummary>,
     /// Every height error, m (for pooling; not serialised).
     #[serde(skip)]
