@@ -12,6 +12,9 @@
 //!   percentage divides it by the true path length walked so far (the polyline through the
 //!   waypoints) and counts only waypoints at least [`MIN_PATH_FOR_PCT_M`] along.
 //! - **Loop closure**: the distance between the last and the first position of the track.
+//! - **Floors**: where the truth's landmarks have floors (GetSensorData `POSI`), the share of
+//!   landmarks at which the track's floor relative to the first landmark is the truth's
+//!   ([`floors`]); the height error where the truth has heights.
 //! - Percentiles interpolate linearly between order statistics (the common "linear" definition,
 //!   as numpy's default).
 //!
@@ -23,6 +26,10 @@ use crate::engine::pipeline::{position_at, Pipeline, PipelineConfig, StepRecord}
 use crate::engine::replay;
 use crate::io::import::{Log, Waypoint};
 use serde::{Deserialize, Serialize};
+
+pub mod floors;
+
+pub use floors::FloorResult;
 
 /// Waypoints nearer the start than this along the true path are left out of the percentages, m.
 pub const MIN_PATH_FOR_PCT_M: f64 = 20.0;
@@ -143,6 +150,14 @@ pub struct LogResult {
     pub skipped_lines: u64,
     /// Records the engine refused.
     pub refused_records: u64,
+    /// Barometer readings the engine took (0: the log has no barometer).
+    #[serde(default)]
+    pub pressure_samples: u64,
+    /// Floors (and heights) against the truth's landmarks, for a log whose landmarks have
+    /// floors ([`floors::score_floors`]); `null` otherwise. (Always written: the analysis
+    /// crosses to the page as bincode, which cannot skip fields.)
+    #[serde(default)]
+    pub floors: Option<FloorResult>,
     /// Why the log could not be evaluated.
     pub error: Option<String>,
     /// Every waypoint error, m (for pooling; not serialised).
@@ -183,6 +198,8 @@ impl LogResult {
             fusion: None,
             skipped_lines: 0,
             refused_records: 0,
+            pressure_samples: 0,
+            floors: None,
             error: Some(error),
             waypoint_errors_m: Vec::new(),
             waypoint_errors_pct: Vec::new(),
@@ -224,6 +241,14 @@ pub struct Summary {
     pub smoothed_pooled_p75_m: Option<f64>,
     /// Logs whose fused p75 is more than 1.1 × their GNSS-alone p75.
     pub fused_worse_than_gnss: u64,
+    /// Logs scored on floors (their landmarks have floors).
+    pub floor_logs: u64,
+    /// Landmarks scored on floors, over all those logs.
+    pub floor_landmarks: u64,
+    /// Share of those landmarks with the right relative floor, pooled.
+    pub floor_share: Option<f64>,
+    /// 75th percentile of all height errors, pooled, m (only where the truth has heights).
+    pub height_p75_m: Option<f64>,
 }
 
 /// Step-count figures of one group of logs.
@@ -271,6 +296,7 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
         (d.placement == crate::engine::foot::placement::Placement::Foot).then_some(d.strides);
     res.distance_m = d.distance_m;
     res.refused_records = run.refused;
+    res.pressure_samples = d.pressure_samples;
     if d.samples == 0 {
         res.error = Some("no IMU sample accepted".into());
         return res;
@@ -304,6 +330,7 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
         res.waypoint_errors_pct = pct;
     }
     absolute_errors(p, &log.truth.waypoints, &mut res);
+    res.floors = floors::score_floors(track, wps);
     res.fusion = p.fusion().and_then(|f| {
         let d = f.diagnostics();
         let last = d.last?;
@@ -523,6 +550,8 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         .iter()
         .flat_map(|l| l.waypoint_errors_pct.iter().copied())
         .collect();
+    let with_floors: Vec<&FloorResult> = logs.iter().filter_map(|l| l.floors.as_ref()).collect();
+    let (floor_logs, floor_landmarks, _, floor_share, height_p75_m) = floors::pool(&with_floors);
     Summary {
         logs: logs.len() as u64,
         failed: logs.iter().filter(|l| l.error.is_some()).count() as u64,
@@ -544,6 +573,10 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
                 _ => false,
             })
             .count() as u64,
+        floor_logs,
+        floor_landmarks,
+        floor_share,
+        height_p75_m,
     }
 }
 
@@ -578,18 +611,24 @@ mod tests {
                 x_m: 5.0,
                 y_m: 5.0,
                 geo: None,
+                floor: None,
+                height_m: None,
             },
             Waypoint {
                 t: 30.0,
                 x_m: 35.0,
                 y_m: 5.0,
                 geo: None,
+                floor: None,
+                height_m: None,
             },
             Waypoint {
                 t: 60.0,
                 x_m: 35.0,
                 y_m: 35.0,
                 geo: None,
+                floor: None,
+                height_m: None,
             },
         ];
         let (s, c) = libm::sincos(0.7);

@@ -206,7 +206,7 @@ fn every_value_unit_converts() {
                 report
                     .notes
                     .iter()
-                    .any(|n| n.contains("does not use pressure")),
+                    .any(|n| n.contains("pressure samples read and checked; the engine uses them")),
                 "{:?}",
                 report.notes
             );
@@ -676,7 +676,8 @@ fn pdr_run_and_eval_take_a_recipe() {
         "{out}"
     );
     assert!(
-        err.contains("note: bar.csv") && err.contains("does not use pressure"),
+        err.contains("note: bar.csv")
+            && err.contains("the engine uses them for the height and floor changes"),
         "{err}"
     );
     let steps: usize = out

@@ -49,7 +49,7 @@ test('a header-less folder: the form, a wrong unit flagged, run, save, and read 
     assert.equal(firstRow.length, 4);
     assert.ok(Math.abs(Number(firstRow[2]) - 9.8) < 1, `acceleration y in m/s²: ${firstRow}`);
     assert.deepEqual(await warnings(page), [], 'right units: no warning');
-    assert.ok((await page.locator('#recipe-warnings li.note').allTextContents()).some((n) => /does not use pressure/.test(n)));
+    assert.ok((await page.locator('#recipe-warnings li.note').allTextContents()).some((n) => /pressure samples read and checked; the engine uses them for the height and floor changes/.test(n)));
     // The wrong unit: g for data in m/s².
     await page.selectOption(accUnit, 'g');
     await page.waitForFunction(() => [...document.querySelectorAll('#recipe-warnings li.warn')].some((l) => /not near 9\.81/.test(l.textContent)));

@@ -143,6 +143,23 @@ fn print_report(report: &pdr::eval::Report) {
             opt(l.smoothed_error_m.map(|e| e.p75), 2)
         );
     }
+    for l in &report.logs {
+        let Some(f) = &l.floors else { continue };
+        let barometer = match l.pressure_samples {
+            0 => "no barometer".to_string(),
+            n => format!("barometer {n} readings"),
+        };
+        let height = f.height_error_m.map_or(String::new(), |h| {
+            format!(", height error p75 {:.2} m (max {:.2} m)", h.p75, h.max)
+        });
+        out!(
+            "floors {:<37} {}/{} landmarks on the right relative floor ({:.1} %){height}; {barometer}",
+            l.path.rsplit('/').next().unwrap_or(&l.path),
+            f.right,
+            f.landmarks,
+            100.0 * f.share
+        );
+    }
     let s = &report.summary;
     if !s.step_mae_by_group.is_empty() {
         out!();
@@ -164,6 +181,16 @@ fn print_report(report: &pdr::eval::Report) {
         opt(s.waypoint_p75_m, 2),
         opt(s.waypoint_p75_pct, 1)
     );
+    if s.floor_logs > 0 {
+        out!(
+            "floors: {} % of {} landmarks on the right relative floor, over {} logs{}",
+            opt(s.floor_share.map(|x| 100.0 * x), 1),
+            s.floor_landmarks,
+            s.floor_logs,
+            s.height_p75_m
+                .map_or(String::new(), |h| format!("; height error p75 {h:.2} m"))
+        );
+    }
 }
 
 /// `pdr eval --compare`: each path is a data set; every method on each, as one table.

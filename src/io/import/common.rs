@@ -7,6 +7,7 @@
 //! even binary junk without a line end, is read in bounded memory (besides the samples it yields).
 
 use super::{field_error, file_error, number, Log, Streams};
+use crate::engine::types::{PressureSample, PRESSURE_RANGE_HPA};
 use crate::io::lines::{each_line, read_line_capped, MAX_WARNINGS};
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -328,10 +329,32 @@ pub(crate) fn pair_nearest<T: Copy, U>(
     (out, unpaired)
 }
 
+/// A barometer reading, when [`PressureSample::check`] accepts it; otherwise why not, for a
+/// warning on the pressure field (out of [`PRESSURE_RANGE_HPA`], or a time out of range).
+pub(crate) fn pressure(t: f64, hpa: f64) -> Result<PressureSample, String> {
+    let p = PressureSample { t, hpa };
+    match p.check() {
+        Ok(()) => Ok(p),
+        Err(_) if !(hpa >= PRESSURE_RANGE_HPA.0 && hpa <= PRESSURE_RANGE_HPA.1) => Err(format!(
+            "pressure {hpa} hPa outside {}–{} hPa, skipped",
+            PRESSURE_RANGE_HPA.0, PRESSURE_RANGE_HPA.1
+        )),
+        Err(e) => Err(format!("time out of range ({e}), skipped")),
+    }
+}
+
 /// Drops samples with a non-finite value (sums and unit conversions of huge numbers can
 /// overflow) and returns how many were dropped.
 pub(crate) fn drop_non_finite(s: &mut Streams) -> u64 {
-    let before = s.accel.len() + s.gyro.len() + s.mag.len() + s.orientation.len() + s.fixes.len();
+    let count = |s: &Streams| {
+        s.accel.len()
+            + s.gyro.len()
+            + s.mag.len()
+            + s.orientation.len()
+            + s.fixes.len()
+            + s.pressure.len()
+    };
+    let before = count(s);
     let ok = |t: f64, v: &Vector3<f64>| t.is_finite() && v.iter().all(|x| x.is_finite());
     s.accel.retain(|(t, v)| ok(*t, v));
     s.gyro.retain(|(t, v)| ok(*t, v));
@@ -339,7 +362,8 @@ pub(crate) fn drop_non_finite(s: &mut Streams) -> u64 {
     s.orientation
         .retain(|(t, q)| t.is_finite() && q.coords.iter().all(|x| x.is_finite()));
     s.fixes.retain(|f| f.check().is_ok());
-    let after = s.accel.len() + s.gyro.len() + s.mag.len() + s.orientation.len() + s.fixes.len();
+    s.pressure.retain(|p| p.check().is_ok());
+    let after = count(s);
     (before - after) as u64
 }
 

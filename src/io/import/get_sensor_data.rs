@@ -11,17 +11,23 @@
 //!   the timestamps (`x;y;z;w`, an older variant) are read too;
 //! - `GNSS;AppTs;SensorTs;Latit;Long;Altitude;Bearing;Accuracy;Speed;SatInView;SatInUse`: each fix
 //!   may be written twice; repeats of the same (SensorTs, latitude, longitude) are dropped;
+//! - `PRES;AppTs;SensorTs;Pres(mbar);Accuracy`: the barometer (1 mbar = 1 hPa), one
+//!   [`PressureSample`](crate::engine::PressureSample) per line, placed on the app clock as the
+//!   inertial sensors are (below); a reading outside the engine's range is skipped with a
+//!   warning;
 //! - `POSI;Timestamp;Counter;Latitude;Longitude;floorID;buildingID`: ground-truth landmarks,
 //!   turned into [`Waypoint`]s in metres east/north of the first `POSI` (WGS84 → local ENU
-//!   tangent plane; floor and building are not kept).
+//!   tangent plane), each keeping its floor ID (an integer; a landmark whose floor field is
+//!   missing or not an integer has no floor, with a warning when the field is there but bad).
+//!   The building is not kept.
 //!
-//! Everything else (`WIFI`, `BLE4`, `PRES`, `LIGH`, `SOUN`, …) is ignored.
+//! Everything else (`WIFI`, `BLE4`, `LIGH`, `SOUN`, …) is ignored.
 //!
 //! # Clock
 //! The log's clock is `AppTimestamp` (s since the app started; `POSI` and `GNSS` use it). It is
 //! stamped when the app reads a sample, so it carries delivery jitter; `SensorTimestamp` is
-//! stamped by the sensor and spaces samples accurately. Each inertial sensor (ACCE, GYRO, MAGN,
-//! AHRS) is therefore placed on the app clock by one constant offset: `t = SensorTs + offset`,
+//! stamped by the sensor and spaces samples accurately. Each sensor (ACCE, GYRO, MAGN, AHRS,
+//! PRES) is therefore placed on the app clock by one constant offset: `t = SensorTs + offset`,
 //! with `offset` the smallest `AppTs − SensorTs` of that sensor among the samples within
 //! [`WINDOW_S`] below the median difference (the least-delayed delivery; the window keeps a
 //! sample with a corrupt SensorTs from setting it). Samples whose difference is more than
@@ -30,7 +36,7 @@
 //! sensor falls back to `AppTs`, with a warning.
 
 use super::common::{
-    add_warnings, drop_non_finite, not_a_number, rotation_vector, warn_count, Warnings,
+    add_warnings, drop_non_finite, not_a_number, pressure, rotation_vector, warn_count, Warnings,
 };
 use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
 use crate::engine::geo::LocalFrame;
@@ -115,9 +121,10 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     let mut gyro: Dual<Vector3<f64>> = Vec::new();
     let mut mag: Dual<Vector3<f64>> = Vec::new();
     let mut ahrs: Dual<UnitQuaternion<f64>> = Vec::new();
+    let mut pres: Dual<f64> = Vec::new();
     let mut fixes = Vec::new();
     let mut seen_fixes: HashSet<[u64; 3]> = HashSet::new();
-    let mut posi: Vec<(f64, f64, f64)> = Vec::new();
+    let mut posi: Vec<(f64, f64, f64, Option<i32>)> = Vec::new();
     let mut warnings = Warnings::default();
     each_line(r, label, |n, line| {
         let line = match line {
@@ -132,7 +139,10 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             f.pop();
         }
         let kind = f[0];
-        if !matches!(kind, "ACCE" | "GYRO" | "MAGN" | "AHRS" | "GNSS" | "POSI") {
+        if !matches!(
+            kind,
+            "ACCE" | "GYRO" | "MAGN" | "AHRS" | "GNSS" | "POSI" | "PRES"
+        ) {
             return;
         }
         let num = |i: usize, name: &str| -> Result<f64, ParseError> {
@@ -149,7 +159,31 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
                     if lat.abs() > 90.0 || lon.abs() > 180.0 {
                         return Err(field_error(label, n, 4, "Latitude", "out of range"));
                     }
-                    posi.push((t, lat, lon));
+                    // The floor ID is an integer (0, −1, 2, …); written `1.0` by some tools.
+                    let floor = match f.get(5).filter(|s| !s.is_empty()) {
+                        None => None,
+                        Some(s) => match number(s).filter(|v| v.fract() == 0.0 && v.abs() < 1e6) {
+                            Some(v) => Some(v as i32),
+                            None => {
+                                warnings.push(field_error(
+                                    label,
+                                    n,
+                                    6,
+                                    "floorID",
+                                    format!("{}: landmark kept without a floor", not_an_integer(s)),
+                                ));
+                                None
+                            }
+                        },
+                    };
+                    posi.push((t, lat, lon, floor));
+                }
+                "PRES" => {
+                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
+                    let hpa = num(3, "Pres")?;
+                    // Checked here (range) and again on the app clock (time).
+                    pressure(app, hpa).map_err(|m| field_error(label, n, 4, "Pres", m))?;
+                    pres.push((app, sensor, hpa));
                 }
                 "GNSS" => {
                     let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
@@ -262,18 +296,27 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     let (v, m) = to_app_clock(&ahrs);
     s.orientation = v;
     mapped("AHRS", m, &mut warnings);
+    let (v, m) = to_app_clock(&pres);
+    // A reading the app clock put out of range is dropped and counted with the non-finite ones.
+    s.pressure = v
+        .into_iter()
+        .map(|(t, hpa)| crate::engine::PressureSample { t, hpa })
+        .collect();
+    mapped("PRES", m, &mut warnings);
     s.fixes = fixes;
-    if let Some(&(_, lat0, lon0)) = posi.first() {
+    if let Some(&(_, lat0, lon0, _)) = posi.first() {
         let frame = LocalFrame::new(lat0, lon0, 0.0);
         let mut w: Vec<Waypoint> = posi
             .iter()
-            .map(|&(t, lat, lon)| {
+            .map(|&(t, lat, lon, floor)| {
                 let e = frame.to_enu(lat, lon, 0.0);
                 Waypoint {
                     t,
                     x_m: e[0],
                     y_m: e[1],
                     geo: Some((lat, lon)),
+                    floor,
+                    height_m: None,
                 }
             })
             .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())
@@ -297,6 +340,12 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         ),
     );
     Ok(log)
+}
+
+/// "not an integer: …" with the text cut to a readable length.
+fn not_an_integer(s: &str) -> String {
+    let s: String = s.trim().chars().take(40).collect();
+    format!("not an integer: {s:?}")
 }
 
 #[cfg(test)]

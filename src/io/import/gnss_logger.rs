@@ -435,6 +435,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         mag: take("Mag", "UncalMag"),
         orientation: c.orientation,
         fixes: Vec::new(),
+        pressure: Vec::new(),
     };
     if let Some(best) = c.fixes.iter().map(|(r, _)| *r).min() {
         s.fixes = c

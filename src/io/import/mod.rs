@@ -44,7 +44,7 @@ pub use fileset::{DirSet, FileSet, MemSet, ZipSet};
 pub use stream_zip::StreamZipSet;
 
 use super::ParseError;
-use crate::engine::types::{GnssFix, ImuSample};
+use crate::engine::types::{GnssFix, ImuSample, PressureSample};
 use crate::engine::Record;
 use nalgebra::{UnitQuaternion, Vector3};
 
@@ -154,6 +154,12 @@ pub struct Waypoint {
     /// Latitude and longitude, WGS84 degrees, when the truth is geodetic (then `x_m`, `y_m`
     /// are east and north of the first waypoint).
     pub geo: Option<(f64, f64)>,
+    /// The floor the landmark is on, when the truth says (GetSensorData `POSI` floor ID: 0 the
+    /// ground floor, −1 the one below, …). `pdr eval` scores the track's floor against it.
+    pub floor: Option<i32>,
+    /// The true height, m (any fixed origin), when the truth has one; `pdr eval` scores the
+    /// track's height change against it. No imported format carries one today.
+    pub height_m: Option<f64>,
 }
 
 /// One step reported by a truth device.
@@ -317,6 +323,8 @@ pub struct Streams {
     pub orientation: Vec<(f64, UnitQuaternion<f64>)>,
     /// GNSS fixes.
     pub fixes: Vec<GnssFix>,
+    /// Barometer readings, hPa (each checked by [`PressureSample::check`] by its reader).
+    pub pressure: Vec<PressureSample>,
 }
 
 /// Carries the latest sample of a stream forward to later times.
@@ -346,7 +354,8 @@ impl<'a, T: Copy> Hold<'a, T> {
 impl Streams {
     /// Merges the streams into records in time order: one IMU record per accelerometer sample,
     /// with the latest gyroscope, magnetometer and orientation samples at most [`HOLD_S`] old, and
-    /// the fixes in between. Each stream is sorted by time first (stable), since some recorders
+    /// the fixes and barometer readings in between (a fix or reading at the time of an IMU sample
+    /// comes before it; fixes before readings of the same time). Each stream is sorted by time first (stable), since some recorders
     /// write a few samples out of order.
     pub fn into_records(mut self) -> Vec<Record> {
         let by_t = |a: &(f64, Vector3<f64>), b: &(f64, Vector3<f64>)| a.0.total_cmp(&b.0);
@@ -355,6 +364,7 @@ impl Streams {
         self.mag.sort_by(by_t);
         self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
         self.fixes.sort_by(|a, b| a.t.total_cmp(&b.t));
+        self.pressure.sort_by(|a, b| a.t.total_cmp(&b.t));
         let mut gyro = Hold {
             items: &self.gyro,
             next: 0,
@@ -367,11 +377,22 @@ impl Streams {
             items: &self.orientation,
             next: 0,
         };
-        let mut out = Vec::with_capacity(self.accel.len() + self.fixes.len());
+        let mut out = Vec::with_capacity(self.accel.len() + self.fixes.len() + self.pressure.len());
         let mut fixes = self.fixes.iter().peekable();
+        let mut pressure = self.pressure.iter().peekable();
         for &(t, a) in &self.accel {
-            while let Some(f) = fixes.next_if(|f| f.t <= t) {
-                out.push(Record::Gnss(*f));
+            // The fixes and readings up to this sample, the earlier first (a fix first at a tie).
+            loop {
+                let tf = fixes.peek().map(|f| f.t).filter(|&x| x <= t);
+                let tp = pressure.peek().map(|p| p.t).filter(|&x| x <= t);
+                match (tf, tp) {
+                    (Some(a), Some(b)) if b < a => {
+                        out.extend(pressure.next().copied().map(Record::Pressure))
+                    }
+                    (Some(_), _) => out.extend(fixes.next().copied().map(Record::Gnss)),
+                    (None, Some(_)) => out.extend(pressure.next().copied().map(Record::Pressure)),
+                    (None, None) => break,
+                }
             }
             out.push(Record::Imu(ImuSample {
                 t,
@@ -381,7 +402,13 @@ impl Streams {
                 orientation: orientation.at(t),
             }));
         }
-        out.extend(fixes.map(|f| Record::Gnss(*f)));
+        // After the last IMU sample: the rest of both, in time order.
+        let mut rest: Vec<Record> = fixes
+            .map(|f| Record::Gnss(*f))
+            .chain(pressure.map(|p| Record::Pressure(*p)))
+            .collect();
+        rest.sort_by(|a, b| a.t().total_cmp(&b.t()));
+        out.extend(rest);
         out
     }
 }

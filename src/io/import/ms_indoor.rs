@@ -61,6 +61,8 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
                     x_m: x,
                     y_m: y,
                     geo: None,
+                    floor: None,
+                    height_m: None,
                 });
             })
         } else {

@@ -5,7 +5,10 @@
 //! Headers name the quantity and unit, e.g. `"Time (s)","Acceleration x (m/s^2)",…`,
 //! `"Gyroscope x (rad/s)"`, `"Magnetic field x (µT)"`, and for location `"Latitude (°)"`,
 //! `"Longitude (°)"`, `"Height (m)"`, `"Velocity (m/s)"`, `"Direction (°)"`,
-//! `"Horizontal Accuracy (m)"`. Columns are matched by these names, in any file and any order;
+//! `"Horizontal Accuracy (m)"`, and the barometer's `"Pressure (hPa)"` (phyphox's "Pressure"
+//! experiment exports `Pressure.csv` with `"Time (s)","Pressure (hPa)"`; a `(kPa)`, `(Pa)` or
+//! `(mbar)` unit in the header is converted to hPa, a reading outside the engine's range is
+//! skipped with a warning). Columns are matched by these names, in any file and any order;
 //! each quantity is taken from the first file (by name) that has it. The separator (comma, tab
 //! or semicolon) is detected from the header line; a decimal comma is accepted; numbers may be
 //! written like `9.364549000E-3`.
@@ -34,13 +37,27 @@ fn is_time(h: &str) -> bool {
 }
 
 /// Column names (lower case, prefixes) of the quantities phyphox exports that we read.
-const QUANTITIES: [&str; 5] = [
+const QUANTITIES: [&str; 6] = [
     "acceleration x",
     "linear acceleration x",
     "gyroscope x (rad/s)",
     "magnetic field x",
     "latitude",
+    "pressure",
 ];
+
+/// The factor to hPa of a phyphox pressure column, from the unit in its name (lower case):
+/// `pressure (hpa)`, `pressure (kpa)`, `pressure (pa)`, `pressure (mbar)`, or `pressure` alone
+/// (hPa, phyphox's unit). `None` for anything else (such as a sound pressure level).
+fn pressure_factor(h: &str) -> Option<f64> {
+    let rest = h.strip_prefix("pressure")?.trim();
+    match rest {
+        "" | "(hpa)" | "(mbar)" => Some(1.0),
+        "(kpa)" => Some(10.0),
+        "(pa)" => Some(0.01),
+        _ => None,
+    }
+}
 
 /// Whether the first line of a file is a phyphox header: `Time (s)` first, and one of the
 /// quantities we read (which keeps out other `Time (s)` CSVs, such as x-io's, with
@@ -126,7 +143,7 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
     let mut log = Log::new(source, Format::Phyphox);
     let mut s = Streams::default();
     let mut warnings = Warnings::default();
-    let (mut have_gyro, mut have_mag, mut have_loc) = (false, false, false);
+    let (mut have_gyro, mut have_mag, mut have_loc, mut have_pres) = (false, false, false, false);
     let mut linear_only: Option<ParseError> = None;
     let mut rejected: Option<ParseError> = None;
     let mut unreadable: Option<ParseError> = None;
@@ -193,7 +210,16 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
                 _ => None,
             }
         };
-        if accel.is_none() && gyro.is_none() && mag.is_none() && loc.is_none() {
+        let pres = if have_pres {
+            None
+        } else {
+            table
+                .lower
+                .iter()
+                .enumerate()
+                .find_map(|(i, h)| pressure_factor(h).map(|f| (i, f)))
+        };
+        if accel.is_none() && gyro.is_none() && mag.is_none() && loc.is_none() && pres.is_none() {
             continue;
         }
         let header = table.header.clone();
@@ -280,6 +306,20 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
                     }
                 }
             }
+            if let Some((c, factor)) = pres {
+                if !empty(rec, &[c]) {
+                    let p = cell(rec, c, &header[c], &label, line).and_then(|v| {
+                        super::common::pressure(t, v * factor)
+                            .map_err(|m| field_error(&label, line, c + 1, &header[c], m))
+                    });
+                    match p {
+                        Ok(p) => s.pressure.push(p),
+                        Err(e) => {
+                            first_error.get_or_insert(e);
+                        }
+                    }
+                }
+            }
             if let Some(e) = first_error {
                 warnings.push(e);
             }
@@ -304,6 +344,7 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
         have_gyro |= gyro.is_some();
         have_mag |= mag.is_some();
         have_loc |= loc.is_some();
+        have_pres |= pres.is_some();
     }
     if s.accel.is_empty() {
         return Err(rejected.or(linear_only).or(unreadable).unwrap_or_else(|| {
@@ -342,6 +383,11 @@ mod tests {
         assert!(is_phyphox_header("\u{feff}\"Time (s)\";\"Latitude (°)\""));
         assert!(!is_phyphox_header("time,seconds_elapsed,z,y,x"));
         assert!(!is_phyphox_header("Time (s)"));
+        assert!(is_phyphox_header("\"Time (s)\",\"Pressure (hPa)\""));
+        assert_eq!(pressure_factor("pressure (hpa)"), Some(1.0));
+        assert_eq!(pressure_factor("pressure (kpa)"), Some(10.0));
+        assert_eq!(pressure_factor("pressure (pa)"), Some(0.01));
+        assert_eq!(pressure_factor("pressure level (db)"), None);
         assert!(!is_phyphox_header(
             "Time (s),Gyroscope X (deg/s),Gyroscope Y (deg/s),Gyroscope Z (deg/s),Accelerometer X (g)"
         ));

@@ -9,7 +9,9 @@ impl Walk<'_> {
     /// GetSensorData (IPIN): the `%` header, then `ACCE`, `GYRO`, `MAGN` (5 decimals), `AHRS`
     /// (getOrientation's pitch, roll and azimuth in degrees, then the rotation vector x, y, z with
     /// w ≥ 0 implied, 8 decimals), `GNSS` (each fix twice, 1 ms apart, as the app does; Android
-    /// reports an unknown speed or bearing as 0) and `POSI` landmarks, in `AppTimestamp` order.
+    /// reports an unknown speed or bearing as 0), `PRES` (mbar = hPa, 4 decimals, with the same
+    /// delivery delays as the inertial sensors) and `POSI` landmarks with their floor
+    /// ([`landmark_floor`]), in `AppTimestamp` order.
     /// `AppTimestamp` is seconds since the start of the recording plus a delivery delay of
     /// 0–10 ms that varies from sample to sample and is 0 for every eleventh; `SensorTimestamp`
     /// is seconds since boot. The reader's least-delay offset therefore puts each sample back at
@@ -75,6 +77,19 @@ impl Walk<'_> {
                 }
             }
         }
+        for (k, p) in self.pressure.iter().enumerate() {
+            let rel = self.rel_ms(p.t);
+            let app = rel + (k as i64 * 7) % 11;
+            lines.push((
+                app,
+                format!(
+                    "PRES;{};{};{};3",
+                    ms_text(app),
+                    ms_text(boot_ms.saturating_add(rel)),
+                    fixed(p.hpa, 4)
+                ),
+            ));
+        }
         let frame = geodetic_frame(sim);
         for (i, (t, e, n)) in waypoints(sim).into_iter().enumerate() {
             let (lat, lon, _) = frame.to_geodetic([e, n, 0.0]);
@@ -82,11 +97,12 @@ impl Walk<'_> {
             lines.push((
                 app,
                 format!(
-                    "POSI;{};{};{};{};0;0",
+                    "POSI;{};{};{};{};{};0",
                     ms_text(app),
                     i + 1,
                     fixed(lat, 7),
-                    fixed(lon, 7)
+                    fixed(lon, 7),
+                    landmark_floor(sim, t)
                 ),
             ));
         }
@@ -115,6 +131,16 @@ impl Walk<'_> {
             out.into_bytes(),
         )]
     }
+}
+
+/// The floor ID written in a `POSI` landmark at simulation time `t`: the true floor there.
+///
+/// TODO(issue 18, lead): the single place to wire the simulator's true floor once `TruthStep`
+/// has `floor` (the floor of the last true step at or before `t`, 0 before the first). Until
+/// then every landmark is on floor 0, which is the truth of every walk the simulator makes today.
+fn landmark_floor(sim: &Simulation, t: f64) -> i32 {
+    let _ = (sim, t);
+    0
 }
 
 /// The geodetic frame of the true path: the simulation's, or one at [`GnssSim`]'s default

@@ -10,24 +10,24 @@
 //! precision the format writes. The tests in `tests/formats.rs` hold both ends together.
 //!
 //! # What each format carries
-//! | Format | Files | IMU | Orientation | GNSS | Truth |
-//! |---|---|---|---|---|---|
-//! | Sensor Logger (Android) | folder | total, linear, gravity, gyro, mag | rotation vector | `Location.csv` | – |
-//! | Sensor Logger (iOS) | folder | user accel. and gravity in g, iOS sign; gyro, mag | Core Motion attitude | `Location.csv` | – |
-//! | Sensor Logger JSON | file | as the folder, without `TotalAcceleration` | as the folder | `Location` | – |
-//! | phyphox | folder | accel., gyro, mag | none | `Location.csv` | – |
-//! | GnssLogger | file | `Accel`, `Gyro`, `Mag` | `OrientationDeg` | `Fix` | – |
-//! | GetSensorData | file | `ACCE`, `GYRO`, `MAGN` | `AHRS` rotation vector | `GNSS` (twice) | `POSI` landmarks |
-//! | Oxford Step Counter | folder | accelerometer only | none | none | foot contacts |
-//! | Microsoft Indoor 2.0 | file | accel., gyro, mag | rotation vector | none | `TYPE_WAYPOINT` |
-//! | x-io Gait-Tracking | file | gyro (deg/s), accel. (g): the foot IMU's when the walk has one | none | none | (loop closure, claimed by the reader) |
-//! | plain CSV (read by a recipe) | folder | `acc`, `gyr`, `mag` (ms, no header); `bar` | none | none | – |
-//! | pdr-log | file | everything, lossless | | | |
+//! | Format | Files | IMU | Orientation | GNSS | Barometer | Truth |
+//! |---|---|---|---|---|---|---|
+//! | Sensor Logger (Android) | folder | total, linear, gravity, gyro, mag | rotation vector | `Location.csv` | `Barometer.csv` (hPa, float) | – |
+//! | Sensor Logger (iOS) | folder | user accel. and gravity in g, iOS sign; gyro, mag | Core Motion attitude | `Location.csv` | `Barometer.csv` (hPa) | – |
+//! | Sensor Logger JSON | file | as the folder, without `TotalAcceleration` | as the folder | `Location` | `Barometer` | – |
+//! | phyphox | folder | accel., gyro, mag | none | `Location.csv` | `Pressure.csv` (hPa) | – |
+//! | GnssLogger | file | `Accel`, `Gyro`, `Mag` | `OrientationDeg` | `Fix` | none | – |
+//! | GetSensorData | file | `ACCE`, `GYRO`, `MAGN` | `AHRS` rotation vector | `GNSS` (twice) | `PRES` (mbar, 4 decimals) | `POSI` landmarks with floor |
+//! | Oxford Step Counter | folder | accelerometer only | none | none | none | foot contacts |
+//! | Microsoft Indoor 2.0 | file | accel., gyro, mag | rotation vector | none | none | `TYPE_WAYPOINT` |
+//! | x-io Gait-Tracking | file | gyro (deg/s), accel. (g): the foot IMU's when the walk has one | none | none | none | (loop closure, claimed by the reader) |
+//! | plain CSV (read by a recipe) | folder | `acc`, `gyr`, `mag` (ms, no header) | none | none | `bar` (hPa, 4 decimals; a still one without a barometer) | – |
+//! | pdr-log | file | everything, lossless | | | | |
 //!
 //! Where a format has no place for something the simulation has, it is left out: phyphox, Oxford
 //! and x-io have no OS orientation (the engine then falls back to Madgwick or the gravity
 //! low-pass), Oxford has no gyroscope nor magnetometer, Microsoft Indoor, Oxford and x-io have no
-//! GNSS. The x-io reader always claims a loop closure: only a closed walk (the square) makes that
+//! GNSS; GnssLogger, Microsoft Indoor, Oxford and x-io have no barometer ([`holds_pressure`]). The x-io reader always claims a loop closure: only a closed walk (the square) makes that
 //! claim true. `gap` records and the simulation's per-step truth beyond what the format can hold
 //! (lengths, headings) are not written. An IMU sample with a non-finite value, or a fix that
 //! fails [`GnssFix::check`], is skipped (the simulator never makes one).
@@ -68,7 +68,7 @@ mod xio;
 pub use plain_csv::RECIPE_JSON as PLAIN_CSV_RECIPE;
 
 use super::Simulation;
-use crate::engine::types::{GnssFix, ImuSample};
+use crate::engine::types::{GnssFix, ImuSample, PressureSample};
 use crate::engine::Record;
 use crate::io::import::{Format, Platform};
 use nalgebra::{Quaternion, UnitQuaternion};
@@ -104,6 +104,20 @@ pub fn is_folder(format: Format) -> bool {
     matches!(
         format,
         Format::SensorLogger | Format::Phyphox | Format::OxfordSteps | Format::Recipe
+    )
+}
+
+/// Whether `format`, as written here, carries the walk's barometer readings
+/// (`Record::Pressure`). GnssLogger, Microsoft Indoor, Oxford and x-io have no place for them.
+pub fn holds_pressure(format: Format) -> bool {
+    matches!(
+        format,
+        Format::PdrLog
+            | Format::SensorLogger
+            | Format::SensorLoggerJson
+            | Format::Phyphox
+            | Format::GetSensorData
+            | Format::Recipe
     )
 }
 
@@ -159,6 +173,8 @@ struct Walk<'a> {
     items: Vec<Item<'a>>,
     /// The samples of a foot-mounted IMU (`Record::Foot`), if the walk has one.
     foot: Vec<&'a ImuSample>,
+    /// The barometer readings (`Record::Pressure`), if the walk has them, in time order.
+    pressure: Vec<&'a PressureSample>,
     /// Simulation time of the start of the recording, s.
     start: f64,
     /// Whether the simulation's clock is a Unix time.
@@ -326,10 +342,22 @@ impl<'a> Walk<'a> {
                 _ => None,
             })
             .collect();
-        let first = items.first().map(|i| match i {
+        let pressure: Vec<&'a PressureSample> = sim
+            .records
+            .iter()
+            .filter_map(|r| match r {
+                Record::Pressure(p) if p.check().is_ok() => Some(p),
+                _ => None,
+            })
+            .collect();
+        let first_item = items.first().map(|i| match i {
             Item::Imu(s) => s.t,
             Item::Fix(f) => f.t,
         });
+        let first = match (first_item, pressure.first().map(|p| p.t)) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        };
         let path_start = sim
             .truth
             .path
@@ -362,6 +390,7 @@ impl<'a> Walk<'a> {
         Walk {
             items,
             foot,
+            pressure,
             start,
             unix,
             unix_start_ns,
@@ -418,6 +447,12 @@ impl<'a> Walk<'a> {
         let (y, mo, d, h, mi, s, _) = civil(self.unix_start_ns.div_euclid(1_000_000_000));
         format!("{y:04}{date}{mo:02}{date}{d:02}{sep}{h:02}{time}{mi:02}{time}{s:02}")
     }
+}
+
+/// Height above sea level of a pressure in the standard atmosphere, m (the troposphere's
+/// formula, sea level 1013.25 hPa, 15 °C): what a phone shows as the barometric altitude.
+fn standard_height_m(hpa: f64) -> f64 {
+    44_330.77 * (1.0 - libm::pow(hpa / 1013.25, 0.190_263))
 }
 
 /// Ground-truth waypoints (t, east, north) of a walk: its start, every

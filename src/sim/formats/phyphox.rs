@@ -9,7 +9,8 @@ use std::fmt::Write as _;
 impl Walk<'_> {
     /// phyphox's CSV export of a multi-sensor experiment: `Accelerometer.csv` ("Acceleration
     /// with g", m/s², Android sign on both platforms), `Gyroscope.csv`, `Magnetometer.csv`,
-    /// `Location.csv` and `meta/`; time in seconds since the start; every number in
+    /// `Location.csv`, `Pressure.csv` (the barometer, hPa, as phyphox's pressure sensor
+    /// exports it) and `meta/`; time in seconds since the start; every number in
     /// `0.000000000E0` form. An unknown velocity or direction is left empty (phyphox itself
     /// writes `NaN` there; the reader takes both as unknown, and nothing here writes NaN).
     pub(super) fn phyphox(&self) -> Vec<(String, Vec<u8>)> {
@@ -82,6 +83,13 @@ impl Walk<'_> {
             }
             files.push((format!("{dir}/Location.csv"), text.into_bytes()));
         }
+        if !self.pressure.is_empty() {
+            let mut text = String::from("\"Time (s)\",\"Pressure (hPa)\"\n");
+            for p in &self.pressure {
+                let _ = writeln!(text, "{},{}", sci9(self.rel(p.t)), sci9(p.hpa));
+            }
+            files.push((format!("{dir}/Pressure.csv"), text.into_bytes()));
+        }
         let device = "\"property\",\"value\"\n\"version\",\"1.1.16\"\n\"build\",\"1011608\"\n\
                       \"fileFormat\",\"1.18\"\n\"deviceModel\",\"pdr simulator\"\n\
                       \"deviceBrand\",\"pdr\"\n\"deviceBoard\",\"sim\"\n\"deviceManufacturer\",\"pdr\"\n";
@@ -90,6 +98,7 @@ impl Walk<'_> {
             Item::Imu(s) => s.t,
             Item::Fix(f) => f.t,
         });
+        let end = self.pressure.last().map_or(end, |p| end.max(p.t));
         let stamp = |t: f64| {
             let ms = self.unix_ms(t);
             let (y, mo, d, h, mi, s, _) = civil(ms.div_euclid(1000));

@@ -24,14 +24,15 @@ pub const RECIPE_JSON: &str = r#"{
 }
 "#;
 
-/// Pressure written to `bar.csv`, hPa: the standard atmosphere at 50 m (the simulation has no
-/// barometer, and the engine does not read pressure yet).
+/// Pressure written to `bar.csv` for a walk without a barometer, hPa: the standard atmosphere
+/// at 50 m, a still barometer (so the folder always has the recipe's pressure file).
 pub const PRESSURE_HPA: f64 = 1007.26;
 
 impl Walk<'_> {
     /// The folder `plain_<start>/`: `acc.csv` (m/s², including gravity, Android sign),
     /// `gyr.csv` (rad/s), `mag.csv` (µT) with a line per IMU sample that has the sensor, and
-    /// `bar.csv` at a tenth of the IMU rate; time in whole Unix milliseconds, 6 decimals,
+    /// `bar.csv` (hPa, 4 decimals): the walk's barometer readings, or, for a walk without them,
+    /// [`PRESSURE_HPA`] at a tenth of the IMU rate; time in whole Unix milliseconds, 6 decimals,
     /// comma-separated, no header. No orientation nor GNSS (the engine falls back to its own
     /// attitude filter).
     pub(super) fn plain_csv(&self) -> Vec<(String, Vec<u8>)> {
@@ -58,9 +59,12 @@ impl Walk<'_> {
             if let Some(m) = s.mag {
                 v3(&mut mag, ms, m);
             }
-            if i % 10 == 0 {
+            if self.pressure.is_empty() && i % 10 == 0 {
                 let _ = writeln!(bar, "{ms},{}", fixed(PRESSURE_HPA, 2));
             }
+        }
+        for p in &self.pressure {
+            let _ = writeln!(bar, "{},{}", self.unix_ms(p.t), fixed(p.hpa, 4));
         }
         for (name, text) in [("acc", acc), ("gyr", gyr), ("mag", mag), ("bar", bar)] {
             // acc.csv always (empty for a walk without samples); the others when they have any.

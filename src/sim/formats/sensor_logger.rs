@@ -1,10 +1,12 @@
 //! Sensor Logger's CSV folder and JSON export of a simulated walk, on Android or iOS, as
 //! [`crate::io::import::sensor_logger`] reads them. May import: `engine` and `io`.
 
-use super::{canonical, fixed, get_orientation, js, js_float, round_i64, Item, Walk};
+use super::{
+    canonical, fixed, get_orientation, js, js_float, round_i64, standard_height_m, Item, Walk,
+};
 use crate::engine::math::OnePole;
 use crate::engine::orientation::G0;
-use crate::engine::types::{GnssFix, ImuSample};
+use crate::engine::types::{GnssFix, ImuSample, PressureSample};
 use crate::io::import::Platform;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use std::fmt::Write as _;
@@ -132,6 +134,26 @@ impl Walk<'_> {
         ]
     }
 
+    /// A barometer reading as Sensor Logger's `Barometer` columns ([`SL_BAROMETER`]): the
+    /// pressure in hPa (expo-sensors' unit on both platforms; a 32-bit float on Android) and the
+    /// altitude relative to the first reading in the standard atmosphere, m.
+    fn sl_pressure(&self, p: &PressureSample, platform: Platform) -> Vec<String> {
+        let num = |v: f64| {
+            if platform == Platform::Ios {
+                js(v)
+            } else {
+                js_float(v)
+            }
+        };
+        let first = self.pressure.first().map_or(p.hpa, |f| f.hpa);
+        vec![
+            self.unix_ns(p.t).to_string(),
+            fixed(self.rel(p.t), 9),
+            num(standard_height_m(p.hpa) - standard_height_m(first)),
+            num(p.hpa),
+        ]
+    }
+
     /// The sensors a Sensor Logger recording holds, in file order.
     fn sl_sensors(&self, imu: &[&ImuSample], platform: Platform, total: bool) -> Vec<&'static str> {
         let mut out = Vec::new();
@@ -194,7 +216,7 @@ impl Walk<'_> {
 
     /// Sensor Logger's CSV folder: one file per sensor, columns `time` (Unix ns),
     /// `seconds_elapsed`, then the values (`z,y,x`; `qz,qy,qx,qw,roll,pitch,yaw`; the location's
-    /// eleven columns). Android: m/s² with gravity in `TotalAcceleration.csv` and `Gravity.csv`,
+    /// eleven columns; the barometer's `relativeAltitude,pressure`). Android: m/s² with gravity in `TotalAcceleration.csv` and `Gravity.csv`,
     /// without in `Accelerometer.csv`; the orientation is the rotation vector. iOS: no total,
     /// user acceleration and gravity in g with Core Motion's sign, the attitude in the
     /// magnetic-north reference frame.
@@ -229,6 +251,15 @@ impl Walk<'_> {
             files.push((format!("{dir}/Location.csv"), text.into_bytes()));
             sensors.push("Location");
         }
+        if !self.pressure.is_empty() {
+            let mut text = SL_BAROMETER.join(",") + "\n";
+            for p in &self.pressure {
+                text.push_str(&self.sl_pressure(p, platform).join(","));
+                text.push('\n');
+            }
+            files.push((format!("{dir}/Barometer.csv"), text.into_bytes()));
+            sensors.push("Barometer");
+        }
         let (cols, values) = self.sl_metadata(&imu, platform, &sensors);
         let text = format!("{}\n{}\n", cols.join(","), values.join(","));
         files.push((format!("{dir}/Metadata.csv"), text.into_bytes()));
@@ -246,6 +277,9 @@ impl Walk<'_> {
         if !self.fixes().is_empty() {
             sensors.push("Location");
         }
+        if !self.pressure.is_empty() {
+            sensors.push("Barometer");
+        }
         let element = |sensor: &str, cols: &[&str], values: &[String]| {
             let mut e = String::with_capacity(160);
             e.push_str("{\"sensor\":");
@@ -260,13 +294,26 @@ impl Walk<'_> {
         let mut out = String::from("[");
         out.push_str(&element("Metadata", &cols, &values));
         let mut k = 0;
+        let mut pressure = self.pressure.iter().peekable();
         for item in &self.items {
+            let t = match item {
+                Item::Imu(s) => s.t,
+                Item::Fix(f) => f.t,
+            };
+            while let Some(p) = pressure.next_if(|p| p.t <= t) {
+                out.push_str(",\n");
+                out.push_str(&element(
+                    "Barometer",
+                    &SL_BAROMETER,
+                    &self.sl_pressure(p, platform),
+                ));
+            }
             match item {
                 Item::Imu(s) => {
                     let g = gravity.get(k).copied().unwrap_or_default();
                     k += 1;
                     for &sensor in &sensors {
-                        if sensor == "Location" {
+                        if sensor == "Location" || sensor == "Barometer" {
                             continue;
                         }
                         let cols: &[&str] = if sensor == "Orientation" {
@@ -285,6 +332,14 @@ impl Walk<'_> {
                     out.push_str(&element("Location", &SL_LOCATION, &self.sl_fix(f)));
                 }
             }
+        }
+        for p in pressure {
+            out.push_str(",\n");
+            out.push_str(&element(
+                "Barometer",
+                &SL_BAROMETER,
+                &self.sl_pressure(p, platform),
+            ));
         }
         out.push_str("]\n");
         vec![(
@@ -309,6 +364,9 @@ const SL_ORIENTATION: [&str; 9] = [
     "pitch",
     "yaw",
 ];
+
+/// Sensor Logger's columns of `Barometer.csv`.
+const SL_BAROMETER: [&str; 4] = ["time", "seconds_elapsed", "relativeAltitude", "pressure"];
 
 /// Sensor Logger's columns of `Location.csv`.
 const SL_LOCATION: [&str; 11] = [

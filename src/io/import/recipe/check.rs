@@ -201,7 +201,7 @@ pub(crate) fn report(recipe: &Recipe, files: &[(&FileRule, FileData)]) -> Report
         }
         if rule.sensor == Sensor::Pressure {
             out.notes.push(format!(
-                "{name}: {} pressure samples read and checked; the engine does not use pressure yet",
+                "{name}: {} pressure samples read and checked; the engine uses them for the height and floor changes",
                 times.len()
             ));
         }

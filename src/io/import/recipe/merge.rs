@@ -1,12 +1,14 @@
 //! A recording read by a recipe: the files it matches in a folder, each read by its entry
-//! ([`super::read`]), merged into one log through [`Streams::into_records`] with the report
+//! ([`super::read`]; pressure becomes [`Record::Pressure`](crate::engine::Record) readings),
+//! merged into one log through [`Streams::into_records`] with the report
 //! ([`super::check`]). May import: `engine` and `io`.
 
 use super::check::{self, Report};
 use super::read::{read_file, FileData, Samples};
 use super::schema::{FileRule, Recipe, Sensor};
 use crate::engine::orientation::{G0, HOLD_S};
-use crate::io::import::common::{add_warnings, pair_nearest, set_records, warn_count};
+use crate::engine::types::PRESSURE_RANGE_HPA;
+use crate::io::import::common::{add_warnings, pair_nearest, pressure, set_records, warn_count};
 use crate::io::import::{file_error, fileset, FileSet, Format, Log, Streams};
 use crate::io::ParseError;
 use nalgebra::Vector3;
@@ -100,6 +102,30 @@ fn build(
             (Sensor::Magnetometer, Samples::Vectors(v)) => s.mag.extend(v),
             (Sensor::Orientation, Samples::Quaternions(v)) => s.orientation.extend(v),
             (Sensor::Gnss, Samples::Fixes(v)) => s.fixes.extend(v),
+            (Sensor::Pressure, Samples::Scalars(v)) => {
+                // The file's unit is already converted to hPa; a reading out of the engine's
+                // range (a wrong unit, which the report's check names) is skipped and counted.
+                let mut refused = 0u64;
+                for (t, hpa) in v {
+                    match pressure(t, hpa) {
+                        Ok(p) => s.pressure.push(p),
+                        Err(_) => refused += 1,
+                    }
+                }
+                warn_count(
+                    &mut log,
+                    refused,
+                    file_error(
+                        &f.file,
+                        0,
+                        format!(
+                            "pressure: {refused} sample(s) outside {}–{} hPa, skipped (is the \
+                             file's unit right?)",
+                            PRESSURE_RANGE_HPA.0, PRESSURE_RANGE_HPA.1
+                        ),
+                    ),
+                );
+            }
             _ => {}
         }
     }

@@ -97,6 +97,7 @@ impl Raw {
             .map(|&(t, q)| (t, to_enu * q))
             .collect();
         s.fixes = std::mem::take(&mut self.fixes);
+        s.pressure = std::mem::take(&mut self.pressure);
         let dropped = drop_non_finite(&mut s);
         if s.accel.is_empty() {
             return Err(file_error(

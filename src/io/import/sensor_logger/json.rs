@@ -139,7 +139,7 @@ impl<'de> serde::de::Visitor<'de> for Elements<'_> {
                     .push(row.error("sensor", "missing".to_string()));
                 continue;
             };
-            // Sensors we do not use (Barometer, Pedometer, …) are ignored silently.
+            // Sensors we do not use (Pedometer, Microphone, …) are ignored silently.
             let Some(kind) = Kind::from_sensor(sensor) else {
                 continue;
             };

@@ -3,8 +3,8 @@
 //!
 //! # Files
 //! `Accelerometer.csv` (gravity removed), `Gravity.csv`, `TotalAcceleration.csv` (Android only,
-//! gravity included), `Gyroscope.csv`, `Magnetometer.csv`, `Orientation.csv`, `Location.csv` and
-//! `Metadata.csv`. Columns are matched by name (case-insensitive), never by position: the order
+//! gravity included), `Gyroscope.csv`, `Magnetometer.csv`, `Orientation.csv`, `Location.csv`,
+//! `Barometer.csv` and `Metadata.csv`. Columns are matched by name (case-insensitive), never by position: the order
 //! differs between versions and platforms (`time,seconds_elapsed,z,y,x`, older `time,z,y,x`,
 //! `time,yaw,qx,qz,roll,qw,qy,pitch`, …).
 //!
@@ -31,6 +31,12 @@
 //!   north = x_ref, up = z_ref. North stays magnetic (no declination is applied); a recording
 //!   made with an arbitrary-x reference frame would carry an unknown heading offset.
 //! - Gyroscope (rad/s) and magnetometer (µT) are used as they are on both platforms.
+//! - Barometer (`time`, `seconds_elapsed`, `relativeAltitude`, `pressure`): Sensor Logger is an
+//!   Expo app, and expo-sensors' `Barometer` reports `pressure` in hPa on both platforms (it
+//!   converts Core Motion's kPa); `relativeAltitude` (m, iOS only) is not used. A `pressure`
+//!   below [`KPA_BELOW`] is nonetheless taken as kPa and multiplied by 10 (no one walks where
+//!   the air is below 200 hPa, about 12 km up; 101.3 kPa read as hPa would pass the engine's
+//!   range check and be wrong). A reading outside the engine's range is skipped with a warning.
 //! - Location: fixes with a negative `horizontalAccuracy` are invalid and skipped (each counted as
 //!   a warning); a negative `speed` or `bearing` is an unknown value.
 //!
@@ -49,12 +55,15 @@ pub use json::{looks_like_json, read_json};
 
 use super::common::{not_a_number, unit_quaternion, Warnings};
 use super::{number, Platform};
-use crate::engine::types::GnssFix;
+use crate::engine::types::{GnssFix, PressureSample};
 use crate::io::ParseError;
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
+/// A Sensor Logger `pressure` below this is in kPa (see the module documentation), hPa.
+pub const KPA_BELOW: f64 = 200.0;
+
 /// The Sensor Logger files (lower case) whose samples we use.
-const FILES: [(&str, Kind); 8] = [
+const FILES: [(&str, Kind); 9] = [
     ("metadata.csv", Kind::Metadata),
     ("totalacceleration.csv", Kind::Total),
     ("accelerometer.csv", Kind::Accel),
@@ -63,6 +72,7 @@ const FILES: [(&str, Kind); 8] = [
     ("magnetometer.csv", Kind::Mag),
     ("orientation.csv", Kind::Orientation),
     ("location.csv", Kind::Location),
+    ("barometer.csv", Kind::Barometer),
 ];
 
 /// What one Sensor Logger file (or JSON `sensor`) holds.
@@ -76,6 +86,7 @@ enum Kind {
     Mag,
     Orientation,
     Location,
+    Barometer,
 }
 
 impl Kind {
@@ -94,6 +105,7 @@ impl Kind {
             Kind::Total | Kind::Accel | Kind::Gravity | Kind::Gyro | Kind::Mag => &["x", "y", "z"],
             Kind::Orientation => &["qw", "qx", "qy", "qz"],
             Kind::Location => &["latitude", "longitude", "horizontalaccuracy"],
+            Kind::Barometer => &["pressure"],
         }
     }
 
@@ -156,6 +168,7 @@ struct Raw {
     mag: Vec<(f64, Vector3<f64>)>,
     orientation: Vec<(f64, UnitQuaternion<f64>)>,
     fixes: Vec<GnssFix>,
+    pressure: Vec<PressureSample>,
     platform: Option<Platform>,
     standardised: bool,
     warnings: Warnings,
@@ -192,6 +205,7 @@ impl Raw {
             Kind::Gyro => self.gyro.try_reserve_exact(n),
             Kind::Mag => self.mag.try_reserve_exact(n),
             Kind::Orientation => self.orientation.try_reserve_exact(n),
+            Kind::Barometer => self.pressure.try_reserve_exact(n),
             Kind::Metadata | Kind::Location => Ok(()),
         };
     }
@@ -277,6 +291,16 @@ impl Raw {
                     return Err(row.error("latitude", format!("invalid fix: {e}")));
                 }
                 self.fixes.push(fix);
+            }
+            Kind::Barometer => {
+                let raw = get(row, "pressure")?;
+                let hpa = if raw.abs() < KPA_BELOW {
+                    raw * 10.0
+                } else {
+                    raw
+                };
+                let p = super::common::pressure(t, hpa).map_err(|m| row.error("pressure", m))?;
+                self.pressure.push(p);
             }
         }
         Ok(())
