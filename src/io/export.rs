@@ -251,6 +251,41 @@ pub fn track_gpx(track: &[StepRecord], frame: Option<&LocalFrame>) -> String {
     out
 }
 
+/// An activity in words for people ("Walking upstairs"), as the live readout, the pocket guard
+/// and upload mode show it (both may import `io`; the files keep `Activity::as_str`).
+pub fn activity_words(a: crate::engine::activity::Activity) -> &'static str {
+    use crate::engine::activity::Activity;
+    match a {
+        Activity::Still => "Still",
+        Activity::Standing => "Standing",
+        Activity::Sitting => "Sitting",
+        Activity::Walking => "Walking",
+        Activity::Upstairs => "Walking upstairs",
+        Activity::Downstairs => "Walking downstairs",
+        Activity::Running => "Running",
+    }
+}
+
+/// A floor relative to the start as a label: "floor 0", "floor +1", "floor −2" (a minus sign).
+pub fn floor_label(floor: i32) -> String {
+    match floor {
+        0 => "floor 0".to_string(),
+        f if f > 0 => format!("floor +{f}"),
+        f => format!("floor \u{2212}{}", f.unsigned_abs()),
+    }
+}
+
+/// A floor change for people: "+1 floor", "−2 floors" (a minus sign), nothing when 0.
+pub fn floor_change(floor: i32) -> Option<String> {
+    let n = floor.unsigned_abs();
+    let unit = if n == 1 { "floor" } else { "floors" };
+    match floor {
+        0 => None,
+        f if f > 0 => Some(format!("+{n} {unit}")),
+        _ => Some(format!("\u{2212}{n} {unit}")),
+    }
+}
+
 /// Unix seconds as an ISO 8601 UTC time with milliseconds.
 fn iso8601(t: f64) -> String {
     let ms = (t * 1000.0).round() as i64;
@@ -409,5 +444,18 @@ mod height_tests {
         }
         assert!(!track_gpx(&track, None).contains("<ele>"));
         assert!(!track_gpx(&track, Some(&LocalFrame::new(45.0, 9.0, 0.0))).contains("<ele>"));
+    }
+
+    #[test]
+    fn words_for_people() {
+        assert_eq!(activity_words(Activity::Upstairs), "Walking upstairs");
+        assert_eq!(activity_words(Activity::Sitting), "Sitting");
+        assert_eq!(floor_change(0), None);
+        assert_eq!(floor_change(1).as_deref(), Some("+1 floor"));
+        assert_eq!(floor_change(-2).as_deref(), Some("\u{2212}2 floors"));
+        assert_eq!(floor_change(3).as_deref(), Some("+3 floors"));
+        assert_eq!(floor_label(0), "floor 0");
+        assert_eq!(floor_label(2), "floor +2");
+        assert_eq!(floor_label(-1), "floor \u{2212}1");
     }
 }
