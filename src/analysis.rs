@@ -11,9 +11,9 @@
 use crate::engine::activity::Activity;
 use crate::engine::motion::Motion;
 use crate::engine::replay::replay_observed;
-use crate::engine::vertical::VerticalSource;
 use crate::engine::types::ConfigError;
 use crate::engine::types::Record;
+use crate::engine::vertical::VerticalSource;
 use crate::engine::{Pipeline, PipelineConfig, StepRecord};
 use crate::eval::LogResult;
 use crate::io::import::Log;
@@ -399,10 +399,7 @@ impl Analysis {
             );
         }
         if self.pressure_samples > 0 {
-            row(
-                "Barometer",
-                format!("{} readings", self.pressure_samples),
-            );
+            row("Barometer", format!("{} readings", self.pressure_samples));
         }
         for w in self.warnings.iter().take(3) {
             row("Note", w.clone());
@@ -586,7 +583,11 @@ mod tests {
         let a = analyse(&log, &PipelineConfig::default(), &mut |_, _| {}).unwrap();
         let n = a.trace.t.len();
         assert_eq!(
-            (a.trace.activity.len(), a.trace.height.len(), a.trace.floor.len()),
+            (
+                a.trace.activity.len(),
+                a.trace.height.len(),
+                a.trace.floor.len()
+            ),
             (n, n, n)
         );
         // Without the engine's own activity, the motion state's: walking while walking.
@@ -598,7 +599,10 @@ mod tests {
             );
         }
         assert!(a.activities().contains(&Activity::Walking));
-        assert_eq!(activity_from_code(activity_code(Activity::Downstairs)), Activity::Downstairs);
+        assert_eq!(
+            activity_from_code(activity_code(Activity::Downstairs)),
+            Activity::Downstairs
+        );
         assert_eq!(activity_from_code(200), Activity::Still);
         let back = Analysis::from_bytes(&a.to_bytes().unwrap()).unwrap();
         assert_eq!(back, a);
@@ -626,7 +630,10 @@ mod tests {
         let text = a.step_text(up).unwrap();
         assert!(text.contains(" · walking upstairs · height "), "{text}");
         let last = a.step_text(a.steps.len() - 1).unwrap();
-        assert!(last.ends_with(" · walking · height 3.00 m, floor +1"), "{last}");
+        assert!(
+            last.ends_with(" · walking · height 3.00 m, floor +1"),
+            "{last}"
+        );
         let rows = a.figures();
         let h = rows.iter().find(|r| r.0 == "Height").expect("a Height row");
         assert_eq!(

@@ -87,7 +87,10 @@ fn live_events_count_like_the_log_and_both_platforms_agree() {
     assert_eq!(r.activity_key, Some(act.as_str()));
     assert_eq!(r.floor, d.floor);
     assert_eq!(r.floor_change, pdr::io::export::floor_change(d.floor));
-    assert_eq!(r.up_m.is_some(), d.vertical.is_some() || d.floor != 0 || d.up_m != 0.0);
+    assert_eq!(
+        r.up_m.is_some(),
+        d.vertical.is_some() || d.floor != 0 || d.up_m != 0.0
+    );
 }
 
 #[wasm_bindgen_test(unsupported = test)]

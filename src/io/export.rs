@@ -399,7 +399,9 @@ mod height_tests {
         // Local metres: [east, north, up].
         let j = track_geojson(&track, None);
         let p = &j["features"][0]["properties"];
-        let c = j["features"][0]["geometry"]["coordinates"].as_array().unwrap();
+        let c = j["features"][0]["geometry"]["coordinates"]
+            .as_array()
+            .unwrap();
         assert_eq!(c.len(), track.len());
         for (r, (x, i)) in track.iter().zip(c.iter().zip(0..)) {
             assert_eq!(x.as_array().unwrap().len(), 3);

@@ -492,6 +492,17 @@ impl LiveSession {
         self.pipeline.track().iter().map(|s| s.freq_hz).collect()
     }
 
+    /// The leg pitch amplitude Δθ of each step counted so far, degrees, NaN for a step without
+    /// one (a calibration walk's Δθ_k for the pitch step length's offset,
+    /// [`crate::engine::calibration::pitch_offset`]).
+    pub fn pitch_amplitudes(&self) -> Vec<f64> {
+        self.pipeline
+            .track()
+            .iter()
+            .map(|s| s.pitch_amplitude_deg.unwrap_or(f64::NAN))
+            .collect()
+    }
+
     /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m, in
     /// the order of the track, whatever step-length model the session runs: a calibration
     /// walk's L_k for the fuzzy scale ([`crate::engine::calibration::fit_fuzzy_scale`]).

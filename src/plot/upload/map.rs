@@ -1,11 +1,11 @@
 //! Upload mode's map of an [`Analysis`]: tracks, fixes, truth, the highlighted step.
 //! May import: `analysis`, the map frame and the base map; never `web`, `live` or `eval`.
 
+use super::palette::floor_colour;
 use crate::analysis::Analysis;
 use crate::plot::basemap::{credit_line, map_chart_under, Basemap};
 use crate::plot::frame::{frame_of, legend, north_and_scale, start_end, MapFrame, Mark};
 use crate::plot::theme::Theme;
-use super::palette::floor_colour;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -97,7 +97,9 @@ pub fn draw_map<DB: DrawingBackend>(
     let by_floor = floors.len() > 1;
     let main = if fused.is_empty() { &pdr } else { &fused };
     let main_floors: Vec<i32> = if fused.is_empty() {
-        std::iter::once(0).chain(a.steps.iter().map(|s| s.floor)).collect()
+        std::iter::once(0)
+            .chain(a.steps.iter().map(|s| s.floor))
+            .collect()
     } else {
         a.fused.iter().map(|f| floor_at(a, f[0])).collect()
     };
@@ -108,7 +110,7 @@ pub fn draw_map<DB: DrawingBackend>(
         draw_line(&mut chart, &pdr, pdr_colour)?;
     }
     draw_line(&mut chart, &smoothed, theme.smoothed)?;
-    if !(by_floor && !fused.is_empty()) {
+    if !by_floor || fused.is_empty() {
         draw_line(&mut chart, &fused, theme.track)?;
     }
     if by_floor {

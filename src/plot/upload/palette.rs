@@ -87,7 +87,10 @@ mod tests {
                     for b in &set[i + 1..] {
                         assert_ne!((a.0, a.1, a.2), (b.0, b.1, b.2));
                     }
-                    assert_ne!((a.0, a.1, a.2), (t.background.0, t.background.1, t.background.2));
+                    assert_ne!(
+                        (a.0, a.1, a.2),
+                        (t.background.0, t.background.1, t.background.2)
+                    );
                 }
             }
             assert_eq!(floor_colour(4, &t), floor_colour(1, &t));

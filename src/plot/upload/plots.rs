@@ -122,12 +122,8 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             .zip(seen)
             .filter(|(_, s)| *s)
             .filter_map(|(&act, _)| {
-                activity_colour(act, theme).map(|c| {
-                    (
-                        crate::io::export::activity_words(act).to_lowercase(),
-                        c,
-                    )
-                })
+                activity_colour(act, theme)
+                    .map(|c| (crate::io::export::activity_words(act).to_lowercase(), c))
             })
             .collect()
     } else {
@@ -306,9 +302,9 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         Plot::Heading if a.has_steps_without_any_heading() => {
             Some("no heading in this log (no gyroscope, magnetometer or orientation)")
         }
-        Plot::Height if !a.has_height() => Some(
-            "no height in this log (no leg pitch, no barometer): a flat walk is assumed",
-        ),
+        Plot::Height if !a.has_height() => {
+            Some("no height in this log (no leg pitch, no barometer): a flat walk is assumed")
+        }
         _ => None,
     };
     if let Some(note) = note {
@@ -421,9 +417,11 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             }
             // Each step's height, where the steps are far enough apart to be told apart.
             if step_lines {
-                chart.draw_series(steps_in.iter().map(|s| {
-                    Circle::new((rel(s.t), s.up_m), px(1.5), theme.track.filled())
-                }))?;
+                chart.draw_series(
+                    steps_in
+                        .iter()
+                        .map(|s| Circle::new((rel(s.t), s.up_m), px(1.5), theme.track.filled())),
+                )?;
             }
         }
         Plot::Steps => {
