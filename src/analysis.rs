@@ -16,6 +16,9 @@ use crate::engine::types::Record;
 use crate::engine::vertical::VerticalSource;
 use crate::engine::{Pipeline, PipelineConfig, StepRecord};
 use crate::eval::LogResult;
+/// The words the page shows for activities and floors (from `io::export`, for `plot`, which
+/// may not import `io`).
+pub use crate::io::export::{activity_words, floor_label};
 use crate::io::import::Log;
 
 /// The per-sample signals, one entry per IMU sample the engine accepted.
@@ -611,6 +614,10 @@ mod tests {
     #[test]
     fn a_three_floor_walk_is_described_with_its_heights_floors_and_activities() {
         let a = three_floor_analysis();
+        // Set PDR_ANALYSIS_DUMP to a file to look at it in the page (AnalysisView.from_bytes).
+        if let Ok(path) = std::env::var("PDR_ANALYSIS_DUMP") {
+            std::fs::write(path, a.to_bytes().unwrap()).unwrap();
+        }
         assert!(a.has_height());
         assert_eq!(a.floors(), vec![0, 1, 2]);
         assert_eq!(a.height_source(), "leg pitch + barometer");

@@ -146,7 +146,7 @@ pub fn draw_map<DB: DrawingBackend>(
     let floor_names: Vec<(String, RGBColor)> = if by_floor {
         floors
             .iter()
-            .map(|&f| (crate::io::export::floor_label(f), floor_colour(f, theme)))
+            .map(|&f| (crate::analysis::floor_label(f), floor_colour(f, theme)))
             .collect()
     } else {
         Vec::new()

@@ -123,7 +123,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             .filter(|(_, s)| *s)
             .filter_map(|(&act, _)| {
                 activity_colour(act, theme)
-                    .map(|c| (crate::io::export::activity_words(act).to_lowercase(), c))
+                    .map(|c| (crate::analysis::activity_words(act).to_lowercase(), c))
             })
             .collect()
     } else {
