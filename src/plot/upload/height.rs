@@ -5,6 +5,11 @@
 use super::decimate::{envelope, of};
 use crate::analysis::Analysis;
 
+/// Metres per floor on the floor axis: the floor axis is the height axis over this, so that
+/// the floors' staircase lies along the height line (a display scale only: the floors are the
+/// engine's).
+pub const AXIS_M_PER_FLOOR: f64 = 3.0;
+
 /// The height plot's series between `t0` and `t1` (time from `origin`, s): the height's runs
 /// (m), and the floor as a staircase (one corner at each change).
 pub struct HeightSeries {
@@ -14,7 +19,7 @@ pub struct HeightSeries {
     pub floor: Vec<(f64, f64)>,
     /// The height axis, m: what the span shows, at least 3 m, padded.
     pub metres: (f64, f64),
-    /// The floor axis: the floors shown, padded by half a floor, at least 0 to 1.
+    /// The floor axis: the height axis over [`AXIS_M_PER_FLOOR`].
     pub floors: (f64, f64),
 }
 
@@ -46,16 +51,16 @@ impl HeightSeries {
         let (lo, hi) = height
             .iter()
             .flatten()
-            .fold((0.0_f64, 0.0_f64), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
+            .map(|p| p.1)
+            .chain(floor.iter().map(|p| p.1 * AXIS_M_PER_FLOOR))
+            .fold((0.0_f64, 0.0_f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
         let pad = ((hi - lo).max(3.0) - (hi - lo)) / 2.0 + 0.08 * (hi - lo).max(3.0);
-        let (flo, fhi) = floor
-            .iter()
-            .fold((0.0_f64, 1.0_f64), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
+        let metres = (lo - pad, hi + pad);
         HeightSeries {
             height,
             floor,
-            metres: (lo - pad, hi + pad),
-            floors: (flo - 0.5, fhi + 0.5),
+            metres,
+            floors: (metres.0 / AXIS_M_PER_FLOOR, metres.1 / AXIS_M_PER_FLOOR),
         }
     }
 }

@@ -101,7 +101,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
     let headings = (plot == Plot::Heading).then(|| Headings::new(a, t0, t1, cols, origin));
     let heights = (plot == Plot::Height).then(|| HeightSeries::new(a, t0, t1, cols, origin));
     let height_title = format!(
-        "height above the start (m, blue), floor (orange, right), {}",
+        "height above the start (m, blue), floor (orange, right, 3 m each), {}",
         match a.vertical {
             Some(v) => format!("from {}", v.as_str()),
             None => a.height_source().to_string(),
