@@ -1,6 +1,6 @@
 //! Upload mode's colours for the activities (Munoz Diaz 2015 §4.3) and the floors, and the key
 //! that names them on a line under a plot's title.
-//! May import: `engine` (the activities), the theme; never `web`, `live` or `eval`.
+//! May import: `engine` (the activities), `analysis`, the theme; never `web`, `live` or `eval`.
 
 use crate::engine::activity::Activity;
 use crate::plot::theme::Theme;
@@ -19,6 +19,34 @@ pub fn activity_colour(a: Activity, t: &Theme) -> Option<RGBColor> {
         Activity::Downstairs => Some(t.smoothed),
         Activity::Running => Some(t.end),
     }
+}
+
+/// The activities of `a`'s samples between `t0` and `t1` that have a colour, named and
+/// coloured: the timeline band's key, in `Activity::ALL`'s order.
+pub fn activity_key(
+    a: &crate::analysis::Analysis,
+    t0: f64,
+    t1: f64,
+    theme: &Theme,
+) -> Vec<(String, RGBColor)> {
+    let tr = &a.trace;
+    let i1 = tr.t.partition_point(|&x| x <= t1).min(tr.activity.len());
+    let i0 = tr.t.partition_point(|&x| x < t0).min(i1);
+    let mut seen = [false; Activity::ALL.len()];
+    for &c in &tr.activity[i0..i1] {
+        if let Some(x) = seen.get_mut(usize::from(c)) {
+            *x = true;
+        }
+    }
+    Activity::ALL
+        .iter()
+        .zip(seen)
+        .filter(|(_, s)| *s)
+        .filter_map(|(&act, _)| {
+            activity_colour(act, theme)
+                .map(|c| (crate::analysis::activity_words(act).to_lowercase(), c))
+        })
+        .collect()
 }
 
 /// A floor's colour on the map: the start's floor the track's own colour, the floors above

@@ -4,7 +4,7 @@
 use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
 use super::heading;
 use super::height::{floor_tick, HeightSeries};
-use super::palette::{activity_colour, draw_key};
+use super::palette::{activity_colour, activity_key, draw_key};
 use crate::analysis::activity_from_code;
 use crate::analysis::Analysis;
 use crate::plot::theme::Theme;
@@ -108,24 +108,8 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         }
     );
     // The activities in the span, each with its colour: the timeline band's key.
-    let key: Vec<(String, RGBColor)> = if plot == Plot::Sigma {
-        let i0 = tr.t.partition_point(|&x| x < t0);
-        let i1 = tr.t.partition_point(|&x| x <= t1);
-        let mut seen = [false; crate::engine::activity::Activity::ALL.len()];
-        for &c in &tr.activity[i0.min(tr.activity.len())..i1.min(tr.activity.len())] {
-            if let Some(x) = seen.get_mut(usize::from(c)) {
-                *x = true;
-            }
-        }
-        crate::engine::activity::Activity::ALL
-            .iter()
-            .zip(seen)
-            .filter(|(_, s)| *s)
-            .filter_map(|(&act, _)| {
-                activity_colour(act, theme)
-                    .map(|c| (crate::analysis::activity_words(act).to_lowercase(), c))
-            })
-            .collect()
+    let key = if plot == Plot::Sigma {
+        activity_key(a, t0, t1, theme)
     } else {
         Vec::new()
     };
