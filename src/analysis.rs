@@ -8,11 +8,17 @@
 //! It is serialised ([`Analysis::to_bytes`], bincode) to cross from the worker to the page:
 //! signals are `f32` (plenty for a plot), times `f64` (Unix seconds need it).
 
+use crate::engine::activity::Activity;
+use crate::engine::motion::Motion;
 use crate::engine::replay::replay_observed;
 use crate::engine::types::ConfigError;
 use crate::engine::types::Record;
+use crate::engine::vertical::VerticalSource;
 use crate::engine::{Pipeline, PipelineConfig, StepRecord};
 use crate::eval::LogResult;
+/// The words the page shows for activities and floors (from `io::export`, for `plot`, which
+/// may not import `io`).
+pub use crate::io::export::{activity_words, floor_label};
 use crate::io::import::Log;
 
 /// The per-sample signals, one entry per IMU sample the engine accepted.
@@ -35,6 +41,36 @@ pub struct Trace {
     pub east: Vec<f32>,
     /// See `east`.
     pub north: Vec<f32>,
+    /// The activity (Munoz Diaz 2015 §4.3): its index in `Activity::ALL`; from the motion
+    /// state (still, walking, running) while the engine has no activity of its own.
+    pub activity: Vec<u8>,
+    /// Height above the walk's start, m (`Diagnostics::up_m`).
+    pub height: Vec<f32>,
+    /// Floor relative to the walk's start (`Diagnostics::floor`).
+    pub floor: Vec<i16>,
+}
+
+/// The activity a sample's diagnostics show: the engine's when it has one, else the motion
+/// state's (still, walking, running).
+pub fn activity_of(d: &crate::engine::Diagnostics, motion: Motion) -> Activity {
+    d.activity.unwrap_or(match motion {
+        Motion::Still => Activity::Still,
+        Motion::Walking => Activity::Walking,
+        Motion::Running => Activity::Running,
+    })
+}
+
+/// An activity's index in `Activity::ALL` (the trace's code), and back.
+pub fn activity_code(a: Activity) -> u8 {
+    Activity::ALL.iter().position(|&x| x == a).unwrap_or(0) as u8
+}
+
+/// See [`activity_code`]; `Still` for a code out of range.
+pub fn activity_from_code(c: u8) -> Activity {
+    Activity::ALL
+        .get(usize::from(c))
+        .copied()
+        .unwrap_or(Activity::Still)
 }
 
 /// A GNSS fix in the local frame: time, east, north, reported accuracy.
@@ -73,6 +109,10 @@ pub struct Analysis {
     pub truth_steps: Vec<f64>,
     /// The motion detector's σ thresholds: still below, running above (m/s²).
     pub sigma_thresholds: (f64, f64),
+    /// What the height comes from (None: no height, a flat walk assumed).
+    pub vertical: Option<VerticalSource>,
+    /// Barometer readings the engine accepted.
+    pub pressure_samples: u64,
 }
 
 /// Why an analysis cannot cross from the worker to the page.
@@ -122,6 +162,9 @@ pub fn analyse(
     }
     tr.t.reserve_exact(n);
     tr.motion.reserve_exact(n);
+    tr.activity.reserve_exact(n);
+    tr.height.reserve_exact(n);
+    tr.floor.reserve_exact(n);
     let deg = 180.0 / std::f64::consts::PI;
     progress(0, total);
     let mut observe = |pipeline: &Pipeline, i: usize, r: &Record, accepted: bool| {
@@ -132,7 +175,13 @@ pub fn analyse(
             tr.pll
                 .push(pipeline.pll_output().map_or(f32::NAN, |p| p as f32));
             tr.sigma.push(pipeline.vertical_stats().1 as f32);
-            tr.motion.push(pipeline.motion_state() as u8);
+            let motion = pipeline.motion_state();
+            tr.motion.push(motion as u8);
+            let d = pipeline.diagnostics();
+            tr.activity.push(activity_code(activity_of(&d, motion)));
+            tr.height.push(d.up_m as f32);
+            tr.floor
+                .push(d.floor.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16);
             tr.device_heading_deg
                 .push(pipeline.attitude().map_or(f32::NAN, |q| {
                     let top = q * nalgebra::Vector3::y();
@@ -149,6 +198,7 @@ pub fn analyse(
     progress(total, total);
     let score = crate::eval::score(log, &run);
     let p = &run.pipeline;
+    let d = p.diagnostics();
     let frame = p.frame();
     let fixes: Vec<FixPoint> = frame.map_or_else(Vec::new, |fr| {
         p.fixes()
@@ -194,6 +244,8 @@ pub fn analyse(
         truth_path: crate::eval::waypoints_in_track_frame(p.track(), &log.truth.waypoints),
         truth_steps: log.truth.step_events.iter().map(|s| s.t).collect(),
         sigma_thresholds: (cfg.motion.still_max, cfg.motion.run_sigma_min),
+        vertical: d.vertical,
+        pressure_samples: d.pressure_samples,
     })
 }
 
@@ -326,6 +378,32 @@ impl Analysis {
         if !self.fixes.is_empty() {
             row("GNSS", format!("{} fixes", self.fixes.len()));
         }
+        if self.has_height() {
+            let end = self.steps.last().map_or((0.0, 0), |s| (s.up_m, s.floor));
+            let floors = self.floors();
+            let source = match self.vertical {
+                Some(v) => format!("from {}", v.as_str()),
+                None => "source not given".to_string(),
+            };
+            row(
+                "Height",
+                format!(
+                    "{} m at the end ({}), {} floor{} visited ({}); {source}",
+                    fixed(end.0, 1),
+                    crate::io::export::floor_label(end.1),
+                    floors.len(),
+                    if floors.len() == 1 { "" } else { "s" },
+                    floors
+                        .iter()
+                        .map(|&f| crate::io::export::floor_label(f).replace("floor ", ""))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            );
+        }
+        if self.pressure_samples > 0 {
+            row("Barometer", format!("{} readings", self.pressure_samples));
+        }
         for w in self.warnings.iter().take(3) {
             row("Note", w.clone());
         }
@@ -333,7 +411,8 @@ impl Analysis {
     }
 
     /// Step `i` for people: "Step 12: t = 5.43 s · length 0.68 m · frequency 1.83 Hz · heading
-    /// 91° (single step 88°) · walking".
+    /// 91° (single step 88°) · walking upstairs", then " · height 2.10 m, floor +1" when the
+    /// log has a height.
     pub fn step_text(&self, i: usize) -> Option<String> {
         let s = self.steps.get(i)?;
         let t0 = self.trace.t.first().copied().unwrap_or(s.t);
@@ -342,16 +421,72 @@ impl Analysis {
                 format!("{}°", fixed(r.to_degrees().rem_euclid(360.0), 0))
             })
         };
+        let height = if self.has_height() {
+            format!(
+                " · height {} m, {}",
+                fixed(s.up_m, 2),
+                crate::io::export::floor_label(s.floor)
+            )
+        } else {
+            String::new()
+        };
         Some(format!(
-            "Step {}: t = {} s · length {} m · frequency {} Hz · heading {} (single step {}) · {}",
+            "Step {}: t = {} s · length {} m · frequency {} Hz · heading {} (single step {}) · {}{height}",
             i + 1,
             fixed(s.t - t0, 2),
             fixed(s.length_m, 2),
             fixed(s.freq_hz, 2),
             deg(s.heading_rad),
             deg(s.step_heading_rad),
-            s.motion.as_str()
+            crate::io::export::activity_words(s.activity).to_lowercase()
         ))
+    }
+
+    /// Whether the log has a height: the engine said where it came from, or a step or sample
+    /// left the start's level.
+    pub fn has_height(&self) -> bool {
+        self.vertical.is_some()
+            || self.steps.iter().any(|s| s.up_m != 0.0 || s.floor != 0)
+            || self.trace.floor.iter().any(|&f| f != 0)
+    }
+
+    /// The floors the walk visited (steps and samples), lowest first; `[0]` without a height.
+    pub fn floors(&self) -> Vec<i32> {
+        let mut f: Vec<i32> = std::iter::once(0)
+            .chain(self.steps.iter().map(|s| s.floor))
+            .chain(self.trace.floor.iter().map(|&f| i32::from(f)))
+            .collect();
+        f.sort_unstable();
+        f.dedup();
+        f
+    }
+
+    /// Where the height comes from, for the height plot's title: "leg pitch", "barometer",
+    /// "leg pitch + barometer"; "no height: flat walk assumed" without one.
+    pub fn height_source(&self) -> &'static str {
+        match self.vertical {
+            Some(v) => v.as_str(),
+            None if self.has_height() => "height from the steps",
+            None => "no height: flat walk assumed",
+        }
+    }
+
+    /// The activities the walk's samples and steps show, in `Activity::ALL`'s order.
+    pub fn activities(&self) -> Vec<Activity> {
+        let mut seen = [false; Activity::ALL.len()];
+        for &c in &self.trace.activity {
+            if let Some(x) = seen.get_mut(usize::from(c)) {
+                *x = true;
+            }
+        }
+        for s in &self.steps {
+            seen[usize::from(activity_code(s.activity))] = true;
+        }
+        Activity::ALL
+            .iter()
+            .zip(seen)
+            .filter_map(|(&a, s)| s.then_some(a))
+            .collect()
     }
 
     /// The index of the step nearest to a time, s.
@@ -393,9 +528,141 @@ fn opt(v: Option<f64>, d: usize) -> String {
     v.map_or("–".to_string(), |v| fixed(v, d))
 }
 
+/// A hand-made walk on three floors, for the tests of what shows heights, floors and
+/// activities while the engine cannot make one: the simulated demo walk analysed, then its
+/// samples and steps given a climb of two floors (3 m each) between 30 % and 50 % of the walk,
+/// a descent of one between 70 % and 80 %, standing before the first step and sitting after
+/// the last, and a height from the leg pitch and the barometer.
+#[cfg(test)]
+pub(crate) fn three_floor_analysis() -> Analysis {
+    let mut log = crate::io::import::Log::new("stairs.pdrlog", crate::io::import::Format::PdrLog);
+    log.records = crate::sim::scenarios::demo_walk().generate().records;
+    let mut a = analyse(&log, &PipelineConfig::default(), &mut |_, _| {}).unwrap();
+    let (t0, t1) = (a.trace.t[0], *a.trace.t.last().unwrap());
+    let (first, last) = (a.steps[0].t, a.steps.last().unwrap().t);
+    let height = |t: f64| {
+        let f = (t - t0) / (t1 - t0);
+        let ramp = |a: f64, b: f64| ((f - a) / (b - a)).clamp(0.0, 1.0);
+        6.0 * ramp(0.3, 0.5) - 3.0 * ramp(0.7, 0.8)
+    };
+    let activity = |t: f64, stepping: bool| {
+        let f = (t - t0) / (t1 - t0);
+        match () {
+            _ if t < first => Activity::Standing,
+            _ if t > last => Activity::Sitting,
+            _ if !stepping => Activity::Still,
+            _ if (0.3..0.5).contains(&f) => Activity::Upstairs,
+            _ if (0.7..0.8).contains(&f) => Activity::Downstairs,
+            _ => Activity::Walking,
+        }
+    };
+    let floor = |h: f64| (h / 3.0 + 0.5).floor() as i32;
+    for i in 0..a.trace.t.len() {
+        let t = a.trace.t[i];
+        let h = height(t);
+        a.trace.height[i] = h as f32;
+        a.trace.floor[i] = floor(h) as i16;
+        a.trace.activity[i] = activity_code(activity(t, a.trace.motion[i] != 0));
+    }
+    for s in &mut a.steps {
+        s.up_m = height(s.t);
+        s.floor = floor(s.up_m);
+        s.activity = activity(s.t, true);
+        s.pitch_amplitude_deg = Some(40.0);
+    }
+    a.vertical = Some(VerticalSource::PitchAndBarometer);
+    a
+}
+
 #[cfg(test)]
 mod tests {
     use super::fixed;
+    use super::*;
+
+    #[test]
+    fn the_trace_has_an_activity_a_height_and_a_floor_per_sample() {
+        let mut log = crate::io::import::Log::new("demo.pdrlog", crate::io::import::Format::PdrLog);
+        log.records = crate::sim::scenarios::demo_walk().generate().records;
+        let a = analyse(&log, &PipelineConfig::default(), &mut |_, _| {}).unwrap();
+        let n = a.trace.t.len();
+        assert_eq!(
+            (
+                a.trace.activity.len(),
+                a.trace.height.len(),
+                a.trace.floor.len()
+            ),
+            (n, n, n)
+        );
+        // Without the engine's own activity, the motion state's: walking while walking.
+        for (m, c) in a.trace.motion.iter().zip(&a.trace.activity) {
+            let want = [Activity::Still, Activity::Walking, Activity::Running][usize::from(*m)];
+            assert!(
+                activity_from_code(*c) == want || a.vertical.is_some(),
+                "{m} {c}"
+            );
+        }
+        assert!(a.activities().contains(&Activity::Walking));
+        assert_eq!(
+            activity_from_code(activity_code(Activity::Downstairs)),
+            Activity::Downstairs
+        );
+        assert_eq!(activity_from_code(200), Activity::Still);
+        let back = Analysis::from_bytes(&a.to_bytes().unwrap()).unwrap();
+        assert_eq!(back, a);
+    }
+
+    #[test]
+    fn a_three_floor_walk_is_described_with_its_heights_floors_and_activities() {
+        let a = three_floor_analysis();
+        // Set PDR_ANALYSIS_DUMP to a file to look at it in the page (AnalysisView.from_bytes).
+        if let Ok(path) = std::env::var("PDR_ANALYSIS_DUMP") {
+            std::fs::write(path, a.to_bytes().unwrap()).unwrap();
+        }
+        assert!(a.has_height());
+        assert_eq!(a.floors(), vec![0, 1, 2]);
+        assert_eq!(a.height_source(), "leg pitch + barometer");
+        for act in [
+            Activity::Standing,
+            Activity::Walking,
+            Activity::Upstairs,
+            Activity::Downstairs,
+        ] {
+            assert!(a.activities().contains(&act), "{act:?}");
+        }
+        let up = a
+            .steps
+            .iter()
+            .position(|s| s.activity == Activity::Upstairs)
+            .unwrap();
+        let text = a.step_text(up).unwrap();
+        assert!(text.contains(" · walking upstairs · height "), "{text}");
+        let last = a.step_text(a.steps.len() - 1).unwrap();
+        assert!(
+            last.ends_with(" · walking · height 3.00 m, floor +1"),
+            "{last}"
+        );
+        let rows = a.figures();
+        let h = rows.iter().find(|r| r.0 == "Height").expect("a Height row");
+        assert_eq!(
+            h.1,
+            "3.0 m at the end (floor +1), 3 floors visited (0, +1, +2); from leg pitch + barometer"
+        );
+        let back = Analysis::from_bytes(&a.to_bytes().unwrap()).unwrap();
+        assert_eq!(back.trace.floor, a.trace.floor);
+        assert_eq!(back.vertical, a.vertical);
+        // A flat walk says so.
+        let mut flat = a.clone();
+        flat.vertical = None;
+        flat.trace.floor.iter_mut().for_each(|f| *f = 0);
+        flat.steps.iter_mut().for_each(|s| {
+            s.up_m = 0.0;
+            s.floor = 0;
+        });
+        assert!(!flat.has_height());
+        assert_eq!(flat.height_source(), "no height: flat walk assumed");
+        assert!(flat.figures().iter().all(|r| r.0 != "Height"));
+        assert!(!flat.step_text(0).unwrap().contains("height"));
+    }
 
     #[test]
     fn fixed_rounds_as_javascript_does() {

@@ -251,3 +251,52 @@ fn the_wizard_fits_the_fuzzy_scale_that_measures_another_walk_within_3_percent()
     assert!(pdr::engine::calibration::fit_fuzzy_scale(&[(40.0, 0.0)]).is_err());
     assert!(Wizard::default().fuzzy_scale().is_none());
 }
+
+// Munoz Diaz 2015 §5.1's one-walk calibration of the pitch step length's offset.
+#[test]
+fn the_pitch_offset_of_one_walk_is_recovered_exactly() {
+    // 30 strides (60 steps) with amplitudes from 30° to 44.5°, slope 0.0314 m/°, offset
+    // 0.17 m: each step is half its stride.
+    let (a, b) = (0.0314, 0.17);
+    let strides: Vec<f64> = (0..30).map(|k| 30.0 + 0.5 * k as f64).collect();
+    let steps: Vec<f64> = strides.iter().flat_map(|&d| [d, d]).collect();
+    let distance: f64 = strides.iter().map(|&d| a * d + b).sum();
+    let got = pdr::engine::calibration::pitch_offset(distance, &steps, a).unwrap();
+    assert!((got - b).abs() < 1e-12, "{got}");
+    // Steps without a leg pitch are left out (here: the same walk with 5 more steps that
+    // had none, and their distance is not in D either).
+    let mut gaps = steps.clone();
+    gaps.extend([f64::NAN, 0.0, -3.0, f64::INFINITY, f64::NAN]);
+    assert!(
+        (pdr::engine::calibration::pitch_offset(distance, &gaps, a).unwrap() - b).abs() < 1e-12
+    );
+    // A negative offset is possible (a short-legged walker): no clamping.
+    let d2: f64 = strides.iter().map(|&d| a * d - 0.1).sum();
+    assert!((pdr::engine::calibration::pitch_offset(d2, &steps, a).unwrap() + 0.1).abs() < 1e-12);
+}
+
+#[test]
+fn a_pitch_walk_is_refused_without_a_distance_or_enough_steps_with_a_pitch() {
+    let steps = vec![40.0; 40];
+    assert_eq!(
+        pdr::engine::calibration::pitch_offset(0.0, &steps, 0.0314),
+        Err(pdr::engine::calibration::WalkError::Distance(0.0))
+    );
+    assert!(matches!(
+        pdr::engine::calibration::pitch_offset(f64::NAN, &steps, 0.0314),
+        Err(pdr::engine::calibration::WalkError::Distance(_))
+    ));
+    let few = vec![40.0; pdr::engine::calibration::MIN_STEPS - 1];
+    assert_eq!(
+        pdr::engine::calibration::pitch_offset(30.0, &few, 0.0314),
+        Err(pdr::engine::calibration::WalkError::TooFewSteps(
+            pdr::engine::calibration::MIN_STEPS - 1
+        ))
+    );
+    let none = vec![f64::NAN; 60];
+    assert_eq!(
+        pdr::engine::calibration::pitch_offset(30.0, &none, 0.0314),
+        Err(pdr::engine::calibration::WalkError::TooFewSteps(0))
+    );
+    assert!(pdr::engine::calibration::pitch_offset(30.0, &steps, f64::NAN).is_err());
+}

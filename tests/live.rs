@@ -75,6 +75,22 @@ fn live_events_count_like_the_log_and_both_platforms_agree() {
         r.sample_rate_hz
     );
     assert_eq!(r.refused, 0);
+    // The activity in words, the engine's (or its motion state's while it has none), and the
+    // floor change and height from its diagnostics.
+    let d = android.pipeline().diagnostics();
+    let act = d.activity.unwrap_or(match d.motion.unwrap() {
+        pdr::engine::Motion::Still => pdr::engine::Activity::Still,
+        pdr::engine::Motion::Walking => pdr::engine::Activity::Walking,
+        pdr::engine::Motion::Running => pdr::engine::Activity::Running,
+    });
+    assert_eq!(r.activity, Some(pdr::io::export::activity_words(act)));
+    assert_eq!(r.activity_key, Some(act.as_str()));
+    assert_eq!(r.floor, d.floor);
+    assert_eq!(r.floor_change, pdr::io::export::floor_change(d.floor));
+    assert_eq!(
+        r.up_m.is_some(),
+        d.vertical.is_some() || d.floor != 0 || d.up_m != 0.0
+    );
 }
 
 #[wasm_bindgen_test(unsupported = test)]

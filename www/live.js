@@ -372,7 +372,10 @@ function receiver(r, s) {
 function show(r, s) {
   const set = (id, v) => { const el = $(id); if (el.textContent !== v) el.textContent = v; };
   set('r-steps', String(r.steps));
-  set('r-motion', r.motion ?? 'waiting for motion');
+  set('r-motion', r.activity ?? 'waiting for motion');
+  // The floor change from the start ("+1 floor"), and the height with what it comes from.
+  set('r-floor', r.floor_change ?? (r.samples ? 'start floor' : '–'));
+  set('r-height', r.up_m != null ? `${r.up_m >= 0 ? '+' : '−'}${Math.abs(r.up_m).toFixed(1)} m${r.height_source ? ` · ${r.height_source}` : ''}` : (r.samples ? 'no height yet' : '–'));
   set('r-distance', r.distance_m.toFixed(1));
   set('r-time', fmtTime(r.duration_s) + (r.gaps ? ` · ${r.gaps} gap${r.gaps > 1 ? 's' : ''}` : ''));
   set('r-cadence', r.cadence_hz != null ? r.cadence_hz.toFixed(2) : '–');
@@ -387,7 +390,7 @@ function show(r, s) {
   set('g-steps', String(r.steps));
   set('g-distance', r.distance_m.toFixed(0));
   set('g-time', fmtTime(r.duration_s));
-  set('g-note', r.samples ? `${r.motion ?? ''}` : 'waiting for the sensors…');
+  set('g-note', r.samples ? [r.activity, r.floor_change].filter(Boolean).join(' · ') : 'waiting for the sensors…');
 }
 
 // --- pocket guard ------------------------------------------------------------------------

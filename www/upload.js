@@ -7,7 +7,8 @@ import * as recipes from './recipes.js';
 import { $, dark, download, fit } from './util.js';
 const PLOTS = [
   ['accel', 'Vertical acceleration, PLL output and steps'],
-  ['sigma', 'σ of vertical acceleration and motion state'],
+  ['sigma', 'σ of vertical acceleration and activity'],
+  ['height', 'Height above the start and floor'],
   ['heading', 'Heading per step'],
   ['steps', 'Step frequency and length'],
   ['gnss', 'GNSS accuracy and innovations'],

@@ -3,7 +3,7 @@
 // eq. 1 and 2, the fits, their warnings, the fuzzy scale, the profile, its chart, the
 // refinement — comes from the engine (CalibrationWizard, profile_summary, refine_profile in
 // src/web/calibration.rs).
-import { CalibrationWizard, gnss_limit_m, profile_summary, refine_profile } from './pkg/pdr.js';
+import { CalibrationWizard, gnss_limit_m, pitch_calibration, profile_summary, profile_with_pitch_offset, refine_profile } from './pkg/pdr.js';
 import { startWalk, stopWalk } from './live.js';
 import * as profiles from './profiles.js';
 import { $, dark, download, fit, note } from './util.js';
@@ -12,6 +12,7 @@ const PACES = { slow: 'slow walk', normal: 'normal walk', fast: 'fast walk', jog
 
 let wizard; // made in setupWizard, once the engine is loaded
 let walking = null; // { session, row, pace, band, target }
+let pitch = null; // the normal walk's leg-pitch calibration (engine's pitch_calibration), or null
 
 const source = () => document.querySelector('input[name=cal-source]:checked').value;
 
@@ -76,6 +77,16 @@ async function finish() {
     result.textContent = String(err?.message ?? err);
     result.classList.add('error');
   }
+  // The comfortable (normal) walk also calibrates the leg-pitch step length (Munoz Diaz 2015
+  // §5.1), when its steps had a leg pitch.
+  if (w.pace === 'normal') {
+    try {
+      pitch = pitch_calibration(distance, w.session.live.pitch_amplitudes());
+    } catch (err) {
+      pitch = { ok: false, why: String(err?.message ?? err) };
+    }
+    showPitch();
+  }
   document.documentElement.dataset.calibration = 'walked';
   refresh();
 }
@@ -119,7 +130,21 @@ function refresh() {
   // The notes end with the fitted fuzzy scale, when the walks measured one (engine's text).
   $('cal-notes').replaceChildren(...st.notes.map((n) => Object.assign(document.createElement('li'), { textContent: n })));
   $('cal-save').disabled = st.walking.points + st.running.points === 0;
-  window.__pdrCalibration = st;
+  window.__pdrCalibration = { ...st, pitch };
+}
+
+/** Says what the normal walk gave the leg-pitch step length, or why it gave nothing. */
+function showPitch() {
+  const el = $('cal-pitch');
+  if (!pitch) {
+    el.textContent = 'Leg-pitch step length (S = a·Δθ + b, Munoz Diaz 2015 §5.1): the normal walk also gives your offset b when the phone is in a front trouser pocket and the browser gives the gyroscope.';
+  } else if (pitch.ok) {
+    el.textContent = `Leg-pitch step length (Munoz Diaz 2015 §5.1): with the universal slope a = ${pitch.slope_m_per_deg} m/°, your offset is b = ${pitch.offset_m.toFixed(3)} m per stride (${pitch.with_pitch} steps with a leg pitch). It is saved with the profile.`;
+  } else {
+    el.textContent = `Leg-pitch step length not calibrated: ${pitch.why}.`;
+  }
+  el.dataset.pitch = pitch ? (pitch.ok ? 'ok' : 'refused') : 'none';
+  if (window.__pdrCalibration) window.__pdrCalibration.pitch = pitch;
 }
 
 function draw(canvas, band) {
@@ -129,7 +154,8 @@ function draw(canvas, band) {
 
 function save() {
   const name = $('cal-name').value.trim() || 'me';
-  const json = wizard.profile_json(name);
+  let json = wizard.profile_json(name);
+  if (pitch?.ok) json = profile_with_pitch_offset(json, pitch.offset_m);
   profile_summary(json); // checks it
   profiles.save(name, json);
   profiles.select(name);

@@ -320,6 +320,32 @@ pub fn fuzzy_scale(distance_m: f64, lengths_m: &[f64], current: f64) -> Result<f
     Ok(current * distance_m / sum)
 }
 
+/// The personal offset b of the pitch step length (Munoz Diaz 2015 §5.1's one-walk
+/// calibration): the user walks a known distance D at a comfortable pace; with the universal
+/// slope a (m/° per stride), each stride is S = a·Δθ + b (eq. 5), so each of its two steps is
+/// (a·Δθ + b)/2, Δθ being the stride's leg pitch amplitude (both steps carry it). Summed over
+/// the N steps, D = (a/2)·Σ Δθ_k + N·b/2, so b = (2·D − a·Σ Δθ_k) / N, m per stride.
+/// `amplitudes_deg` is each step's Δθ; steps without one (not finite or not positive: no leg
+/// pitch) are left out of N and the sum. Refused: a distance that is not a positive number of
+/// metres, fewer than [`MIN_STEPS`] steps with a pitch, or a slope that is not finite.
+pub fn pitch_offset(
+    distance_m: f64,
+    amplitudes_deg: &[f64],
+    slope_m_per_deg: f64,
+) -> Result<f64, WalkError> {
+    if !(distance_m.is_finite() && distance_m > 0.0) {
+        return Err(WalkError::Distance(distance_m));
+    }
+    let (n, sum) = amplitudes_deg
+        .iter()
+        .filter(|d| d.is_finite() && **d > 0.0)
+        .fold((0usize, 0.0), |(n, s), d| (n + 1, s + d));
+    if n < MIN_STEPS || !slope_m_per_deg.is_finite() {
+        return Err(WalkError::TooFewSteps(n));
+    }
+    Ok((2.0 * distance_m - slope_m_per_deg * sum) / n as f64)
+}
+
 /// The fuzzy scale that fits several calibration walks, each `(D_i, L_i)`: its known distance
 /// and the sum of its steps' unscaled fuzzy lengths, m. Least squares through the origin,
 /// D_i ≈ k·L_i: k = Σ D_i·L_i / Σ L_i² (ours; Ibarra 2015 has no calibration; for one walk it is

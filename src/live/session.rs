@@ -156,6 +156,19 @@ pub struct Readouts {
     pub heading_deg: Option<f64>,
     /// `still`, `walking` or `running`.
     pub motion: Option<&'static str>,
+    /// The activity in words ("Walking upstairs", "Sitting", …; Munoz Diaz 2015 §4.3): the
+    /// engine's, else the motion state's ("Still", "Walking", "Running"), once a sample came.
+    pub activity: Option<&'static str>,
+    /// The activity's name as the files write it (`upstairs`, …).
+    pub activity_key: Option<&'static str>,
+    /// Floor now relative to the start.
+    pub floor: i32,
+    /// The floor change for people: "+1 floor", "−2 floors"; none at the start's floor.
+    pub floor_change: Option<String>,
+    /// Height above the start, m, once the engine has one (`Diagnostics::vertical`).
+    pub up_m: Option<f64>,
+    /// What the height comes from ("leg pitch"; browsers have no barometer).
+    pub height_source: Option<&'static str>,
     /// Accuracy of the latest fix, m.
     pub gnss_accuracy_m: Option<f64>,
     /// Fixes received.
@@ -479,6 +492,17 @@ impl LiveSession {
         self.pipeline.track().iter().map(|s| s.freq_hz).collect()
     }
 
+    /// The leg pitch amplitude Δθ of each step counted so far, degrees, NaN for a step without
+    /// one (a calibration walk's Δθ_k for the pitch step length's offset,
+    /// [`crate::engine::calibration::pitch_offset`]).
+    pub fn pitch_amplitudes(&self) -> Vec<f64> {
+        self.pipeline
+            .track()
+            .iter()
+            .map(|s| s.pitch_amplitude_deg.unwrap_or(f64::NAN))
+            .collect()
+    }
+
     /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m, in
     /// the order of the track, whatever step-length model the session runs: a calibration
     /// walk's L_k for the fuzzy scale ([`crate::engine::calibration::fit_fuzzy_scale`]).
@@ -549,6 +573,12 @@ impl LiveSession {
             cadence_hz: last.map(|s| s.freq_hz),
             heading_deg: last.and_then(|s| s.heading_rad).map(f64::to_degrees),
             motion: d.motion.map(|m| m.as_str()),
+            activity: activity_now(&d).map(crate::io::export::activity_words),
+            activity_key: activity_now(&d).map(|a| a.as_str()),
+            floor: d.floor,
+            floor_change: crate::io::export::floor_change(d.floor),
+            up_m: (d.vertical.is_some() || d.floor != 0 || d.up_m != 0.0).then_some(d.up_m),
+            height_source: d.vertical.map(|v| v.as_str()),
             gnss_accuracy_m: self.pipeline.fixes().last().map(|f| f.h_accuracy_m),
             fixes: self.pipeline.fixes().len(),
             sample_rate_hz: if span > 0.0 {
@@ -580,6 +610,16 @@ impl LiveSession {
                 .map(|f| (f.scale, f.scale_bias_sd[0])),
         }
     }
+}
+
+/// The activity now: the engine's, else the motion state's.
+fn activity_now(d: &crate::engine::Diagnostics) -> Option<crate::engine::Activity> {
+    use crate::engine::{Activity, Motion};
+    d.activity.or(d.motion.map(|m| match m {
+        Motion::Still => Activity::Still,
+        Motion::Walking => Activity::Walking,
+        Motion::Running => Activity::Running,
+    }))
 }
 
 /// What the live map shows, in one frame: the first fix's local tangent plane once there are

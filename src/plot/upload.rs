@@ -3,14 +3,17 @@
 //! Fig. 5).
 //!
 //! One file each: the map (`map`), the diagnostics plots (`plots`), the decimation of their
-//! signals to pixel columns (`decimate`), the unwrapping of their headings (`heading`), their
-//! legibility test (`legibility`) and the ellipse (`ellipse`).
+//! signals to pixel columns (`decimate`), the unwrapping of their headings (`heading`), the
+//! height and floor plot's series (`height`), the activities' and floors' colours and key
+//! (`palette`), their legibility test (`legibility`) and the ellipse (`ellipse`).
 //! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
 
 mod decimate;
 mod ellipse;
 mod heading;
+mod height;
 mod map;
+mod palette;
 mod plots;
 
 #[cfg(test)]
@@ -19,6 +22,7 @@ pub(crate) mod legibility;
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
 pub use map::{draw_map, pdr_points, pick_step};
+pub use palette::{activity_colour, floor_colour};
 pub use plots::{draw_plot, draw_plot_area, Plot, TimeAxis};
 
 #[cfg(test)]
@@ -55,6 +59,7 @@ mod tests {
         for (plot, colour) in [
             (Plot::Accel, t.track),
             (Plot::Sigma, t.track),
+            (Plot::Height, t.gnss),
             (Plot::Heading, t.track),
             (Plot::Steps, t.track),
             (Plot::Gnss, t.gnss),
@@ -101,5 +106,66 @@ mod tests {
         let (r, px) = raster::new(300, 300);
         draw_ellipse(&r.into_drawing_area(), &a, 40, &t, 1.0).unwrap();
         assert!(raster::count(&px, t.track) > 50 && raster::count(&px, t.end) > 20);
+    }
+
+    /// A hand-made walk on three floors (the engine cannot make one yet): the map colours the
+    /// track by floor, the timeline shows the stairs, the height plot the climb, and every plot
+    /// keeps the one time axis.
+    #[test]
+    fn draws_the_floors_heights_and_activities_of_a_three_floor_walk() {
+        let a = crate::analysis::three_floor_analysis();
+        let t = Theme::LIGHT;
+        let (r, px) = raster::new(500, 400);
+        draw_map(&r.into_drawing_area(), &a, None, None, None, &t, 1.0).unwrap();
+        for f in [0, 1, 2] {
+            let n = raster::count(&px, floor_colour(f, &t));
+            assert!(n > 100, "floor {f}: {n} px");
+        }
+        // The flat walk: the track in its one colour, no floor's.
+        let mut flat = a.clone();
+        flat.vertical = None;
+        flat.trace.floor.iter_mut().for_each(|f| *f = 0);
+        flat.steps.iter_mut().for_each(|s| s.floor = 0);
+        let (r, px) = raster::new(500, 400);
+        draw_map(&r.into_drawing_area(), &flat, None, None, None, &t, 1.0).unwrap();
+        assert!(raster::count(&px, t.track) > 300);
+        // (Floor +1's colour is the GNSS fixes', which the demo walk has none of.)
+        assert_eq!(raster::count(&px, floor_colour(1, &t)), 0);
+        let span = (a.trace.t[0], *a.trace.t.last().unwrap());
+        let mut axes = Vec::new();
+        for plot in Plot::ALL {
+            let (r, px) = raster::new(600, 200);
+            let (cols, rows) =
+                draw_plot_area(&r.into_drawing_area(), &a, plot, span, None, &t, 1.0).unwrap();
+            axes.push(cols);
+            match plot {
+                Plot::Sigma => {
+                    // The band: walking, upstairs, downstairs, standing and sitting.
+                    for act in [
+                        crate::engine::Activity::Walking,
+                        crate::engine::Activity::Upstairs,
+                        crate::engine::Activity::Downstairs,
+                    ] {
+                        let c = activity_colour(act, &t).unwrap();
+                        let n = raster::count(&px, c);
+                        assert!(n > 40, "{act:?}: {n} px");
+                    }
+                }
+                Plot::Height => {
+                    // The height line climbs to 6 m: blue pixels in the plot's upper half.
+                    let p = px.borrow();
+                    let blue = (t.track.0, t.track.1, t.track.2);
+                    let mid = (rows.0 + rows.1) / 2;
+                    let high = (rows.0..mid)
+                        .flat_map(|y| (cols.0..cols.1).map(move |x| (x, y)))
+                        .filter(|&(x, y)| p[(y * 600 + x) as usize] == blue)
+                        .count();
+                    assert!(high > 50, "height line above the middle: {high} px");
+                    assert!(raster::count(&px, t.gnss) > 200, "floor staircase");
+                }
+                _ => {}
+            }
+        }
+        assert!(axes.iter().all(|x| *x == axes[0]), "{axes:?}");
     }
 }

@@ -24,7 +24,8 @@ impl AnalysisView {
     }
 
     /// `{source, format, steps, samples, t0, t1, fixes, truth_waypoints, truth_steps,
-    /// steps_without_heading, step_lengths_m, warnings, score}`; `score` is the bench's result
+    /// steps_without_heading, step_lengths_m, warnings, score, floors, height_source,
+    /// activities}`; `score` is the bench's result
     /// (`pdr eval --json` for this log); the track's distance counts only the steps with a
     /// heading, `step_lengths_m` all of them.
     pub fn summary(&self) -> Result<JsValue, JsError> {
@@ -43,6 +44,9 @@ impl AnalysisView {
             step_lengths_m: f64,
             warnings: &'a [String],
             score: &'a crate::eval::LogResult,
+            floors: Vec<i32>,
+            height_source: &'static str,
+            activities: Vec<&'static str>,
         }
         let a = &self.a;
         to_json_value(&Summary {
@@ -59,6 +63,9 @@ impl AnalysisView {
             step_lengths_m: a.steps.iter().map(|s| s.length_m).sum(),
             warnings: &a.warnings,
             score: &a.score,
+            floors: a.floors(),
+            height_source: a.height_source(),
+            activities: a.activities().iter().map(|x| x.as_str()).collect(),
         })
     }
 
@@ -154,7 +161,8 @@ impl AnalysisView {
         self.a.step_near_time(t)
     }
 
-    /// Step `i`: `{index, t, t_rel_s, length_m, freq_hz, heading_deg, step_heading_deg, motion}`.
+    /// Step `i`: `{index, t, t_rel_s, length_m, freq_hz, heading_deg, step_heading_deg, motion,
+    /// activity, up_m, floor}`.
     pub fn step_info(&self, i: usize) -> Result<JsValue, JsError> {
         let s = self
             .a
@@ -171,11 +179,15 @@ impl AnalysisView {
             "heading_deg": deg(s.heading_rad),
             "step_heading_deg": deg(s.step_heading_rad),
             "motion": s.motion.as_str(),
+            "activity": s.activity.as_str(),
+            "up_m": s.up_m,
+            "floor": s.floor,
         });
         to_json_value(&v)
     }
 
-    /// Draws diagnostics plot `kind` (`accel`, `sigma`, `heading`, `steps`, `gnss`, `fusion`)
+    /// Draws diagnostics plot `kind` (`accel`, `sigma`, `height`, `heading`, `steps`, `gnss`,
+    /// `fusion`)
     /// between `t0` and `t1` (s), with a cursor at `cursor`. Returns the canvas pixel columns
     /// of `t0` and `t1`, then the rows of the plot area's top and bottom.
     pub fn draw_plot(

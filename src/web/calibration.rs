@@ -184,6 +184,11 @@ impl Default for CalibrationWizard {
 #[wasm_bindgen]
 pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
     use crate::engine::calibration::{describe_builtin, ProfileFile, PROFILE_VERSION};
+    // Until the engine's profile has the field, it is read beside it.
+    let pitch_offset_m = text
+        .as_deref()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(t).ok())
+        .and_then(|v| v["pitch_offset_m"].as_f64());
     let (p, described) = match text {
         Some(t) => {
             let p = read_profile(&t)?;
@@ -210,6 +215,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
         walking_points: usize,
         running_points: usize,
         fuzzy_scale: Option<f64>,
+        pitch_offset_m: Option<f64>,
         text: String,
     }
     to_value(&Summary {
@@ -219,7 +225,13 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
         walking_points: p.walking_points.len(),
         running_points: p.running_points.len(),
         fuzzy_scale: p.fuzzy_scale,
-        text: described,
+        pitch_offset_m,
+        text: match pitch_offset_m {
+            Some(b) => format!(
+                "{described} Pitch step length S = {PITCH_SLOPE_M_PER_DEG}·Δθ + {b:.3} m per stride."
+            ),
+            None => described,
+        },
     })
 }
 
@@ -248,6 +260,61 @@ pub fn refine_profile(text: &str, evidence: JsValue) -> Result<JsValue, JsError>
         scale: r.scale,
         cadence_hz: r.cadence_hz,
     })
+}
+
+/// The pitch step length's universal slope a, m/° of leg pitch amplitude per stride (Munoz Diaz
+/// 2015 §5.1, Fig. 8). The lead points this at `engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG`
+/// when that stage lands; the value is the same.
+pub const PITCH_SLOPE_M_PER_DEG: f64 = 0.0314;
+
+/// Munoz Diaz 2015 §5.1's one-walk calibration of the pitch step length: a walk of
+/// `distance_m` whose steps had the leg pitch amplitudes `amplitudes_deg` (`Live.pitch_amplitudes()`,
+/// NaN without one). `{ok: true, offset_m, slope_m_per_deg, steps, with_pitch}`, or `{ok: false,
+/// why, steps, with_pitch}` when the walk cannot give one (most steps without a leg pitch: the
+/// phone not in a trouser pocket, or no gyroscope; too few steps; no distance).
+#[wasm_bindgen]
+pub fn pitch_calibration(distance_m: f64, amplitudes_deg: Vec<f64>) -> Result<JsValue, JsError> {
+    let steps = amplitudes_deg.len();
+    let with_pitch = amplitudes_deg
+        .iter()
+        .filter(|d| d.is_finite() && **d > 0.0)
+        .count();
+    let v = if 2 * with_pitch < steps || with_pitch == 0 {
+        serde_json::json!({
+            "ok": false, "steps": steps, "with_pitch": with_pitch,
+            "why": format!("only {with_pitch} of the walk's {steps} steps had a leg pitch: the pitch step length needs the phone in a front trouser pocket and a gyroscope (the browser's rotation rate)"),
+        })
+    } else {
+        match crate::engine::calibration::pitch_offset(
+            distance_m,
+            &amplitudes_deg,
+            PITCH_SLOPE_M_PER_DEG,
+        ) {
+            Ok(b) => serde_json::json!({
+                "ok": true, "offset_m": b, "slope_m_per_deg": PITCH_SLOPE_M_PER_DEG,
+                "steps": steps, "with_pitch": with_pitch,
+            }),
+            Err(e) => serde_json::json!({
+                "ok": false, "steps": steps, "with_pitch": with_pitch, "why": e.to_string(),
+            }),
+        }
+    };
+    super::to_json_value(&v)
+}
+
+/// The profile file (JSON) with the pitch step length's offset b, m, set (`pitch_offset_m`);
+/// an error naming the field when the file is not a profile or b is not finite.
+#[wasm_bindgen]
+pub fn profile_with_pitch_offset(text: &str, offset_m: f64) -> Result<String, JsError> {
+    read_profile(text)?;
+    if !offset_m.is_finite() {
+        return Err(to_js(format!(
+            "profile.pitch_offset_m: not a number of metres ({offset_m})"
+        )));
+    }
+    let mut v: serde_json::Value = serde_json::from_str(text).map_err(to_js)?;
+    v["pitch_offset_m"] = serde_json::json!(offset_m);
+    serde_json::to_string_pretty(&v).map_err(to_js)
 }
 
 /// The wizard offers GNSS as a walk's distance while the reported accuracy is this good or

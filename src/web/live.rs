@@ -165,6 +165,12 @@ impl Live {
         self.session.step_freqs()
     }
 
+    /// The leg pitch amplitude of each step counted so far, degrees, NaN without one (a
+    /// calibration walk's Δθ_k for `pitch_calibration`).
+    pub fn pitch_amplitudes(&self) -> Vec<f64> {
+        self.session.pitch_amplitudes()
+    }
+
     /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m
     /// (a calibration walk's L_k for the fuzzy scale), whatever model the session runs.
     pub fn fuzzy_lengths(&self) -> Vec<f64> {

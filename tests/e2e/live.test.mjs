@@ -91,6 +91,9 @@ test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown,
   // The pocket guard is up: the readouts on it update, the page below cannot be touched.
   assert.equal(await page.isVisible('#guard'), true);
   assert.equal(await page.textContent('#g-steps'), String(r.steps));
+  // The guard names the activity in words (and the floor change, none on a flat walk).
+  assert.ok(['Walking', 'Still', 'Standing', 'Sitting', 'Running', 'Walking upstairs', 'Walking downstairs'].includes(r.activity), `activity ${r.activity}`);
+  assert.equal(await page.textContent('#g-note'), [r.activity, r.floor_change].filter(Boolean).join(' · '));
   await page.screenshot({ path: path.join(ARTIFACTS, 'live-guard-phone.png') });
   await page.mouse.click(195, 400); // a stray touch
   await holdToUnlock(page, 600); // too short
@@ -100,6 +103,8 @@ test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown,
   await page.waitForTimeout(250);
   assert.equal(await page.textContent('#r-steps'), String(r.steps));
   assert.equal(await page.textContent('#r-gnss'), '±12 m');
+  assert.equal(await page.textContent('#r-motion'), r.activity);
+  assert.equal(await page.textContent('#r-floor'), r.floor_change ?? 'start floor');
   assert.match(await page.textContent('#r-heading'), /^\d+° [NESW]{1,2}$/);
   assert.match(await page.textContent('#r-spm'), /^1\d\d steps\/min$/);
   const map = await nonBlank(page, 'live-map');

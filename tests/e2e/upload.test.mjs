@@ -159,7 +159,7 @@ async function checkResult(page, k, steps, { heading = true } = {}) {
   const { info } = await hover(page, k, Math.floor(steps / 2));
   // A log with an accelerometer only (Oxford) has steps and lengths but no heading.
   const h = heading ? '\\d+°' : '–';
-  assert.match(info, new RegExp(`^Step \\d+: t = [\\d.]+ s · length \\d\\.\\d\\d m · frequency \\d\\.\\d\\d Hz · heading ${h} \\(single step ${h}\\) · (walking|running|still)$`));
+  assert.match(info, new RegExp(`^Step \\d+: t = [\\d.]+ s · length \\d\\.\\d\\d m · frequency \\d\\.\\d\\d Hz · heading ${h} \\(single step ${h}\\) · (walking|running|still|standing|sitting|walking upstairs|walking downstairs)( · height -?\\d+\\.\\d\\d m, floor (0|\\+\\d+|\u2212\\d+))?$`));
 }
 
 test('a generated log and a walk in every single-file format: progress, the native step count, non-blank plots, hover', async () => {

@@ -91,6 +91,32 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   assert.ok(Math.abs(st.fuzzy_scale - k) < 1e-12, `state ${st.fuzzy_scale}, saved ${k}`);
   assert.match(await page.textContent('#cal-notes'), /fuzzy step length \(Ibarra 2015\): scale k = \d\.\d{3}/);
   assert.match(await page.textContent('#profile-values'), /Fuzzy scale k = \d\.\d{3}/);
+  // The leg-pitch calibration (Munoz Diaz 2015 §5.1) after the normal walk: given when its
+  // steps had a leg pitch (then saved with the profile), else refused with the reason.
+  const pitchState = await page.getAttribute('#cal-pitch', 'data-pitch');
+  console.log(`pitch calibration: ${pitchState}: ${await page.textContent('#cal-pitch')}`);
+  if (pitchState === 'ok') {
+    assert.ok(Number.isFinite(JSON.parse(saved).pitch_offset_m), 'the pitch offset was not saved');
+  } else {
+    assert.equal(pitchState, 'refused');
+    assert.match(await page.textContent('#cal-pitch'), /not calibrated: .*leg pitch.*pocket/);
+    assert.equal(JSON.parse(saved).pitch_offset_m, undefined);
+  }
+  // The engine's one-walk formula on synthetic strides: b comes back exactly, is saved beside
+  // the lines and read back; a walk without a leg pitch is refused.
+  const pitch = await page.evaluate(async (profile) => {
+    const { pitch_calibration, profile_with_pitch_offset, profile_summary } = await import('./www/pkg/pdr.js');
+    const strides = Array.from({ length: 30 }, (_, k) => 30 + 0.5 * k);
+    const a = 0.0314;
+    const distance = strides.reduce((s, d) => s + a * d + 0.17, 0);
+    const r = pitch_calibration(distance, strides.flatMap((d) => [d, d]));
+    const json = profile_with_pitch_offset(profile, r.offset_m);
+    return { r, back: profile_summary(json).pitch_offset_m, none: pitch_calibration(40, Array(60).fill(NaN)) };
+  }, saved);
+  assert.ok(pitch.r.ok && Math.abs(pitch.r.offset_m - 0.17) < 1e-9, JSON.stringify(pitch.r));
+  assert.equal(pitch.back, pitch.r.offset_m);
+  assert.equal(pitch.none.ok, false);
+  assert.match(pitch.none.why, /leg pitch/);
 
   // Another walk by the same walker, replayed with and without the profile.
   const other = simulate(1.7, 120, 'other.pdrlog');

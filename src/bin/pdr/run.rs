@@ -100,6 +100,15 @@ pub fn run(
     if let Some(last) = track.last() {
         out!("final east    {:.1} m", last.east_m);
         out!("final north   {:.1} m", last.north_m);
+        // The height and floor (Munoz Diaz 2015 §6, the barometer), once the engine has them.
+        if d.vertical.is_some() || last.floor != 0 || last.up_m != 0.0 {
+            out!(
+                "final height  {:+.1} m, floor {:+} ({})",
+                last.up_m,
+                last.floor,
+                d.vertical.map_or("source not given", |v| v.as_str())
+            );
+        }
     }
     out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
     if d.steps_without_heading > 0 {

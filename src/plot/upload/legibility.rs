@@ -126,6 +126,11 @@ mod tests {
     }
 
     #[test]
+    fn no_plot_of_a_three_floor_walk_is_a_block_of_one_colour() {
+        check(&crate::analysis::three_floor_analysis());
+    }
+
+    #[test]
     fn no_plot_of_a_real_ipin_walk_is_a_block_of_one_colour() {
         use crate::io::import::{fileset::DirSet, import_all};
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ipin2023");

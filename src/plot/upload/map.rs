@@ -1,6 +1,7 @@
 //! Upload mode's map of an [`Analysis`]: tracks, fixes, truth, the highlighted step.
 //! May import: `analysis`, the map frame and the base map; never `web`, `live` or `eval`.
 
+use super::palette::floor_colour;
 use crate::analysis::Analysis;
 use crate::plot::basemap::{credit_line, map_chart_under, Basemap};
 use crate::plot::frame::{frame_of, legend, north_and_scale, start_end, MapFrame, Mark};
@@ -90,15 +91,44 @@ pub fn draw_map<DB: DrawingBackend>(
     } else {
         theme.pdr
     };
-    chart.draw_series(LineSeries::new(
-        pdr.iter().copied(),
-        ShapeStyle::from(&pdr_colour).stroke_width(px(2.5)),
-    ))?;
-    for (path, colour) in [(&smoothed, theme.smoothed), (&fused, theme.track)] {
-        chart.draw_series(LineSeries::new(
-            path.iter().copied(),
-            ShapeStyle::from(&colour).stroke_width(px(2.5)),
-        ))?;
+    // More than one floor: the main track (the fused one, else the PDR track) in one colour
+    // per floor, and the legend names the floors.
+    let floors = a.floors();
+    let by_floor = floors.len() > 1;
+    let main = if fused.is_empty() { &pdr } else { &fused };
+    let main_floors: Vec<i32> = if fused.is_empty() {
+        std::iter::once(0)
+            .chain(a.steps.iter().map(|s| s.floor))
+            .collect()
+    } else {
+        a.fused.iter().map(|f| floor_at(a, f[0])).collect()
+    };
+    let draw_line = |chart: &mut _, path: &[(f64, f64)], colour: RGBColor| {
+        draw_path(chart, path, ShapeStyle::from(&colour).stroke_width(px(2.5)))
+    };
+    if !(by_floor && fused.is_empty()) {
+        draw_line(&mut chart, &pdr, pdr_colour)?;
+    }
+    draw_line(&mut chart, &smoothed, theme.smoothed)?;
+    if !by_floor || fused.is_empty() {
+        draw_line(&mut chart, &fused, theme.track)?;
+    }
+    if by_floor {
+        // Runs of one floor, each joined to the next run's first point so that the line stays
+        // whole.
+        let mut from = 0;
+        for k in 1..=main.len() {
+            if k < main.len() && main_floors[k] == main_floors[from] {
+                continue;
+            }
+            let end = (k + 1).min(main.len());
+            draw_line(
+                &mut chart,
+                &main[from..end],
+                floor_colour(main_floors[from], theme),
+            )?;
+            from = k;
+        }
     }
     start_end(
         &mut chart,
@@ -113,17 +143,33 @@ pub fn draw_map<DB: DrawingBackend>(
             ShapeStyle::from(&theme.foreground).stroke_width(px(2.5)),
         )])?;
     }
-    let mut entries = vec![(
-        if fused.is_empty() {
-            "PDR track"
-        } else {
-            "PDR only"
-        },
-        Mark::Line(pdr_colour),
-    )];
+    let floor_names: Vec<(String, RGBColor)> = if by_floor {
+        floors
+            .iter()
+            .map(|&f| (crate::analysis::floor_label(f), floor_colour(f, theme)))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let mut entries = Vec::new();
+    if !(by_floor && fused.is_empty()) {
+        entries.push((
+            if fused.is_empty() {
+                "PDR track"
+            } else {
+                "PDR only"
+            },
+            Mark::Line(pdr_colour),
+        ));
+    }
     if !fused.is_empty() {
-        entries.push(("fused", Mark::Line(theme.track)));
+        if !by_floor {
+            entries.push(("fused", Mark::Line(theme.track)));
+        }
         entries.push(("smoothed", Mark::Line(theme.smoothed)));
+    }
+    for (name, c) in &floor_names {
+        entries.push((name.as_str(), Mark::Line(*c)));
     }
     if !a.fixes.is_empty() {
         entries.push(("GNSS fixes", Mark::Dot(theme.gnss)));
@@ -149,6 +195,21 @@ pub fn draw_map<DB: DrawingBackend>(
     }
     credit_line(area, &chart, basemap.as_deref(), theme, scale)?;
     Ok(frame_of(&chart))
+}
+
+/// The floor of the step nearest to time `t` (0 without steps).
+fn floor_at(a: &Analysis, t: f64) -> i32 {
+    a.step_near_time(t).map_or(0, |i| a.steps[i].floor)
+}
+
+/// Draws a path as one line.
+fn draw_path<DB: DrawingBackend>(
+    chart: &mut crate::plot::frame::MapChart<'_, DB>,
+    path: &[(f64, f64)],
+    style: ShapeStyle,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    chart.draw_series(LineSeries::new(path.iter().copied(), style))?;
+    Ok(())
 }
 
 #[cfg(test)]

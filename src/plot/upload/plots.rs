@@ -3,6 +3,9 @@
 
 use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
 use super::heading;
+use super::height::{floor_tick, HeightSeries};
+use super::palette::{activity_colour, activity_key, draw_key};
+use crate::analysis::activity_from_code;
 use crate::analysis::Analysis;
 use crate::plot::theme::Theme;
 use plotters::coord::Shift;
@@ -14,8 +17,11 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 pub enum Plot {
     /// Vertical acceleration, PLL output, detected (and true) steps.
     Accel,
-    /// σ of the vertical acceleration with the thresholds and the motion state.
+    /// σ of the vertical acceleration with the thresholds and the activity (a band, with its
+    /// key).
     Sigma,
+    /// Height above the start (m) and floor (Munoz Diaz 2015 §6, and the barometer).
+    Height,
     /// Per-step heading: single-step, two-step average, and the device's heading.
     Heading,
     /// Step frequency and step length per step.
@@ -29,9 +35,10 @@ pub enum Plot {
 
 impl Plot {
     /// Every plot, in the page's order.
-    pub const ALL: [Plot; 6] = [
+    pub const ALL: [Plot; 7] = [
         Plot::Accel,
         Plot::Sigma,
+        Plot::Height,
         Plot::Heading,
         Plot::Steps,
         Plot::Gnss,
@@ -43,6 +50,7 @@ impl Plot {
         Some(match name {
             "accel" => Plot::Accel,
             "sigma" => Plot::Sigma,
+            "height" => Plot::Height,
             "heading" => Plot::Heading,
             "steps" => Plot::Steps,
             "gnss" => Plot::Gnss,
@@ -91,6 +99,20 @@ pub fn draw_plot_area<DB: DrawingBackend>(
     let steps_in: Vec<&crate::engine::StepRecord> =
         a.steps.iter().filter(|s| s.t >= t0 && s.t <= t1).collect();
     let headings = (plot == Plot::Heading).then(|| Headings::new(a, t0, t1, cols, origin));
+    let heights = (plot == Plot::Height).then(|| HeightSeries::new(a, t0, t1, cols, origin));
+    let height_title = format!(
+        "height above the start (m, blue), floor (orange, right, 3 m each), {}",
+        match a.vertical {
+            Some(v) => format!("from {}", v.as_str()),
+            None => a.height_source().to_string(),
+        }
+    );
+    // The activities in the span, each with its colour: the timeline band's key.
+    let key = if plot == Plot::Sigma {
+        activity_key(a, t0, t1, theme)
+    } else {
+        Vec::new()
+    };
     #[allow(clippy::type_complexity)]
     let (title, y_label, (y0, y1), right): (
         &str,
@@ -120,10 +142,19 @@ pub fn draw_plot_area<DB: DrawingBackend>(
                 .fold(a.sigma_thresholds.1 * 1.3, |m, p| m.max(p.1))
                 * 1.1;
             (
-                "σ of vertical acceleration (m/s²), thresholds, motion: still / walk / run",
+                "σ of vertical acceleration (m/s²), thresholds, activity (band along the bottom)",
                 "m/s²",
                 (0.0, top),
                 None,
+            )
+        }
+        Plot::Height => {
+            let h = heights.as_ref().expect("made for the height plot");
+            (
+                height_title.as_str(),
+                "m",
+                h.metres,
+                Some(("floor", h.floors)),
             )
         }
         Plot::Heading => (
@@ -177,6 +208,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         }
     };
     let lines = draw_title(area, title, &font, scale)?;
+    let lines = lines + draw_key(area, &key, lines, &font, scale)?;
     let body = area.margin(px(5.0 + 15.0 * lines as f64), 0, 0, 0);
     // The acceleration plot's PLL output has a lane of its own under the acceleration: drawn
     // over it (as it was) its ±1 wave covers the signal and the steps over a whole walk.
@@ -213,6 +245,8 @@ pub fn draw_plot_area<DB: DrawingBackend>(
     let y_format = |v: &f64| match y_label {
         "°" => format!("{v:.0}°"),
         "" => format!("{v:.2}"),
+        // Heights: a decimal while the axis spans a few metres.
+        "m" if plot == Plot::Height && y1 - y0 < 8.0 => format!("{v:.1}"),
         _ => format!("{v:.0}"),
     };
     let mut mesh = chart.configure_mesh();
@@ -241,6 +275,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             .y_labels(5)
             .y_label_formatter(&|v| match right {
                 Some(("°", _)) => format!("{v:.0}°"),
+                Some(("floor", _)) => floor_tick(v),
                 _ => format!("{v:.2}"),
             })
             .draw()?;
@@ -250,6 +285,9 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         Plot::Gnss | Plot::Fusion if a.fixes.is_empty() => Some("no GNSS fixes in this log"),
         Plot::Heading if a.has_steps_without_any_heading() => {
             Some("no heading in this log (no gyroscope, magnetometer or orientation)")
+        }
+        Plot::Height if !a.has_height() => {
+            Some("no height in this log (no leg pitch, no barometer): a flat walk is assumed")
         }
         _ => None,
     };
@@ -298,17 +336,13 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             }
         }
         Plot::Sigma => {
-            // Motion state as a band along the bottom.
-            let band = 0.06 * (y1 - y0);
+            // The activity as a band along the bottom (none while still).
+            let band = 0.08 * (y1 - y0);
             let i0 = tr.t.partition_point(|&x| x < t0);
-            let i1 = tr.t.partition_point(|&x| x <= t1);
-            let every = ((i1 - i0) / cols).max(1);
+            let i1 = tr.t.partition_point(|&x| x <= t1).min(tr.activity.len());
+            let every = (i1.saturating_sub(i0) / cols).max(1);
             chart.draw_series((i0..i1).step_by(every).filter_map(|i| {
-                let c = match tr.motion[i] {
-                    1 => theme.start,
-                    2 => theme.end,
-                    _ => return None,
-                };
+                let c = activity_colour(activity_from_code(tr.activity[i]), theme)?;
                 let t = rel(tr.t[i]);
                 let w = (tr.t[(i + every).min(i1 - 1)] - tr.t[i]).max(0.01);
                 Some(Rectangle::new([(t, y0), (t + w, y0 + band)], c.filled()))
@@ -350,6 +384,28 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             )?;
             for run in &h.line {
                 chart.draw_series(LineSeries::new(run.clone(), line(theme.track, 2.0)))?;
+            }
+        }
+        Plot::Height => {
+            let h = heights.as_ref().expect("made for the height plot");
+            chart.draw_series(LineSeries::new(
+                [(x0, 0.0), (x1, 0.0)],
+                line(theme.grid, 1.0),
+            ))?;
+            chart.draw_secondary_series(LineSeries::new(
+                h.floor.iter().copied(),
+                line(theme.gnss, 2.0),
+            ))?;
+            for run in &h.height {
+                chart.draw_series(LineSeries::new(run.clone(), line(theme.track, signal_w)))?;
+            }
+            // Each step's height, where the steps are far enough apart to be told apart.
+            if step_lines {
+                chart.draw_series(
+                    steps_in
+                        .iter()
+                        .map(|s| Circle::new((rel(s.t), s.up_m), px(1.5), theme.track.filled())),
+                )?;
             }
         }
         Plot::Steps => {
