@@ -136,7 +136,12 @@ impl Settings {
             match &mut cfg.step_length {
                 StepLengthModel::Frequency(p) => *p = file.profile,
                 // The profile's line is the pitch model's line for steps without a pitch.
-                StepLengthModel::Pitch(p) => p.fallback = file.profile,
+                StepLengthModel::Pitch(p) => {
+                    p.fallback = file.profile;
+                    if let Some(b) = file.pitch_offset_m {
+                        p.b = b;
+                    }
+                }
                 StepLengthModel::Fuzzy(c) => match file.fuzzy_scale {
                     Some(k) => c.scale = k,
                     None => return Err(SettingsError::ProfileWithoutLine),
@@ -457,6 +462,7 @@ mod tests {
             walking_points: vec![],
             running_points: vec![],
             fuzzy_scale: None,
+            pitch_offset_m: None,
         };
         let s = Settings {
             profile: Some(profile.to_json().unwrap()),

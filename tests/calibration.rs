@@ -223,6 +223,7 @@ fn the_wizard_fits_the_fuzzy_scale_that_measures_another_walk_within_3_percent()
         walking_points: wiz.points(Band::Walking),
         running_points: vec![],
         fuzzy_scale: Some(k),
+        pitch_offset_m: None,
     };
     let json = file.to_json().unwrap();
     assert_eq!(ProfileFile::from_json(&json).unwrap().fuzzy_scale, Some(k));

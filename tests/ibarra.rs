@@ -149,6 +149,7 @@ fn fuzzy_scale_is_calibrated_by_a_walk_of_known_distance() {
         walking_points: vec![],
         running_points: vec![],
         fuzzy_scale: Some(k),
+        pitch_offset_m: None,
     };
     let text = file.to_json().unwrap();
     assert_eq!(ProfileFile::from_json(&text).unwrap().fuzzy_scale, Some(k));
@@ -175,6 +176,7 @@ fn fuzzy_scale_is_calibrated_by_a_walk_of_known_distance() {
     // A profile without a fuzzy scale is refused for the fuzzy model; a bad scale is named.
     let plain = ProfileFile {
         fuzzy_scale: None,
+        pitch_offset_m: None,
         ..file.clone()
     };
     let settings = Settings {

@@ -4,7 +4,8 @@
 mod common;
 
 use common::{assert_count, run};
-use pdr::engine::pitch_step_length::{calibrate_offset, PitchStepLength};
+use pdr::engine::calibration::pitch_offset;
+use pdr::engine::pitch_step_length::{PitchStepLength, UNIVERSAL_SLOPE_M_PER_DEG};
 use pdr::engine::{
     replay, Activity, PipelineConfig, StepDetectorConfig, StepLengthModel, StepRecord,
 };
@@ -101,12 +102,7 @@ fn one_walk_calibration_of_the_offset() {
     let d = calibration.truth.distance_m;
     // Only the steps with a pitch: the first steps of the bout have none yet.
     let share = amps.len() as f64 / track.len() as f64;
-    let b = calibrate_offset(
-        d * share,
-        &amps,
-        pdr::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG,
-    )
-    .unwrap();
+    let b = pitch_offset(d * share, &amps, UNIVERSAL_SLOPE_M_PER_DEG).unwrap();
     let walk = scenarios::square(60.0).generate();
     let err = |cfg: PipelineConfig| {
         let t: Vec<StepRecord> = run(&walk, cfg);

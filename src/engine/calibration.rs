@@ -298,6 +298,10 @@ pub struct ProfileFile {
     /// made with that model; absent from files that have none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fuzzy_scale: Option<f64>,
+    /// The pitch step length's personal offset b, m per stride ([`pitch_offset`], Munoz Diaz
+    /// 2015 §5.1), when a calibration walk had a leg pitch; absent from files that have none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch_offset_m: Option<f64>,
 }
 
 /// The fuzzy step length's output scale from a calibration walk (Ibarra 2015 §4.4.2 has no
@@ -752,6 +756,7 @@ mod tests {
             walking_points: vec![(1.6, 0.6), (1.9, 0.68)],
             running_points: vec![],
             fuzzy_scale: None,
+            pitch_offset_m: None,
         };
         assert_eq!(ProfileFile::from_json(&p.to_json().unwrap()).unwrap(), p);
         let old = p

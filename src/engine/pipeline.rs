@@ -384,6 +384,7 @@ impl Pipeline {
                 activity: ActivityClassifier::new(cfg_activity),
                 vertical: Vertical::new(cfg_vertical),
                 last: None,
+                recent: std::collections::VecDeque::new(),
                 sign: None,
                 pitch: None,
             },

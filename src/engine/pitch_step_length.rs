@@ -9,7 +9,8 @@
 //! L·Δθ (radians) per step, 2·L·Δθ per stride; with L = 0.9 m that is 0.0314 m per degree, and
 //! Δθ_H ≈ 40° gives a 1.26 m stride (0.63 m steps) as people walk. Published gait data agree:
 //! the thigh's sagittal range grows from about 35° at a 1.1 m stride to 50° at 1.6 m, a slope of
-//! 0.033 m/°. The offset defaults to 0 until the wizard calibrates it.
+//! 0.033 m/°. The offset defaults to 0 until the wizard calibrates it
+//! ([`crate::engine::calibration::pitch_offset`], saved in the profile as `pitch_offset_m`).
 //!
 //! Eq. 5's S is a stride (§1: the paper's "step" is two hits of the same foot); the engine's
 //! steps are footfalls, so each of a stride's two steps is S/2.
@@ -68,37 +69,23 @@ impl PitchStepLength {
     }
 }
 
-/// Munoz Diaz 2015 §5.1's calibration: with the universal slope `a`, the offset b that makes a
-/// walk of `distance_m` come out right, b = (D − a·ΣΔθ_i) / N over its N strides. Each step
-/// carries its stride's Δθ and is half a stride, so over steps: b = 2·(D − (a/2)·Σ_steps Δθ)/N_steps.
-/// `None` without steps with a pitch or without a positive distance.
-pub fn calibrate_offset(distance_m: f64, step_amplitudes_deg: &[f64], a: f64) -> Option<f64> {
-    let n = step_amplitudes_deg.len();
-    if n == 0 || !(distance_m > 0.0) || !distance_m.is_finite() {
-        return None;
-    }
-    let sum: f64 = step_amplitudes_deg.iter().sum();
-    let b = 2.0 * (distance_m - 0.5 * a * sum) / n as f64;
-    b.is_finite().then_some(b)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn eq5_per_footfall_and_the_calibration() {
+    fn eq5_per_footfall() {
         let m = PitchStepLength::default();
         assert!((m.length(Some(40.0), 1.8) - 0.628).abs() < 1e-12);
         assert_eq!(
             m.length(None, 1.8),
             StepLengthProfile::default().length(1.8)
         );
-        // A walker whose strides are 0.0314·Δθ + 0.1: 100 steps of Δθ 40° cover 67.8 m.
+        // A walker whose strides are 0.0314·Δθ + 0.1: 100 steps of Δθ 40° cover 67.8 m, and
+        // the wizard's calibration gives that offset back.
         let steps = vec![40.0; 100];
-        let d = 100.0 * 0.5 * (0.0314 * 40.0 + 0.1);
-        let b = calibrate_offset(d, &steps, UNIVERSAL_SLOPE_M_PER_DEG).unwrap();
-        assert!((b - 0.1).abs() < 1e-12, "{b}");
-        assert_eq!(calibrate_offset(10.0, &[], 0.0314), None);
+        let d = 100.0 * 0.5 * (UNIVERSAL_SLOPE_M_PER_DEG * 40.0 + 0.1);
+        let b = crate::engine::calibration::pitch_offset(d, &steps, UNIVERSAL_SLOPE_M_PER_DEG);
+        assert!((b.unwrap() - 0.1).abs() < 1e-12);
     }
 }

@@ -145,6 +145,7 @@ impl CalibrationWizard {
             walking_points: self.wizard.points(Band::Walking),
             running_points: self.wizard.points(Band::Running),
             fuzzy_scale: self.wizard.fuzzy_scale(),
+            pitch_offset_m: None,
         }
         .to_json()
         .map_err(to_js)
@@ -184,11 +185,6 @@ impl Default for CalibrationWizard {
 #[wasm_bindgen]
 pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
     use crate::engine::calibration::{describe_builtin, ProfileFile, PROFILE_VERSION};
-    // Until the engine's profile has the field, it is read beside it.
-    let pitch_offset_m = text
-        .as_deref()
-        .and_then(|t| serde_json::from_str::<serde_json::Value>(t).ok())
-        .and_then(|v| v["pitch_offset_m"].as_f64());
     let (p, described) = match text {
         Some(t) => {
             let p = read_profile(&t)?;
@@ -203,6 +199,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
                 walking_points: Vec::new(),
                 running_points: Vec::new(),
                 fuzzy_scale: None,
+                pitch_offset_m: None,
             },
             describe_builtin(),
         ),
@@ -225,8 +222,8 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
         walking_points: p.walking_points.len(),
         running_points: p.running_points.len(),
         fuzzy_scale: p.fuzzy_scale,
-        pitch_offset_m,
-        text: match pitch_offset_m {
+        pitch_offset_m: p.pitch_offset_m,
+        text: match p.pitch_offset_m {
             Some(b) => format!(
                 "{described} Pitch step length S = {PITCH_SLOPE_M_PER_DEG}·Δθ + {b:.3} m per stride."
             ),
@@ -262,10 +259,7 @@ pub fn refine_profile(text: &str, evidence: JsValue) -> Result<JsValue, JsError>
     })
 }
 
-/// The pitch step length's universal slope a, m/° of leg pitch amplitude per stride (Munoz Diaz
-/// 2015 §5.1, Fig. 8). The lead points this at `engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG`
-/// when that stage lands; the value is the same.
-pub const PITCH_SLOPE_M_PER_DEG: f64 = 0.0314;
+use crate::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG as PITCH_SLOPE_M_PER_DEG;
 
 /// Munoz Diaz 2015 §5.1's one-walk calibration of the pitch step length: a walk of
 /// `distance_m` whose steps had the leg pitch amplitudes `amplitudes_deg` (`Live.pitch_amplitudes()`,
@@ -306,15 +300,14 @@ pub fn pitch_calibration(distance_m: f64, amplitudes_deg: Vec<f64>) -> Result<Js
 /// an error naming the field when the file is not a profile or b is not finite.
 #[wasm_bindgen]
 pub fn profile_with_pitch_offset(text: &str, offset_m: f64) -> Result<String, JsError> {
-    read_profile(text)?;
+    let mut p = read_profile(text)?;
     if !offset_m.is_finite() {
         return Err(to_js(format!(
             "profile.pitch_offset_m: not a number of metres ({offset_m})"
         )));
     }
-    let mut v: serde_json::Value = serde_json::from_str(text).map_err(to_js)?;
-    v["pitch_offset_m"] = serde_json::json!(offset_m);
-    serde_json::to_string_pretty(&v).map_err(to_js)
+    p.pitch_offset_m = Some(offset_m);
+    p.to_json().map_err(to_js)
 }
 
 /// The wizard offers GNSS as a walk's distance while the reported accuracy is this good or

@@ -46,11 +46,21 @@ pub(super) struct Pocket {
     pub activity: ActivityClassifier,
     pub vertical: Vertical,
     pub last: Option<ClassifiedStride>,
+    /// The height after each of the last steps without a thigh, m.
+    pub recent: std::collections::VecDeque<f64>,
     /// The leg pitch's sign at the last stride.
     pub sign: Option<f64>,
     /// The raw angle of the last sample ([`LegPitch::push`]).
     pub pitch: Option<f64>,
 }
+
+/// Steps over which the barometric height's change tells stairs from level without a thigh.
+const BARO_STAIR_STEPS: usize = 4;
+
+/// A climb or descent of this much per step, m, is stairs: half a stair's 15–20 cm rise per
+/// footfall, far above a ramp's (a 1:12 ramp rises 6 cm per 0.7 m step) and the barometer's
+/// noise over four steps (about 0.1 m, 2.5 cm per step).
+const BARO_STAIR_M_PER_STEP: f64 = 0.08;
 
 /// Longest time after a stride's maximum that a step still belongs to it, s.
 const STRIDE_HOLD_S: f64 = 1.5;
@@ -142,9 +152,26 @@ impl Pipeline {
                 amplitude_deg: Some(l.stride.amplitude_deg),
             },
             None => {
-                self.pocket.vertical.push_step(StepHeight::Unknown);
+                let p = &mut self.pocket;
+                let z = p.vertical.push_step(StepHeight::Unknown);
+                // Without a thigh, the barometer alone tells stairs: a climb of a stair's
+                // height per step over the last steps.
+                if p.recent.len() == BARO_STAIR_STEPS {
+                    p.recent.pop_front();
+                }
+                p.recent.push_back(z);
+                let per_step = (z - p.recent[0]) / BARO_STAIR_STEPS as f64;
+                let activity = if !p.vertical.has_barometer() || state == Motion::Running {
+                    p.activity.push_step(state == Motion::Running)
+                } else if per_step > BARO_STAIR_M_PER_STEP {
+                    Activity::Upstairs
+                } else if per_step < -BARO_STAIR_M_PER_STEP {
+                    Activity::Downstairs
+                } else {
+                    p.activity.push_step(false)
+                };
                 StepPocket {
-                    activity: self.pocket.activity.push_step(state == Motion::Running),
+                    activity,
                     amplitude_deg: None,
                 }
             }

@@ -135,12 +135,9 @@ impl Walk<'_> {
 
 /// The floor ID written in a `POSI` landmark at simulation time `t`: the true floor there.
 ///
-/// TODO(issue 18, lead): the single place to wire the simulator's true floor once `TruthStep`
-/// has `floor` (the floor of the last true step at or before `t`, 0 before the first). Until
-/// then every landmark is on floor 0, which is the truth of every walk the simulator makes today.
+/// The true floor at a landmark's time `t` (the simulator's clock).
 fn landmark_floor(sim: &Simulation, t: f64) -> i32 {
-    let _ = (sim, t);
-    0
+    sim.truth.floor_at(t)
 }
 
 /// The geodetic frame of the true path: the simulation's, or one at [`GnssSim`]'s default
