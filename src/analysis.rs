@@ -350,6 +350,15 @@ impl Analysis {
                 ),
             );
         }
+        if let Some(f) = sc.floors.as_ref().filter(|f| f.landmarks > 0) {
+            row(
+                "Floors",
+                format!(
+                    "{} of {} landmarks on the right relative floor",
+                    f.right, f.landmarks
+                ),
+            );
+        }
         if let Some(l) = sc.loop_closure_m {
             match sc.strides.filter(|_| sc.distance_m > 0.0) {
                 Some(_) => row(

@@ -158,6 +158,12 @@ pub struct LogResult {
     /// crosses to the page as bincode, which cannot skip fields.)
     #[serde(default)]
     pub floors: Option<FloorResult>,
+    /// The pitch detector was chosen and the log has no gyroscope: the PLL counted the steps.
+    pub detector_fallback: bool,
+    /// Share of the steps whose leg pitch showed a thigh's swing (a phone in a trouser
+    /// pocket, with a gyroscope; Munoz Diaz 2015): they have the pitch's activity, height and
+    /// stairs.
+    pub thigh_share: f64,
     /// Why the log could not be evaluated.
     pub error: Option<String>,
     /// Every waypoint error, m (for pooling; not serialised).
@@ -200,6 +206,8 @@ impl LogResult {
             refused_records: 0,
             pressure_samples: 0,
             floors: None,
+            detector_fallback: false,
+            thigh_share: 0.0,
             error: Some(error),
             waypoint_errors_m: Vec::new(),
             waypoint_errors_pct: Vec::new(),
@@ -297,6 +305,14 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
     res.distance_m = d.distance_m;
     res.refused_records = run.refused;
     res.pressure_samples = d.pressure_samples;
+    res.detector_fallback = d.detector_fallback;
+    if !track.is_empty() {
+        res.thigh_share = track
+            .iter()
+            .filter(|s| s.pitch_amplitude_deg.is_some())
+            .count() as f64
+            / track.len() as f64;
+    }
     if d.samples == 0 {
         res.error = Some("no IMU sample accepted".into());
         return res;

@@ -6,10 +6,10 @@ mod common;
 use common::{assert_count, run};
 use pdr::engine::calibration::pitch_offset;
 use pdr::engine::pitch_step_length::{PitchStepLength, UNIVERSAL_SLOPE_M_PER_DEG};
+use pdr::engine::Pipeline;
 use pdr::engine::{
     replay, Activity, PipelineConfig, StepDetectorConfig, StepLengthModel, StepRecord,
 };
-use pdr::engine::Pipeline;
 use pdr::sim::{scenarios, PocketPose, Scenario, Simulation};
 
 fn pitch_cfg() -> PipelineConfig {
@@ -168,7 +168,12 @@ fn stairs_in_every_pose() {
                 sc.sensors.barometer = None;
             }
             let sim = sc.generate();
-            let top = sim.truth.steps.iter().map(|s| s.up_m).fold(f64::MIN, f64::max);
+            let top = sim
+                .truth
+                .steps
+                .iter()
+                .map(|s| s.up_m)
+                .fold(f64::MIN, f64::max);
             assert!((top - 3.0 * 3.06).abs() < 1e-6);
             for cfg in [PipelineConfig::default(), pitch_cfg()] {
                 let f = figures(&sim, cfg);
@@ -182,7 +187,10 @@ fn stairs_in_every_pose() {
         }
     }
     let share = right as f64 / steps as f64;
-    println!("stairs: activity right on {:.1} % of {steps} steps", 100.0 * share);
+    println!(
+        "stairs: activity right on {:.1} % of {steps} steps",
+        100.0 * share
+    );
     assert!(share >= 0.93, "activity right on {:.1} %", 100.0 * share);
 }
 
@@ -242,7 +250,12 @@ fn sitting_and_standing() {
             }
         }
         assert!(checked > 500, "{checked}");
-        assert!(wrong.is_empty(), "{}: {:?}", pose.as_str(), &wrong[..wrong.len().min(5)]);
+        assert!(
+            wrong.is_empty(),
+            "{}: {:?}",
+            pose.as_str(),
+            &wrong[..wrong.len().min(5)]
+        );
     }
 }
 
@@ -255,9 +268,16 @@ fn the_track_file_has_the_height_and_floor() {
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let (a, u, f) = (col("activity"), col("up_m"), col("floor"));
-    let rows: Vec<Vec<&str>> = csv.lines().skip(1).map(|l| l.split(',').collect()).collect();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
     assert!(rows.iter().any(|r| r[a] == "upstairs") && rows.iter().any(|r| r[a] == "downstairs"));
     assert!(rows.iter().any(|r| r[f] == "3"));
-    let top = rows.iter().map(|r| r[u].parse::<f64>().unwrap()).fold(f64::MIN, f64::max);
+    let top = rows
+        .iter()
+        .map(|r| r[u].parse::<f64>().unwrap())
+        .fold(f64::MIN, f64::max);
     assert!((top - 9.18).abs() < 1.5, "{top}");
 }

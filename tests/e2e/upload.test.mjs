@@ -199,6 +199,36 @@ test('a generated log and a walk in every single-file format: progress, the nati
   await context.close();
 });
 
+test('stairs in a pocket (Munoz Diaz 2015): the height plot, the floors on the map and in the figures, the native step count and landmark floors', async () => {
+  // The simulated pocket walk up and down three floors, with a barometer, as GetSensorData
+  // writes it (PRES readings, POSI landmarks with their floors).
+  const file = simulated('get-sensor-data', 'stairs');
+  const { context, page, errors } = await open();
+  const r = await upload(page, [file]);
+  assert.deepEqual(r.errors, []);
+  const l = r.logs[0];
+  assert.equal(l.a.steps, nativeSteps(file), 'steps differ from pdr run');
+  for (const c of await canvases(page, 0)) assert.ok(c.n > 0.01 * c.total, `${c.what} looks blank`);
+  const figures = await page.textContent('.log-result[data-index="0"] .summary');
+  // Four floors visited (0 to +3), the height from the leg pitch and the barometer, the
+  // landmarks' floors scored.
+  assert.match(figures, /Height[^]*4 floors visited \(0, \+1, \+2, \+3\); from leg pitch \+ barometer/);
+  assert.match(figures, /Barometer\s*\d+ readings/);
+  const [, right, of] = figures.match(/Floors\s*(\d+) of (\d+) landmarks on the right relative floor/);
+  // `pdr eval` gives 14 of 16: the simulator drops a landmark every 10 s, and two fall on the
+  // landings half-way between floors, where the floor is a matter of definition (the truth
+  // counts a floor once it is reached, the engine once 60 % of the way to the next).
+  assert.ok(Number(of) >= 15 && Number(right) >= Number(of) - 2, `${right} of ${of} landmarks on the right floor`);
+  // The height plot is there, and a step on the stairs says so.
+  assert.ok(await page.locator('.log-result[data-index="0"] canvas[aria-label^="Height above the start"]').count() >= 1);
+  const mid = Math.floor(l.a.steps * 0.14);
+  const { info } = await hover(page, 0, mid);
+  assert.match(info, / · (walking|walking upstairs|walking downstairs) · height -?\d+\.\d\d m, floor (0|\+\d)$/);
+  assert.deepEqual(errors, []);
+  await page.locator('.log-result[data-index="0"]').screenshot({ path: path.join(ARTIFACTS, 'upload-stairs.png') });
+  await context.close();
+});
+
 test('phone: tapping a plot picks the step at that time, a pinch zooms the time axis, the fusion plots', async () => {
   const walk = path.join(tmp, 'city-phone.pdrlog');
   execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', walk]);

@@ -38,6 +38,12 @@ enum ScenarioArg {
     Long,
     /// Once round a 400 m athletic track (Strozzi 2017 §5.1's outdoor path), for `--foot`.
     Track,
+    /// Phone in the front pocket, with a barometer: three floors up and down stairs, with
+    /// landings (Munoz Diaz 2015's walk).
+    Stairs,
+    /// Phone in the front pocket, with a barometer: standing, walking, sitting, two floors up
+    /// and down.
+    PocketMixed,
 }
 
 /// Which IMUs `pdr simulate` writes.
@@ -259,6 +265,10 @@ pub fn main() -> ExitCode {
                 }
                 ScenarioArg::Long => scenarios::long_walk(minutes),
                 ScenarioArg::Track => scenarios::athletic_track(1),
+                ScenarioArg::Stairs => scenarios::stairs_walk(pdr::sim::PocketPose::default()),
+                ScenarioArg::PocketMixed => {
+                    scenarios::pocket_mixed(pdr::sim::PocketPose::default())
+                }
             };
             simulate::simulate(
                 sc,

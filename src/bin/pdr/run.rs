@@ -96,6 +96,31 @@ pub fn run(
     } else {
         out!("steps         {}", track.len());
     }
+    if d.detector_fallback {
+        out!("detector      PLL: the pitch detector needs a gyroscope, which this log has not");
+    }
+    // The activities of the steps (Munoz Diaz 2015 §4.3 where the leg pitch shows a thigh).
+    let mut acts: Vec<(pdr::engine::Activity, usize)> = Vec::new();
+    for s in track {
+        match acts.iter_mut().find(|a| a.0 == s.activity) {
+            Some(a) => a.1 += 1,
+            None => acts.push((s.activity, 1)),
+        }
+    }
+    if !acts.is_empty() {
+        let on_thigh = track
+            .iter()
+            .filter(|s| s.pitch_amplitude_deg.is_some())
+            .count();
+        let words: Vec<String> = acts
+            .iter()
+            .map(|(a, n)| format!("{n} {}", a.as_str()))
+            .collect();
+        out!(
+            "activities    {} ({on_thigh} steps with a thigh's leg pitch)",
+            words.join(", ")
+        );
+    }
     out!("distance      {:.1} m", d.distance_m);
     if let Some(last) = track.last() {
         out!("final east    {:.1} m", last.east_m);

@@ -104,7 +104,7 @@ impl<'a> LineCursor<'a> {
 }
 
 /// Grid lines of a heading axis from `y0` to `y1` (unwrapped degrees): every 45°, 90° or 180°,
-/// whichever gives two to eight lines.
+/// whichever gives two to eight lines (whole turns beyond that: see [`grid_label`]).
 pub fn grid(y0: f64, y1: f64) -> Vec<f64> {
     let step = [45.0, 90.0, 180.0, 360.0]
         .into_iter()
@@ -113,6 +113,23 @@ pub fn grid(y0: f64, y1: f64) -> Vec<f64> {
     let first = (y0 / step).ceil() as i64;
     let last = (y1 / step).floor() as i64;
     (first..=last).map(|k| k as f64 * step).collect()
+}
+
+/// The label of grid line `g` of a heading axis from `y0` to `y1`: [`label`] while the lines
+/// are less than a turn apart; on an axis of many turns (a walk up a staircase turns 180° at
+/// every landing), where every line would read "0° N", the turns from north ("+3 turns").
+pub fn grid_label(g: f64, y0: f64, y1: f64) -> String {
+    let spaced = grid(y0, y1);
+    if spaced.len() >= 2 && spaced[1] - spaced[0] >= 360.0 {
+        let turns = (g / 360.0).round() as i64;
+        match turns {
+            0 => "0° N".to_string(),
+            1 | -1 => format!("{turns:+} turn"),
+            _ => format!("{turns:+} turns"),
+        }
+    } else {
+        label(g)
+    }
 }
 
 /// The label of an unwrapped heading: the heading itself in 0…360°, with its compass point on
@@ -220,6 +237,15 @@ mod tests {
         assert_eq!(label(-45.0), "315°");
         assert_eq!(label(-360.0), "0° N");
         assert_eq!(label(719.7), "0° N");
+        // An axis of many turns labels the turns, not eight "0° N".
+        let lines = grid(-100.0, 3000.0);
+        let labels: Vec<String> = lines
+            .iter()
+            .map(|&g| grid_label(g, -100.0, 3000.0))
+            .collect();
+        assert_eq!(labels[..3], ["0° N", "+2 turns", "+4 turns"]);
+        assert_eq!(grid_label(360.0, 0.0, 2000.0), "+1 turn");
+        assert_eq!(grid_label(90.0, 0.0, 400.0), "90° E");
         assert_eq!(label(-540.0), "180° S");
     }
 }

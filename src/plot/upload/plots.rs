@@ -364,7 +364,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
                 chart.draw_series(LineSeries::new([(x0, g), (x1, g)], line(theme.grid, 1.0)))?;
                 let (x, y) = chart.backend_coord(&(x0, g));
                 area.draw(&Text::new(
-                    heading::label(g),
+                    heading::grid_label(g, y0, y1),
                     (x - base.0 - px(4.0) as i32, y - base.1),
                     font.pos(Pos::new(HPos::Right, VPos::Center)),
                 ))?;
