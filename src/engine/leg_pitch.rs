@@ -37,7 +37,7 @@
 
 use super::pitch_detector::PitchStride;
 use super::types::{positive, ConfigError, DeviceVec};
-use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
+use nalgebra::{Matrix3, UnitQuaternion, Vector3};
 
 /// Settings of the leg pitch.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -172,6 +172,9 @@ pub struct LegPitch {
     thigh: bool,
 }
 
+/// Samples between two power iterations of the swing axis (about 0.1 s).
+const AXIS_EVERY: u32 = 8;
+
 /// The largest Δθ of a thigh's stride, degrees: a hip flexes to about 120° and extends to
 /// about −20°, and no gait uses all of it (stairs up: about 55–70°).
 const THIGH_MAX_AMPLITUDE_DEG: f64 = 100.0;
@@ -181,9 +184,6 @@ const THIGH_MIN_STRIDE_S: f64 = 0.8;
 
 /// Weight kept by the sign's vote per stride (about the last 30 strides count).
 const SIGN_KEEP: f64 = 0.97;
-
-/// Samples between two eigen-decompositions of the second moment (about 0.1–0.2 s).
-const AXIS_EVERY: u32 = 10;
 
 impl LegPitch {
     /// A stage with validated settings.
@@ -224,7 +224,8 @@ impl LegPitch {
                     Some(u) => w - u * u.dot(&w),
                     None => w,
                 };
-                let decay = libm::exp(-x.dt / self.cfg.axis_tau_s);
+                // e^(−Δt/τ) to first order: Δt/τ is about 0.003.
+                let decay = (1.0 - x.dt / self.cfg.axis_tau_s).max(0.0);
                 self.moment = self.moment * decay + w * w.transpose() * x.dt;
                 self.since_axis += 1;
                 if self.axis.is_none() || self.since_axis >= AXIS_EVERY {
@@ -237,47 +238,62 @@ impl LegPitch {
         self.last
     }
 
+    /// One power iteration a ← C·a / |C·a| from the last axis (the largest column of C to
+    /// start): the principal eigenvector, followed as C changes. The swing's eigenvalue is
+    /// several times the others', so one iteration every [`AXIS_EVERY`] samples keeps up with a
+    /// moment whose time constant is seconds. C a stays on a's side (C is positive semi-definite), so the axis keeps its
+    /// sign and the sign's vote refers to it.
     fn update_axis(&mut self) {
-        let trace = self.moment.trace();
-        if !(trace > 0.0) || !self.moment.iter().all(|v| v.is_finite()) {
+        let c = &self.moment;
+        let trace = c.trace();
+        if !(trace > 0.0) || !c.iter().all(|v| v.is_finite()) {
             return;
         }
-        let eig = SymmetricEigen::new(self.moment);
-        let i = eig.eigenvalues.imax();
-        let mut a: Vector3<f64> = eig.eigenvectors.column(i).into_owned();
-        if let Some(prev) = self.axis {
-            // The same axis as before, not its opposite: the vote's sign refers to it.
-            if a.dot(&prev) < 0.0 {
-                a = -a;
-            }
+        let start = self.axis.unwrap_or_else(|| {
+            let i = (0..3)
+                .max_by(|&i, &j| c.column(i).norm().total_cmp(&c.column(j).norm()))
+                .unwrap_or(0);
+            c.column(i).into_owned()
+        });
+        let next = c * start;
+        let n = next.norm();
+        if !(n > 0.0) {
+            return;
         }
-        self.share = eig.eigenvalues[i] / trace;
+        let a = next / n;
+        self.share = a.dot(&(c * a)) / trace;
         self.axis = Some(a);
     }
 
+    /// θ = −atan2(a·(r × u), r⊥·u⊥) for the up direction u and the reference r, where the
+    /// triple product needs no projection (the parts along `a` drop out) and r⊥·u⊥ = r·u −
+    /// (a·r)(a·u): no square root per sample.
     fn angle(&mut self, moving: bool) -> Option<f64> {
         let (a, u) = (self.axis?, self.up?);
-        let project = |v: Vector3<f64>| {
-            let p = v - a * a.dot(&v);
-            let n = p.norm();
-            (n > 1e-6).then(|| p / n)
-        };
-        let p = project(u)?;
-        if moving {
-            self.stride_sum += p;
-        }
-        if self.level_refs == 0 && self.share >= self.cfg.min_axis_share {
-            {
-                // Before the first level stride: the running mean while a swing dominates.
-                let r = self.reference.unwrap_or(p);
-                self.reference = project(r * 0.995 + p * 0.005);
-            }
-        }
-        if self.share < self.cfg.min_axis_share {
+        let au = a.dot(&u);
+        if !(u.norm_squared() - au * au > 1e-12) {
+            // The up direction lies along the swing axis: no angle about it.
             return None;
         }
-        let r = project(self.reference?)?;
-        Some(-libm::atan2(a.dot(&r.cross(&p)), r.dot(&p)).to_degrees())
+        if moving {
+            self.stride_sum += u;
+        }
+        let swing = self.share >= self.cfg.min_axis_share;
+        if self.level_refs == 0 && swing {
+            // Before the first level stride: the running mean while a swing dominates.
+            let r = self.reference.unwrap_or(u);
+            self.reference = Some(r * 0.995 + u * 0.005);
+        }
+        if !swing {
+            return None;
+        }
+        let r = self.reference?;
+        let (ar, cross) = (a.dot(&r), a.dot(&r.cross(&u)));
+        let dot = r.dot(&u) - ar * au;
+        if !(cross.abs() + dot.abs() > 1e-12) {
+            return None;
+        }
+        Some(-libm::atan2(cross, dot).to_degrees())
     }
 
     /// The sign the votes give now: +1 when forward is a positive raw angle.
