@@ -62,7 +62,9 @@ fn main() {
     }
     let default_b = match PipelineConfig::default().step_length {
         StepLengthModel::Frequency(p) => p.walking.b,
-        StepLengthModel::Weinberg { .. } | StepLengthModel::Fuzzy(_) => f64::NAN,
+        StepLengthModel::Weinberg { .. }
+        | StepLengthModel::Fuzzy(_)
+        | StepLengthModel::Pitch(_) => f64::NAN,
     };
     let g_def = grid
         .iter()

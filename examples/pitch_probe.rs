@@ -5,7 +5,8 @@ use pdr::engine::{replay, Activity, PipelineConfig, StepDetectorConfig};
 use pdr::sim::{scenarios, PocketPose, Scenario};
 
 fn main() {
-    let walks: [(&str, fn(PocketPose) -> Scenario); 4] = [
+    type Make = fn(PocketPose) -> Scenario;
+    let walks: [(&str, Make); 4] = [
         ("flat", scenarios::pocket_flat),
         ("stairs", scenarios::stairs_walk),
         ("sit/stand", scenarios::sit_stand),

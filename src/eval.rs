@@ -601,7 +601,7 @@ mod tests {
     use super::*;
     use crate::engine::motion::Motion;
 
-    fn step(t: f64, e: f64, n: f64) -> StepRecord {
+    pub(super) fn step(t: f64, e: f64, n: f64) -> StepRecord {
         StepRecord {
             t,
             east_m: e,

@@ -5,7 +5,8 @@ mod common;
 
 use common::{assert_count, run};
 use pdr::engine::calibration::pitch_offset;
-use pdr::engine::pitch_step_length::{PitchStepLength, UNIVERSAL_SLOPE_M_PER_DEG};
+use pdr::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG;
+use pdr::engine::step_length::PitchStepLength;
 use pdr::engine::Pipeline;
 use pdr::engine::{
     replay, Activity, PipelineConfig, StepDetectorConfig, StepLengthModel, StepRecord,
@@ -200,7 +201,8 @@ fn stairs_in_every_pose() {
 /// bout's first and last steps, which the PLL also misses on stairs, by 6 %).
 #[test]
 fn pitch_detector_counts_every_pose() {
-    let walks: [(&str, fn(PocketPose) -> Scenario, f64); 3] = [
+    type Make = fn(PocketPose) -> Scenario;
+    let walks: [(&str, Make, f64); 3] = [
         ("flat", scenarios::pocket_flat, 0.01),
         ("stairs", scenarios::stairs_walk, 0.01),
         ("mixed", scenarios::pocket_mixed, 0.015),

@@ -3,6 +3,8 @@
 //! heights, floors and activities in the truth are right, the barometer follows the height, every
 //! pocket pose swings about the thigh's lateral axis, and the scenarios are deterministic.
 
+mod common;
+
 use nalgebra::{Matrix3, SymmetricEigen, UnitQuaternion, Vector3};
 use pdr::engine::{Activity, Record};
 use pdr::sim::scenarios::{
@@ -80,14 +82,7 @@ fn attitude_follows_the_exposed_thigh_pitch() {
         // The gyroscope is the attitude's rate: the rotation between consecutive attitudes is
         // the mean rate of the two samples (less the bias) over the interval.
         let bias = Vector3::from(sc.sensors.gyro_bias);
-        let imu: Vec<_> = sim
-            .records
-            .iter()
-            .filter_map(|r| match r {
-                Record::Imu(s) => Some(*s),
-                _ => None,
-            })
-            .collect();
+        let imu = common::imu(&sim.records);
         let mut worst: f64 = 0.0;
         for w in imu.windows(2) {
             let (q0, q1) = (w[0].orientation.unwrap(), w[1].orientation.unwrap());

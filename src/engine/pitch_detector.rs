@@ -266,7 +266,7 @@ mod tests {
         for i in 0..1000 {
             let t = i as f64 * 0.01;
             let ph = TAU * f * t;
-            let pitch = 7.0 + 18.0 * ph.cos() + 5.0 * (2.0 * ph - 0.6).cos().max(0.0) * 0.8;
+            let pitch = 7.0 + 18.0 * libm::cos(ph) + 4.0 * libm::cos(2.0 * ph - 0.6).max(0.0);
             if let Some(c) = d.push(&input(t, pitch)) {
                 steps.push(c);
             }
@@ -275,12 +275,15 @@ mod tests {
                 strides += 1;
             }
         }
-        // 9 cycles over 10 s; the first maximum (t = 0) is not confirmed without a minimum.
+        // 9 cycles over 10 s; the first maximum (t = 0) is not confirmed without a minimum
+        // before it. The second rises a whole stride from its minimum: two steps, as every
+        // later one.
         assert_eq!(strides, 8);
-        assert_eq!(steps.len(), 2 * strides - 1);
+        assert_eq!(steps.len(), 2 * strides);
         let s = d.last_stride().unwrap();
         assert!(s.amplitude_deg > 30.0 && s.max_deg > 20.0 && s.min_deg < -5.0);
-        for w in steps.windows(2) {
+        // After the first stride (its first step is at the minimum), half a stride apart.
+        for w in steps[1..].windows(2) {
             let dt = w[1].t - w[0].t;
             assert!((dt - 0.5 / f).abs() < 0.03, "steps {dt} s apart");
         }

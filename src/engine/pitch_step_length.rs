@@ -15,63 +15,20 @@
 //! Eq. 5's S is a stride (§1: the paper's "step" is two hits of the same foot); the engine's
 //! steps are footfalls, so each of a stride's two steps is S/2.
 
-use super::step_length::StepLengthProfile;
-use super::types::{positive, ConfigError};
-
 /// Eq. 5's universal slope, m of stride per degree of Δθ_H (see the module documentation).
 pub const UNIVERSAL_SLOPE_M_PER_DEG: f64 = 0.0314;
 
-/// Settings of the pitch step length.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(default)]
-pub struct PitchStepLength {
-    /// a, m of stride per degree. Default [`UNIVERSAL_SLOPE_M_PER_DEG`].
-    pub a: f64,
-    /// b, m of stride: the walker's own offset (the wizard's calibration). Default 0.
-    pub b: f64,
-    /// The line in frequency for steps without a leg pitch (a phone taken out of the pocket,
-    /// no gyroscope): the default profile unless a profile is given.
-    pub fallback: StepLengthProfile,
-}
-
-impl Default for PitchStepLength {
-    fn default() -> Self {
-        PitchStepLength {
-            a: UNIVERSAL_SLOPE_M_PER_DEG,
-            b: 0.0,
-            fallback: StepLengthProfile::default(),
-        }
-    }
-}
-
-impl PitchStepLength {
-    /// Checks the values.
-    pub fn validate(&self) -> Result<(), ConfigError> {
-        positive("step_length.a", self.a)?;
-        if !(self.b.is_finite() && self.b.abs() < 1.0) {
-            return Err(ConfigError::new(
-                "step_length.b",
-                "must be a finite offset within ±1 m",
-            ));
-        }
-        self.fallback.validate()
-    }
-
-    /// One footfall's length, m: half of eq. 5's stride for amplitude Δθ (degrees), within the
-    /// fallback profile's physiological range; the fallback line at `freq_hz` without Δθ.
-    pub fn length(&self, amplitude_deg: Option<f64>, freq_hz: f64) -> f64 {
-        match amplitude_deg {
-            Some(d) => {
-                (0.5 * (self.a * d + self.b)).clamp(self.fallback.min_m, self.fallback.max_m)
-            }
-            None => self.fallback.length(freq_hz),
-        }
-    }
+/// One footfall's length, m: half of eq. 5's stride S = a·Δθ_H + b (a in m/°, b in m, Δθ_H in
+/// degrees). The settings and the fallback for steps without a pitch are the step-length
+/// stage's ([`crate::engine::step_length::PitchStepLength`]).
+pub fn footfall_m(a: f64, b: f64, amplitude_deg: f64) -> f64 {
+    0.5 * (a * amplitude_deg + b)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::step_length::{PitchStepLength, StepLengthProfile};
 
     #[test]
     fn eq5_per_footfall() {

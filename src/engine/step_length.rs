@@ -30,7 +30,7 @@
 
 use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStep, FuzzyStepLength};
 use super::heading::NavSample;
-use super::pitch_step_length::PitchStepLength;
+use super::pitch_step_length::{footfall_m, UNIVERSAL_SLOPE_M_PER_DEG};
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
 
@@ -128,6 +128,54 @@ impl StepLengthProfile {
             &self.running
         };
         line.eval(f).clamp(self.min_m, self.max_m)
+    }
+}
+
+/// Settings of the pitch step length (Munoz Diaz 2015 eq. 5, [`super::pitch_step_length`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct PitchStepLength {
+    /// a, m of stride per degree. Default [`UNIVERSAL_SLOPE_M_PER_DEG`].
+    pub a: f64,
+    /// b, m of stride: the walker's own offset (the wizard's calibration). Default 0.
+    pub b: f64,
+    /// The line in frequency for steps without a leg pitch (a phone taken out of the pocket,
+    /// no gyroscope): the default profile unless a profile is given.
+    pub fallback: StepLengthProfile,
+}
+
+impl Default for PitchStepLength {
+    fn default() -> Self {
+        PitchStepLength {
+            a: UNIVERSAL_SLOPE_M_PER_DEG,
+            b: 0.0,
+            fallback: StepLengthProfile::default(),
+        }
+    }
+}
+
+impl PitchStepLength {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("step_length.a", self.a)?;
+        if !(self.b.is_finite() && self.b.abs() < 1.0) {
+            return Err(ConfigError::new(
+                "step_length.b",
+                "must be a finite offset within ±1 m",
+            ));
+        }
+        self.fallback.validate()
+    }
+
+    /// One footfall's length, m: half of eq. 5's stride for amplitude Δθ (degrees), within the
+    /// fallback profile's physiological range; the fallback line at `freq_hz` without Δθ.
+    pub fn length(&self, amplitude_deg: Option<f64>, freq_hz: f64) -> f64 {
+        match amplitude_deg {
+            Some(d) => {
+                footfall_m(self.a, self.b, d).clamp(self.fallback.min_m, self.fallback.max_m)
+            }
+            None => self.fallback.length(freq_hz),
+        }
     }
 }
 

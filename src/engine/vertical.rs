@@ -27,6 +27,7 @@ impl VerticalSource {
 
 use super::activity::Activity;
 use super::types::{positive, ConfigError};
+use nalgebra::{Matrix2, RowVector2, Vector2};
 
 /// Settings of the height stage.
 ///
@@ -181,8 +182,8 @@ pub struct VerticalDiagnostics {
 #[derive(Debug, Clone)]
 pub struct Vertical {
     cfg: VerticalConfig,
-    x: [f64; 2],
-    p: [[f64; 2]; 2],
+    x: Vector2<f64>,
+    p: Matrix2<f64>,
     baro_ref: Option<f64>,
     baro_sum: (f64, u32, f64),
     baro_t: Option<f64>,
@@ -198,8 +199,8 @@ impl Vertical {
     pub fn new(cfg: VerticalConfig) -> Self {
         Vertical {
             cfg,
-            x: [0.0, 0.0],
-            p: [[0.0, 0.0], [0.0, 0.0]],
+            x: Vector2::zeros(),
+            p: Matrix2::zeros(),
             baro_ref: None,
             baro_sum: (0.0, 0, 0.0),
             baro_t: None,
@@ -223,7 +224,7 @@ impl Vertical {
             StepHeight::Unknown => (0.0, self.cfg.step_sigma_m),
         };
         self.x[0] += dz;
-        self.p[0][0] += sd * sd;
+        self.p[(0, 0)] += sd * sd;
         self.update_floor();
         self.x[0]
     }
@@ -250,23 +251,19 @@ impl Vertical {
         // The first measurement is the barometer's zero: β = 0 at the start.
         let y = pressure_height_m(hpa, r);
         let q = self.cfg.baro_drift_m_per_sqrt_s;
-        self.p[1][1] += q * q * dt.max(0.0);
-        // y = z + β + v, v ~ N(0, σ²).
-        let s = self.p[0][0] + 2.0 * self.p[0][1] + self.p[1][1] + self.cfg.baro_sigma_m.powi(2);
-        let k = [
-            (self.p[0][0] + self.p[0][1]) / s,
-            (self.p[1][0] + self.p[1][1]) / s,
-        ];
-        let innov = y - (self.x[0] + self.x[1]);
-        self.x[0] += k[0] * innov;
-        self.x[1] += k[1] * innov;
-        let h = [1.0, 1.0];
-        let p = self.p;
-        for i in 0..2 {
-            for j in 0..2 {
-                self.p[i][j] = p[i][j] - k[i] * (h[0] * p[0][j] + h[1] * p[1][j]);
-            }
+        // The offset drifts only where something can tell it from a climb: the leg pitch's
+        // level strides. Without them the height is the barometer's, drift and all.
+        if self.pitch_seen {
+            self.p[(1, 1)] += q * q * dt.max(0.0);
         }
+        // y = z + β + v, v ~ N(0, σ²).
+        let h = RowVector2::new(1.0, 1.0);
+        let sigma = self.cfg.baro_sigma_m;
+        let s = (h * self.p * h.transpose())[0] + sigma * sigma;
+        let k = self.p * h.transpose() / s;
+        let innov = y - (h * self.x)[0];
+        self.x += k * innov;
+        self.p -= k * (h * self.p);
         self.update_floor();
     }
 
@@ -298,7 +295,7 @@ impl Vertical {
     pub fn diagnostics(&self) -> VerticalDiagnostics {
         VerticalDiagnostics {
             up_m: self.x[0],
-            up_sd_m: libm::sqrt(self.p[0][0].max(0.0)),
+            up_sd_m: libm::sqrt(self.p[(0, 0)].max(0.0)),
             floor: self.floor,
             source: match (self.pitch_seen, self.baro_ref.is_some()) {
                 (true, true) => Some(VerticalSource::PitchAndBarometer),

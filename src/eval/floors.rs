@@ -116,22 +116,12 @@ pub fn pool(results: &[&FloorResult]) -> (u64, u64, u64, Option<f64>, Option<f64
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::motion::Motion;
 
     fn step(t: f64, floor: i32, up_m: f64) -> StepRecord {
         StepRecord {
-            t,
-            east_m: 0.0,
-            north_m: 0.0,
-            heading_rad: None,
-            step_heading_rad: None,
-            length_m: 0.7,
-            freq_hz: 1.8,
-            motion: Motion::Walking,
-            activity: crate::engine::Activity::Walking,
-            up_m,
             floor,
-            pitch_amplitude_deg: None,
+            up_m,
+            ..super::super::tests::step(t, 0.0, 0.0)
         }
     }
 
