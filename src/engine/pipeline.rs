@@ -27,7 +27,7 @@
 //!   orientation source needs is refused with an [`InputError`], counted in [`Diagnostics`], and
 //!   leaves the state untouched.
 
-use super::activity::{Activity, ActivityClassifier, ActivityConfig};
+use super::activity::{Activity, ActivityConfig};
 use super::detector::DetectorInput;
 use super::foot::placement::{Placement, Recogniser};
 use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
@@ -37,13 +37,12 @@ use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
-use super::leg_pitch::{LegPitch, LegPitchConfig};
+use super::leg_pitch::LegPitchConfig;
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
-use super::pitch_detector::{PitchDetector, PitchDetectorConfig};
 use super::step_length::{StepLength, StepLengthModel};
 use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
-use super::vertical::{Vertical, VerticalConfig};
+use super::vertical::VerticalConfig;
 use std::collections::VecDeque;
 
 mod foot;
@@ -340,8 +339,7 @@ impl Pipeline {
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
         let (cfg_placement, cfg_foot) = (cfg.placement, cfg.foot);
-        let (cfg_leg, cfg_activity, cfg_vertical, cfg_detector) =
-            (cfg.leg_pitch, cfg.activity, cfg.vertical, cfg.detector);
+        let pocket = pocket::Pocket::new(&cfg);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             history_s: cfg
@@ -377,17 +375,7 @@ impl Pipeline {
             recogniser: Recogniser::default(),
             pending: Vec::new(),
             last_stride_t: None,
-            pocket: pocket::Pocket {
-                leg: LegPitch::new(cfg_leg),
-                strides: (!matches!(cfg_detector, StepDetectorConfig::Pitch(_)))
-                    .then(|| PitchDetector::new(PitchDetectorConfig::default())),
-                activity: ActivityClassifier::new(cfg_activity),
-                vertical: Vertical::new(cfg_vertical),
-                last: None,
-                recent: std::collections::VecDeque::new(),
-                sign: None,
-                pitch: None,
-            },
+            pocket,
         })
     }
 

@@ -5,19 +5,19 @@
 //! The leg pitch runs whenever the samples have a gyroscope and an attitude and a single swing
 //! axis dominates; its strides count only once they show a thigh's swing
 //! ([`LegPitch::push_stride`]: a phone in a trouser pocket, not in the hand). Strides come from
-//! the pitch step detector,
-//! the configured one (`detector.kind=pitch`) or a second one beside the configured detector,
-//! whose strides then give the activity, the height and the length of that detector's steps.
+//! the pitch step detector: the configured one (`detector.kind=pitch`), or a second one beside
+//! the configured detector, whose strides then give the activity, the height and the length of
+//! that detector's steps.
 //! Without a leg pitch the activity is the motion state's, a step's height change is unknown
 //! (the barometer alone moves the height) and the step length is the configured model's.
 
-use super::step_detector::Detector;
-use super::Pipeline;
+use super::step_detector::{Detector, StepDetectorConfig};
+use super::{Pipeline, PipelineConfig};
 use crate::engine::activity::{Activity, ActivityClassifier};
 use crate::engine::detector::DetectorInput;
 use crate::engine::leg_pitch::{LegPitch, LegPitchInput};
 use crate::engine::motion::Motion;
-use crate::engine::pitch_detector::{PitchDetector, PitchStride};
+use crate::engine::pitch_detector::{PitchDetector, PitchDetectorConfig, PitchStride};
 use crate::engine::types::{ImuSample, InputError, PressureSample};
 use crate::engine::vertical::{StepHeight, Vertical};
 
@@ -52,6 +52,23 @@ pub(super) struct Pocket {
     pub sign: Option<f64>,
     /// The raw angle of the last sample ([`LegPitch::push`]).
     pub pitch: Option<f64>,
+}
+
+impl Pocket {
+    /// The stages, with the pipeline's settings.
+    pub(super) fn new(cfg: &PipelineConfig) -> Self {
+        Pocket {
+            leg: LegPitch::new(cfg.leg_pitch),
+            strides: (!matches!(cfg.detector, StepDetectorConfig::Pitch(_)))
+                .then(|| PitchDetector::new(PitchDetectorConfig::default())),
+            activity: ActivityClassifier::new(cfg.activity),
+            vertical: Vertical::new(cfg.vertical),
+            last: None,
+            recent: std::collections::VecDeque::with_capacity(BARO_STAIR_STEPS),
+            sign: None,
+            pitch: None,
+        }
+    }
 }
 
 /// Steps over which the barometric height's change tells stairs from level without a thigh.
