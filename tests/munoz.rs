@@ -1,5 +1,7 @@
 //! Munoz Diaz 2015 in the pipeline: the leg pitch, the pitch step detector, its step length,
-//! the activities and the height, on simulated pocket walks.
+//! the activities and the height, on simulated pocket walks. The tests run natively under
+//! `cargo test`; the bit-identical replay also runs in headless Chromium under
+//! wasm-bindgen-test.
 
 mod common;
 
@@ -12,6 +14,9 @@ use pdr::engine::{
     replay, Activity, PipelineConfig, StepDetectorConfig, StepLengthModel, StepRecord,
 };
 use pdr::sim::{scenarios, PocketPose, Scenario, Simulation};
+use wasm_bindgen_test::wasm_bindgen_test;
+
+wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
 fn pitch_cfg() -> PipelineConfig {
     PipelineConfig {
@@ -283,3 +288,40 @@ fn the_track_file_has_the_height_and_floor() {
         .fold(f64::MIN, f64::max);
     assert!((top - 9.18).abs() < 1.5, "{top}");
 }
+
+/// The stairs walk with the pitch detector and the pitch step length, bit for bit: position,
+/// length, activity, height, floor and Δθ of every step. The same constant is checked natively
+/// and in Chromium, so this fails if the two builds ever disagree (the leg pitch's atan2, the
+/// height filter and the simulator's thigh all go through `libm`).
+#[wasm_bindgen_test(unsupported = test)]
+fn stairs_replay_is_bit_identical_natively_and_in_wasm() {
+    let sim = scenarios::stairs_walk(PocketPose::ALL[5]).generate();
+    let digest = |t: &[StepRecord]| {
+        common::fnv1a(t.iter().flat_map(|s| {
+            [
+                s.t,
+                s.east_m,
+                s.north_m,
+                s.length_m,
+                s.up_m,
+                f64::from(s.floor),
+                Activity::ALL
+                    .iter()
+                    .position(|a| *a == s.activity)
+                    .unwrap_or(99) as f64,
+                s.pitch_amplitude_deg.unwrap_or(-1.0),
+            ]
+        }))
+    };
+    let a = run(&sim, pitch_length_cfg());
+    let b = run(&sim, pitch_length_cfg());
+    assert_eq!(digest(&a), digest(&b), "two replays differ");
+    assert_eq!(
+        digest(&a),
+        STAIRS_DIGEST,
+        "stairs digest changed: {:#x}",
+        digest(&a)
+    );
+}
+
+const STAIRS_DIGEST: u64 = 0xc444_f99d_10a4_dfc2;
