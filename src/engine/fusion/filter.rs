@@ -3,7 +3,7 @@
 //! May import: the rest of `engine`.
 
 use super::config::{FusionConfig, ACCURACY_PER_SIGMA};
-use super::output::{FixCounts, FixOutcome, FusedStep};
+use super::output::{FixCounts, FixOutcome, FusedStep, GnssVerdict};
 use super::schedule::Schedule;
 use super::smoother::{Smoother, Stored};
 use crate::engine::math::{symmetric, wrap_pi};
@@ -55,6 +55,8 @@ pub struct FusionDiagnostics {
     pub gnss_on_s: Option<(f64, f64)>,
     /// The last fused step, once the filter has started.
     pub last: Option<FusedStep>,
+    /// What the filter makes of the GNSS now.
+    pub verdict: GnssVerdict,
 }
 
 /// The running filter.
@@ -76,7 +78,12 @@ pub struct Fusion {
     steps: Vec<FusedStep>,
     smoother: Smoother,
     counts: FixCounts,
+    // Whether each of the last fixes offered to the gate was taken.
+    recent: std::collections::VecDeque<bool>,
 }
+
+/// How many recent fixes [`Fusion::verdict`] looks at.
+pub const RECENT_FIXES: usize = 10;
 
 impl Fusion {
     /// A filter with a validated configuration and the declination at the origin, radians.
@@ -96,6 +103,7 @@ impl Fusion {
             steps: Vec::new(),
             smoother: Smoother::default(),
             counts: FixCounts::default(),
+            recent: std::collections::VecDeque::with_capacity(RECENT_FIXES),
         }
     }
 
@@ -122,9 +130,7 @@ impl Fusion {
 
     /// Moves the receiver schedule to time `t`.
     fn schedule(&mut self, t: f64) {
-        let calibrated = self.started
-            && self.p[(2, 2)].sqrt() <= self.cfg.calibrated_scale_sd
-            && self.p[(3, 3)].sqrt() <= self.cfg.calibrated_bias_sd_deg.to_radians();
+        let calibrated = self.calibrated();
         self.schedule.push(t, calibrated);
     }
 
@@ -312,6 +318,12 @@ impl Fusion {
     }
 
     fn update(&mut self, t: f64, fix: PendingFix) -> (FixOutcome, Option<[f64; 2]>) {
+        let (outcome, nu) = self.update_inner(t, fix);
+        self.remember(outcome);
+        (outcome, nu)
+    }
+
+    fn update_inner(&mut self, t: f64, fix: PendingFix) -> (FixOutcome, Option<[f64; 2]>) {
         let age = t - fix.t;
         if age > self.cfg.max_fix_age_s || age < -self.cfg.max_fix_age_s {
             self.counts.stale += 1;
@@ -446,7 +458,46 @@ impl Fusion {
             counts: self.counts,
             gnss_on_s: self.gnss_on_s(),
             last: self.steps.last().copied(),
+            verdict: self.verdict(),
         }
+    }
+
+    /// What the filter makes of the GNSS now: distrusted when at least half of the last
+    /// [`RECENT_FIXES`] fixes offered were refused by the gate or held; calibrated when the
+    /// scale and the heading correction are known.
+    pub fn verdict(&self) -> GnssVerdict {
+        if !self.started {
+            return GnssVerdict::Waiting;
+        }
+        let refused = self.recent.iter().filter(|&&ok| !ok).count();
+        if self.recent.len() >= RECENT_FIXES / 2 && 2 * refused >= self.recent.len() {
+            return GnssVerdict::Distrusted;
+        }
+        if self.calibrated() {
+            GnssVerdict::Calibrated
+        } else {
+            GnssVerdict::Learning
+        }
+    }
+
+    /// The scale and the heading correction are known well enough.
+    fn calibrated(&self) -> bool {
+        self.started
+            && self.p[(2, 2)].sqrt() <= self.cfg.calibrated_scale_sd
+            && self.p[(3, 3)].sqrt() <= self.cfg.calibrated_bias_sd_deg.to_radians()
+    }
+
+    /// Remembers whether a fix offered to the gate was taken.
+    fn remember(&mut self, outcome: FixOutcome) {
+        let ok = match outcome {
+            FixOutcome::Used | FixOutcome::Started | FixOutcome::Reset => true,
+            FixOutcome::Gated | FixOutcome::Held => false,
+            FixOutcome::TooInaccurate | FixOutcome::Stale | FixOutcome::ReceiverOff => return,
+        };
+        if self.recent.len() == RECENT_FIXES {
+            self.recent.pop_front();
+        }
+        self.recent.push_back(ok);
     }
 
     /// The Rauch–Tung–Striebel smoothed estimate at every fused step ([`Smoother`]).

@@ -65,4 +65,4 @@ pub use config::{
 };
 pub use declination::{declination_for, wmm_declination_deg, DeclinationNote};
 pub use filter::{FixInput, Fusion, FusionDiagnostics, StepInput};
-pub use output::{FixCounts, FixOutcome, FusedStep};
+pub use output::{FixCounts, FixOutcome, FusedStep, GnssVerdict};

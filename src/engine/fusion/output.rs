@@ -65,3 +65,32 @@ pub struct FusedStep {
     /// What happened to the fix offered at this step, if any.
     pub fix: Option<FixOutcome>,
 }
+
+/// What the filter makes of the GNSS at the moment, for the user.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GnssVerdict {
+    /// No usable fix yet.
+    Waiting,
+    /// Fixes correct the position; the walk has not yet made the step-length scale and the
+    /// heading correction known.
+    Learning,
+    /// The scale and the heading correction are known (within
+    /// `FusionConfig::calibrated_scale_sd` and `calibrated_bias_sd_deg`).
+    Calibrated,
+    /// Most recent fixes disagree with the steps beyond their error: the track follows the
+    /// steps.
+    Distrusted,
+}
+
+impl GnssVerdict {
+    /// The notice shown to the user.
+    pub fn text(self) -> &'static str {
+        match self {
+            GnssVerdict::Waiting => "Waiting for GNSS",
+            GnssVerdict::Learning => "GNSS: learning your step length and heading",
+            GnssVerdict::Calibrated => "GNSS: step length and heading known",
+            GnssVerdict::Distrusted => "GNSS disagrees with your steps: using steps",
+        }
+    }
+}
