@@ -44,7 +44,12 @@ fn fit(a: &[(f64, f64)], b: &[(f64, f64)], w: &[f64], scaled: bool) -> (f64, f64
     let th = cross.atan2(dot);
     let (s, c) = th.sin_cos();
     let k = if scaled && aa > 0.0 {
-        ((dot * c + cross * s) / aa).clamp(0.8, 1.25)
+        let k = (dot * c + cross * s) / aa;
+        if std::env::var("UNCLAMPED").is_ok() {
+            k
+        } else {
+            k.clamp(0.8, 1.25)
+        }
     } else {
         1.0
     };
@@ -102,7 +107,8 @@ fn main() {
         };
         let ones = vec![1.0; truth.len()];
         let oracle_rigid = errors(fit(&pdr_at_wps, &truth, &ones, false));
-        let oracle_scaled = errors(fit(&pdr_at_wps, &truth, &ones, true));
+        let oracle_fit = fit(&pdr_at_wps, &truth, &ones, true);
+        let oracle_scaled = errors(oracle_fit);
         // Fit to the fixes (from the first step on), robustly.
         let t_first = track[0].t;
         // (PDR position, fix position, fix σ) of each fix.
@@ -145,8 +151,8 @@ fn main() {
             errors(fitted[1]),
         ];
         println!(
-            "{name:<44} truth fit: rigid {:>5.1} scaled {:>5.1} | fix fit: rigid {:>5.1} scaled {:>5.1} (scale {:.2})",
-            row[0], row[1], row[2], row[3], fitted[1].0
+            "{name:<44} truth fit: rigid {:>5.1} scaled {:>5.1} | fix fit: rigid {:>5.1} scaled {:>5.1} (scale {:.2}) truth: scale {:.2} rotation {:+.1}°",
+            row[0], row[1], row[2], row[3], fitted[1].0, oracle_fit.0, oracle_fit.2.atan2(oracle_fit.1).to_degrees()
         );
         rows.push(row);
     }

@@ -127,7 +127,7 @@ impl OnePole {
 }
 
 /// The symmetric part (P + Pᵀ)/2 of a covariance: keeps rounding from making it asymmetric.
-pub fn symmetric(p: nalgebra::Matrix4<f64>) -> nalgebra::Matrix4<f64> {
+pub fn symmetric<const D: usize>(p: nalgebra::SMatrix<f64, D, D>) -> nalgebra::SMatrix<f64, D, D> {
     (p + p.transpose()) * 0.5
 }
 

@@ -32,7 +32,7 @@ use super::detector::DetectorInput;
 use super::foot::placement::{Placement, Recogniser};
 use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
 use super::fusion::GnssMode;
-use super::fusion::{declination_for, DeclinationNote, FixCounts, FixInput, FusedStep};
+use super::fusion::{declination_for, DeclinationNote, FixCounts, FixInput, FusedStep, OriginVote};
 use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
 use super::heading::{self, Heading, HeadingConfig, NavSample};
@@ -321,6 +321,7 @@ pub struct Pipeline {
     fixes: Vec<GnssFix>,
     frame: Option<LocalFrame>,
     fusion: Option<Fusion>,
+    origin: OriginVote,
     diag: Diagnostics,
     /// Foot mode and the hybrid heading, once a foot sample arrived.
     two: Option<two_sensor::TwoSensor>,
@@ -355,6 +356,7 @@ impl Pipeline {
             buf: VecDeque::new(),
             last_t: None,
             last_gnss_t: None,
+            origin: OriginVote::default(),
             last_pressure_t: None,
             prev_state: Motion::Still,
             t_km1: None,
@@ -565,20 +567,48 @@ impl Pipeline {
         self.last_gnss_t = Some(f.t);
         self.fixes.push(*f);
         self.diag.gnss_fixes += 1;
-        // The origin is the first fix good enough for the filter (any fix without fusion).
+        // Without fusion the origin is the first fix. With it, the first of a consensus of
+        // fixes good enough for the filter (`OriginVote`: a stale cached fix must not be the
+        // origin); those fixes are then offered to the filter in order.
         let fusion_on = self.cfg.fusion.mode != GnssMode::Off;
-        let usable = !fusion_on || f.h_accuracy_m <= self.cfg.fusion.max_accuracy_m;
-        if self.frame.is_none() && usable {
-            let frame = LocalFrame::new(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(0.0));
-            if fusion_on {
-                let cfg = self.cfg.fusion;
-                let (d, note) = declination_for(&cfg, &frame, f.t);
-                self.diag.declination_deg = Some(d.to_degrees());
-                self.diag.declination_note = note;
-                self.fusion = Some(Fusion::new(cfg, d));
+        if self.frame.is_none() {
+            if !fusion_on {
+                self.frame = Some(LocalFrame::new(
+                    f.lat_deg,
+                    f.lon_deg,
+                    f.altitude_m.unwrap_or(0.0),
+                ));
+                return Ok(());
             }
+            if !(f.h_accuracy_m <= self.cfg.fusion.max_accuracy_m) {
+                return Ok(());
+            }
+            let Some(group) = self.origin.push(&self.cfg.fusion, f) else {
+                return Ok(());
+            };
+            let first = group[0];
+            let frame = LocalFrame::new(
+                first.lat_deg,
+                first.lon_deg,
+                first.altitude_m.unwrap_or(0.0),
+            );
+            let cfg = self.cfg.fusion;
+            let (d, note) = declination_for(&cfg, &frame, first.t);
+            self.diag.declination_deg = Some(d.to_degrees());
+            self.diag.declination_note = note;
+            self.fusion = Some(Fusion::new(cfg, d));
             self.frame = Some(frame);
+            for g in &group {
+                self.offer_fix(g);
+            }
+            return Ok(());
         }
+        self.offer_fix(f);
+        Ok(())
+    }
+
+    /// Offers a fix to the fusion filter, in the local frame.
+    fn offer_fix(&mut self, f: &GnssFix) {
         if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
             let (e, n) = frame.en_of_fix(f);
             let still = self.motion.state() == Motion::Still;
@@ -590,7 +620,6 @@ impl Pipeline {
                 still,
             });
         }
-        Ok(())
     }
 
     /// Every step so far.

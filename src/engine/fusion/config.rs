@@ -83,6 +83,50 @@ pub struct FusionConfig {
     /// Random error of each step's heading, degrees (1σ). 5°: the step-to-step scatter of the
     /// averaged tip-to-tail heading on pocket walks.
     pub heading_sd_deg: f64,
+    /// Time constant of the fixes' correlated error, s: a fix's error persists from fix to fix
+    /// (multipath, the receiver's own filter) and decays as a first-order Gauss–Markov process
+    /// with this time constant, estimated in the state. 0 treats every fix's error as new.
+    /// Measured on the IPIN 2023 phone fixes against their landmarks (`examples/gnss_errors`):
+    /// the errors' autocorrelation is about e^(−Δt/14 s) up to 20 s apart.
+    pub fix_error_tau_s: f64,
+    /// The share of a fix's error variance that is new at every fix (white); the rest is the
+    /// correlated error above.
+    pub fix_white_share: f64,
+    /// Fixes whose innovations tell the fixes' σ (see `Fusion::adapt_sigma`); 0: the reported
+    /// accuracy is taken as it is.
+    pub fix_sigma_window: u32,
+    /// The most the fixes' σ is scaled up by.
+    pub max_fix_sigma_scale: f64,
+    /// How late the receiver reports where the walker was, s: a fix is carried forward along
+    /// the walking velocity by this much more than its age.
+    pub fix_latency_s: f64,
+    /// Fixes teach the scale and the heading correction only after this long walking, s: a
+    /// phone's receiver holds the standing position for 5–10 s after the walker sets off, then
+    /// jumps; and fixes while standing say nothing of steps.
+    pub learn_after_walking_s: f64,
+    /// The step-length scale is learnt from baselines between two fixes at least this far
+    /// apart along the walk, m, comparing the displacement the fixes show with the PDR's (see
+    /// `Fusion::baseline`); a fix alone then corrects the position only. 0: every fix corrects
+    /// the scale through the filter's correlations.
+    pub baseline_min_m: f64,
+    /// A baseline must also be this many times longer than its ends' error (1σ per axis, both
+    /// ends summed).
+    pub baseline_sigmas: f64,
+    /// Only fixes this accurate or better end a baseline, m.
+    pub baseline_max_accuracy_m: f64,
+    /// With baselines on, single fixes still correct the heading correction (through the
+    /// filter's correlations); off: baselines alone do.
+    pub bias_from_fixes: bool,
+    /// Without evidence, the scale and the heading correction return to 1 and 0 with this time
+    /// constant, s (first-order Gauss–Markov processes whose spread is their priors',
+    /// [`FusionConfig::scale0_sd`] and [`FusionConfig::bias0_sd_deg`]). 0: they keep what they
+    /// learnt.
+    pub correction_tau_s: f64,
+    /// The step-length scale is held within these bounds: a person's stride is not half, nor
+    /// one and a half times, what a calibrated engine measures.
+    pub scale_bounds: (f64, f64),
+    /// The heading correction is held within ± this, degrees.
+    pub bias_bound_deg: f64,
     /// Random walk of the scale per step (1σ).
     pub scale_rw: f64,
     /// Random walk of the heading correction per step, degrees (1σ).
@@ -129,6 +173,19 @@ impl Default for FusionConfig {
             reset_after: 5,
             step_length_sd_rel: 0.08,
             heading_sd_deg: 5.0,
+            fix_error_tau_s: 14.0,
+            fix_white_share: 0.1,
+            fix_sigma_window: 0,
+            max_fix_sigma_scale: 4.0,
+            fix_latency_s: 0.0,
+            learn_after_walking_s: 10.0,
+            correction_tau_s: 0.0,
+            baseline_min_m: 40.0,
+            baseline_sigmas: 5.0,
+            baseline_max_accuracy_m: 15.0,
+            bias_from_fixes: true,
+            scale_bounds: (0.8, 1.25),
+            bias_bound_deg: 25.0,
             scale_rw: 0.001,
             bias_rw_deg: 0.05,
             scale0_sd: 0.15,
@@ -156,6 +213,47 @@ impl FusionConfig {
         positive("fusion.heading_sd_deg", self.heading_sd_deg)?;
         positive("fusion.scale_rw", self.scale_rw)?;
         positive("fusion.bias_rw_deg", self.bias_rw_deg)?;
+        for (v, name) in [
+            (self.fix_error_tau_s, "fusion.fix_error_tau_s"),
+            (self.fix_latency_s, "fusion.fix_latency_s"),
+            (self.learn_after_walking_s, "fusion.learn_after_walking_s"),
+            (self.correction_tau_s, "fusion.correction_tau_s"),
+            (self.baseline_min_m, "fusion.baseline_min_m"),
+            (self.baseline_sigmas, "fusion.baseline_sigmas"),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(ConfigError::new(name, "must be a finite number, 0 or more"));
+            }
+        }
+        if !(self.max_fix_sigma_scale >= 1.0 && self.max_fix_sigma_scale.is_finite()) {
+            return Err(ConfigError::new(
+                "fusion.max_fix_sigma_scale",
+                "must be a finite number, 1 or more",
+            ));
+        }
+        positive(
+            "fusion.baseline_max_accuracy_m",
+            self.baseline_max_accuracy_m,
+        )?;
+        if !(self.fix_white_share > 0.0 && self.fix_white_share <= 1.0) {
+            return Err(ConfigError::new(
+                "fusion.fix_white_share",
+                "must be in (0, 1]",
+            ));
+        }
+        let (lo, hi) = self.scale_bounds;
+        if !(lo > 0.0 && lo <= 1.0 && hi >= 1.0 && hi.is_finite()) {
+            return Err(ConfigError::new(
+                "fusion.scale_bounds",
+                "must be (low, high) with 0 < low <= 1 <= high",
+            ));
+        }
+        if !(self.bias_bound_deg > 0.0 && self.bias_bound_deg <= 180.0) {
+            return Err(ConfigError::new(
+                "fusion.bias_bound_deg",
+                "must be in (0, 180]",
+            ));
+        }
         positive("fusion.scale0_sd", self.scale0_sd)?;
         positive("fusion.bias0_sd_deg", self.bias0_sd_deg)?;
         positive("fusion.velocity_sd_mps", self.velocity_sd_mps)?;

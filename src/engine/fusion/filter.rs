@@ -5,15 +5,36 @@
 use super::config::{FusionConfig, ACCURACY_PER_SIGMA};
 use super::output::{FixCounts, FixOutcome, FusedStep, GnssVerdict};
 use super::schedule::Schedule;
-use super::smoother::{Smoother, Stored};
+use super::smoother::{Cov, Smoother, State, Stored, BIAS};
 use crate::engine::math::{symmetric, wrap_pi};
-use nalgebra::{Matrix2, Matrix4, Vector2, Vector4};
+use nalgebra::{Matrix2, Matrix2x6, Matrix6, Matrix6x2, Vector2};
+
+/// The state's indices: east, north, step-length scale, heading correction, and the fixes'
+/// correlated error east and north.
+const E: usize = 0;
+const N: usize = 1;
+const K: usize = 2;
+const B: usize = BIAS;
+const FE: usize = 4;
+const FN: usize = 5;
 
 /// A fix waiting for the next step, in the local frame.
 #[derive(Debug, Clone, Copy)]
 struct PendingFix {
     t: f64,
     en: Vector2<f64>,
+    /// Per-axis σ of the fix's whole error, from its reported accuracy, m.
+    sigma: f64,
+    /// The walker stands: the fix says nothing of the step length or the heading.
+    standing: bool,
+}
+
+/// One end of a baseline: a fix that taught the filter while walking, and where the PDR alone
+/// (declination applied, no correction) had got to then.
+#[derive(Debug, Clone, Copy)]
+struct Anchor {
+    fix: Vector2<f64>,
+    dead_reckoned: Vector2<f64>,
     sigma: f64,
 }
 
@@ -64,8 +85,12 @@ pub struct FusionDiagnostics {
 pub struct Fusion {
     cfg: FusionConfig,
     declination_rad: f64,
-    x: Vector4<f64>,
-    p: Matrix4<f64>,
+    x: State,
+    p: Cov,
+    // The time the state refers to (the fixes' correlated error decays with time).
+    t_state: f64,
+    // Per-axis σ of the fixes' whole error, from the latest fix's accuracy, m.
+    fix_sigma: f64,
     started: bool,
     pending: Option<PendingFix>,
     // Innovations and variances of the fixes refused in a row by the gate.
@@ -74,13 +99,24 @@ pub struct Fusion {
     held: Vec<(Vector2<f64>, f64)>,
     last_step: Option<(f64, Vector2<f64>)>,
     velocity: Vector2<f64>,
+    // The time of the first step of the current bout.
+    walking_since: Option<f64>,
+    // The PDR alone (declination applied, no correction) summed over the steps, east and north.
+    dead_reckoned: Vector2<f64>,
+    anchor: Option<Anchor>,
     schedule: Schedule,
     steps: Vec<FusedStep>,
     smoother: Smoother,
     counts: FixCounts,
     // Whether each of the last fixes offered to the gate was taken.
     recent: std::collections::VecDeque<bool>,
+    // The fixes' normalised squared innovations, and the scale of their σ they imply.
+    nis: std::collections::VecDeque<f64>,
+    sigma_scale: f64,
 }
+
+/// The median of the χ² distribution with 2 degrees of freedom (2 ln 2).
+const CHI2_2_MEDIAN: f64 = 1.386_294_361;
 
 /// How many recent fixes [`Fusion::verdict`] looks at.
 pub const RECENT_FIXES: usize = 10;
@@ -91,19 +127,26 @@ impl Fusion {
         Fusion {
             cfg,
             declination_rad,
-            x: Vector4::new(0.0, 0.0, 1.0, 0.0),
-            p: Matrix4::zeros(),
+            x: State::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0),
+            p: Cov::zeros(),
+            t_state: 0.0,
+            fix_sigma: 0.0,
             started: false,
             pending: None,
             gated: Vec::new(),
             held: Vec::new(),
             last_step: None,
             velocity: Vector2::zeros(),
+            walking_since: None,
+            dead_reckoned: Vector2::zeros(),
+            anchor: None,
             schedule: Schedule::new(&cfg),
             steps: Vec::new(),
             smoother: Smoother::default(),
             counts: FixCounts::default(),
             recent: std::collections::VecDeque::with_capacity(RECENT_FIXES),
+            nis: std::collections::VecDeque::new(),
+            sigma_scale: 1.0,
         }
     }
 
@@ -156,17 +199,24 @@ impl Fusion {
             self.counts.too_inaccurate += 1;
             return Some(FixOutcome::TooInaccurate);
         }
+        let last_step_t = self.steps.last().map(|s| s.t).filter(|_| self.started);
+        let standing = last_step_t.filter(|&ts| still && t - ts >= self.cfg.standing_after_s);
         let fix = PendingFix {
             t,
             en: Vector2::new(east, north),
             sigma: accuracy_m / ACCURACY_PER_SIGMA,
+            standing: standing.is_some(),
         };
-        let last_step_t = self.steps.last().map(|s| s.t).filter(|_| self.started);
-        let standing = last_step_t.filter(|&ts| still && t - ts >= self.cfg.standing_after_s);
         if let Some(t_step) = standing {
             // The walker has not moved since the last step: the fix updates that step's
-            // estimate (and what the smoother stored of it) now, as if it had come then.
+            // estimate (and what the smoother stored of it) now, as if it had come then. Only
+            // the fixes' own error has moved on meanwhile.
             self.velocity = Vector2::zeros();
+            self.walking_since = None;
+            let (x, p, _) = self.predict(t, 0.0, None);
+            self.x = x;
+            self.p = p;
+            self.t_state = self.t_state.max(t);
             let (outcome, innovation) = self.update(t, fix);
             let rec = self.snapshot(t_step, innovation, Some(outcome));
             if let (Some(stored), Some(last)) = (self.smoother.last_mut(), self.steps.last_mut()) {
@@ -192,38 +242,37 @@ impl Fusion {
             length_m,
             heading_rad,
         } = *step;
+        if self.walking_since.is_none() {
+            self.walking_since = Some(t);
+        }
         if !self.started {
             let p = self.pending.take()?;
             if t - p.t > self.cfg.max_fix_age_s {
                 self.counts.stale += 1;
                 return None;
             }
-            self.x = Vector4::new(p.en.x, p.en.y, 1.0, 0.0);
-            // One fix may be an outlier: start wide, so that the next fixes are taken by
-            // consensus (see `consensus_sd_m`).
-            let s2 = (p.sigma * p.sigma).max(4.0 * sq(self.cfg.consensus_sd_m));
-            self.p = Matrix4::from_diagonal(&Vector4::new(
-                s2,
-                s2,
-                self.cfg.scale0_sd * self.cfg.scale0_sd,
-                sq(self.cfg.bias0_sd_deg.to_radians()),
-            ));
-            self.started = true;
+            self.start(t, &p);
             self.counts.used += 1;
             self.last_step = Some((t, p.en));
             let rec = self.record(t, None, Some(FixOutcome::Started));
+            self.remember(FixOutcome::Started);
             self.smoother.push(Stored {
                 x_pred: self.x,
                 p_pred: self.p,
-                f: Matrix4::identity(),
+                f: Cov::identity(),
                 x: self.x,
                 p: self.p,
             });
             return Some(rec);
         }
-        let (x_pred, p_pred, f) = self.predict(length_m, heading_rad);
+        if let Some(theta) = heading_rad.filter(|_| length_m > 0.0) {
+            let (s, c) = libm::sincos(theta + self.declination_rad);
+            self.dead_reckoned += Vector2::new(s, c) * length_m;
+        }
+        let (x_pred, p_pred, f) = self.predict(t, length_m, heading_rad);
         self.x = x_pred;
         self.p = p_pred;
+        self.t_state = self.t_state.max(t);
         let mut innovation = None;
         let mut outcome = None;
         if let Some(fix) = self.pending.take() {
@@ -231,7 +280,7 @@ impl Fusion {
             outcome = Some(o);
             innovation = nu;
         }
-        let en = Vector2::new(self.x[0], self.x[1]);
+        let en = Vector2::new(self.x[E], self.x[N]);
         if let Some((t0, p0)) = self.last_step {
             let dt = t - t0;
             if dt > 0.0 && dt < 2.0 {
@@ -252,11 +301,32 @@ impl Fusion {
         Some(self.record(t, innovation, outcome))
     }
 
+    /// The filter's first state, at the first usable fix: there, with the prior scale and
+    /// heading correction. One fix may be an outlier: the position starts wide, so that the
+    /// next fixes are taken by consensus (see `consensus_sd_m`).
+    fn start(&mut self, t: f64, p: &PendingFix) {
+        self.fix_sigma = p.sigma;
+        let s2 = sq(p.sigma).max(4.0 * sq(self.cfg.consensus_sd_m));
+        let b2 = self.correlated_var();
+        self.x = State::new(p.en.x, p.en.y, 1.0, 0.0, 0.0, 0.0);
+        self.p = Cov::from_diagonal(&State::new(
+            s2,
+            s2,
+            sq(self.cfg.scale0_sd),
+            sq(self.cfg.bias0_sd_deg.to_radians()),
+            b2,
+            b2,
+        ));
+        self.t_state = t;
+        self.started = true;
+    }
+
     /// Marks the end of a bout (a stop or a gap): the walking velocity used to carry fixes to
     /// the next step is forgotten.
     pub fn end_bout(&mut self) {
         self.velocity = Vector2::zeros();
         self.last_step = None;
+        self.walking_since = None;
     }
 
     fn record(
@@ -274,46 +344,78 @@ impl Fusion {
     fn snapshot(&self, t: f64, innovation: Option<[f64; 2]>, fix: Option<FixOutcome>) -> FusedStep {
         FusedStep {
             t,
-            east_m: self.x[0],
-            north_m: self.x[1],
-            cov: [self.p[(0, 0)], self.p[(0, 1)], self.p[(1, 1)]],
-            scale: self.x[2],
-            bias_rad: self.x[3],
-            scale_bias_sd: [self.p[(2, 2)].sqrt(), self.p[(3, 3)].sqrt()],
+            east_m: self.x[E],
+            north_m: self.x[N],
+            cov: [self.p[(E, E)], self.p[(E, N)], self.p[(N, N)]],
+            scale: self.x[K],
+            bias_rad: self.x[B],
+            scale_bias_sd: [self.p[(K, K)].sqrt(), self.p[(B, B)].sqrt()],
             innovation,
             fix,
         }
     }
 
-    fn predict(
-        &self,
-        length: f64,
-        heading: Option<f64>,
-    ) -> (Vector4<f64>, Matrix4<f64>, Matrix4<f64>) {
-        let (k, beta) = (self.x[2], self.x[3]);
+    /// Variance per axis of the fixes' correlated error ([`FusionConfig::fix_error_tau_s`],
+    /// [`FusionConfig::fix_white_share`]) at the latest fix's accuracy, m².
+    fn correlated_var(&self) -> f64 {
+        if self.cfg.fix_error_tau_s > 0.0 {
+            (1.0 - self.cfg.fix_white_share) * sq(self.fix_sigma)
+        } else {
+            0.0
+        }
+    }
+
+    /// The state at time `t` after a step of PDR length `length` and heading `heading` (none:
+    /// time alone passes): the prediction, its covariance and the transition's Jacobian.
+    /// - The step: E ← E + k L sin φ, N ← N + k L cos φ, φ = θ + D + β.
+    /// - The fixes' correlated error decays as a first-order Gauss–Markov process,
+    ///   b ← e^(−Δt/τ) b, its variance restored by the process noise σ_b²(1 − e^(−2Δt/τ)).
+    /// - Without evidence the scale and the heading correction return to their priors (1, 0)
+    ///   as first-order Gauss–Markov processes with time constant
+    ///   [`FusionConfig::correction_tau_s`] and the priors' spread.
+    fn predict(&self, t: f64, length: f64, heading: Option<f64>) -> (State, Cov, Cov) {
+        let (k, beta) = (self.x[K], self.x[B]);
         let mut x = self.x;
-        let mut f = Matrix4::identity();
-        let mut q = Matrix4::zeros();
+        let mut f = Cov::identity();
+        let mut q = Cov::zeros();
         if let Some(theta) = heading.filter(|_| length > 0.0) {
             let phi = theta + self.declination_rad + beta;
             let (s, c) = libm::sincos(phi);
-            x[0] += k * length * s;
-            x[1] += k * length * c;
-            f[(0, 2)] = length * s;
-            f[(0, 3)] = k * length * c;
-            f[(1, 2)] = length * c;
-            f[(1, 3)] = -k * length * s;
+            x[E] += k * length * s;
+            x[N] += k * length * c;
+            f[(E, K)] = length * s;
+            f[(E, B)] = k * length * c;
+            f[(N, K)] = length * c;
+            f[(N, B)] = -k * length * s;
             // Displacement noise from the step's own length and heading errors.
             let sl = self.cfg.step_length_sd_rel * length;
             let sh = self.cfg.heading_sd_deg.to_radians();
-            let g = nalgebra::Matrix2::new(k * s, k * length * c, k * c, -k * length * s);
+            let g = Matrix2::new(k * s, k * length * c, k * c, -k * length * s);
             let qd = g * Matrix2::from_diagonal(&Vector2::new(sl * sl, sh * sh)) * g.transpose();
-            q.fixed_view_mut::<2, 2>(0, 0).copy_from(&qd);
+            q.fixed_view_mut::<2, 2>(E, E).copy_from(&qd);
+            q[(K, K)] = sq(self.cfg.scale_rw);
+            q[(B, B)] = sq(self.cfg.bias_rw_deg.to_radians());
         }
-        q[(2, 2)] = self.cfg.scale_rw * self.cfg.scale_rw;
-        q[(3, 3)] = sq(self.cfg.bias_rw_deg.to_radians());
+        let dt = (t - self.t_state).max(0.0);
+        if self.cfg.correction_tau_s > 0.0 && dt > 0.0 {
+            let phi = libm::exp(-dt / self.cfg.correction_tau_s);
+            x[K] = 1.0 + phi * (x[K] - 1.0);
+            x[B] *= phi;
+            f[(K, K)] = phi;
+            f[(B, B)] = phi;
+            q[(K, K)] += sq(self.cfg.scale0_sd) * (1.0 - phi * phi);
+            q[(B, B)] += sq(self.cfg.bias0_sd_deg.to_radians()) * (1.0 - phi * phi);
+        }
+        let tau = self.cfg.fix_error_tau_s;
+        let decay = if tau > 0.0 { libm::exp(-dt / tau) } else { 0.0 };
+        let b2 = self.correlated_var();
+        for i in [FE, FN] {
+            f[(i, i)] = decay;
+            x[i] *= decay;
+            q[(i, i)] = b2 * (1.0 - decay * decay);
+        }
         let p = symmetric(f * self.p * f.transpose() + q);
-        x[3] = wrap_pi(x[3]);
+        x[B] = wrap_pi(x[B]);
         (x, p, f)
     }
 
@@ -323,27 +425,47 @@ impl Fusion {
         (outcome, nu)
     }
 
+    /// Whether a fix may teach the scale and the heading correction: the walker must be
+    /// walking, and for long enough that the receiver has caught up (phones' receivers hold
+    /// the standing position for 5–10 s after the walker sets off, then jump:
+    /// [`FusionConfig::learn_after_walking_s`]).
+    fn teaches(&self, t: f64, fix: &PendingFix) -> bool {
+        !fix.standing
+            && self
+                .walking_since
+                .is_some_and(|t0| t - t0 >= self.cfg.learn_after_walking_s)
+    }
+
     fn update_inner(&mut self, t: f64, fix: PendingFix) -> (FixOutcome, Option<[f64; 2]>) {
         let age = t - fix.t;
         if age > self.cfg.max_fix_age_s || age < -self.cfg.max_fix_age_s {
             self.counts.stale += 1;
             return (FixOutcome::Stale, None);
         }
-        // Carry the fix to the step time along the walking velocity.
-        let z = fix.en + self.velocity * age;
-        let ext = self.cfg.velocity_sd_mps * age;
-        let r = fix.sigma * fix.sigma + ext * ext;
-        let nu = z - Vector2::new(self.x[0], self.x[1]);
-        let p_pos = self.p.fixed_view::<2, 2>(0, 0).into_owned();
-        let prior_sd = (0.5 * p_pos.trace()).sqrt();
+        let fix = PendingFix {
+            sigma: fix.sigma * self.sigma_scale,
+            ..fix
+        };
+        self.fix_error_from(fix.sigma);
+        let learn = self.teaches(t, &fix);
+        // Carry the fix to the step time along the walking velocity, and by the receiver's
+        // latency.
+        let carry = age + self.cfg.fix_latency_s;
+        let z = fix.en + self.velocity * carry;
+        let ext = self.cfg.velocity_sd_mps * carry;
+        let r = sq(fix.sigma) - self.correlated_var() + ext * ext;
+        let nu = z - self.predicted_fix();
+        let hph = self.hph();
+        let prior_sd = (0.5 * (self.p[(E, E)] + self.p[(N, N)])).sqrt();
         if prior_sd > self.cfg.consensus_sd_m {
-            return self.consensus(nu, r);
+            return self.consensus(nu, r, learn);
         }
-        let Some(s_inv) = (p_pos + Matrix2::identity() * r).try_inverse() else {
+        let Some(s_inv) = (hph + Matrix2::identity() * r).try_inverse() else {
             self.counts.gated += 1;
             return (FixOutcome::Gated, Some([nu.x, nu.y]));
         };
         let d2 = (nu.transpose() * s_inv * nu)[(0, 0)];
+        self.adapt_sigma(d2);
         if !(d2 <= self.cfg.gate_chi2) {
             self.gated.push((nu, r));
             if self.gated.len() < self.cfg.reset_after as usize {
@@ -355,43 +477,184 @@ impl Fusion {
             let held = std::mem::take(&mut self.gated);
             self.counts.resets += 1;
             self.held = held;
-            // Forget the position's correlations: its error is not what P said.
-            for i in 0..2 {
-                for j in 0..4 {
+            // Forget the position's correlations (its error is not what P said) and the fixes'
+            // correlated error.
+            let b2 = self.correlated_var();
+            for i in [E, N, FE, FN] {
+                for j in 0..6 {
                     self.p[(i, j)] = 0.0;
                     self.p[(j, i)] = 0.0;
                 }
+            }
+            for i in [E, N] {
                 self.p[(i, i)] = sq(self.cfg.consensus_sd_m) * 4.0;
             }
-            let (_, nu_used) = self.consensus_update();
+            for i in [FE, FN] {
+                self.p[(i, i)] = b2;
+                self.x[i] = 0.0;
+            }
+            let (_, nu_used) = self.consensus_update(learn);
             return (FixOutcome::Reset, nu_used.or(Some([nu.x, nu.y])));
         }
         self.gated.clear();
         self.held.clear();
-        self.apply(nu, r);
+        self.apply(nu, r, learn);
         self.counts.used += 1;
+        if learn {
+            self.baseline(z, fix.sigma);
+        }
         (FixOutcome::Used, Some([nu.x, nu.y]))
+    }
+
+    /// A fix that may teach ends a baseline when the walk since the last one is long against
+    /// the fixes' error: the displacement the fixes show, g, against the PDR's alone, d,
+    /// observes the scale |g|/|d| and the heading correction ∠g − ∠d, each with the standard
+    /// deviation σ/|d| (σ² the two ends' variances summed; Basso 2021 §2.2.5 corrects the step
+    /// length from the distance between fixes). A chord between two fixes is not shortened by
+    /// the receiver's smoothing of the path between them, only by errors at its ends. A
+    /// baseline that disagrees with the estimate by more than the gate is dropped. The fix then
+    /// starts the next one.
+    fn baseline(&mut self, z: Vector2<f64>, sigma: f64) {
+        if self.cfg.baseline_min_m <= 0.0
+            || sigma * ACCURACY_PER_SIGMA > self.cfg.baseline_max_accuracy_m
+        {
+            return;
+        }
+        let here = Anchor {
+            fix: z,
+            dead_reckoned: self.dead_reckoned,
+            sigma,
+        };
+        let Some(a) = self.anchor else {
+            self.anchor = Some(here);
+            return;
+        };
+        let d = self.dead_reckoned - a.dead_reckoned;
+        let g = z - a.fix;
+        let pair = (sq(a.sigma) + sq(sigma)).sqrt();
+        let len = d.norm();
+        if len < self.cfg.baseline_min_m || len < self.cfg.baseline_sigmas * pair {
+            return;
+        }
+        self.anchor = Some(here);
+        let heading = |v: Vector2<f64>| libm::atan2(v.x, v.y);
+        let obs = Vector2::new(g.norm() / len, wrap_pi(heading(g) - heading(d)));
+        let sd = pair / len;
+        let mut h = Matrix2x6::zeros();
+        h[(0, K)] = 1.0;
+        h[(1, B)] = 1.0;
+        let nu = Vector2::new(obs.x - self.x[K], wrap_pi(obs.y - self.x[B]));
+        let rm = Matrix2::new(sq(sd), 0.0, 0.0, sq(sd));
+        let s = h * self.p * h.transpose() + rm;
+        let Some(s_inv) = s.try_inverse() else {
+            return;
+        };
+        if !((nu.transpose() * s_inv * nu)[(0, 0)] <= self.cfg.gate_chi2) {
+            self.counts.baselines_gated += 1;
+            return;
+        }
+        let k: Matrix6x2<f64> = self.p * h.transpose() * s_inv;
+        self.x += k * nu;
+        self.bound();
+        let ikh = Matrix6::identity() - k * h;
+        self.p = symmetric(ikh * self.p * ikh.transpose() + k * rm * k.transpose());
+        self.counts.baselines += 1;
+    }
+
+    /// Holds the corrections within their physical bounds ([`FusionConfig::scale_bounds`],
+    /// [`FusionConfig::bias_bound_deg`]).
+    fn bound(&mut self) {
+        self.x[B] = wrap_pi(self.x[B]);
+        let (lo, hi) = self.cfg.scale_bounds;
+        self.x[K] = self.x[K].clamp(lo, hi);
+        let bound = self.cfg.bias_bound_deg.to_radians();
+        self.x[B] = self.x[B].clamp(-bound, bound);
+    }
+
+    /// Phones' reported accuracy is often optimistic, for minutes (multipath in a courtyard).
+    /// The σ taken from it is scaled by √λ, λ the median over the last
+    /// [`FusionConfig::fix_sigma_window`] fixes of their normalised squared innovation
+    /// (divided by the χ²₂ median, 1.386; each taken at the scale then in force), within
+    /// [1, [`FusionConfig::max_fix_sigma_scale`]²]: covariance matching, with a median so that
+    /// outliers, which the gate refuses, do not count.
+    fn adapt_sigma(&mut self, d2: f64) {
+        let n = self.cfg.fix_sigma_window as usize;
+        if n == 0 || !d2.is_finite() {
+            return;
+        }
+        if self.nis.len() == n {
+            self.nis.pop_front();
+        }
+        self.nis.push_back(d2 * sq(self.sigma_scale));
+        if self.nis.len() < n / 2 {
+            return;
+        }
+        let mut v: Vec<f64> = self.nis.iter().copied().collect();
+        v.sort_by(f64::total_cmp);
+        let lambda = v[v.len() / 2] / CHI2_2_MEDIAN;
+        self.sigma_scale = lambda.sqrt().clamp(1.0, self.cfg.max_fix_sigma_scale);
+    }
+
+    /// The fixes' error follows the receiver's reported accuracy: when it reports a worse one
+    /// than the correlated error's variance now allows, that variance grows to it at once (a
+    /// courtyard's multipath does not wait for the Gauss–Markov process to build up).
+    fn fix_error_from(&mut self, sigma: f64) {
+        self.fix_sigma = sigma;
+        let b2 = self.correlated_var();
+        for i in [FE, FN] {
+            if self.p[(i, i)] < b2 {
+                self.p[(i, i)] = b2;
+            }
+        }
+    }
+
+    /// Where the filter expects the next fix: the position plus the fixes' correlated error.
+    fn predicted_fix(&self) -> Vector2<f64> {
+        Vector2::new(self.x[E] + self.x[FE], self.x[N] + self.x[FN])
+    }
+
+    /// The measurement matrix H: a fix sees the position plus its correlated error.
+    fn h() -> Matrix2x6<f64> {
+        let mut h = Matrix2x6::zeros();
+        h[(0, E)] = 1.0;
+        h[(1, N)] = 1.0;
+        h[(0, FE)] = 1.0;
+        h[(1, FN)] = 1.0;
+        h
+    }
+
+    /// H P Hᵀ: the covariance of the predicted fix.
+    fn hph(&self) -> Matrix2<f64> {
+        let h = Self::h();
+        h * self.p * h.transpose()
     }
 
     /// A fix while the prior is too wide for the Mahalanobis gate to tell an outlier (at the
     /// start, after an outage, at the start of an energy-saving window): it is held, and the
     /// filter is updated once [`FusionConfig::consensus_n`] held fixes agree with each other.
-    fn consensus(&mut self, nu: Vector2<f64>, r: f64) -> (FixOutcome, Option<[f64; 2]>) {
+    fn consensus(
+        &mut self,
+        nu: Vector2<f64>,
+        r: f64,
+        learn: bool,
+    ) -> (FixOutcome, Option<[f64; 2]>) {
         self.held.push((nu, r));
-        let (outcome, _) = self.consensus_update();
+        let (outcome, _) = self.consensus_update(learn);
         (outcome, Some([nu.x, nu.y]))
     }
 
     /// Looks for the largest group of held fixes that agree pairwise-with-one-of-them (each
     /// innovation was taken at its own step; between those steps the prediction moved with the
     /// walker, so agreeing fixes see one offset). Two innovations agree when their difference
-    /// is within the gate for their summed variances. With [`FusionConfig::consensus_n`] in
-    /// the group, one update with their mean innovation; otherwise the fixes wait (at most
-    /// twice that many, oldest dropped). Returns the outcome and the innovation used.
-    fn consensus_update(&mut self) -> (FixOutcome, Option<[f64; 2]>) {
+    /// is within the gate for their summed variances (the fixes' whole error, correlated part
+    /// included). With [`FusionConfig::consensus_n`] in the group, one update with their mean
+    /// innovation; otherwise the fixes wait (at most twice that many, oldest dropped). Returns
+    /// the outcome and the innovation used.
+    fn consensus_update(&mut self, learn: bool) -> (FixOutcome, Option<[f64; 2]>) {
         let need = self.cfg.consensus_n as usize;
+        let b2 = self.correlated_var();
         let agree = |a: &(Vector2<f64>, f64), b: &(Vector2<f64>, f64)| {
-            (a.0 - b.0).norm_squared() / (a.1 + b.1) <= self.cfg.gate_chi2
+            (a.0 - b.0).norm_squared() / (a.1 + b.1 + 2.0 * b2) <= self.cfg.gate_chi2
         };
         let best = (0..self.held.len())
             .map(|i| {
@@ -411,33 +674,40 @@ impl Fusion {
         }
         let held = std::mem::take(&mut self.held);
         self.counts.gated += (held.len() - best.len()) as u64;
-        // One update with the mean innovation; its variance is that of a mean of independent
-        // fixes.
+        // One update with the mean innovation; its white part is that of a mean of
+        // independent errors, the correlated part is in the state.
         let n = best.len() as f64;
         let nu = best.iter().fold(Vector2::zeros(), |a, &i| a + held[i].0) / n;
         let r = best.iter().map(|&i| held[i].1).sum::<f64>() / (n * n);
-        self.apply(nu, r);
+        self.apply(nu, r, learn);
         self.counts.used += best.len() as u64;
         self.gated.clear();
         (FixOutcome::Used, Some([nu.x, nu.y]))
     }
 
-    /// The Kalman update with innovation `nu` of the position and noise variance `r` per axis
-    /// (H = [I₂ 0]), in Joseph form.
-    fn apply(&mut self, nu: Vector2<f64>, r: f64) {
+    /// The Kalman update with innovation `nu` of the fix (H = [I₂ 0 0 I₂]) and white noise
+    /// variance `r` per axis, in Joseph form (valid for any gain). When the fix may not teach
+    /// the corrections (`learn` false: see [`Fusion::teaches`]), the gain's scale and
+    /// heading-correction rows are zero. The corrections are then held within their physical
+    /// bounds ([`FusionConfig::scale_bounds`], [`FusionConfig::bias_bound_deg`]).
+    fn apply(&mut self, nu: Vector2<f64>, r: f64, learn: bool) {
+        let h = Self::h();
         let rm = Matrix2::identity() * r;
-        let s = self.p.fixed_view::<2, 2>(0, 0) + rm;
+        let s = h * self.p * h.transpose() + rm;
         let Some(s_inv) = s.try_inverse() else {
             return;
         };
-        let pht = self.p.fixed_view::<4, 2>(0, 0).into_owned();
-        let k = pht * s_inv;
+        let mut k: Matrix6x2<f64> = self.p * h.transpose() * s_inv;
+        if !learn || self.cfg.baseline_min_m > 0.0 {
+            k.row_mut(K).fill(0.0);
+        }
+        if !learn || (self.cfg.baseline_min_m > 0.0 && !self.cfg.bias_from_fixes) {
+            k.row_mut(B).fill(0.0);
+        }
         self.x += k * nu;
-        self.x[3] = wrap_pi(self.x[3]);
+        self.bound();
         // P = (I − KH) P (I − KH)ᵀ + K R Kᵀ.
-        let mut ikh = Matrix4::identity();
-        let mut block = ikh.fixed_view_mut::<4, 2>(0, 0);
-        block -= k;
+        let ikh = Matrix6::identity() - k * h;
         self.p = symmetric(ikh * self.p * ikh.transpose() + k * rm * k.transpose());
     }
 
@@ -483,8 +753,8 @@ impl Fusion {
     /// The scale and the heading correction are known well enough.
     fn calibrated(&self) -> bool {
         self.started
-            && self.p[(2, 2)].sqrt() <= self.cfg.calibrated_scale_sd
-            && self.p[(3, 3)].sqrt() <= self.cfg.calibrated_bias_sd_deg.to_radians()
+            && self.p[(K, K)].sqrt() <= self.cfg.calibrated_scale_sd
+            && self.p[(B, B)].sqrt() <= self.cfg.calibrated_bias_sd_deg.to_radians()
     }
 
     /// Remembers whether a fix offered to the gate was taken.
@@ -506,7 +776,7 @@ impl Fusion {
     }
 
     /// The current state covariance (diagnostics and tests).
-    pub fn covariance(&self) -> Matrix4<f64> {
+    pub fn covariance(&self) -> Cov {
         self.p
     }
 }

@@ -51,11 +51,13 @@
 //! - [`output`]: what it reports per step and per fix;
 //! - [`schedule`]: energy saving's receiver schedule;
 //! - [`smoother`]: the Rauch–Tung–Striebel smoother;
-//! - [`declination`]: the World Magnetic Model's declination at the origin.
+//! - [`declination`]: the World Magnetic Model's declination at the origin;
+//! - [`origin`]: the track's origin, the first of agreeing fixes.
 
 pub mod config;
 pub mod declination;
 pub mod filter;
+pub mod origin;
 pub mod output;
 pub mod schedule;
 pub mod smoother;
@@ -65,4 +67,5 @@ pub use config::{
 };
 pub use declination::{declination_for, wmm_declination_deg, DeclinationNote};
 pub use filter::{FixInput, Fusion, FusionDiagnostics, StepInput};
+pub use origin::OriginVote;
 pub use output::{FixCounts, FixOutcome, FusedStep, GnssVerdict};

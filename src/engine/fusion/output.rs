@@ -41,6 +41,10 @@ pub struct FixCounts {
     pub receiver_off: u64,
     /// Replaced by a newer fix before a step came.
     pub superseded: u64,
+    /// Baselines between fixes that taught the scale and the heading correction.
+    pub baselines: u64,
+    /// Baselines refused by the gate.
+    pub baselines_gated: u64,
 }
 
 /// The filter's result at one step.

@@ -4,16 +4,24 @@
 
 use super::output::{FixOutcome, FusedStep};
 use crate::engine::math::{symmetric, wrap_pi};
-use nalgebra::{Matrix4, Vector4};
+use nalgebra::{Matrix6, Vector6};
+
+/// The filter's state: east, north (m), step-length scale, heading correction (rad), and the
+/// fixes' correlated error east and north (m).
+pub type State = Vector6<f64>;
+/// Its covariance.
+pub type Cov = Matrix6<f64>;
+/// Index of the heading correction in [`State`] (an angle: differences are wrapped).
+pub const BIAS: usize = 3;
 
 /// What the smoother needs of each step.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Stored {
-    pub x_pred: Vector4<f64>,
-    pub p_pred: Matrix4<f64>,
-    pub f: Matrix4<f64>,
-    pub x: Vector4<f64>,
-    pub p: Matrix4<f64>,
+    pub x_pred: State,
+    pub p_pred: Cov,
+    pub f: Cov,
+    pub x: State,
+    pub p: Cov,
 }
 
 /// What the filter stored of every step, and the backward pass over it.
@@ -51,11 +59,17 @@ impl Smoother {
             let next = &self.stored[k + 1];
             let cur = &self.stored[k];
             let reset = matches!(steps[k + 1].fix, Some(FixOutcome::Reset));
-            match next.p_pred.try_inverse().filter(|_| !reset) {
+            // Without the fixes' correlated error (τ = 0) its rows are zero: the
+            // pseudo-inverse leaves them out.
+            let inverse = next
+                .p_pred
+                .try_inverse()
+                .or_else(|| next.p_pred.pseudo_inverse(1e-12).ok());
+            match inverse.filter(|_| !reset) {
                 Some(inv) => {
                     let c = cur.p * next.f.transpose() * inv;
                     let mut dx = xs - next.x_pred;
-                    dx[3] = wrap_pi(dx[3]);
+                    dx[BIAS] = wrap_pi(dx[BIAS]);
                     xs = cur.x + c * dx;
                     ps = symmetric(cur.p + c * (ps - next.p_pred) * c.transpose());
                 }
@@ -69,7 +83,7 @@ impl Smoother {
             o.north_m = xs[1];
             o.cov = [ps[(0, 0)], ps[(0, 1)], ps[(1, 1)]];
             o.scale = xs[2];
-            o.bias_rad = wrap_pi(xs[3]);
+            o.bias_rad = wrap_pi(xs[BIAS]);
             o.scale_bias_sd = [ps[(2, 2)].sqrt(), ps[(3, 3)].sqrt()];
         }
         out
