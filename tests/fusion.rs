@@ -3,62 +3,20 @@
 //! outage, a step length 10 % too long and an 8° heading bias. Every test runs natively under
 //! `cargo test` and in headless Chromium under wasm-bindgen-test.
 
+use common::fusion::{errors, gnss_errors, p75, run, truth_at};
 use pdr::engine::fusion::{FusedStep, GnssMode};
-use pdr::engine::{replay, Pipeline, PipelineConfig};
-use pdr::sim::{scenarios, Simulation};
+use pdr::engine::PipelineConfig;
+use pdr::sim::scenarios;
 use wasm_bindgen_test::wasm_bindgen_test;
 
 mod common;
 
 wasm_bindgen_test::wasm_bindgen_test_configure!(run_in_browser);
 
-fn run(sim: &Simulation, cfg: PipelineConfig) -> Pipeline {
-    let r = replay(cfg, &sim.records).expect("valid config");
-    assert_eq!(r.refused, 0, "clean input refused: {:?}", r.errors.first());
-    r.pipeline
-}
-
 fn energy_saving() -> PipelineConfig {
     let mut cfg = PipelineConfig::default();
     cfg.fusion.mode = GnssMode::ENERGY_SAVING;
     cfg
-}
-
-/// The true position at time `t` in the pipeline's local frame (its origin is the first
-/// usable fix, not the start of the walk).
-fn truth_at(sim: &Simulation, p: &Pipeline, t: f64) -> (f64, f64) {
-    let (e, n) = sim.truth.position_at(t);
-    let (lat, lon, h) = sim.truth.frame.unwrap().to_geodetic([e, n, 0.0]);
-    let [e, n, _] = p.frame().unwrap().to_enu(lat, lon, h);
-    (e, n)
-}
-
-fn errors(sim: &Simulation, p: &Pipeline, track: &[FusedStep]) -> Vec<f64> {
-    track
-        .iter()
-        .map(|s| {
-            let (e, n) = truth_at(sim, p, s.t);
-            libm::hypot(s.east_m - e, s.north_m - n)
-        })
-        .collect()
-}
-
-fn gnss_errors(sim: &Simulation, p: &Pipeline) -> Vec<f64> {
-    let frame = p.frame().unwrap();
-    p.fixes()
-        .iter()
-        .map(|f| {
-            let (e, n) = frame.en_of_fix(f);
-            let (te, tn) = truth_at(sim, p, f.t);
-            libm::hypot(e - te, n - tn)
-        })
-        .collect()
-}
-
-fn p75(v: &[f64]) -> f64 {
-    let mut v = v.to_vec();
-    v.sort_by(f64::total_cmp);
-    pdr::eval::percentile(&v, 75.0)
 }
 
 #[wasm_bindgen_test(unsupported = test)]

@@ -1,6 +1,8 @@
 //! The simulated GNSS receiver: fixes of the true path, with the noise their reported accuracy
-//! promises, outliers and outages. May import: `engine` and `io`.
+//! promises, outliers and outages; on request the real phone's error shapes ([`GnssErrors`]).
+//! May import: `engine` and `io`.
 
+use super::gnss_errors::{ErrorState, GnssErrors};
 use super::{Rng, Scenario, Truth};
 use crate::engine::Record;
 use std::f64::consts::TAU;
@@ -27,6 +29,9 @@ pub struct GnssSim {
     /// Model magnetic north: the OS attitude and the magnetometer point to magnetic north,
     /// turned by the World Magnetic Model's declination at the origin.
     pub magnetic_north: bool,
+    /// The real phone's error shapes (all off by default: the error is white, as the accuracy
+    /// says).
+    pub errors: GnssErrors,
 }
 
 impl Default for GnssSim {
@@ -39,6 +44,7 @@ impl Default for GnssSim {
             outlier_m: (30.0, 80.0),
             outages: Vec::new(),
             magnetic_north: true,
+            errors: GnssErrors::default(),
         }
     }
 }
@@ -47,6 +53,10 @@ impl Scenario {
     /// The receiver's fixes along the true path (times already offset).
     pub(super) fn fixes(&self, g: &GnssSim, truth: &Truth) -> Vec<Record> {
         let mut rng = Rng(self.seed ^ 0x6E55_F1E5);
+        let mut shapes = g
+            .errors
+            .any()
+            .then(|| ErrorState::new(&g.errors, truth, self.seed));
         let frame = crate::engine::geo::LocalFrame::new(g.origin.0, g.origin.1, g.origin.2);
         let mut out = Vec::new();
         let dur = self.duration_s();
@@ -57,23 +67,39 @@ impl Scenario {
                 let (e, n) = truth.position_at(tt);
                 // The reported accuracy wanders slowly between its bounds.
                 let w = 0.5 + 0.5 * libm::sin(TAU * t / 97.0) * libm::cos(TAU * t / 31.0);
-                let acc = g.accuracy_m.0 + (g.accuracy_m.1 - g.accuracy_m.0) * w;
+                let mut acc = g.accuracy_m.0 + (g.accuracy_m.1 - g.accuracy_m.0) * w;
                 let sigma = acc / crate::engine::fusion::ACCURACY_PER_SIGMA;
-                let (mut de, mut dn) = (sigma * rng.normal(), sigma * rng.normal());
+                let white = g.errors.white_sigma(sigma);
+                let (mut de, mut dn) = (white * rng.normal(), white * rng.normal());
                 if rng.uniform() < g.outlier_share {
                     let d = g.outlier_m.0 + (g.outlier_m.1 - g.outlier_m.0) * rng.uniform();
                     let (s, c) = libm::sincos(TAU * rng.uniform());
                     de += d * s;
                     dn += d * c;
                 }
-                let (lat, lon, h) = frame.to_geodetic([e + de, n + dn, 0.0]);
+                let mut at = [e + de, n + dn, 0.0];
+                let mut speed_mps = None;
+                if let Some(st) = shapes.as_mut() {
+                    let sh = st.at(tt, sigma);
+                    match sh.replace {
+                        Some(p) => at = [p.0, p.1, 0.0],
+                        None => {
+                            at[0] = sh.truth.0 + sh.error.0 + de;
+                            at[1] = sh.truth.1 + sh.error.1 + dn;
+                            st.reported((at[0], at[1]));
+                        }
+                    }
+                    acc = sh.accuracy_m.unwrap_or(acc);
+                    speed_mps = sh.speed_mps;
+                }
+                let (lat, lon, h) = frame.to_geodetic(at);
                 out.push(Record::Gnss(crate::engine::types::GnssFix {
                     t: tt,
                     lat_deg: lat,
                     lon_deg: lon,
                     h_accuracy_m: acc,
                     altitude_m: Some(h),
-                    speed_mps: None,
+                    speed_mps,
                     bearing_deg: None,
                 }));
             }

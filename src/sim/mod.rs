@@ -28,6 +28,9 @@
 //! attitude and magnetometer refer to magnetic north (declination from the World Magnetic
 //! Model at the origin, for the date [`Scenario::clock_offset_s`] puts the walk on), and the OS
 //! heading may carry a constant bias ([`Sensors::os_yaw_bias_deg`]).
+//! On request the fixes carry a real phone's error shapes instead ([`GnssErrors`],
+//! `gnss_errors`): a multipath bias correlated in time, urban canyons, an optimistic accuracy, a
+//! stale first fix, wander while standing, latency and a hold at walk start.
 //!
 //! A foot-mounted IMU on the same walker, on request: [`foot`].
 //!
@@ -48,6 +51,7 @@ pub mod body;
 pub mod foot;
 pub mod formats;
 mod gnss;
+mod gnss_errors;
 pub mod pose;
 pub mod scenarios;
 pub mod thigh;
@@ -56,6 +60,9 @@ mod truth;
 pub use baro::{standard_pressure_hpa, BaroSim};
 pub use foot::{FootImu, FootSimulation, FootStride};
 pub use gnss::GnssSim;
+pub use gnss_errors::{
+    Canyon, GnssErrors, Multipath, StaleFix, CANYON_RAMP_S, HOLD_AFTER_STANDING_S,
+};
 pub use pose::PocketPose;
 pub use thigh::{GaitThigh, ThighModel};
 pub use truth::{Truth, TruthStep};

@@ -2,7 +2,10 @@
 //! Munoz Diaz 2015 (realistic thigh, stairs, sitting, a pose, a barometer).
 //! May import: `engine` and `io`.
 
-use super::{BaroSim, GnssSim, PocketPose, Scenario, Segment, Walker};
+use super::{
+    BaroSim, Canyon, GnssErrors, GnssSim, Multipath, PocketPose, Scenario, Segment, StaleFix,
+    Walker,
+};
 
 /// A straight walk of `seconds` at cadence `f` Hz, preceded and followed by 3 s still.
 pub fn straight_walk(f: f64, seconds: f64) -> Scenario {
@@ -137,6 +140,67 @@ pub fn gnss_city_walk() -> Scenario {
         }),
         clock_offset_s: start,
         ..Scenario::new(segs)
+    }
+}
+
+/// Time constant of [`gnss_city_walk_real`]'s multipath bias, s (IPIN 2023's fixes).
+pub const GNSS_REAL_TAU_S: f64 = 14.0;
+
+/// How far [`gnss_city_walk_real`]'s reported accuracy understates its real error.
+pub const GNSS_REAL_OPTIMISM: f64 = 1.3;
+
+/// [`gnss_city_walk_real`]'s urban-canyon stretch: (start, end) s after the start of the walk,
+/// and the bias, m.
+pub const GNSS_REAL_CANYON: (f64, f64, f64) = (430.0, 520.0, 25.0);
+
+/// How far from the true start [`gnss_city_walk_real`]'s stale first fix lies, m.
+pub const GNSS_REAL_STALE_M: f64 = 3000.0;
+
+/// How long [`gnss_city_walk_real`]'s receiver holds the standing position when the walk starts,
+/// s.
+pub const GNSS_REAL_HOLD_S: f64 = 6.0;
+
+/// [`gnss_city_walk`] with a real phone's GNSS (issue 17): the same route, walker, step length
+/// 10 % off, 8° heading bias, outage and date, but fixes whose errors have the shapes measured
+/// on IPIN 2023's walks instead of white noise and outliers. Reported accuracy 4–15 m,
+/// understating the real error by [`GNSS_REAL_OPTIMISM`]; a multipath bias with
+/// τ = [`GNSS_REAL_TAU_S`] (10 % of the variance white); one urban-canyon stretch of 90 s with
+/// a 25 m bias ([`GNSS_REAL_CANYON`]); a stale first fix 3 km away reporting 20 m; fixes
+/// wandering by 3 m per 10 s while the walker stands; the receiver holding the standing position
+/// for 6 s whenever the walk starts; speeds reported. No outliers.
+pub fn gnss_city_walk_real() -> Scenario {
+    let sc = gnss_city_walk();
+    let start = sc.clock_offset_s;
+    let (a, b, bias_m) = GNSS_REAL_CANYON;
+    Scenario {
+        gnss: Some(GnssSim {
+            accuracy_m: (4.0, 15.0),
+            outages: vec![(start + 240.0, start + 360.0)],
+            errors: GnssErrors {
+                multipath: Some(Multipath {
+                    tau_s: GNSS_REAL_TAU_S,
+                    white_share: 0.1,
+                }),
+                optimism: GNSS_REAL_OPTIMISM,
+                canyons: vec![Canyon {
+                    start_s: start + a,
+                    end_s: start + b,
+                    bias_m,
+                }],
+                stale_first_fix: Some(StaleFix {
+                    count: 1,
+                    distance_m: GNSS_REAL_STALE_M,
+                    bearing_deg: 230.0,
+                    accuracy_m: 20.0,
+                }),
+                stand_wander_m: 3.0,
+                start_hold_s: GNSS_REAL_HOLD_S,
+                latency_s: 0.0,
+                speed: true,
+            },
+            ..GnssSim::default()
+        }),
+        ..sc
     }
 }
 

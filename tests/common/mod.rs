@@ -2,6 +2,8 @@
 //! tests). Each test crate uses some of them.
 #![allow(dead_code)]
 
+pub mod fusion;
+
 use pdr::engine::types::{GnssFix, ImuSample};
 use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
 use pdr::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};

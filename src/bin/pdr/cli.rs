@@ -31,6 +31,10 @@ enum ScenarioArg {
     /// Eleven minutes through city blocks with GNSS (outliers, an outage), a step length 10 %
     /// off and an 8° heading bias: the fusion's test walk.
     GnssCity,
+    /// The same city walk with a real phone's GNSS errors (issue 17): a multipath bias
+    /// correlated over 14 s, an optimistic accuracy, a 90 s urban canyon, a stale first fix
+    /// 3 km away, fixes wandering while standing, the receiver holding at walk start.
+    CityRealGnss,
     /// A calibration walk: `--metres` straight at `--cadence`, by a walker whose step length is
     /// `--sl-a`·f + `--sl-b`, between two 3 s pauses.
     Calibration,
@@ -260,6 +264,7 @@ pub fn main() -> ExitCode {
                 ScenarioArg::Square => scenarios::square(25.0),
                 ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
                 ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
+                ScenarioArg::CityRealGnss => scenarios::gnss_city_walk_real(),
                 ScenarioArg::Calibration => {
                     scenarios::calibration_walk(cadence, metres, sl_a, sl_b)
                 }
