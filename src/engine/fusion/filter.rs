@@ -772,7 +772,14 @@ impl Fusion {
 
     /// The Rauch–Tung–Striebel smoothed estimate at every fused step ([`Smoother`]).
     pub fn smoothed(&self) -> Vec<FusedStep> {
-        self.smoother.smooth(&self.steps)
+        let mut consider = Vec::new();
+        if self.cfg.baseline_min_m > 0.0 {
+            consider.push(K);
+            if !self.cfg.bias_from_fixes {
+                consider.push(B);
+            }
+        }
+        self.smoother.smooth(&self.steps, &consider)
     }
 
     /// The current state covariance (diagnostics and tests).

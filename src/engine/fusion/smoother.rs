@@ -46,8 +46,11 @@ impl Smoother {
     /// Cₖ = Pₖ Fₖ₊₁ᵀ (Pₖ₊₁⁻)⁻¹, Pₖˢ = Pₖ + Cₖ(Pₖ₊₁ˢ − Pₖ₊₁⁻)Cₖᵀ). A reset starts a new segment:
     /// nothing is carried back across it.
     ///
-    /// `steps` are the filter's results, one per stored step.
-    pub fn smooth(&self, steps: &[FusedStep]) -> Vec<FusedStep> {
+    /// `steps` are the filter's results, one per stored step. `consider` are the states the
+    /// filter did not learn from single fixes (a Schmidt "consider" state: zero gain): the
+    /// backward pass leaves them as the filter had them, or it would learn from the fixes what
+    /// the filter was built not to.
+    pub fn smooth(&self, steps: &[FusedStep], consider: &[usize]) -> Vec<FusedStep> {
         let n = self.stored.len();
         let mut out = steps.to_vec();
         if n == 0 {
@@ -67,7 +70,10 @@ impl Smoother {
                 .or_else(|| next.p_pred.pseudo_inverse(1e-12).ok());
             match inverse.filter(|_| !reset) {
                 Some(inv) => {
-                    let c = cur.p * next.f.transpose() * inv;
+                    let mut c = cur.p * next.f.transpose() * inv;
+                    for &i in consider {
+                        c.row_mut(i).fill(0.0);
+                    }
                     let mut dx = xs - next.x_pred;
                     dx[BIAS] = wrap_pi(dx[BIAS]);
                     xs = cur.x + c * dx;
