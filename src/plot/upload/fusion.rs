@@ -7,9 +7,9 @@ use crate::analysis::Analysis;
 
 /// How wide a band may make an axis: the filter's prior σ is wide before the first fixes, and
 /// an axis spanning it would flatten what the walk learnt. The band is cut at the axis there.
-const SCALE_SD_AXIS_MAX: f64 = 0.1;
+const SCALE_SD_AXIS_MAX: f64 = 0.05;
 /// See [`SCALE_SD_AXIS_MAX`], degrees.
-const CORRECTION_SD_AXIS_MAX_DEG: f64 = 10.0;
+const CORRECTION_SD_AXIS_MAX_DEG: f64 = 5.0;
 
 /// The fusion plot's series between two times, on the plot's time axis (s from `origin`).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -55,6 +55,16 @@ impl FusionSeries {
         s
     }
 
+    /// The scale's ±1σ edges, cut at its axis: (upper, lower) lines.
+    pub fn scale_edges(&self) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+        edges(&self.scale, self.scale_axis)
+    }
+
+    /// The correction's ±1σ edges, cut at its axis, degrees.
+    pub fn correction_edges(&self) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+        edges(&self.correction, self.correction_axis)
+    }
+
     /// The scale's ±1σ band as one polygon, cut at its axis.
     pub fn scale_band(&self) -> Vec<(f64, f64)> {
         band(&self.scale, self.scale_axis)
@@ -78,6 +88,13 @@ fn band(v: &[(f64, f64, f64)], (lo, hi): (f64, f64)) -> Vec<(f64, f64)> {
         .map(|p| (p.0, clamp(p.1 + p.2)))
         .chain(pts.iter().rev().map(|p| (p.0, clamp(p.1 - p.2))))
         .collect()
+}
+
+/// The band's upper and lower edges (see [`band`]).
+fn edges(v: &[(f64, f64, f64)], axis: (f64, f64)) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let mut b = band(v, axis);
+    let lower = b.split_off(b.len() / 2);
+    (b, lower)
 }
 
 #[cfg(test)]
@@ -120,6 +137,8 @@ mod tests {
         }
         // The axes hold the bands and the neutral values.
         assert!(s.scale_axis.0 < 0.92 && s.scale_axis.1 > 1.0);
+        let (upper, lower) = s.scale_edges();
+        assert_eq!((upper[1], lower[1]), (band[1], band[4]));
         let c = s.correction_band();
         assert!(
             (c[2].1 - -3.0).abs() < 1e-9 && (c[3].1 - -5.0).abs() < 1e-9,
@@ -147,9 +166,9 @@ mod tests {
         );
         let s = FusionSeries::new(&a, 0.0, 2.0, 0.0);
         // The 0.5 σ does not make the axis ±0.5 (2.5 wide with the room for the correction):
-        // it is capped at 0.1 (1.0 ± 0.1, 0.5 wide).
+        // it is capped at 0.05 (1.0 ± 0.05, 0.25 wide).
         assert!(
-            (s.scale_axis.1 - s.scale_axis.0 - 0.5).abs() < 1e-9,
+            (s.scale_axis.1 - s.scale_axis.0 - 0.25).abs() < 1e-9,
             "{:?}",
             s.scale_axis
         );

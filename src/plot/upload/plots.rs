@@ -434,20 +434,27 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             )?;
         }
         Plot::Fusion => {
-            // The ±1σ bands under the values: faint, each in its value's colour.
+            // The ±1σ bands under the values: faint, each in its value's colour, edged so
+            // that a narrow one still shows beside its line.
             let f = fusion.as_ref().expect("made for the fusion plot");
-            chart.draw_series([Polygon::new(f.scale_band(), theme.track.mix(0.2).filled())])?;
+            let edge = |c: RGBColor| ShapeStyle::from(&c.mix(0.6)).stroke_width(px(1.0));
+            chart.draw_series([Polygon::new(f.scale_band(), theme.track.mix(0.25).filled())])?;
+            let (up, down) = f.scale_edges();
+            chart.draw_series([up, down].map(|e| PathElement::new(e, edge(theme.track))))?;
             chart.draw_secondary_series([Polygon::new(
                 f.correction_band(),
-                theme.gnss.mix(0.25).filled(),
+                theme.gnss.mix(0.3).filled(),
             )])?;
+            let (up, down) = f.correction_edges();
+            chart
+                .draw_secondary_series([up, down].map(|e| PathElement::new(e, edge(theme.gnss))))?;
             chart.draw_series(LineSeries::new(
                 [(x0, 1.0), (x1, 1.0)],
                 line(theme.grid, 1.0),
             ))?;
             chart.draw_series(LineSeries::new(
                 f.scale.iter().map(|p| (p.0, p.1)),
-                line(theme.track, 2.0),
+                line(theme.track, 1.5),
             ))?;
             chart.draw_secondary_series(
                 f.correction
