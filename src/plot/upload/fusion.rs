@@ -11,6 +11,9 @@ const SCALE_SD_AXIS_MAX: f64 = 0.05;
 /// See [`SCALE_SD_AXIS_MAX`], degrees.
 const CORRECTION_SD_AXIS_MAX_DEG: f64 = 5.0;
 
+/// A line of (t, value) points.
+pub type Line = Vec<(f64, f64)>;
+
 /// The fusion plot's series between two times, on the plot's time axis (s from `origin`).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct FusionSeries {
@@ -56,12 +59,12 @@ impl FusionSeries {
     }
 
     /// The scale's ±1σ edges, cut at its axis: (upper, lower) lines.
-    pub fn scale_edges(&self) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    pub fn scale_edges(&self) -> [Line; 2] {
         edges(&self.scale, self.scale_axis)
     }
 
     /// The correction's ±1σ edges, cut at its axis, degrees.
-    pub fn correction_edges(&self) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    pub fn correction_edges(&self) -> [Line; 2] {
         edges(&self.correction, self.correction_axis)
     }
 
@@ -91,10 +94,10 @@ fn band(v: &[(f64, f64, f64)], (lo, hi): (f64, f64)) -> Vec<(f64, f64)> {
 }
 
 /// The band's upper and lower edges (see [`band`]).
-fn edges(v: &[(f64, f64, f64)], axis: (f64, f64)) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn edges(v: &[(f64, f64, f64)], axis: (f64, f64)) -> [Line; 2] {
     let mut b = band(v, axis);
     let lower = b.split_off(b.len() / 2);
-    (b, lower)
+    [b, lower]
 }
 
 #[cfg(test)]
@@ -137,7 +140,7 @@ mod tests {
         }
         // The axes hold the bands and the neutral values.
         assert!(s.scale_axis.0 < 0.92 && s.scale_axis.1 > 1.0);
-        let (upper, lower) = s.scale_edges();
+        let [upper, lower] = s.scale_edges();
         assert_eq!((upper[1], lower[1]), (band[1], band[4]));
         let c = s.correction_band();
         assert!(

@@ -439,13 +439,13 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             let f = fusion.as_ref().expect("made for the fusion plot");
             let edge = |c: RGBColor| ShapeStyle::from(&c.mix(0.6)).stroke_width(px(1.0));
             chart.draw_series([Polygon::new(f.scale_band(), theme.track.mix(0.25).filled())])?;
-            let (up, down) = f.scale_edges();
+            let [up, down] = f.scale_edges();
             chart.draw_series([up, down].map(|e| PathElement::new(e, edge(theme.track))))?;
             chart.draw_secondary_series([Polygon::new(
                 f.correction_band(),
                 theme.gnss.mix(0.3).filled(),
             )])?;
-            let (up, down) = f.correction_edges();
+            let [up, down] = f.correction_edges();
             chart
                 .draw_secondary_series([up, down].map(|e| PathElement::new(e, edge(theme.gnss))))?;
             chart.draw_series(LineSeries::new(
