@@ -9,6 +9,7 @@
 //! signals are `f32` (plenty for a plot), times `f64` (Unix seconds need it).
 
 use crate::engine::activity::Activity;
+use crate::engine::fusion::{FixCounts, GnssVerdict};
 use crate::engine::motion::Motion;
 use crate::engine::replay::replay_observed;
 use crate::engine::types::ConfigError;
@@ -95,6 +96,13 @@ pub struct Analysis {
     pub fixes: Vec<FixPoint>,
     /// Fused track: t, east, north, step-length scale, heading correction (rad).
     pub fused: Vec<[f64; 5]>,
+    /// The standard deviations of each fused step's scale and heading correction (rad),
+    /// parallel to `fused` (the fusion plot's ±1σ bands).
+    pub fused_sd: Vec<[f64; 2]>,
+    /// What the filter did with the fixes, when it ran.
+    pub fix_counts: Option<FixCounts>,
+    /// The filter's verdict on the GNSS at the end of the log, when it ran.
+    pub verdict: Option<GnssVerdict>,
     /// Smoothed track: t, east, north.
     pub smoothed: Vec<[f64; 3]>,
     /// Innovations of the fixes offered: t, east, north, m.
@@ -230,6 +238,9 @@ pub fn analyse(
             .iter()
             .map(|f| [f.t, f.east_m, f.north_m, f.scale, f.bias_rad])
             .collect(),
+        fused_sd: fused.iter().map(|f| f.scale_bias_sd).collect(),
+        fix_counts: p.fusion().map(|f| f.diagnostics().counts),
+        verdict: p.fusion().map(|f| f.verdict()),
         smoothed: p
             .smoothed()
             .iter()
@@ -385,7 +396,20 @@ impl Analysis {
             }
         }
         if !self.fixes.is_empty() {
-            row("GNSS", format!("{} fixes", self.fixes.len()));
+            let n = self.fixes.len();
+            match &self.fix_counts {
+                Some(c) => row(
+                    "GNSS",
+                    format!("{n} fixes: {}", crate::io::fusion_words::fix_counts_text(c)),
+                ),
+                None => row("GNSS", format!("{n} fixes")),
+            }
+        }
+        if let Some(text) = self.corrections_text() {
+            row("Corrections", text);
+        }
+        if let Some(v) = self.verdict {
+            row("Fusion", v.text().to_string());
         }
         if self.has_height() {
             let end = self.steps.last().map_or((0.0, 0), |s| (s.up_m, s.floor));
@@ -417,6 +441,15 @@ impl Analysis {
             row("Note", w.clone());
         }
         rows
+    }
+
+    /// The fusion's corrections at the last fused step, ± 1σ: "step-length scale 0.93 ± 0.02 ·
+    /// heading correction −4.1° ± 1.2°"; none without fusion.
+    pub fn corrections_text(&self) -> Option<String> {
+        let (f, sd) = (self.fused.last()?, self.fused_sd.last()?);
+        Some(crate::io::fusion_words::corrections_text(
+            f[3], sd[0], f[4], sd[1],
+        ))
     }
 
     /// Step `i` for people: "Step 12: t = 5.43 s · length 0.68 m · frequency 1.83 Hz · heading
@@ -671,6 +704,65 @@ mod tests {
         assert_eq!(flat.height_source(), "no height: flat walk assumed");
         assert!(flat.figures().iter().all(|r| r.0 != "Height"));
         assert!(!flat.step_text(0).unwrap().contains("height"));
+    }
+
+    #[test]
+    fn the_gnss_walk_shows_its_corrections_with_their_uncertainty_and_the_fixes_fate() {
+        let mut log = crate::io::import::Log::new("city.pdrlog", crate::io::import::Format::PdrLog);
+        log.records = crate::sim::scenarios::gnss_city_walk().generate().records;
+        let a = analyse(&log, &PipelineConfig::default(), &mut |_, _| {}).unwrap();
+        assert_eq!(a.fused_sd.len(), a.fused.len());
+        assert!(a
+            .fused_sd
+            .iter()
+            .flatten()
+            .all(|s| s.is_finite() && *s >= 0.0));
+        let rows = a.figures();
+        let get = |k: &str| {
+            rows.iter()
+                .find(|r| r.0 == k)
+                .unwrap_or_else(|| panic!("no {k} row in {rows:?}"))
+                .1
+                .clone()
+        };
+        // The last fused step's numbers, in words.
+        let (f, sd) = (a.fused.last().unwrap(), a.fused_sd.last().unwrap());
+        let corrections = get("Corrections");
+        assert_eq!(
+            corrections,
+            crate::io::fusion_words::corrections_text(f[3], sd[0], f[4], sd[1])
+        );
+        assert!(
+            corrections.starts_with(&format!("step-length scale {:.2} ± {:.2} · ", f[3], sd[0])),
+            "{corrections}"
+        );
+        let c = a.fix_counts.unwrap();
+        assert!(c.used > 0);
+        let gnss = get("GNSS");
+        assert!(
+            gnss.starts_with(&format!("{} fixes: {} used", a.fixes.len(), c.used)),
+            "{gnss}"
+        );
+        assert_eq!(gnss.contains("refused by the gate"), c.gated > 0, "{gnss}");
+        assert_eq!(get("Fusion"), a.verdict.unwrap().text());
+        // They cross to the page.
+        let back = Analysis::from_bytes(&a.to_bytes().unwrap()).unwrap();
+        assert_eq!(
+            (back.fused_sd, back.fix_counts, back.verdict),
+            (a.fused_sd.clone(), a.fix_counts, a.verdict)
+        );
+        // A walk without fixes has none of them.
+        let mut log = crate::io::import::Log::new("demo.pdrlog", crate::io::import::Format::PdrLog);
+        log.records = crate::sim::scenarios::demo_walk().generate().records;
+        let a = analyse(&log, &PipelineConfig::default(), &mut |_, _| {}).unwrap();
+        assert!(a
+            .figures()
+            .iter()
+            .all(|r| r.0 != "Corrections" && r.0 != "Fusion"));
+        assert_eq!(
+            (a.fix_counts, a.verdict, a.corrections_text()),
+            (None, None, None)
+        );
     }
 
     #[test]

@@ -385,6 +385,14 @@ function show(r, s) {
   set('r-heading-ref', r.absolute_heading ? 'from north' : (r.samples ? 'relative to start' : '–'));
   set('r-gnss', r.gnss_accuracy_m != null ? `±${Math.round(r.gnss_accuracy_m)} m` : '–');
   set('r-fixes', r.fixes ? `${r.fixes} fix${r.fixes > 1 ? 'es' : ''}${receiver(r, s)}` : (s.gnssMode === 'off' ? 'off' : 'no fix'));
+  // What the fusion learnt, ± 1σ (words from the engine), and its notice when it waits for a
+  // usable fix or distrusts the fixes.
+  set('r-scale', r.scale_text ?? '–');
+  set('r-correction', `heading ${r.correction_text ?? '–'}`);
+  const notice = $('gnss-notice');
+  set('gnss-notice', r.gnss_notice ?? '');
+  notice.hidden = !r.gnss_notice;
+  notice.dataset.verdict = r.gnss_verdict ?? '';
   set('r-rate', r.sample_rate_hz ? r.sample_rate_hz.toFixed(0) : '–');
   set('r-source', s.source + (r.orientation ? ` · ${r.orientation}` : ''));
   set('g-steps', String(r.steps));

@@ -211,13 +211,18 @@ async function importProfile(file) {
 }
 
 /** Opt-in refinement after a live walk with fixes, when the engine finds the walk says enough
- * (`refine_profile`), with an undo. */
+ * (`refine_profile`), with an undo; else the engine's reason, and the profile stays. */
 function refineAfterWalk(e) {
   const name = profiles.selectedName();
   const json = profiles.selected();
   if (!$('refine').checked || !json) return;
   const r = refine_profile(json, e.detail.evidence);
-  if (!r) return;
+  if (r.why) {
+    note('profile-messages', 'refined', null);
+    note('profile-messages', 'not-refined', `“${name}” not refined: ${r.why}.`, 'note');
+    return;
+  }
+  note('profile-messages', 'not-refined', null);
   const [before, after] = r.offset_m;
   profiles.save(name, r.json);
   showProfiles();

@@ -300,7 +300,9 @@ pub fn xio(data: &[u8]) {
 /// The step-length profile's JSON import: a profile that is accepted gives finite lengths
 /// within its bounds, writes back to JSON that reads the same, and refines to a valid profile.
 pub fn profile_json(data: &[u8]) {
-    use pdr::engine::calibration::{refine, ProfileFile, WalkEvidence};
+    use pdr::engine::calibration::ProfileFile;
+    use pdr::engine::fusion::GnssVerdict;
+    use pdr::engine::refinement::{refine, WalkEvidence};
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
@@ -318,10 +320,12 @@ pub fn profile_json(data: &[u8]) {
     assert_eq!(back, p, "the profile changed through JSON");
     let walk = WalkEvidence {
         fixes: 40,
+        fixes_used: 40,
+        verdict: Some(GnssVerdict::Calibrated),
         scale: Some((1.1, 0.01)),
         step_freqs_hz: vec![1.8; 60],
     };
-    if let Some(r) = refine(&p, &walk) {
+    if let Ok(r) = refine(&p, &walk) {
         r.file
             .profile
             .validate()

@@ -19,7 +19,8 @@
 //!
 //! **Refinement from GNSS** ([`refined_offset`]): Basso 2021 §2.2.5 corrects the model's
 //! offset from the mean step length between fixes; the fusion filter's step-length scale k
-//! ([`crate::engine::fusion`]) is that ratio, learnt over many fixes.
+//! ([`crate::engine::fusion`]) is that ratio, learnt over many fixes; when a walk may refine a
+//! profile is [`crate::engine::refinement`]'s to say.
 
 use super::step_length::{fit_line, harmonic_mean_frequency, mean_step_length, Line};
 use super::step_length::{LineFit, StepLengthProfile};
@@ -209,73 +210,6 @@ pub fn quick_line(point: (f64, f64), band: (f64, f64)) -> Line {
 pub fn refined_offset(line: &Line, k: f64, f: f64, rate: f64) -> f64 {
     let sl = line.eval(f);
     line.b + rate.clamp(0.0, 1.0) * (k - 1.0) * sl
-}
-
-/// What a live walk with GNSS says about the user's step length: the fusion filter's
-/// step-length scale k and its standard deviation, the fixes received, and the frequencies of
-/// the steps.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct WalkEvidence {
-    /// Fixes received during the walk.
-    pub fixes: usize,
-    /// The filter's scale k and its standard deviation at the end of the walk.
-    pub scale: Option<(f64, f64)>,
-    /// f_k of every step, Hz.
-    pub step_freqs_hz: Vec<f64>,
-}
-
-/// Refinement needs at least this many fixes…
-pub const REFINE_MIN_FIXES: usize = 20;
-/// …and this many steps…
-pub const REFINE_MIN_STEPS: usize = 50;
-/// …a scale known to this standard deviation or better…
-pub const REFINE_MAX_SCALE_SD: f64 = 0.03;
-/// …and at least this many standard deviations away from 1 (else there is nothing to correct).
-pub const REFINE_MIN_SIGMAS: f64 = 2.0;
-/// The share of the way the offset moves on each walk (slow refinement over repeated walks).
-pub const REFINE_RATE: f64 = 0.5;
-
-/// A profile refined by one walk.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Refinement {
-    /// The refined profile.
-    pub file: ProfileFile,
-    /// The walking offset before and after, m.
-    pub offset_m: (f64, f64),
-    /// The scale k that moved it.
-    pub scale: f64,
-    /// The cadence it was applied at (the walk's median step frequency), Hz.
-    pub cadence_hz: f64,
-}
-
-/// The profile refined by a walk ([`refined_offset`] at the walk's median cadence,
-/// [`REFINE_RATE`] of the way), when the walk makes the scale known and different from 1; else
-/// `None`.
-pub fn refine(file: &ProfileFile, walk: &WalkEvidence) -> Option<Refinement> {
-    let (k, sd) = walk.scale?;
-    if walk.fixes < REFINE_MIN_FIXES
-        || walk.step_freqs_hz.len() < REFINE_MIN_STEPS
-        || !(sd <= REFINE_MAX_SCALE_SD)
-        || (k - 1.0).abs() < REFINE_MIN_SIGMAS * sd
-    {
-        return None;
-    }
-    let mut f = walk.step_freqs_hz.clone();
-    f.sort_by(f64::total_cmp);
-    let cadence_hz = f[f.len() / 2];
-    if !(k.is_finite() && k > 0.5 && k < 1.5 && cadence_hz.is_finite() && cadence_hz > 0.0) {
-        return None;
-    }
-    let mut out = file.clone();
-    let before = file.profile.walking.b;
-    out.profile.walking.b = refined_offset(&file.profile.walking, k, cadence_hz, REFINE_RATE);
-    out.profile.validate().ok()?;
-    Some(Refinement {
-        offset_m: (before, out.profile.walking.b),
-        file: out,
-        scale: k,
-        cadence_hz,
-    })
 }
 
 /// A saved profile: a name, the profile, and the points it was fitted from. The `version` field

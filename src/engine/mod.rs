@@ -13,6 +13,8 @@
 //! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg; [`fuzzy_step_length`]: Ibarra
 //!   2015 §4.4.2's fuzzy system.
 //! - [`calibration`]: fitting a user's profile (Basso 2016 §II.D), quick mode, profile files.
+//! - [`refinement`]: when a live walk's GNSS may refine a profile (the filter's verdict and
+//!   scale), and the refined profile.
 //! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24); [`replay`]: the one
 //!   loop that feeds a log through it.
 //! - [`fusion`]: the per-step GNSS/PDR Kalman filter (Basso 2021 §2.2.5–2.2.6, §3), energy
@@ -72,6 +74,7 @@ pub mod pipeline;
 pub mod pitch_detector;
 pub mod pitch_step_length;
 pub mod pll;
+pub mod refinement;
 pub mod replay;
 pub mod step_length;
 pub mod types;

@@ -5,6 +5,7 @@
 //! Inside `io`, [`lines`] (bounded line reading) is below [`pdrlog`], which is below [`import`].
 
 pub mod export;
+pub mod fusion_words;
 pub mod import;
 pub mod lines;
 pub mod pdrlog;

@@ -6,12 +6,14 @@ use super::events::{
     normalise_motion, sensor_sample, EventError, MotionEvent, OrientationEvent, Platform,
     SensorReading,
 };
+use crate::engine::fusion::GnssVerdict;
 use crate::engine::fuzzy_step_length::{FuzzyConfig, FuzzyStepLength};
 use crate::engine::orientation::{OrientationSource, HOLD_S};
 use crate::engine::replay::feed;
 use crate::engine::step_length::fuzzy_step;
 use crate::engine::types::{time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use crate::engine::{Pipeline, PipelineConfig};
+use crate::io::fusion_words;
 use nalgebra::UnitQuaternion;
 use std::collections::VecDeque;
 use std::fmt;
@@ -200,6 +202,20 @@ pub struct Readouts {
     pub gnss_on_s: Option<(f64, f64)>,
     /// The fusion filter's step-length scale and its standard deviation, once fixes have come.
     pub fusion_scale: Option<(f64, f64)>,
+    /// The filter's heading correction and its standard deviation, degrees, once fixes have
+    /// come.
+    pub fusion_correction_deg: Option<(f64, f64)>,
+    /// The scale for people: "0.93 ± 0.02" (`io::fusion_words`).
+    pub scale_text: Option<String>,
+    /// The heading correction for people: "−4.1° ± 1.2°".
+    pub correction_text: Option<String>,
+    /// The filter's verdict on the GNSS (`waiting`, `learning`, `calibrated`, `distrusted`),
+    /// once fixes have come with the fusion on (`waiting` while none was good enough to start
+    /// it).
+    pub gnss_verdict: Option<crate::engine::fusion::GnssVerdict>,
+    /// The notice the page shows when the verdict is `waiting` or `distrusted` ("GNSS disagrees
+    /// with your steps: using steps"); none otherwise.
+    pub gnss_notice: Option<&'static str>,
 }
 
 /// A live session: the pipeline, the latest attitude, the recent signal for the scrolling view,
@@ -511,10 +527,14 @@ impl LiveSession {
     }
 
     /// What the walk says about the user's step length: the fusion filter's scale and its
-    /// standard deviation, the fixes received and the steps' frequencies.
-    pub fn walk_evidence(&self) -> crate::engine::calibration::WalkEvidence {
-        crate::engine::calibration::WalkEvidence {
+    /// standard deviation, its verdict and the fixes it used, the fixes received and the steps'
+    /// frequencies.
+    pub fn walk_evidence(&self) -> crate::engine::refinement::WalkEvidence {
+        let fusion = self.pipeline.fusion().map(|f| f.diagnostics());
+        crate::engine::refinement::WalkEvidence {
             fixes: self.pipeline.fixes().len(),
+            fixes_used: fusion.as_ref().map_or(0, |d| d.counts.used),
+            verdict: fusion.map(|d| d.verdict),
             scale: self
                 .pipeline
                 .fused()
@@ -566,6 +586,14 @@ impl LiveSession {
             _ => 0.0,
         };
         let now = d.time_span.map_or(0.0, |s| s.1);
+        let fused = self.pipeline.fused().last();
+        // Fixes that came but none good enough to start the filter: waiting for a usable one.
+        let fusion_on = self.pipeline.config().fusion.mode != crate::engine::fusion::GnssMode::Off;
+        let verdict = match self.pipeline.fusion() {
+            Some(f) => Some(f.verdict()),
+            None if fusion_on && !self.pipeline.fixes().is_empty() => Some(GnssVerdict::Waiting),
+            None => None,
+        };
         Readouts {
             // A stride (foot mode) counts as two steps.
             steps: d.steps as usize,
@@ -603,11 +631,16 @@ impl LiveSession {
             last_error: self.last_error.clone(),
             gnss_wanted: self.pipeline.gnss_wanted(now),
             gnss_on_s: d.gnss_on_s,
-            fusion_scale: self
-                .pipeline
-                .fused()
-                .last()
-                .map(|f| (f.scale, f.scale_bias_sd[0])),
+            fusion_scale: fused.map(|f| (f.scale, f.scale_bias_sd[0])),
+            fusion_correction_deg: fused
+                .map(|f| (f.bias_rad.to_degrees(), f.scale_bias_sd[1].to_degrees())),
+            scale_text: fused.map(|f| fusion_words::scale_text(f.scale, f.scale_bias_sd[0])),
+            correction_text: fused
+                .map(|f| fusion_words::correction_text(f.bias_rad, f.scale_bias_sd[1])),
+            gnss_verdict: verdict,
+            gnss_notice: verdict
+                .filter(|v| matches!(v, GnssVerdict::Waiting | GnssVerdict::Distrusted))
+                .map(GnssVerdict::text),
         }
     }
 }

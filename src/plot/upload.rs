@@ -4,12 +4,14 @@
 //!
 //! One file each: the map (`map`), the diagnostics plots (`plots`), the decimation of their
 //! signals to pixel columns (`decimate`), the unwrapping of their headings (`heading`), the
-//! height and floor plot's series (`height`), the activities' and floors' colours and key
-//! (`palette`), their legibility test (`legibility`) and the ellipse (`ellipse`).
+//! height and floor plot's series (`height`), the fusion plot's series and ±1σ bands
+//! (`fusion`), the activities' and floors' colours and key (`palette`), their legibility test
+//! (`legibility`) and the ellipse (`ellipse`).
 //! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
 
 mod decimate;
 mod ellipse;
+mod fusion;
 mod heading;
 mod height;
 mod map;

@@ -234,15 +234,18 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
 
 /// Automatic refinement (Basso 2021 §2.2.5) after a live walk with GNSS: the profile (JSON)
 /// with its walking offset moved by what the walk's `evidence` (`Live.walk_evidence()`) says,
-/// `{json, offset_m: [before, after], scale, cadence_hz}`; `undefined` when the walk does not
-/// make the step-length scale known and different from 1 (see `engine::calibration::refine`).
+/// `{json, offset_m: [before, after], scale, cadence_hz}`; `{why}` when the walk may not refine
+/// it (the filter's verdict not `calibrated`, too few fixes used or steps, the scale uncertain
+/// or not different from 1: see `engine::refinement::refine`), `why` for people ("GNSS was not
+/// certain enough of your step length: scale 0.81 ± 0.06").
 #[wasm_bindgen]
 pub fn refine_profile(text: &str, evidence: JsValue) -> Result<JsValue, JsError> {
     let p = read_profile(text)?;
-    let walk: crate::engine::calibration::WalkEvidence =
+    let walk: crate::engine::refinement::WalkEvidence =
         serde_wasm_bindgen::from_value(evidence).map_err(to_js)?;
-    let Some(r) = crate::engine::calibration::refine(&p, &walk) else {
-        return Ok(JsValue::UNDEFINED);
+    let r = match crate::engine::refinement::refine(&p, &walk) {
+        Ok(r) => r,
+        Err(why) => return super::to_json_value(&serde_json::json!({ "why": why.to_string() })),
     };
     #[derive(serde::Serialize)]
     struct Refined {

@@ -182,8 +182,9 @@ impl Live {
         self.session.fix_path_m(max_accuracy_m)
     }
 
-    /// What the walk says about the user's step length (for `refine_profile`): `{fixes, scale:
-    /// [k, sd] | undefined, step_freqs_hz}`.
+    /// What the walk says about the user's step length (for `refine_profile`): `{fixes,
+    /// fixes_used, verdict: "calibrated" | … | undefined, scale: [k, sd] | undefined,
+    /// step_freqs_hz}`.
     pub fn walk_evidence(&self) -> Result<JsValue, JsError> {
         to_value(&self.session.walk_evidence())
     }

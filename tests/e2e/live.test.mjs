@@ -107,6 +107,17 @@ test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown,
   assert.equal(await page.textContent('#r-floor'), r.floor_change ?? 'start floor');
   assert.match(await page.textContent('#r-heading'), /^\d+° [NESW]{1,2}$/);
   assert.match(await page.textContent('#r-spm'), /^1\d\d steps\/min$/);
+  // What the fusion learnt, ± 1σ, and its notice when it waits or distrusts the fixes (here
+  // they stand still while the walker walks). The values are the filter's: their format only.
+  console.log(`live walk: scale ${r.scale_text}, correction ${r.correction_text}, verdict ${r.gnss_verdict}`);
+  assert.equal(await page.textContent('#r-scale'), r.scale_text ?? '–');
+  if (r.scale_text != null) {
+    assert.match(r.scale_text, /^\d\.\d\d ± \d\.\d\d$/);
+    assert.match(await page.textContent('#r-correction'), /^heading −?\d+\.\d° ± \d+\.\d°$/);
+  }
+  assert.equal(await page.isVisible('#gnss-notice'), r.gnss_notice != null);
+  if (r.gnss_notice) assert.equal(await page.textContent('#gnss-notice'), r.gnss_notice);
+  assert.ok(['distrusted', 'waiting'].includes(r.gnss_verdict) === (r.gnss_notice != null), `verdict ${r.gnss_verdict}`);
   const map = await nonBlank(page, 'live-map');
   const scope = await nonBlank(page, 'live-scope');
   assert.ok(map.n > 0.02 * map.total, `map looks blank: ${map.n} of ${map.total}`);
@@ -283,6 +294,9 @@ test('energy saving: the geolocation watch is really stopped between windows and
   // The saving is shown.
   assert.ok(r.gnss_on_s[0] < r.gnss_on_s[1] - PERIOD + WINDOW, `on ${r.gnss_on_s}`);
   assert.match(fixesText, /^\d+ fixes( · off)? · on \d+ %$/);
+  // The fixes follow the walk: the fusion has a scale and a correction, each ± 1σ.
+  assert.match(r.scale_text ?? '', /^\d\.\d\d ± \d\.\d\d$/);
+  assert.match(r.correction_text ?? '', /^−?\d+\.\d° ± \d+\.\d°$/);
   assert.match(await page.getAttribute('#r-fixes', 'title'), /on \d+:\d\d of the \d+:\d\d since the first fix/);
   assert.deepEqual(errors, []);
   await holdToUnlock(page, 2300);

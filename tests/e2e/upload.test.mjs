@@ -268,6 +268,29 @@ test('phone: tapping a plot picks the step at that time, a pinch zooms the time 
   await context.close();
 });
 
+test('the fusion: corrections ± 1σ, what the fixes did and the verdict in the figures, its plot with bands, at 390 and 1100 px', async () => {
+  const walk = path.join(tmp, 'city-fusion.pdrlog');
+  execFileSync(BIN, ['simulate', '--scenario', 'gnss-city', '--out', walk]);
+  for (const [width, name] of [[390, 'phone'], [1100, 'desktop']]) {
+    const { context, page, errors } = await open({ width, height: 900 }, width < 500 ? { hasTouch: true, isMobile: true, deviceScaleFactor: 3 } : {});
+    await upload(page, [walk]);
+    const figures = await page.textContent('.log-result[data-index="0"] .summary');
+    // The filter's numbers change with its tuning: the words and their format, not the values.
+    assert.match(figures, /Correctionsstep-length scale \d\.\d\d ± \d\.\d\d · heading correction −?\d+\.\d° ± \d+\.\d°/);
+    assert.match(figures, /GNSS\d+ fixes: \d+ used(, \d+ [a-z ]+)*/);
+    assert.match(figures, /Fusion(GNSS: step length and heading known|GNSS: learning your step length and heading|GNSS disagrees with your steps: using steps|Waiting for GNSS)/);
+    // Each figure fits its card: nothing wider than the page.
+    const overflow = await page.evaluate(() => [...document.querySelectorAll('.log-result .summary *')]
+      .filter((e) => e.getBoundingClientRect().right > document.documentElement.clientWidth + 1).map((e) => e.textContent));
+    assert.deepEqual(overflow, [], `wider than the page at ${width} px`);
+    assert.deepEqual(errors, []);
+    await page.locator('.log-result[data-index="0"] .summary').screenshot({ path: path.join(ARTIFACTS, `upload-fusion-figures-${name}.png`) });
+    await page.locator('.log-result[data-index="0"] canvas.plot-fusion').scrollIntoViewIfNeeded();
+    await page.locator('.log-result[data-index="0"] canvas.plot-fusion').screenshot({ path: path.join(ARTIFACTS, `upload-fusion-plot-${name}.png`) });
+    await context.close();
+  }
+});
+
 test('folders: the demo walk as Sensor Logger (Android and iOS), phyphox and Oxford folders, and the fixtures', async () => {
   const { context, page, errors } = await open();
   for (const format of ['sensor-logger', 'sensor-logger-ios', 'phyphox', 'oxford']) {

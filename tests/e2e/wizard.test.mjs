@@ -174,16 +174,27 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   await page.waitForSelector('#profile-messages li.error');
   assert.match(await page.textContent('#profile-messages li.error'), /bad\.json: .*profile\.version/);
   // Opt-in refinement after a live walk whose fusion learnt a step-length scale of 0.95 ± 0.01
-  // over 40 fixes (the event live mode sends at Stop): b moves halfway, and Undo restores it.
+  // over 40 fixes used, the filter calibrated (the event live mode sends at Stop): b moves
+  // halfway, and Undo restores it.
   const before = JSON.parse(saved).profile.walking.b;
-  const ended = (k) => page.evaluate((k) => window.dispatchEvent(new CustomEvent('pdr-walk-ended', {
-    detail: { evidence: { fixes: 40, scale: [k, 0.01], step_freqs_hz: Array(100).fill(1.8) } },
-  })), k);
+  const ended = (k, sd = 0.01, verdict = 'calibrated') => page.evaluate(([k, sd, verdict]) => window.dispatchEvent(new CustomEvent('pdr-walk-ended', {
+    detail: { evidence: { fixes: 40, fixes_used: 40, verdict, scale: [k, sd], step_freqs_hz: Array(100).fill(1.8) } },
+  })), [k, sd, verdict]);
   await ended(0.95);
   assert.equal(await page.evaluate(() => document.querySelectorAll('#profile-messages li[data-key="refined"]').length), 0,
     'refined without the opt-in');
   await page.check('#refine');
+  // A scale the fixes did not make certain, or a filter that distrusted them, refines nothing
+  // and says why.
+  const notRefined = '#profile-messages li[data-key="not-refined"]';
+  await ended(0.81, 0.06);
+  await page.waitForSelector(notRefined);
+  assert.match(await page.textContent(notRefined), /not certain enough of your step length: scale \d\.\d\d ± \d\.\d\d/);
+  await ended(0.95, 0.01, 'distrusted');
+  assert.match(await page.textContent(notRefined), /GNSS disagreed with your steps/);
+  assert.equal(await page.evaluate(() => JSON.parse(localStorage.getItem('pdr-profiles')).tester), saved, 'refused walks left the profile');
   await ended(0.95);
+  assert.equal(await page.evaluate((s) => document.querySelectorAll(s).length, notRefined), 0, 'the reason stays after a refinement');
   await page.waitForSelector('#profile-messages li[data-key="refined"]');
   const refined = await page.evaluate(() => JSON.parse(JSON.parse(localStorage.getItem('pdr-profiles')).tester).profile.walking);
   const sl = A * 1.8 + B; // about the profile's SL at 1.8 Hz

@@ -25,7 +25,7 @@ pub enum FixOutcome {
 }
 
 /// Counters of the fixes by outcome.
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FixCounts {
     /// Used in an update.
     pub used: u64,
@@ -71,7 +71,7 @@ pub struct FusedStep {
 }
 
 /// What the filter makes of the GNSS at the moment, for the user.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum GnssVerdict {
     /// No usable fix yet.

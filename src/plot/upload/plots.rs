@@ -2,6 +2,7 @@
 //! May import: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
 
 use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
+use super::fusion::FusionSeries;
 use super::heading;
 use super::height::{floor_tick, HeightSeries};
 use super::palette::{activity_colour, activity_key, draw_key};
@@ -100,6 +101,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         a.steps.iter().filter(|s| s.t >= t0 && s.t <= t1).collect();
     let headings = (plot == Plot::Heading).then(|| Headings::new(a, t0, t1, cols, origin));
     let heights = (plot == Plot::Height).then(|| HeightSeries::new(a, t0, t1, cols, origin));
+    let fusion = (plot == Plot::Fusion).then(|| FusionSeries::new(a, t0, t1, origin));
     let height_title = format!(
         "height above the start (m, blue), floor (orange, right, 3 m each), {}",
         match a.vertical {
@@ -189,21 +191,12 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             )
         }
         Plot::Fusion => {
-            // Each axis spans what the filter estimated and its neutral value (1, 0°), the
-            // scale in the upper half and the correction in the lower, so they do not overlap.
-            let (mut k, mut b) = ((1.0_f64, 1.0_f64), (0.0_f64, 0.0_f64));
-            for f in a.fused.iter().filter(|f| f[0] >= t0 && f[0] <= t1) {
-                k = (k.0.min(f[3]), k.1.max(f[3]));
-                let d = f[4].to_degrees();
-                b = (b.0.min(d), b.1.max(d));
-            }
-            let ks = (k.1 - k.0).max(0.02);
-            let bs = (b.1 - b.0).max(2.0);
+            let f = fusion.as_ref().expect("made for the fusion plot");
             (
-                "fusion: step-length scale (blue, left), heading correction (°, orange, right)",
+                "fusion: step-length scale (blue, left), heading correction (°, orange, right), shaded ±1σ",
                 "",
-                (k.0 - 1.3 * ks, k.1 + 0.2 * ks),
-                Some(("°", (b.0 - 0.2 * bs, b.1 + 1.3 * bs))),
+                f.scale_axis,
+                Some(("°", f.correction_axis)),
             )
         }
     };
@@ -441,18 +434,33 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             )?;
         }
         Plot::Fusion => {
-            let fused_in = || a.fused.iter().filter(|f| f[0] >= t0 && f[0] <= t1);
+            // The ±1σ bands under the values: faint, each in its value's colour, edged so
+            // that a narrow one still shows beside its line.
+            let f = fusion.as_ref().expect("made for the fusion plot");
+            let edge = |c: RGBColor| ShapeStyle::from(&c.mix(0.6)).stroke_width(px(1.0));
+            chart.draw_series([Polygon::new(f.scale_band(), theme.track.mix(0.25).filled())])?;
+            let [up, down] = f.scale_edges();
+            chart.draw_series([up, down].map(|e| PathElement::new(e, edge(theme.track))))?;
+            chart.draw_secondary_series([Polygon::new(
+                f.correction_band(),
+                theme.gnss.mix(0.3).filled(),
+            )])?;
+            let [up, down] = f.correction_edges();
+            chart
+                .draw_secondary_series([up, down].map(|e| PathElement::new(e, edge(theme.gnss))))?;
             chart.draw_series(LineSeries::new(
                 [(x0, 1.0), (x1, 1.0)],
                 line(theme.grid, 1.0),
             ))?;
             chart.draw_series(LineSeries::new(
-                fused_in().map(|f| (rel(f[0]), f[3])),
-                line(theme.track, 2.0),
+                f.scale.iter().map(|p| (p.0, p.1)),
+                line(theme.track, 1.5),
             ))?;
-            chart.draw_secondary_series(fused_in().map(|f| {
-                Circle::new((rel(f[0]), f[4].to_degrees()), px(1.5), theme.gnss.filled())
-            }))?;
+            chart.draw_secondary_series(
+                f.correction
+                    .iter()
+                    .map(|p| Circle::new((p.0, p.1), px(1.5), theme.gnss.filled())),
+            )?;
         }
     }
     let cursor = cursor.filter(|c| *c >= t0 && *c <= t1).map(rel);
