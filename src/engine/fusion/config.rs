@@ -92,6 +92,10 @@ pub struct FusionConfig {
     /// The share of a fix's error variance that is new at every fix (white); the rest is the
     /// correlated error above.
     pub fix_white_share: f64,
+    /// Pairs of consecutive walking fixes over which the white share is measured on the walk
+    /// (`Fusion::measure_white_share`); [`FusionConfig::fix_white_share`] is then its floor. 0:
+    /// the configured share holds.
+    pub white_share_window: u32,
     /// Fixes whose innovations tell the fixes' σ (see `Fusion::adapt_sigma`); 0: the reported
     /// accuracy is taken as it is.
     pub fix_sigma_window: u32,
@@ -175,6 +179,7 @@ impl Default for FusionConfig {
             heading_sd_deg: 5.0,
             fix_error_tau_s: 14.0,
             fix_white_share: 0.1,
+            white_share_window: 0,
             fix_sigma_window: 0,
             max_fix_sigma_scale: 4.0,
             fix_latency_s: 0.0,

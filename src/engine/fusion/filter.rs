@@ -113,7 +113,15 @@ pub struct Fusion {
     // The fixes' normalised squared innovations, and the scale of their σ they imply.
     nis: std::collections::VecDeque<f64>,
     sigma_scale: f64,
+    // The last fix while walking (time, position, PDR alone then), the recent pairs' |δ|², 4σ²
+    // and ρ, and the white share they imply (see `measure_white_share`).
+    last_walking_fix: Option<(f64, Vector2<f64>, Vector2<f64>)>,
+    pairs: std::collections::VecDeque<(f64, f64, f64)>,
+    white_share: f64,
 }
+
+/// Two fixes further apart than this, s, say nothing of how fast their error changes.
+const WHITE_PAIR_S: f64 = 2.5;
 
 /// The median of the χ² distribution with 2 degrees of freedom (2 ln 2).
 const CHI2_2_MEDIAN: f64 = 1.386_294_361;
@@ -147,6 +155,9 @@ impl Fusion {
             recent: std::collections::VecDeque::with_capacity(RECENT_FIXES),
             nis: std::collections::VecDeque::new(),
             sigma_scale: 1.0,
+            last_walking_fix: None,
+            pairs: std::collections::VecDeque::new(),
+            white_share: cfg.fix_white_share,
         }
     }
 
@@ -359,7 +370,7 @@ impl Fusion {
     /// [`FusionConfig::fix_white_share`]) at the latest fix's accuracy, m².
     fn correlated_var(&self) -> f64 {
         if self.cfg.fix_error_tau_s > 0.0 {
-            (1.0 - self.cfg.fix_white_share) * sq(self.fix_sigma)
+            (1.0 - self.white_share) * sq(self.fix_sigma)
         } else {
             0.0
         }
@@ -448,6 +459,9 @@ impl Fusion {
         };
         self.fix_error_from(fix.sigma);
         let learn = self.teaches(t, &fix);
+        if learn {
+            self.measure_white_share(fix.t, fix.en, fix.sigma);
+        }
         // Carry the fix to the step time along the walking velocity, and by the receiver's
         // latency.
         let carry = age + self.cfg.fix_latency_s;
@@ -569,6 +583,48 @@ impl Fusion {
         self.x[K] = self.x[K].clamp(lo, hi);
         let bound = self.cfg.bias_bound_deg.to_radians();
         self.x[B] = self.x[B].clamp(-bound, bound);
+    }
+
+    /// How much of the fixes' error is new at every fix, measured on the walk: for two fixes
+    /// taken while walking at most [`WHITE_PAIR_S`] apart, the change of their error is
+    /// δ = (z₂ − z₁) − k R(β) (d₂ − d₁), d the PDR alone. Its expected square is
+    /// 4σ²(w + (1 − w)(1 − ρ)), ρ = e^(−Δt/τ): 4σ² for white errors (a simulator's), far less
+    /// for a phone's, whose error persists. Over the last [`FusionConfig::white_share_window`]
+    /// pairs, q = Σ|δ|² / Σ4σ² gives w = (q − (1 − ρ)) / ρ, held within
+    /// [[`FusionConfig::fix_white_share`], 1]. Until the window is half full, the configured
+    /// share holds.
+    fn measure_white_share(&mut self, t: f64, z: Vector2<f64>, sigma: f64) {
+        let n = self.cfg.white_share_window as usize;
+        let here = (t, z, self.dead_reckoned);
+        let Some((t0, z0, d0)) = self.last_walking_fix.replace(here) else {
+            return;
+        };
+        let dt = t - t0;
+        if n == 0 || !(dt > 0.0 && dt <= WHITE_PAIR_S) || self.cfg.fix_error_tau_s <= 0.0 {
+            return;
+        }
+        let (s, c) = libm::sincos(self.x[B]);
+        let d = self.dead_reckoned - d0;
+        // Rotate the PDR's displacement by the heading correction (clockwise, compass sense).
+        let pdr = Vector2::new(c * d.x + s * d.y, -s * d.x + c * d.y) * self.x[K];
+        let delta = (z - z0) - pdr;
+        let rho = libm::exp(-dt / self.cfg.fix_error_tau_s);
+        if self.pairs.len() == n {
+            self.pairs.pop_front();
+        }
+        self.pairs
+            .push_back((delta.norm_squared(), 4.0 * sq(sigma), rho));
+        if self.pairs.len() < n / 2 {
+            return;
+        }
+        let (num, den, rho_sum) = self
+            .pairs
+            .iter()
+            .fold((0.0, 0.0, 0.0), |a, p| (a.0 + p.0, a.1 + p.1, a.2 + p.2));
+        let rho = rho_sum / self.pairs.len() as f64;
+        let q = num / den;
+        let w = (q - (1.0 - rho)) / rho;
+        self.white_share = w.clamp(self.cfg.fix_white_share, 1.0);
     }
 
     /// Phones' reported accuracy is often optimistic, for minutes (multipath in a courtyard).
