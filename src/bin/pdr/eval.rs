@@ -228,3 +228,38 @@ pub fn compare(paths: &[PathBuf], json: bool) -> Result<(), String> {
     }
     Ok(())
 }
+
+/// `pdr eval --energy`: every log in best performance and in energy saving, per group.
+pub fn energy(
+    paths: &[PathBuf],
+    json: bool,
+    settings: &Settings,
+    recipe: Option<&pdr::io::import::recipe::Recipe>,
+) -> Result<(), String> {
+    use pdr::eval::energy::{energy_report, markdown};
+    use pdr::io::import::{import_with, DirSet};
+    let cfg = settings.config().map_err(|e| e.to_string())?;
+    let mut logs = Vec::new();
+    for path in paths {
+        let mut set = DirSet::new(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        for r in import_with(&mut set, recipe.map(std::slice::from_ref).unwrap_or(&[])) {
+            match r {
+                Ok(log) => logs.push(log),
+                Err(e) => eprintln!("pdr: left out: {e}"),
+            }
+        }
+    }
+    if logs.is_empty() {
+        return Err("no recognisable log".into());
+    }
+    let report = energy_report(&logs, &cfg);
+    if json {
+        out!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        out!("{}", markdown(&report));
+    }
+    Ok(())
+}
