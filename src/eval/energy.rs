@@ -75,7 +75,10 @@ pub struct EnergyReport {
 pub fn route_group(source: &str) -> Option<String> {
     let (_, rest) = source.rsplit_once("Trial")?;
     let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
-    let tens = digits.len().checked_sub(2).and_then(|i| digits.get(i..=i))?;
+    let tens = digits
+        .len()
+        .checked_sub(2)
+        .and_then(|i| digits.get(i..=i))?;
     Some(format!("trials {tens}x"))
 }
 

@@ -111,8 +111,7 @@ pub fn read_dir(
     };
     let time_csv = format!("{meta}time.csv");
     let date = names
-        .iter()
-        .any(|n| *n == time_csv)
+        .contains(&time_csv)
         .then(|| set.head(&time_csv).ok())
         .flatten()
         .and_then(|text| start_date(&text));
