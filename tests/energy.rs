@@ -44,6 +44,8 @@ fn receiver_on_time_per_log_and_per_group() {
     let ratio = all.fused_ratio.unwrap();
     let fused = |l: &pdr::eval::LogResult| l.fused_error_m.unwrap().p75;
     assert!((ratio - fused(&saving[0]) / fused(&best[0])).abs() < 1e-12);
+    // One log: the median of the logs' ratios is its ratio.
+    assert!((all.fused_log_ratio.unwrap() - ratio).abs() < 1e-12);
     assert!(markdown(&r).contains("| all | 1 |"));
     // The same figures in `pdr eval --json`'s rows and summary.
     let json = serde_json::to_value(&saving[0]).unwrap();

@@ -7,7 +7,7 @@
 //! (`…TrainingTrialNN…`: the tens digit of the route number is the kind of route, see
 //! [`route_group`]), else `other`. A last row, `all`, pools every log.
 
-use super::{evaluate, summarise, LogResult, Summary};
+use super::{evaluate, percentile, summarise, ErrorSummary, LogResult, Summary};
 use crate::engine::fusion::{GnssMode, DEFAULT_PERIOD_S, DEFAULT_WINDOW_S};
 use crate::engine::PipelineConfig;
 use crate::io::import::Log;
@@ -53,6 +53,12 @@ pub struct GroupRow {
     pub fused_ratio: Option<f64>,
     /// Energy saving's smoothed median p75 over best performance's.
     pub smoothed_ratio: Option<f64>,
+    /// The median over the logs of each log's fused p75 in energy saving over its p75 in best
+    /// performance (steadier than the ratio of medians, which jumps when one log crosses the
+    /// median).
+    pub fused_log_ratio: Option<f64>,
+    /// The same for the smoothed track.
+    pub smoothed_log_ratio: Option<f64>,
 }
 
 /// The whole comparison.
@@ -128,11 +134,25 @@ pub fn energy_report(logs: &[Log], cfg: &PipelineConfig) -> EnergyReport {
             (Some(a), Some(b)) if b > 0.0 => Some(a / b),
             _ => None,
         };
+        let log_ratio = |get: fn(&LogResult) -> Option<ErrorSummary>| {
+            let v: Vec<f64> = (0..logs.len())
+                .filter(|&i| keep(i))
+                .filter_map(|i| {
+                    ratio(
+                        get(&results[1][i]).map(|e| e.p75),
+                        get(&results[0][i]).map(|e| e.p75),
+                    )
+                })
+                .collect();
+            (!v.is_empty()).then(|| percentile(&v, 50.0))
+        };
         GroupRow {
             group: name.to_string(),
             logs: (0..logs.len()).filter(|&i| keep(i)).count() as u64,
             fused_ratio: ratio(energy.fused_p75_m, best.fused_p75_m),
             smoothed_ratio: ratio(energy.smoothed_p75_m, best.smoothed_p75_m),
+            fused_log_ratio: log_ratio(|l| l.fused_error_m),
+            smoothed_log_ratio: log_ratio(|l| l.smoothed_error_m),
             best_performance: best,
             energy_saving: energy,
         }
@@ -154,10 +174,12 @@ pub fn energy_report(logs: &[Log], cfg: &PipelineConfig) -> EnergyReport {
 pub fn markdown(r: &EnergyReport) -> String {
     let m = |v: Option<f64>| v.map_or("–".into(), |x| format!("{x:.1}"));
     let x = |v: Option<f64>| v.map_or("–".into(), |x| format!("{x:.2}"));
+    let xx = |a: Option<f64>, b: Option<f64>| format!("{} ({})", x(a), x(b));
     let pct = |v: Option<f64>| v.map_or("–".into(), |x| format!("{:.0} %", 100.0 * x));
     let mut s = format!(
         "Energy saving ({:.0} s every {:.0} s) against best performance: median over the logs of \
-         each log's p75 absolute error, m\n\n\
+         each log's p75 absolute error, m; ratio: energy saving over best performance, of the \
+         medians (and the median of the logs' own ratios)\n\n\
          | group | logs | GNSS | fused best | fused saving | ratio | smoothed best | smoothed saving | ratio | receiver on (saving) |\n\
          |---|---|---|---|---|---|---|---|---|---|\n",
         r.window_s, r.period_s
@@ -171,10 +193,10 @@ pub fn markdown(r: &EnergyReport) -> String {
             m(b.gnss_p75_m),
             m(b.fused_p75_m),
             m(e.fused_p75_m),
-            x(g.fused_ratio),
+            xx(g.fused_ratio, g.fused_log_ratio),
             m(b.smoothed_p75_m),
             m(e.smoothed_p75_m),
-            x(g.smoothed_ratio),
+            xx(g.smoothed_ratio, g.smoothed_log_ratio),
             pct(e.gnss_on_share),
         ));
     }

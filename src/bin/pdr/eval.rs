@@ -135,8 +135,18 @@ fn print_report(report: &pdr::eval::Report) {
         );
     }
     for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
+        let on = l
+            .fusion
+            .and_then(|f| Some((f.gnss_on_s?, f.gnss_span_s?)))
+            .map_or(String::new(), |(on, span)| {
+                format!(", receiver on {on:.0} s of {span:.0} s")
+            });
+        let note = l
+            .declination_note
+            .as_ref()
+            .map_or(String::new(), |n| format!("; {n}"));
         out!(
-            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m",
+            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m{on}{note}",
             l.path.rsplit('/').next().unwrap_or(&l.path),
             opt(l.gnss_error_m.map(|e| e.p75), 2),
             opt(l.fused_error_m.map(|e| e.p75), 2),
