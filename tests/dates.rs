@@ -174,7 +174,11 @@ fn ipin_logs_have_their_date() {
         // Nuremberg in June 2023 (WMM2020), not the model's value for 2025 (WMM2025, 0.1° more).
         let dec = r.declination_deg.expect("a declination");
         let f = log.fixes().next().unwrap();
-        let at = |date| wmm_declination_deg(f.lat_deg, f.lon_deg, 0.0, date).unwrap().0;
+        let at = |date| {
+            wmm_declination_deg(f.lat_deg, f.lon_deg, 0.0, date)
+                .unwrap()
+                .0
+        };
         assert!((dec - at(Some(d))).abs() < 0.01, "{}: {dec}", log.source);
         assert!((at(Some(d)) - at(None)).abs() > 0.05, "the date matters");
     }
