@@ -202,7 +202,7 @@ pub fn analyse(
             progress(i + 1, total);
         }
     };
-    let run = replay_observed(cfg.clone(), &log.records, &mut observe)?;
+    let run = replay_observed(log.dated(cfg), &log.records, &mut observe)?;
     progress(total, total);
     let score = crate::eval::score(log, &run);
     let p = &run.pipeline;

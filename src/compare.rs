@@ -202,7 +202,7 @@ fn cell(set: &DataSet, metric: Option<Metric>, cfg: &crate::engine::PipelineConf
     let mut ran = Vec::new();
     let mut why = None;
     for log in &set.logs {
-        match replay(cfg.clone(), &log.records) {
+        match replay(log.dated(cfg), &log.records) {
             Ok(run) if run.pipeline.diagnostics().samples > 0 => ran.push(score(log, &run)),
             Ok(run) => {
                 why.get_or_insert_with(|| match run.errors.first() {

@@ -27,6 +27,7 @@ use crate::engine::replay;
 use crate::io::import::{Log, Waypoint};
 use serde::{Deserialize, Serialize};
 
+pub mod energy;
 pub mod floors;
 
 pub use floors::FloorResult;
@@ -97,6 +98,13 @@ pub struct FusionResult {
     pub fixes_gated: u64,
     /// Position resets after repeated gating.
     pub resets: u64,
+    /// How long the receiver was on from the first fix to the end of the log, s (energy
+    /// saving switches it off between windows; best performance keeps it on).
+    #[serde(default)]
+    pub gnss_on_s: Option<f64>,
+    /// That span, from the first fix to the end of the log, s.
+    #[serde(default)]
+    pub gnss_span_s: Option<f64>,
 }
 
 /// One log's result. The field names are stable: other tools read them.
@@ -146,6 +154,14 @@ pub struct LogResult {
     pub smoothed_error_m: Option<ErrorSummary>,
     /// What the fusion filter learnt and how sure it is, for a log with fixes.
     pub fusion: Option<FusionResult>,
+    /// The magnetic declination applied to the headings, degrees (positive east), once a fix
+    /// set the origin with fusion on.
+    #[serde(default)]
+    pub declination_deg: Option<f64>,
+    /// Why that declination may be off (no date for the World Magnetic Model, none at all);
+    /// `null` when it is the model's for the log's date.
+    #[serde(default)]
+    pub declination_note: Option<String>,
     /// Lines skipped while reading.
     pub skipped_lines: u64,
     /// Records the engine refused.
@@ -202,6 +218,8 @@ impl LogResult {
             fused_error_m: None,
             smoothed_error_m: None,
             fusion: None,
+            declination_deg: None,
+            declination_note: None,
             skipped_lines: 0,
             refused_records: 0,
             pressure_samples: 0,
@@ -249,6 +267,10 @@ pub struct Summary {
     pub smoothed_pooled_p75_m: Option<f64>,
     /// Logs whose fused p75 is more than 1.1 × their GNSS-alone p75.
     pub fused_worse_than_gnss: u64,
+    /// The receiver's on time over its span, summed over the logs with fusion
+    /// ([`FusionResult::gnss_on_s`] / [`FusionResult::gnss_span_s`]): 1 in best performance,
+    /// about window / period in energy saving.
+    pub gnss_on_share: Option<f64>,
     /// Logs scored on floors (their landmarks have floors).
     pub floor_logs: u64,
     /// Landmarks scored on floors, over all those logs.
@@ -281,7 +303,7 @@ pub struct Report {
 
 /// Runs one log through a pipeline with `cfg` and scores it.
 pub fn evaluate(log: &Log, cfg: &PipelineConfig) -> LogResult {
-    match replay(cfg.clone(), &log.records) {
+    match replay(log.dated(cfg), &log.records) {
         Ok(run) => score(log, &run),
         Err(e) => LogResult::failed(&log.source, log.format.as_str(), e.to_string()),
     }
@@ -358,8 +380,12 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
             fixes_used: d.counts.used,
             fixes_gated: d.counts.gated,
             resets: d.counts.resets,
+            gnss_on_s: d.gnss_on_s.map(|(on, _)| on),
+            gnss_span_s: d.gnss_on_s.map(|(_, span)| span),
         })
     });
+    res.declination_deg = d.declination_deg;
+    res.declination_note = d.declination_note.map(|n| n.to_string());
     if log.truth.loop_closure {
         let (e, n) = track.last().map_or((0.0, 0.0), |s| (s.east_m, s.north_m));
         res.loop_closure_m = Some(libm::hypot(e, n));
@@ -568,7 +594,12 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         .collect();
     let with_floors: Vec<&FloorResult> = logs.iter().filter_map(|l| l.floors.as_ref()).collect();
     let (floor_logs, floor_landmarks, _, floor_share, height_p75_m) = floors::pool(&with_floors);
+    let (on, span) = logs
+        .iter()
+        .filter_map(|l| Some((l.fusion?.gnss_on_s?, l.fusion?.gnss_span_s?)))
+        .fold((0.0, 0.0), |(a, b), (on, span)| (a + on, b + span));
     Summary {
+        gnss_on_share: (span > 0.0).then(|| on / span),
         logs: logs.len() as u64,
         failed: logs.iter().filter(|l| l.error.is_some()).count() as u64,
         step_mae_pct: (!steps.is_empty()).then(|| mean(&steps)),

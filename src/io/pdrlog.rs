@@ -26,6 +26,10 @@
 //! a foot (Strozzi 2017 §4's two-sensor walks), with the fields of `imu` in the foot sensor's frame.
 //! `pressure` records are barometer readings, `hpa` hectopascals (= mbar).
 //!
+//! A comment `# date_unix_s 1686729658` says when the recording was made, Unix seconds, for a log
+//! whose clock is not Unix time (one converted from a format that counts from the start); the
+//! World Magnetic Model needs the date for the declination. Optional; the first one counts.
+//!
 //! Reading is lenient per line: a bad line is reported with its file, line, column and field and
 //! skipped; every good line before and after it is kept. A missing or unknown version tag is
 //! fatal.
@@ -128,9 +132,20 @@ pub fn line(r: &Record) -> String {
     s
 }
 
+/// The comment that gives the recording's date (see the module documentation).
+pub const DATE_TAG: &str = "# date_unix_s ";
+
 /// A whole log as text.
 pub fn to_string(records: &[Record]) -> String {
+    to_string_dated(records, None)
+}
+
+/// A whole log as text, with its date (Unix seconds) when known.
+pub fn to_string_dated(records: &[Record], date_unix_s: Option<f64>) -> String {
     let mut s = preamble();
+    if let Some(d) = date_unix_s.filter(|d| d.is_finite()) {
+        let _ = writeln!(s, "{DATE_TAG}{d}");
+    }
     for r in records {
         s.push_str(&line(r));
     }
@@ -147,6 +162,8 @@ pub struct Parsed {
     /// How many lines were skipped in all (`errors` may hold one more entry: the notice that
     /// records were put back in time order).
     pub skipped: u64,
+    /// When the recording was made, Unix seconds, from its `# date_unix_s` line.
+    pub date_unix_s: Option<f64>,
 }
 
 /// How many IMU samples a pdr-log's text holds (its `imu,` lines), without parsing them.
@@ -208,6 +225,23 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
                 return ControlFlow::Break(());
             }
             saw_header = true;
+            return ControlFlow::Continue(());
+        }
+        if let Some(d) = line.strip_prefix(DATE_TAG) {
+            match d.trim().parse::<f64>() {
+                Ok(v) if v.is_finite() => {
+                    out.date_unix_s.get_or_insert(v);
+                }
+                _ => skip(
+                    &mut out,
+                    err(
+                        n,
+                        Some(2),
+                        Some("date_unix_s"),
+                        format!("`{}` is not a number of seconds", d.trim()),
+                    ),
+                ),
+            }
             return ControlFlow::Continue(());
         }
         if line.trim().is_empty() || line.starts_with('#') {

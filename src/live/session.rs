@@ -282,11 +282,16 @@ impl FuzzyLengths {
 impl LiveSession {
     /// A session with the given configuration, for a platform's conventions, with event times
     /// counted from `origin_ms` (ms, Unix time; 0 keeps the page's clock).
+    /// The time origin also dates the walk for the declination (`fusion.date_unix_s`, unless
+    /// `cfg` sets it), so the World Magnetic Model has the date before the first fix.
     pub fn new(
-        cfg: PipelineConfig,
+        mut cfg: PipelineConfig,
         platform: Platform,
         origin_ms: f64,
     ) -> Result<Self, ConfigError> {
+        if cfg.fusion.date_unix_s.is_none() {
+            cfg.fusion.date_unix_s = crate::io::import::date::from_clock(Some(origin_ms * 1e-3));
+        }
         Ok(LiveSession {
             pipeline: Pipeline::new(cfg)?,
             platform,

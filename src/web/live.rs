@@ -259,8 +259,15 @@ impl Live {
 /// `undefined` for the defaults): `{steps, distance_m, samples, skipped_lines}`.
 #[wasm_bindgen]
 pub fn replay_log(text: &str, settings: JsValue) -> Result<JsValue, JsError> {
-    let cfg = settings_from(settings)?.config().map_err(to_js)?;
+    let mut cfg = settings_from(settings)?.config().map_err(to_js)?;
     let parsed = crate::io::pdrlog::read(text.as_bytes(), "recording").map_err(to_js)?;
+    if cfg.fusion.date_unix_s.is_none() {
+        cfg.fusion.date_unix_s = parsed.date_unix_s.or_else(|| {
+            crate::io::import::date::from_clock(
+                parsed.records.first().map(crate::engine::Record::t),
+            )
+        });
+    }
     let r = crate::engine::replay::replay(cfg, &parsed.records).map_err(to_js)?;
     let d = r.pipeline.diagnostics();
     #[derive(serde::Serialize)]

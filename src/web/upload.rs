@@ -192,7 +192,10 @@ impl Upload {
             .logs
             .get(index)
             .ok_or_else(|| to_js(format!("no log {index}")))?;
-        Ok(crate::io::pdrlog::to_string(&log.records))
+        Ok(crate::io::pdrlog::to_string_dated(
+            &log.records,
+            log.date_unix_s,
+        ))
     }
 }
 

@@ -201,6 +201,13 @@ enum Cmd {
         /// set, and print the comparison table (Markdown, or JSON with `--json`).
         #[arg(long, conflicts_with = "show_config")]
         compare: bool,
+        /// Run every log twice, in best performance and in energy saving (the receiver on
+        /// `fusion.mode.window_s` every `fusion.mode.period_s`, 10 s every 60 s unless set), with
+        /// the other settings as given, and print the median fused and smoothed p75 per group of
+        /// logs (IPIN routes by their tens digit), their ratio and the receiver's on time
+        /// (Markdown, or JSON with `--json`).
+        #[arg(long, conflicts_with_all = ["show_config", "compare"])]
+        energy: bool,
     },
     /// Serve the built web app: HTTP on localhost and HTTPS (self-signed) on all interfaces.
     Serve {
@@ -304,13 +311,18 @@ pub fn main() -> ExitCode {
             settings,
             show_config,
             recipe,
+            energy,
             ..
         } => settings.settings().and_then(|s| {
             let recipe = recipe
                 .as_deref()
                 .map(pdr::io::import::recipe::load)
                 .transpose()?;
-            eval::eval(&paths, json, &s, show_config, recipe.as_ref())
+            if energy {
+                eval::energy(&paths, json, &s, recipe.as_ref())
+            } else {
+                eval::eval(&paths, json, &s, show_config, recipe.as_ref())
+            }
         }),
         Cmd::Serve {
             root,

@@ -135,8 +135,18 @@ fn print_report(report: &pdr::eval::Report) {
         );
     }
     for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
+        let on = l
+            .fusion
+            .and_then(|f| Some((f.gnss_on_s?, f.gnss_span_s?)))
+            .map_or(String::new(), |(on, span)| {
+                format!(", receiver on {on:.0} s of {span:.0} s")
+            });
+        let note = l
+            .declination_note
+            .as_ref()
+            .map_or(String::new(), |n| format!("; {n}"));
         out!(
-            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m",
+            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m{on}{note}",
             l.path.rsplit('/').next().unwrap_or(&l.path),
             opt(l.gnss_error_m.map(|e| e.p75), 2),
             opt(l.fused_error_m.map(|e| e.p75), 2),
@@ -225,6 +235,41 @@ pub fn compare(paths: &[PathBuf], json: bool) -> Result<(), String> {
         );
     } else {
         out!("{}", markdown(&table));
+    }
+    Ok(())
+}
+
+/// `pdr eval --energy`: every log in best performance and in energy saving, per group.
+pub fn energy(
+    paths: &[PathBuf],
+    json: bool,
+    settings: &Settings,
+    recipe: Option<&pdr::io::import::recipe::Recipe>,
+) -> Result<(), String> {
+    use pdr::eval::energy::{energy_report, markdown};
+    use pdr::io::import::{import_with, DirSet};
+    let cfg = settings.config().map_err(|e| e.to_string())?;
+    let mut logs = Vec::new();
+    for path in paths {
+        let mut set = DirSet::new(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        for r in import_with(&mut set, recipe.map(std::slice::from_ref).unwrap_or(&[])) {
+            match r {
+                Ok(log) => logs.push(log),
+                Err(e) => eprintln!("pdr: left out: {e}"),
+            }
+        }
+    }
+    if logs.is_empty() {
+        return Err("no recognisable log".into());
+    }
+    let report = energy_report(&logs, &cfg);
+    if json {
+        out!(
+            "{}",
+            serde_json::to_string(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        out!("{}", markdown(&report));
     }
     Ok(())
 }

@@ -66,7 +66,7 @@ pub fn run(
             parsed.skipped - shown as u64
         );
     }
-    let r = replay(cfg, &parsed.records).map_err(|e| e.to_string())?;
+    let r = replay(parsed.dated(&cfg), &parsed.records).map_err(|e| e.to_string())?;
     for (i, e) in r.errors.iter().take(10) {
         eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
     }

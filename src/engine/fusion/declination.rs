@@ -71,6 +71,12 @@ impl serde::Serialize for DeclinationNote {
     }
 }
 
+/// Whether a time, s, is taken for Unix time: between 2017-07 and 2096 (a clock counted from
+/// boot or from the start of a recording reads far less).
+pub fn is_unix_time_s(t: f64) -> bool {
+    (1.5e9..4.0e9).contains(&t)
+}
+
 /// The declination a configuration asks for at a frame's origin, radians, and a note when the
 /// model was used without a known date.
 pub fn declination_for(
@@ -82,8 +88,7 @@ pub fn declination_for(
         Declination::None => (0.0, None),
         Declination::Fixed { deg } => (deg.to_radians(), None),
         Declination::Wmm => {
-            // A fix time between 2017 and 2096 is taken for Unix time.
-            let date = if (1.5e9..4.0e9).contains(&fix_t) {
+            let date = if is_unix_time_s(fix_t) {
                 Some(fix_t)
             } else {
                 cfg.date_unix_s

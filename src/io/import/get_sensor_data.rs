@@ -23,6 +23,12 @@
 //!
 //! Everything else (`WIFI`, `BLE4`, `LIGH`, `SOUN`, …) is ignored.
 //!
+//! # Date
+//! The header's `% Date of creation: Wed Jun 14 10:00:58 GMT+02:00 2023` (Java's
+//! `Date.toString`, see [`super::date::java_date`]) is the log's [`Log::date_unix_s`]. Without
+//! it, a `GNSS` line whose `SensorTimeStamp` is Unix time (the fix's own time, as the app
+//! writes it) gives the date as that time minus the line's `AppTimestamp`.
+//!
 //! # Clock
 //! The log's clock is `AppTimestamp` (s since the app started; `POSI` and `GNSS` use it). It is
 //! stamped when the app reads a sample, so it carries delivery jitter; `SensorTimestamp` is
@@ -39,6 +45,7 @@ use super::common::{
     add_warnings, drop_non_finite, not_a_number, pressure, rotation_vector, warn_count, Warnings,
 };
 use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
+use crate::engine::fusion::declination::is_unix_time_s;
 use crate::engine::geo::LocalFrame;
 use crate::engine::types::GnssFix;
 use crate::io::lines::each_line;
@@ -126,12 +133,17 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
     let mut seen_fixes: HashSet<[u64; 3]> = HashSet::new();
     let mut posi: Vec<(f64, f64, f64, Option<i32>)> = Vec::new();
     let mut warnings = Warnings::default();
+    let mut created: Option<f64> = None;
+    let mut fix_date: Option<f64> = None;
     each_line(r, label, |n, line| {
         let line = match line {
             Ok(l) => l,
             Err(e) => return warnings.push(e),
         };
         if line.starts_with('%') || line.trim().is_empty() {
+            if let Some(d) = line.split_once("Date of creation:") {
+                created = created.or_else(|| super::date::java_date(d.1));
+            }
             return;
         }
         let mut f: Vec<&str> = line.split(';').map(str::trim).collect();
@@ -204,6 +216,9 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
                         fix.lat_deg.to_bits(),
                         fix.lon_deg.to_bits(),
                     ];
+                    if fix_date.is_none() && is_unix_time_s(sensor) {
+                        fix_date = Some(sensor - app);
+                    }
                     // The app writes most fixes twice; a repeat is expected, not a problem.
                     if seen_fixes.insert(key) {
                         fixes.push(fix);
@@ -329,6 +344,7 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         return Err(file_error(label, 0, "no usable ACCE samples"));
     }
     log.records = s.into_records();
+    log.date_unix_s = created.or(fix_date);
     add_warnings(&mut log, warnings);
     warn_count(
         &mut log,

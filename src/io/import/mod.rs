@@ -26,6 +26,7 @@
 
 pub mod archive_limits;
 pub(crate) mod common;
+pub mod date;
 pub mod fileset;
 pub mod get_sensor_data;
 pub mod gnss_logger;
@@ -256,6 +257,12 @@ pub struct Log {
     /// The recipe's sanity warnings about the files (a likely wrong unit or column, see
     /// [`recipe::check`]), each naming its file; empty for the other formats.
     pub checks: Vec<String>,
+    /// When the recording was made, Unix seconds: the time its format gives for the start
+    /// (GetSensorData's `Date of creation`, phyphox's `meta/time.csv`, a pdr-log's `# date`
+    /// line), else its first time when the log's clock is Unix time (Sensor Logger, GnssLogger,
+    /// Microsoft Indoor, live recordings). `None` when nothing says. The World Magnetic Model
+    /// needs it for the declination ([`Log::dated`]); a day's accuracy is plenty.
+    pub date_unix_s: Option<f64>,
 }
 
 impl Log {
@@ -272,7 +279,19 @@ impl Log {
             group: None,
             recipe: None,
             checks: Vec::new(),
+            date_unix_s: None,
         }
+    }
+
+    /// `cfg` with the log's date for the declination ([`Log::date_unix_s`]), unless `cfg`
+    /// already sets one (`fusion.date_unix_s`). Every path that runs an imported log through the
+    /// engine (`pdr run`, `pdr eval`, the upload page) builds its pipeline with this.
+    pub fn dated(&self, cfg: &crate::engine::PipelineConfig) -> crate::engine::PipelineConfig {
+        let mut cfg = cfg.clone();
+        if cfg.fusion.date_unix_s.is_none() {
+            cfg.fusion.date_unix_s = self.date_unix_s;
+        }
+        cfg
     }
 
     /// Records a skipped line.
@@ -515,6 +534,7 @@ pub fn import_with(
                 Format::PdrLog => crate::io::pdrlog::read_sized(reader, &label, records).map(|p| {
                     let mut log = Log::new(&label, Format::PdrLog);
                     log.records = p.records;
+                    log.date_unix_s = p.date_unix_s;
                     let extra = p.skipped.saturating_sub(p.errors.len() as u64);
                     for e in p.errors {
                         log.warn(e);
@@ -531,6 +551,11 @@ pub fn import_with(
             },
         };
         out.push(r);
+    }
+    for log in out.iter_mut().flatten() {
+        if log.date_unix_s.is_none() {
+            log.date_unix_s = date::from_clock(log.records.first().map(Record::t));
+        }
     }
     out
 }

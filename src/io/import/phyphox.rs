@@ -13,7 +13,9 @@
 //! or semicolon) is detected from the header line; a decimal comma is accepted; numbers may be
 //! written like `9.364549000E-3`.
 //!
-//! Time is seconds from the start of the experiment, one clock for every sensor.
+//! Time is seconds from the start of the experiment, one clock for every sensor. The date
+//! ([`Log::date_unix_s`]) is the `START` event's `system time` (Unix s) minus its
+//! `experiment time` in `meta/time.csv`, when the export has it.
 //!
 //! phyphox has "Acceleration" (with g) and "Linear Acceleration" (without g). Only the first
 //! is used, and only when its mean norm is that of gravity (between 5 and 20 m/s²): a log with
@@ -107,7 +109,42 @@ pub fn read_dir(
             l
         }
     };
-    Some((consumed, read_files(set, &files, &source)))
+    let time_csv = format!("{meta}time.csv");
+    let date = names
+        .contains(&time_csv)
+        .then(|| set.head(&time_csv).ok())
+        .flatten()
+        .and_then(|text| start_date(&text));
+    let read = read_files(set, &files, &source).map(|mut log| {
+        log.date_unix_s = date;
+        log
+    });
+    Some((consumed, read))
+}
+
+/// The Unix time of the experiment's start from `meta/time.csv`: the `START` row's
+/// `system time` minus its `experiment time`. `None` without such a row.
+fn start_date(text: &str) -> Option<f64> {
+    let mut lines = text.lines();
+    let header = lines.next()?.trim_start_matches('\u{feff}');
+    let d = super::common::detect_delimiter(header);
+    let names: Vec<String> = split_line(header, d)
+        .iter()
+        .map(|h| h.trim().trim_matches('"').to_ascii_lowercase())
+        .collect();
+    let col = |n: &str| names.iter().position(|h| h == n);
+    let (event, exp, sys) = (col("event")?, col("experiment time")?, col("system time")?);
+    lines.find_map(|l| {
+        let f = split_line(l, d);
+        let is_start = f
+            .get(event)
+            .is_some_and(|e| e.trim().trim_matches('"').eq_ignore_ascii_case("start"));
+        if !is_start {
+            return None;
+        }
+        let t = number(f.get(sys)?)? - number(f.get(exp)?)?;
+        t.is_finite().then_some(t)
+    })
 }
 
 /// Column indices of one quantity group in a file.
