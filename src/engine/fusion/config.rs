@@ -77,11 +77,13 @@ pub struct FusionConfig {
     /// After this many consecutive fixes refused by the gate, the position is reset to the
     /// fix.
     pub reset_after: u32,
-    /// Random error of each step's length, as a share of it (1σ). 0.08: the spread of step
-    /// lengths at a steady cadence (Basso 2016 Fig. 4).
+    /// Random error of each step's length, as a share of it (1σ). 0.15: twice the spread of
+    /// step lengths at a steady cadence (Basso 2016 Fig. 4, 0.08), for hand-held phones and
+    /// cadence changes; chosen on IPIN 2023 with the leave-one-route-out check in the README.
     pub step_length_sd_rel: f64,
-    /// Random error of each step's heading, degrees (1σ). 5°: the step-to-step scatter of the
-    /// averaged tip-to-tail heading on pocket walks.
+    /// Random error of each step's heading, degrees (1σ). 10°: twice the step-to-step scatter
+    /// of the averaged tip-to-tail heading on pocket walks (5°), for hand-held phones; chosen on
+    /// IPIN 2023 with the leave-one-route-out check in the README.
     pub heading_sd_deg: f64,
     /// Time constant of the fixes' correlated error, s: a fix's error persists from fix to fix
     /// (multipath, the receiver's own filter) and decays as a first-order Gauss–Markov process
@@ -90,17 +92,14 @@ pub struct FusionConfig {
     /// the errors' autocorrelation is about e^(−Δt/14 s) up to 20 s apart.
     pub fix_error_tau_s: f64,
     /// The share of a fix's error variance that is new at every fix (white); the rest is the
-    /// correlated error above.
+    /// correlated error above. With [`FusionConfig::white_share_window`], the floor of the share
+    /// measured on the walk. 0.3: IPIN's errors 1 s apart correlate at about 0.8 (≈ 0.7 ·
+    /// e^(−1/14) + the rest new).
     pub fix_white_share: f64,
     /// Pairs of consecutive walking fixes over which the white share is measured on the walk
     /// (`Fusion::measure_white_share`); [`FusionConfig::fix_white_share`] is then its floor. 0:
     /// the configured share holds.
     pub white_share_window: u32,
-    /// Fixes whose innovations tell the fixes' σ (see `Fusion::adapt_sigma`); 0: the reported
-    /// accuracy is taken as it is.
-    pub fix_sigma_window: u32,
-    /// The most the fixes' σ is scaled up by.
-    pub max_fix_sigma_scale: f64,
     /// How late the receiver reports where the walker was, s: a fix is carried forward along
     /// the walking velocity by this much more than its age.
     pub fix_latency_s: f64,
@@ -118,9 +117,6 @@ pub struct FusionConfig {
     pub baseline_sigmas: f64,
     /// Only fixes this accurate or better end a baseline, m.
     pub baseline_max_accuracy_m: f64,
-    /// With baselines on, single fixes still correct the heading correction (through the
-    /// filter's correlations); off: baselines alone do.
-    pub bias_from_fixes: bool,
     /// Without evidence, the scale and the heading correction return to 1 and 0 with this time
     /// constant, s (first-order Gauss–Markov processes whose spread is their priors',
     /// [`FusionConfig::scale0_sd`] and [`FusionConfig::bias0_sd_deg`]). 0: they keep what they
@@ -175,20 +171,17 @@ impl Default for FusionConfig {
             gate_chi2: 13.82,
             max_fix_age_s: 2.0,
             reset_after: 5,
-            step_length_sd_rel: 0.08,
-            heading_sd_deg: 5.0,
+            step_length_sd_rel: 0.15,
+            heading_sd_deg: 10.0,
             fix_error_tau_s: 14.0,
-            fix_white_share: 0.1,
-            white_share_window: 0,
-            fix_sigma_window: 0,
-            max_fix_sigma_scale: 4.0,
+            fix_white_share: 0.3,
+            white_share_window: 30,
             fix_latency_s: 0.0,
             learn_after_walking_s: 10.0,
             correction_tau_s: 0.0,
             baseline_min_m: 40.0,
             baseline_sigmas: 5.0,
             baseline_max_accuracy_m: 15.0,
-            bias_from_fixes: true,
             scale_bounds: (0.8, 1.25),
             bias_bound_deg: 25.0,
             scale_rw: 0.001,
@@ -229,12 +222,6 @@ impl FusionConfig {
             if !(v >= 0.0 && v.is_finite()) {
                 return Err(ConfigError::new(name, "must be a finite number, 0 or more"));
             }
-        }
-        if !(self.max_fix_sigma_scale >= 1.0 && self.max_fix_sigma_scale.is_finite()) {
-            return Err(ConfigError::new(
-                "fusion.max_fix_sigma_scale",
-                "must be a finite number, 1 or more",
-            ));
         }
         positive(
             "fusion.baseline_max_accuracy_m",

@@ -110,9 +110,6 @@ pub struct Fusion {
     counts: FixCounts,
     // Whether each of the last fixes offered to the gate was taken.
     recent: std::collections::VecDeque<bool>,
-    // The fixes' normalised squared innovations, and the scale of their σ they imply.
-    nis: std::collections::VecDeque<f64>,
-    sigma_scale: f64,
     // The last fix while walking (time, position, PDR alone then), the recent pairs' |δ|², 4σ²
     // and ρ, and the white share they imply (see `measure_white_share`).
     last_walking_fix: Option<(f64, Vector2<f64>, Vector2<f64>)>,
@@ -120,11 +117,11 @@ pub struct Fusion {
     white_share: f64,
 }
 
+/// Fixes whose measured white share is at least this teach the scale one by one.
+const WHITE_FIXES: f64 = 0.5;
+
 /// Two fixes further apart than this, s, say nothing of how fast their error changes.
 const WHITE_PAIR_S: f64 = 2.5;
-
-/// The median of the χ² distribution with 2 degrees of freedom (2 ln 2).
-const CHI2_2_MEDIAN: f64 = 1.386_294_361;
 
 /// How many recent fixes [`Fusion::verdict`] looks at.
 pub const RECENT_FIXES: usize = 10;
@@ -153,8 +150,6 @@ impl Fusion {
             smoother: Smoother::default(),
             counts: FixCounts::default(),
             recent: std::collections::VecDeque::with_capacity(RECENT_FIXES),
-            nis: std::collections::VecDeque::new(),
-            sigma_scale: 1.0,
             last_walking_fix: None,
             pairs: std::collections::VecDeque::new(),
             white_share: cfg.fix_white_share,
@@ -453,10 +448,6 @@ impl Fusion {
             self.counts.stale += 1;
             return (FixOutcome::Stale, None);
         }
-        let fix = PendingFix {
-            sigma: fix.sigma * self.sigma_scale,
-            ..fix
-        };
         self.fix_error_from(fix.sigma);
         let learn = self.teaches(t, &fix);
         if learn {
@@ -479,7 +470,6 @@ impl Fusion {
             return (FixOutcome::Gated, Some([nu.x, nu.y]));
         };
         let d2 = (nu.transpose() * s_inv * nu)[(0, 0)];
-        self.adapt_sigma(d2);
         if !(d2 <= self.cfg.gate_chi2) {
             self.gated.push((nu, r));
             if self.gated.len() < self.cfg.reset_after as usize {
@@ -575,6 +565,14 @@ impl Fusion {
         self.counts.baselines += 1;
     }
 
+    /// Whether only baselines teach the scale: when the fixes' errors persist (their white
+    /// share, measured on the walk, is below [`WHITE_FIXES`]), a run of fixes is one piece of
+    /// evidence, not many, and a receiver that lags or holds its position shortens every
+    /// short displacement. Fixes whose errors are white teach it one by one.
+    fn baselines_only(&self) -> bool {
+        self.cfg.baseline_min_m > 0.0 && self.white_share < WHITE_FIXES
+    }
+
     /// Holds the corrections within their physical bounds ([`FusionConfig::scale_bounds`],
     /// [`FusionConfig::bias_bound_deg`]).
     fn bound(&mut self) {
@@ -625,30 +623,6 @@ impl Fusion {
         let q = num / den;
         let w = (q - (1.0 - rho)) / rho;
         self.white_share = w.clamp(self.cfg.fix_white_share, 1.0);
-    }
-
-    /// Phones' reported accuracy is often optimistic, for minutes (multipath in a courtyard).
-    /// The σ taken from it is scaled by √λ, λ the median over the last
-    /// [`FusionConfig::fix_sigma_window`] fixes of their normalised squared innovation
-    /// (divided by the χ²₂ median, 1.386; each taken at the scale then in force), within
-    /// [1, [`FusionConfig::max_fix_sigma_scale`]²]: covariance matching, with a median so that
-    /// outliers, which the gate refuses, do not count.
-    fn adapt_sigma(&mut self, d2: f64) {
-        let n = self.cfg.fix_sigma_window as usize;
-        if n == 0 || !d2.is_finite() {
-            return;
-        }
-        if self.nis.len() == n {
-            self.nis.pop_front();
-        }
-        self.nis.push_back(d2 * sq(self.sigma_scale));
-        if self.nis.len() < n / 2 {
-            return;
-        }
-        let mut v: Vec<f64> = self.nis.iter().copied().collect();
-        v.sort_by(f64::total_cmp);
-        let lambda = v[v.len() / 2] / CHI2_2_MEDIAN;
-        self.sigma_scale = lambda.sqrt().clamp(1.0, self.cfg.max_fix_sigma_scale);
     }
 
     /// The fixes' error follows the receiver's reported accuracy: when it reports a worse one
@@ -754,10 +728,10 @@ impl Fusion {
             return;
         };
         let mut k: Matrix6x2<f64> = self.p * h.transpose() * s_inv;
-        if !learn || self.cfg.baseline_min_m > 0.0 {
+        if !learn || self.baselines_only() {
             k.row_mut(K).fill(0.0);
         }
-        if !learn || (self.cfg.baseline_min_m > 0.0 && !self.cfg.bias_from_fixes) {
+        if !learn {
             k.row_mut(B).fill(0.0);
         }
         self.x += k * nu;
@@ -828,14 +802,8 @@ impl Fusion {
 
     /// The Rauch–Tung–Striebel smoothed estimate at every fused step ([`Smoother`]).
     pub fn smoothed(&self) -> Vec<FusedStep> {
-        let mut consider = Vec::new();
-        if self.cfg.baseline_min_m > 0.0 {
-            consider.push(K);
-            if !self.cfg.bias_from_fixes {
-                consider.push(B);
-            }
-        }
-        self.smoother.smooth(&self.steps, &consider)
+        let consider: &[usize] = if self.baselines_only() { &[K] } else { &[] };
+        self.smoother.smooth(&self.steps, consider)
     }
 
     /// The current state covariance (diagnostics and tests).
