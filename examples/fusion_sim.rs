@@ -19,7 +19,11 @@ fn main() {
         .with_args(&args)
         .and_then(|s| s.config())
         .unwrap();
-    let mut sc = scenarios::gnss_city_walk();
+    let mut sc = if std::env::var("REAL").is_ok() {
+        scenarios::gnss_city_walk_real()
+    } else {
+        scenarios::gnss_city_walk()
+    };
     if let Ok(seed) = std::env::var("SEED") {
         sc.seed = seed.parse().unwrap();
     }

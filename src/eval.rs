@@ -105,6 +105,12 @@ pub struct FusionResult {
     /// That span, from the first fix to the end of the log, s.
     #[serde(default)]
     pub gnss_span_s: Option<f64>,
+    /// Baselines between fixes that taught the scale and the heading correction.
+    #[serde(default)]
+    pub baselines: u64,
+    /// The share of the fixes' error new at every fix, as the filter measured it.
+    #[serde(default)]
+    pub white_share: Option<f64>,
 }
 
 /// One log's result. The field names are stable: other tools read them.
@@ -382,6 +388,8 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
             resets: d.counts.resets,
             gnss_on_s: d.gnss_on_s.map(|(on, _)| on),
             gnss_span_s: d.gnss_on_s.map(|(_, span)| span),
+            baselines: d.counts.baselines,
+            white_share: Some(d.white_share),
         })
     });
     res.declination_deg = d.declination_deg;

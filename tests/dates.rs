@@ -171,6 +171,12 @@ fn ipin_logs_have_their_date() {
         assert!((1_685_577_600.0..1_688_169_600.0).contains(&d), "{d}");
         let r = pdr::eval::evaluate(log, &PipelineConfig::default());
         assert_eq!(r.declination_note, None, "{}", log.source);
+        // The origin, and with it the declination, needs three fixes that agree: route 21's
+        // second repetition has one fix, written twice.
+        if log.fixes().count() < 3 {
+            assert_eq!(r.declination_deg, None, "{}", log.source);
+            continue;
+        }
         // Nuremberg in June 2023 (WMM2020), not the model's value for 2025 (WMM2025, 0.1° more).
         let dec = r.declination_deg.expect("a declination");
         let f = log.fixes().next().unwrap();

@@ -78,6 +78,9 @@ pub struct FusionDiagnostics {
     pub last: Option<FusedStep>,
     /// What the filter makes of the GNSS now.
     pub verdict: GnssVerdict,
+    /// The share of the fixes' error that is new at every fix, as measured on the walk
+    /// (`Fusion::measure_white_share`; the configured floor until measured).
+    pub white_share: f64,
 }
 
 /// The running filter.
@@ -759,6 +762,7 @@ impl Fusion {
             gnss_on_s: self.gnss_on_s(),
             last: self.steps.last().copied(),
             verdict: self.verdict(),
+            white_share: self.white_share,
         }
     }
 
@@ -861,5 +865,46 @@ mod tests {
             "{}",
             last.bias_rad.to_degrees()
         );
+    }
+
+    #[test]
+    fn fixes_while_standing_teach_no_correction() {
+        // A walk north with good fixes, then two minutes standing while the fixes wander 30 m
+        // east: the position may follow a little, the scale and heading correction not at all.
+        let mut f = Fusion::new(FusionConfig::default(), 0.0);
+        let mut north = 0.0;
+        for i in 0..300 {
+            let t = i as f64 * 0.55;
+            north += 0.7;
+            if i % 2 == 0 {
+                f.push_fix(&FixInput {
+                    t,
+                    east_m: 0.0,
+                    north_m: north,
+                    accuracy_m: 4.0,
+                    still: false,
+                });
+            }
+            f.push_step(&StepInput {
+                t,
+                length_m: 0.7,
+                heading_rad: Some(0.0),
+            });
+        }
+        let before = *f.steps().last().unwrap();
+        for i in 0..120 {
+            let t = 300.0 * 0.55 + 3.0 + i as f64;
+            let out = f.push_fix(&FixInput {
+                t,
+                east_m: 0.25 * i as f64,
+                north_m: north,
+                accuracy_m: 4.0,
+                still: true,
+            });
+            assert!(out.is_some(), "a fix while standing is used at once");
+        }
+        let after = *f.steps().last().unwrap();
+        assert_eq!(after.scale, before.scale);
+        assert_eq!(after.bias_rad, before.bias_rad);
     }
 }
