@@ -3,12 +3,13 @@
 //! World Magnetic Model ([`Log::dated`]), and the IPIN 2023 logs (GetSensorData, whose clock is
 //! time since the app started) no longer say "without a known date".
 
+mod common;
+
 use pdr::engine::fusion::{wmm_declination_deg, DeclinationNote};
 use pdr::engine::{replay, PipelineConfig};
-use pdr::io::import::{import_all, import_with, Format, Log, MemSet, Platform};
+use pdr::io::import::{import_with, Format, Log, MemSet, Platform};
 use pdr::sim::formats::{self, DEFAULT_UNIX_START_S, PLAIN_CSV_RECIPE};
 use pdr::sim::{scenarios, Simulation};
-use std::path::Path;
 use std::sync::OnceLock;
 
 fn city() -> &'static Simulation {
@@ -145,19 +146,9 @@ fn the_log_date_reaches_the_world_magnetic_model() {
 
 #[test]
 fn ipin_logs_have_their_date() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ipin2023");
-    if !dir.is_dir() {
-        eprintln!(
-            "skipped: {} is absent (the IPIN 2023 logs, see ../shared/data/README.md)",
-            dir.display()
-        );
+    let Some(logs) = common::ipin::ipin_logs() else {
         return;
-    }
-    let mut set = pdr::io::import::DirSet::new(&dir).unwrap();
-    let logs: Vec<Log> = import_all(&mut set)
-        .into_iter()
-        .map(|r| r.expect("IPIN log reads"))
-        .collect();
+    };
     assert_eq!(logs.len(), 25);
     // Route 01, first repetition: "Wed Jun 14 10:00:58 GMT+02:00 2023".
     let first = logs

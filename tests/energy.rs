@@ -2,12 +2,13 @@
 //! receiver's on time per log (`fusion.gnss_on_s`, `gnss_span_s`) and per group
 //! (`gnss_on_share`), and the ratio of the two modes' median p75.
 
+mod common;
+
 use pdr::engine::fusion::GnssMode;
 use pdr::engine::PipelineConfig;
 use pdr::eval::energy::{energy_report, markdown};
 use pdr::io::import::{import_all, Format, Log, MemSet, Platform};
 use pdr::sim::{formats, scenarios};
-use std::path::Path;
 
 /// The simulated city walk as GetSensorData writes it: fixes and geodetic landmarks.
 fn city_log() -> Log {
@@ -68,19 +69,9 @@ fn energy_saving_settings_are_kept() {
 
 #[test]
 fn ipin_route_groups() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ipin2023");
-    if !dir.is_dir() {
-        eprintln!(
-            "skipped: {} is absent (the IPIN 2023 logs, see ../shared/data/README.md)",
-            dir.display()
-        );
+    let Some(logs) = common::ipin::ipin_logs() else {
         return;
-    }
-    let mut set = pdr::io::import::DirSet::new(&dir).unwrap();
-    let logs: Vec<Log> = import_all(&mut set)
-        .into_iter()
-        .map(|r| r.unwrap())
-        .collect();
+    };
     let r = energy_report(&logs, &PipelineConfig::default());
     let rows: Vec<(&str, u64)> = r
         .groups

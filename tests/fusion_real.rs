@@ -8,9 +8,7 @@ mod common;
 use common::fusion::{errors, gnss_errors, p75, run};
 use pdr::engine::PipelineConfig;
 use pdr::eval::{evaluate, summarise};
-use pdr::io::import::{import_all, DirSet};
 use pdr::sim::scenarios::{self, GNSS_CITY_HEADING_BIAS_DEG, GNSS_CITY_LENGTH_FACTOR};
-use std::path::Path;
 
 #[test]
 fn real_shaped_fixes_do_not_fool_the_filter() {
@@ -72,18 +70,12 @@ fn white_fixes_are_measured_white() {
 
 #[test]
 fn ipin_phone_fixes() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/ipin2023");
-    if !dir.is_dir() {
-        eprintln!(
-            "skipped: {} is absent (the IPIN 2023 logs, see ../shared/data/README.md)",
-            dir.display()
-        );
+    let Some(logs) = common::ipin::ipin_logs() else {
         return;
-    }
-    let mut set = DirSet::new(&dir).unwrap();
-    let results: Vec<_> = import_all(&mut set)
-        .into_iter()
-        .map(|r| evaluate(&r.unwrap(), &PipelineConfig::default()))
+    };
+    let results: Vec<_> = logs
+        .iter()
+        .map(|l| evaluate(l, &PipelineConfig::default()))
         .collect();
     for r in &results {
         let Some(f) = r.fusion else { continue };

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod fusion;
+pub mod ipin;
 
 use pdr::engine::types::{GnssFix, ImuSample};
 use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
