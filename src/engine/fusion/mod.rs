@@ -47,7 +47,8 @@
 //!
 //! # Rooms
 //! - [`config`]: the settings and the GNSS modes;
-//! - [`filter`]: the per-step extended Kalman filter;
+//! - [`filter`]: the per-step extended Kalman filter (`filter/learn.rs`: how it learns the
+//!   scale and the heading correction, and the fixes' white share);
 //! - [`output`]: what it reports per step and per fix;
 //! - [`schedule`]: energy saving's receiver schedule;
 //! - [`smoother`]: the Rauch–Tung–Striebel smoother;
