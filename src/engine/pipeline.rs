@@ -571,29 +571,22 @@ impl Pipeline {
         // fixes good enough for the filter (`OriginVote`: a stale cached fix must not be the
         // origin); those fixes are then offered to the filter in order.
         let fusion_on = self.cfg.fusion.mode != GnssMode::Off;
-        if self.frame.is_none() {
-            if !fusion_on {
-                self.frame = Some(LocalFrame::new(
-                    f.lat_deg,
-                    f.lon_deg,
-                    f.altitude_m.unwrap_or(0.0),
-                ));
-                return Ok(());
-            }
+        let at = |f: &GnssFix| LocalFrame::new(f.lat_deg, f.lon_deg, f.altitude_m.unwrap_or(0.0));
+        if fusion_on && self.fusion.is_none() {
             if !(f.h_accuracy_m <= self.cfg.fusion.max_accuracy_m) {
                 return Ok(());
+            }
+            // Until a consensus names the origin, the first usable fix places the track on a
+            // map (a live walk's first fix draws the base map at once).
+            if self.frame.is_none() {
+                self.frame = Some(at(f));
             }
             let Some(group) = self.origin.push(&self.cfg.fusion, f) else {
                 return Ok(());
             };
-            let first = group[0];
-            let frame = LocalFrame::new(
-                first.lat_deg,
-                first.lon_deg,
-                first.altitude_m.unwrap_or(0.0),
-            );
+            let frame = at(&group[0]);
             let cfg = self.cfg.fusion;
-            let (d, note) = declination_for(&cfg, &frame, first.t);
+            let (d, note) = declination_for(&cfg, &frame, group[0].t);
             self.diag.declination_deg = Some(d.to_degrees());
             self.diag.declination_note = note;
             self.fusion = Some(Fusion::new(cfg, d));
@@ -601,6 +594,10 @@ impl Pipeline {
             for g in &group {
                 self.offer_fix(g);
             }
+            return Ok(());
+        }
+        if self.frame.is_none() {
+            self.frame = Some(at(f));
             return Ok(());
         }
         self.offer_fix(f);

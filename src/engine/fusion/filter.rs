@@ -169,9 +169,12 @@ impl Fusion {
     }
 
     /// Moves the receiver schedule to time `t`.
+    /// Energy saving's duty cycle starts once the heading correction is known and the scale
+    /// is known too, or can only come from baselines (fixes whose errors persist: waiting for
+    /// it would keep the receiver on for the whole of most walks).
     fn schedule(&mut self, t: f64) {
-        let calibrated = self.calibrated();
-        self.schedule.push(t, calibrated);
+        let ready = self.calibrated() || (self.bias_known() && self.baselines_only());
+        self.schedule.push(t, ready);
     }
 
     /// Offers a fix. It is kept for the next step, replacing an older unused one, unless the
@@ -648,9 +651,12 @@ impl Fusion {
 
     /// The scale and the heading correction are known well enough.
     fn calibrated(&self) -> bool {
-        self.started
-            && self.p[(K, K)].sqrt() <= self.cfg.calibrated_scale_sd
-            && self.p[(B, B)].sqrt() <= self.cfg.calibrated_bias_sd_deg.to_radians()
+        self.bias_known() && self.p[(K, K)].sqrt() <= self.cfg.calibrated_scale_sd
+    }
+
+    /// The heading correction is known well enough.
+    fn bias_known(&self) -> bool {
+        self.started && self.p[(B, B)].sqrt() <= self.cfg.calibrated_bias_sd_deg.to_radians()
     }
 
     /// Remembers whether a fix offered to the gate was taken.
