@@ -3,6 +3,7 @@
 //! May import: the rest of `engine`.
 
 use super::config::{FusionConfig, ACCURACY_PER_SIGMA};
+use super::origin::largest_agreeing_group;
 use super::output::{FixCounts, FixOutcome, FusedStep, GnssVerdict};
 use super::schedule::Schedule;
 use super::smoother::{Cov, Smoother, State, Stored, BIAS};
@@ -551,18 +552,11 @@ impl Fusion {
     fn consensus_update(&mut self, learn: bool) -> (FixOutcome, Option<[f64; 2]>) {
         let need = self.cfg.consensus_n as usize;
         let b2 = self.correlated_var();
-        let agree = |a: &(Vector2<f64>, f64), b: &(Vector2<f64>, f64)| {
+        let held = &self.held;
+        let best = largest_agreeing_group(held.len(), |i, j| {
+            let (a, b) = (held[i], held[j]);
             (a.0 - b.0).norm_squared() / (a.1 + b.1 + 2.0 * b2) <= self.cfg.gate_chi2
-        };
-        let best = (0..self.held.len())
-            .map(|i| {
-                let group: Vec<usize> = (0..self.held.len())
-                    .filter(|&j| agree(&self.held[i], &self.held[j]))
-                    .collect();
-                group
-            })
-            .max_by_key(|g| g.len())
-            .unwrap_or_default();
+        });
         if best.len() < need {
             if self.held.len() >= 2 * need {
                 self.held.remove(0);
@@ -684,7 +678,7 @@ impl Fusion {
     }
 }
 
-fn sq(x: f64) -> f64 {
+pub(super) fn sq(x: f64) -> f64 {
     x * x
 }
 

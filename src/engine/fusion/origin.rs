@@ -37,10 +37,7 @@ impl OriginVote {
             libm::hypot(en[i].0 - en[j].0, en[i].1 - en[j].1) <= reach
         };
         let n = self.candidates.len();
-        let best = (0..n)
-            .map(|i| (0..n).filter(|&j| agree(i, j)).collect::<Vec<_>>())
-            .max_by_key(|g| g.len())
-            .unwrap_or_default();
+        let best = largest_agreeing_group(n, agree);
         if best.len() >= need {
             let group = best.iter().map(|&i| self.candidates[i]).collect();
             self.dropped += (n - best.len()) as u64;
@@ -53,6 +50,15 @@ impl OriginVote {
         }
         None
     }
+}
+
+/// The largest group of items `0..n` that all agree with one of them (its index first among
+/// equals): the fixes held for a consensus, and the candidates for the origin.
+pub(super) fn largest_agreeing_group(n: usize, agree: impl Fn(usize, usize) -> bool) -> Vec<usize> {
+    (0..n)
+        .map(|i| (0..n).filter(|&j| agree(i, j)).collect::<Vec<_>>())
+        .max_by_key(|g| g.len())
+        .unwrap_or_default()
 }
 
 #[cfg(test)]

@@ -4,7 +4,7 @@
 //! (ours; Basso 2021 §2.2.5 corrects the step length from the distance between fixes).
 //! May import: the rest of `engine`.
 
-use super::{Fusion, PendingFix, B, K};
+use super::{sq, Fusion, PendingFix, B, K};
 use crate::engine::fusion::config::ACCURACY_PER_SIGMA;
 use crate::engine::math::{symmetric, wrap_pi};
 use nalgebra::{Matrix2, Matrix2x6, Matrix6, Matrix6x2, Vector2};
@@ -150,8 +150,4 @@ impl Fusion {
         let w = (q - (1.0 - rho)) / rho;
         self.white_share = w.clamp(self.cfg.fix_white_share, 1.0);
     }
-}
-
-fn sq(x: f64) -> f64 {
-    x * x
 }
