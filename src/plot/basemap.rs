@@ -271,14 +271,20 @@ mod tests {
                 "{u}"
             );
         }
-        // The checker colours fill most of the map (the test raster draws opaque pixels only,
-        // so the veil, at 0.3, leaves them as painted; the page's e2e test checks the blend);
-        // the track is drawn over them.
+        // The checker colours, under the veil (the background at 0.3, blended as the canvas
+        // does), fill most of the map; the track is drawn over them.
         let t = Theme::LIGHT;
+        let veiled = |c: RGBColor| {
+            let v = veil_alpha(&t);
+            let mix =
+                |new: u8, old: u8| (v * f64::from(new) + (1.0 - v) * f64::from(old)).round() as u8;
+            let g = t.background;
+            (mix(g.0, c.0), mix(g.1, c.1), mix(g.2, c.2))
+        };
         let p = pixels.borrow();
         let tile_px = p
             .iter()
-            .filter(|px| **px == (a.0, a.1, a.2) || **px == (b.0, b.1, b.2))
+            .filter(|px| **px == veiled(a) || **px == veiled(b))
             .count();
         assert!(
             tile_px > (w * h_px) as usize / 2,

@@ -30,8 +30,19 @@ impl DrawingBackend for Raster {
         p: BackendCoord,
         c: BackendColor,
     ) -> Result<(), DrawingErrorKind<Self::ErrorType>> {
-        if p.0 >= 0 && p.1 >= 0 && (p.0 as u32) < self.w && (p.1 as u32) < self.h && c.alpha > 0.5 {
-            self.px.borrow_mut()[(p.1 as u32 * self.w + p.0 as u32) as usize] = c.rgb;
+        if p.0 >= 0 && p.1 >= 0 && (p.0 as u32) < self.w && (p.1 as u32) < self.h {
+            // Blended over what is there, as a canvas does ("source-over"), so that a faint
+            // fill counts in the legibility test as it shows on the page.
+            let a = c.alpha.clamp(0.0, 1.0);
+            let mix =
+                |new: u8, old: u8| (a * f64::from(new) + (1.0 - a) * f64::from(old)).round() as u8;
+            let mut px = self.px.borrow_mut();
+            let old = &mut px[(p.1 as u32 * self.w + p.0 as u32) as usize];
+            *old = (
+                mix(c.rgb.0, old.0),
+                mix(c.rgb.1, old.1),
+                mix(c.rgb.2, old.2),
+            );
         }
         Ok(())
     }

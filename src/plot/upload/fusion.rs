@@ -1,15 +1,23 @@
 //! The fusion plot's series: the step-length scale and the heading correction the filter
 //! learnt at each fused step, each with its ±1σ band, and the axes that hold them (the scale in
-//! the upper half, the correction in the lower, so that they do not overlap).
+//! the upper part, the correction in the lower, so that they do not overlap). Each band stays in
+//! its value's own part: a σ wider than the part (a prior, or a scale only baselines can teach)
+//! is cut there, so that a band never covers more than [`REGION_SHARE`] of the plot.
 //! May import: `analysis`.
 
 use crate::analysis::Analysis;
 
 /// How wide a band may make an axis: the filter's prior σ is wide before the first fixes, and
-/// an axis spanning it would flatten what the walk learnt. The band is cut at the axis there.
+/// an axis spanning it would flatten what the walk learnt. The band is cut at its part there.
+/// The plot's caption names both caps (`plots.rs`).
 const SCALE_SD_AXIS_MAX: f64 = 0.05;
 /// See [`SCALE_SD_AXIS_MAX`], degrees.
 const CORRECTION_SD_AXIS_MAX_DEG: f64 = 5.0;
+
+/// The share of the plot's height each value's part (its values ± their capped σ) takes: a band
+/// as wide as its part for the whole walk covers this much of the plot, under the legibility
+/// bound (35 %, `legibility.rs`). The rest is margin above, between and below.
+pub const REGION_SHARE: f64 = 1.0 / 3.5;
 
 /// A line of (t, value) points.
 pub type Line = Vec<(f64, f64)>;
@@ -25,6 +33,10 @@ pub struct FusionSeries {
     pub scale_axis: (f64, f64),
     /// The correction's axis (right), degrees.
     pub correction_axis: (f64, f64),
+    /// The scale's part of its axis: its values ± their capped σ; the band is cut at it.
+    pub scale_region: (f64, f64),
+    /// The correction's part of its axis, degrees.
+    pub correction_region: (f64, f64),
 }
 
 impl FusionSeries {
@@ -51,31 +63,41 @@ impl FusionSeries {
         };
         let k = span(&s.scale, 1.0, SCALE_SD_AXIS_MAX);
         let b = span(&s.correction, 0.0, CORRECTION_SD_AXIS_MAX_DEG);
-        let ks = (k.1 - k.0).max(0.02);
-        let bs = (b.1 - b.0).max(2.0);
-        s.scale_axis = (k.0 - 1.3 * ks, k.1 + 0.2 * ks);
-        s.correction_axis = (b.0 - 0.2 * bs, b.1 + 1.3 * bs);
+        // At least 0.02 and 2° tall, about the middle; then the scale's part in the upper, the
+        // correction's in the lower part of the plot, each REGION_SHARE of it, with half a part
+        // of margin at the edge and two parts' room for the other.
+        let widen = |(lo, hi): (f64, f64), min: f64| {
+            let pad = 0.5 * (min - (hi - lo)).max(0.0);
+            (lo - pad, hi + pad)
+        };
+        s.scale_region = widen(k, 0.02);
+        s.correction_region = widen(b, 2.0);
+        let (k, b) = (s.scale_region, s.correction_region);
+        let (ks, bs) = (k.1 - k.0, b.1 - b.0);
+        let room = 1.0 / REGION_SHARE - 1.5;
+        s.scale_axis = (k.0 - room * ks, k.1 + 0.5 * ks);
+        s.correction_axis = (b.0 - 0.5 * bs, b.1 + room * bs);
         s
     }
 
-    /// The scale's ±1σ edges, cut at its axis: (upper, lower) lines.
+    /// The scale's ±1σ edges, cut at its part of the axis: (upper, lower) lines.
     pub fn scale_edges(&self) -> [Line; 2] {
-        edges(&self.scale, self.scale_axis)
+        edges(&self.scale, self.scale_region)
     }
 
-    /// The correction's ±1σ edges, cut at its axis, degrees.
+    /// The correction's ±1σ edges, cut at its part of the axis, degrees.
     pub fn correction_edges(&self) -> [Line; 2] {
-        edges(&self.correction, self.correction_axis)
+        edges(&self.correction, self.correction_region)
     }
 
-    /// The scale's ±1σ band as one polygon, cut at its axis.
+    /// The scale's ±1σ band as one polygon, cut at its part of the axis.
     pub fn scale_band(&self) -> Vec<(f64, f64)> {
-        band(&self.scale, self.scale_axis)
+        band(&self.scale, self.scale_region)
     }
 
-    /// The correction's ±1σ band as one polygon, cut at its axis, degrees.
+    /// The correction's ±1σ band as one polygon, cut at its part of the axis, degrees.
     pub fn correction_band(&self) -> Vec<(f64, f64)> {
-        band(&self.correction, self.correction_axis)
+        band(&self.correction, self.correction_region)
     }
 }
 
@@ -148,17 +170,19 @@ mod tests {
             "{c:?}"
         );
         assert!(s.correction_axis.0 < -5.0 && s.correction_axis.1 > 0.0);
-        // The scale in the upper half of its axis, the correction in the lower half of its.
-        let upper = |y: f64, (lo, hi): (f64, f64)| (y - lo) / (hi - lo);
-        assert!(s.scale.iter().all(|p| upper(p.1, s.scale_axis) > 0.5));
-        assert!(s
-            .correction
-            .iter()
-            .all(|p| upper(p.1, s.correction_axis) < 0.5));
+        // The scale's part in the upper half of its axis, the correction's in the lower half of
+        // its, each REGION_SHARE of the height.
+        let at = |y: f64, (lo, hi): (f64, f64)| (y - lo) / (hi - lo);
+        let (k, b) = (s.scale_region, s.correction_region);
+        assert!(at(k.0, s.scale_axis) > 0.5 && at(b.1, s.correction_axis) < 0.5);
+        assert!((at(k.1, s.scale_axis) - at(k.0, s.scale_axis) - REGION_SHARE).abs() < 1e-9);
+        assert!(
+            (at(b.1, s.correction_axis) - at(b.0, s.correction_axis) - REGION_SHARE).abs() < 1e-9
+        );
     }
 
     #[test]
-    fn a_wide_prior_is_cut_at_the_axis_and_not_a_number_is_left_out() {
+    fn a_wide_prior_is_cut_at_its_part_of_the_axis_and_not_a_number_is_left_out() {
         let a = analysis(
             vec![
                 [0.0, 0.0, 0.0, 1.0, 0.0],
@@ -168,18 +192,19 @@ mod tests {
             vec![[0.5, 1.0], [0.01, 0.01], [f64::NAN, f64::NAN]],
         );
         let s = FusionSeries::new(&a, 0.0, 2.0, 0.0);
-        // The 0.5 σ does not make the axis ±0.5 (2.5 wide with the room for the correction):
-        // it is capped at 0.05 (1.0 ± 0.05, 0.25 wide).
+        // The 0.5 σ does not make the scale's part ±0.5: it is capped at 0.05 (1.0 ± 0.05), and
+        // the band is cut there, so it covers no more than its part of the plot.
         assert!(
-            (s.scale_axis.1 - s.scale_axis.0 - 0.25).abs() < 1e-9,
+            (s.scale_region.0 - 0.95).abs() < 1e-9 && (s.scale_region.1 - 1.05).abs() < 1e-9,
             "{:?}",
-            s.scale_axis
+            s.scale_region
         );
+        assert!((s.scale_axis.1 - s.scale_axis.0 - 0.35).abs() < 1e-9);
         let band = s.scale_band();
         assert_eq!(band.len(), 4);
         assert!(band
             .iter()
-            .all(|p| p.1 >= s.scale_axis.0 && p.1 <= s.scale_axis.1));
+            .all(|p| p.1 >= s.scale_region.0 && p.1 <= s.scale_region.1));
         assert_eq!(s.correction.len(), 3);
         assert!(s.correction_band().iter().all(|p| p.1.is_finite()));
         // One step: no band.

@@ -193,7 +193,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         Plot::Fusion => {
             let f = fusion.as_ref().expect("made for the fusion plot");
             (
-                "fusion: step-length scale (blue, left), heading correction (°, orange, right), shaded ±1σ",
+                "fusion: step-length scale (blue, left), heading correction (°, orange, right), shaded ±1σ (cut at ±0.05 and ±5°)",
                 "",
                 f.scale_axis,
                 Some(("°", f.correction_axis)),
