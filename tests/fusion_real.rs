@@ -5,8 +5,8 @@
 
 mod common;
 
-use common::fusion::{errors, gnss_errors, p75, run};
-use pdr::engine::PipelineConfig;
+use common::fusion::{assert_valid_covariances, errors, gnss_errors, p75, run};
+use pdr::engine::{replay, PipelineConfig};
 use pdr::eval::{evaluate, summarise};
 use pdr::sim::scenarios::{self, GNSS_CITY_HEADING_BIAS_DEG, GNSS_CITY_LENGTH_FACTOR};
 
@@ -45,6 +45,9 @@ fn real_shaped_fixes_do_not_fool_the_filter() {
             "seed {seed}: white share {}",
             d.white_share
         );
+        // The smoother's covariances are covariances, with the scale a consider state.
+        assert_valid_covariances(p.fused(), &format!("seed {seed}, filter"));
+        assert_valid_covariances(&p.smoothed(), &format!("seed {seed}, smoother"));
         let gnss = p75(&gnss_errors(&sim, &p));
         let fused = p75(&errors(&sim, &p, p.fused()));
         assert!(
@@ -77,6 +80,10 @@ fn ipin_phone_fixes() {
         .iter()
         .map(|l| evaluate(l, &PipelineConfig::default()))
         .collect();
+    for l in &logs {
+        let run = replay(l.dated(&PipelineConfig::default()), &l.records).unwrap();
+        assert_valid_covariances(&run.pipeline.smoothed(), &l.source);
+    }
     for r in &results {
         let Some(f) = r.fusion else { continue };
         if r.path.contains("TrainingTrial5") {

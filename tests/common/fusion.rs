@@ -52,3 +52,24 @@ pub fn p75(v: &[f64]) -> f64 {
     v.sort_by(f64::total_cmp);
     pdr::eval::percentile(&v, 75.0)
 }
+
+/// Fails unless every step of `track` has a valid position covariance (finite, non-negative
+/// variances, |correlation| ≤ 1) and finite standard deviations of the scale and the heading
+/// correction: what the page draws as ellipses and ±1σ bands.
+pub fn assert_valid_covariances(track: &[FusedStep], what: &str) {
+    for s in track {
+        let [ee, en, nn] = s.cov;
+        assert!(
+            ee >= 0.0 && nn >= 0.0 && en * en <= ee * nn * (1.0 + 1e-9) + 1e-12,
+            "{what}: t {:.1} s: position covariance {:?} is no covariance",
+            s.t,
+            s.cov
+        );
+        assert!(
+            s.scale_bias_sd.iter().all(|v| v.is_finite() && *v >= 0.0),
+            "{what}: t {:.1} s: σ of scale and correction {:?}",
+            s.t,
+            s.scale_bias_sd
+        );
+    }
+}

@@ -110,6 +110,9 @@ pub struct Fusion {
     last_walking_fix: Option<(f64, Vector2<f64>, Vector2<f64>)>,
     pairs: std::collections::VecDeque<(f64, f64, f64)>,
     white_share: f64,
+    // The floor `fix_error_from` set on the correlated error's variance at this step's update,
+    // so that what the smoother stores as the prior is the prior the update used.
+    prior_floor: Option<f64>,
 }
 
 mod learn;
@@ -145,6 +148,7 @@ impl Fusion {
             last_walking_fix: None,
             pairs: std::collections::VecDeque::new(),
             white_share: cfg.fix_white_share,
+            prior_floor: None,
         }
     }
 
@@ -270,7 +274,7 @@ impl Fusion {
             let (s, c) = libm::sincos(theta + self.declination_rad);
             self.dead_reckoned += Vector2::new(s, c) * length_m;
         }
-        let (x_pred, p_pred, f) = self.predict(t, length_m, heading_rad);
+        let (x_pred, mut p_pred, f) = self.predict(t, length_m, heading_rad);
         self.x = x_pred;
         self.p = p_pred;
         self.t_state = self.t_state.max(t);
@@ -280,6 +284,11 @@ impl Fusion {
             let (o, nu) = self.update(t, fix);
             outcome = Some(o);
             innovation = nu;
+        }
+        if let Some(b2) = self.prior_floor.take() {
+            for i in [FE, FN] {
+                p_pred[(i, i)] = p_pred[(i, i)].max(b2);
+            }
         }
         let en = Vector2::new(self.x[E], self.x[N]);
         if let Some((t0, p0)) = self.last_step {
@@ -500,6 +509,7 @@ impl Fusion {
     fn fix_error_from(&mut self, sigma: f64) {
         self.fix_sigma = sigma;
         let b2 = self.correlated_var();
+        self.prior_floor = Some(b2);
         for i in [FE, FN] {
             if self.p[(i, i)] < b2 {
                 self.p[(i, i)] = b2;

@@ -49,49 +49,72 @@ impl Smoother {
     /// `steps` are the filter's results, one per stored step. `consider` are the states the
     /// filter did not learn from single fixes (a Schmidt "consider" state: zero gain): the
     /// backward pass leaves them as the filter had them, or it would learn from the fixes what
-    /// the filter was built not to.
+    /// the filter was built not to. It smooths the other states given them: every covariance
+    /// is conditioned on the consider states (the Schur complement, [`condition`]), which keeps
+    /// the recursion an exact RTS pass over the other states; the smoothed covariance then gets
+    /// back the share the consider states' own uncertainty adds, as the filter had it. (Only
+    /// zeroing their rows of Cₖ would leave Pₖˢ without meaning: on the IPIN walks it went
+    /// negative on most steps.)
     pub fn smooth(&self, steps: &[FusedStep], consider: &[usize]) -> Vec<FusedStep> {
         let n = self.stored.len();
         let mut out = steps.to_vec();
         if n == 0 {
             return out;
         }
-        let mut xs = self.stored[n - 1].x;
-        let mut ps = self.stored[n - 1].p;
+        let last = &self.stored[n - 1];
+        let mut xs = last.x;
+        let mut ps = condition(&last.p, consider).0;
         for k in (0..n - 1).rev() {
             let next = &self.stored[k + 1];
             let cur = &self.stored[k];
+            let (p_cur, from_consider) = condition(&cur.p, consider);
             let reset = matches!(steps[k + 1].fix, Some(FixOutcome::Reset));
-            // Without the fixes' correlated error (τ = 0) its rows are zero: the
-            // pseudo-inverse leaves them out.
-            let inverse = next
-                .p_pred
+            // Without the fixes' correlated error (τ = 0), or given the consider states, some
+            // rows are zero: the pseudo-inverse leaves them out.
+            let p_pred = condition(&next.p_pred, consider).0;
+            let inverse = p_pred
                 .try_inverse()
-                .or_else(|| next.p_pred.pseudo_inverse(1e-12).ok());
+                .or_else(|| p_pred.pseudo_inverse(1e-12).ok());
             match inverse.filter(|_| !reset) {
                 Some(inv) => {
-                    let mut c = cur.p * next.f.transpose() * inv;
-                    for &i in consider {
-                        c.row_mut(i).fill(0.0);
-                    }
+                    let c = p_cur * next.f.transpose() * inv;
                     let mut dx = xs - next.x_pred;
                     dx[BIAS] = wrap_pi(dx[BIAS]);
                     xs = cur.x + c * dx;
-                    ps = symmetric(cur.p + c * (ps - next.p_pred) * c.transpose());
+                    ps = symmetric(p_cur + c * (ps - p_pred) * c.transpose());
                 }
                 None => {
                     xs = cur.x;
-                    ps = cur.p;
+                    ps = p_cur;
                 }
             }
+            let full = ps + from_consider;
             let o = &mut out[k];
             o.east_m = xs[0];
             o.north_m = xs[1];
-            o.cov = [ps[(0, 0)], ps[(0, 1)], ps[(1, 1)]];
+            o.cov = [full[(0, 0)], full[(0, 1)], full[(1, 1)]];
             o.scale = xs[2];
             o.bias_rad = wrap_pi(xs[BIAS]);
-            o.scale_bias_sd = [ps[(2, 2)].sqrt(), ps[(3, 3)].sqrt()];
+            o.scale_bias_sd = [full[(2, 2)].max(0.0).sqrt(), full[(3, 3)].max(0.0).sqrt()];
         }
         out
     }
+}
+
+/// The covariance `p` given the states `given` (their rows and columns become zero), and what
+/// their uncertainty adds to it (the two sum to `p`): P − P₍·g₎ P₍gg₎⁻¹ P₍g·₎, one state at a
+/// time.
+fn condition(p: &Cov, given: &[usize]) -> (Cov, Cov) {
+    let mut c = *p;
+    for &g in given {
+        let var = c[(g, g)];
+        if var > 0.0 {
+            let col = c.column(g).into_owned();
+            c -= col * col.transpose() / var;
+        }
+        c.row_mut(g).fill(0.0);
+        c.column_mut(g).fill(0.0);
+    }
+    let c = symmetric(c);
+    (c, p - c)
 }
