@@ -4,7 +4,8 @@
 //! One file per method of the papers:
 //! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass;
 //!   [`orientation::kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
-//! - [`motion`]: σ_z motion detection (Basso 2016 §II.B).
+//! - [`motion`]: σ_z motion detection (Basso 2016 §II.B); [`handling`]: the phone turned over in
+//!   the hand is not a gait (ours).
 //! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
 //!   [`zero_crossing`]: zero crossings + area (Ibarra 2015 §4.4.1, eqs. 4.8–4.9);
 //!   [`detector`]: what all three are fed and find.
@@ -33,6 +34,7 @@
 //! |---|---|---|---|---|
 //! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not, KF-NFA R scale and mismatch |
 //! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
+//! | [`handling::Handling`] | [`handling::HandlingConfig`] | t, angular rate, motion state | handled or not | rate, axis share, time handled |
 //! | [`pll::Pll`], [`peak::PeakDetector`], [`zero_crossing::ZeroCrossing`] | [`pll::PllConfig`], [`peak::PeakConfig`], [`zero_crossing::ZeroCrossingConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
 //! | [`step_length::StepLength`] | [`StepLengthModel`] | [`step_length::StepLengthInput`] | the length, m | last length |
@@ -63,6 +65,7 @@ pub mod foot;
 pub mod fusion;
 pub mod fuzzy_step_length;
 pub mod geo;
+pub mod handling;
 pub mod heading;
 pub mod hybrid;
 pub mod leg_pitch;

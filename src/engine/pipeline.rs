@@ -35,6 +35,7 @@ use super::fusion::GnssMode;
 use super::fusion::{declination_for, DeclinationNote, FixCounts, FixInput, FusedStep, OriginVote};
 use super::fusion::{Fusion, FusionConfig};
 use super::geo::LocalFrame;
+use super::handling::{Handling, HandlingConfig};
 use super::heading::{self, Heading, HeadingConfig, NavSample};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::leg_pitch::LegPitchConfig;
@@ -62,6 +63,8 @@ pub struct PipelineConfig {
     pub orientation: OrientationSource,
     /// Motion detector.
     pub motion: MotionConfig,
+    /// Handling: the phone turned over in the hand is not a gait.
+    pub handling: HandlingConfig,
     /// Step detector.
     pub detector: StepDetectorConfig,
     /// Heading method.
@@ -107,6 +110,7 @@ impl Default for PipelineConfig {
         PipelineConfig {
             orientation: OrientationSource::default(),
             motion: MotionConfig::default(),
+            handling: HandlingConfig::default(),
             detector: StepDetectorConfig::default(),
             heading: HeadingConfig::default(),
             step_length: StepLengthModel::default(),
@@ -140,6 +144,7 @@ impl PipelineConfig {
     pub fn validate(&self) -> Result<(), ConfigError> {
         self.orientation.validate()?;
         self.motion.validate()?;
+        self.handling.validate()?;
         match &self.detector {
             StepDetectorConfig::Pll(c) => c.validate()?,
             StepDetectorConfig::Peak(c) => c.validate()?,
@@ -239,6 +244,8 @@ pub struct Diagnostics {
     pub gaps: u64,
     /// Time spent in gaps, s.
     pub gap_time_s: f64,
+    /// Time the phone was being handled, not walked with ([`crate::engine::handling`]), s.
+    pub handling_s: f64,
     /// Steps counted.
     pub steps: u64,
     /// Steps recovered by the onset look-back.
@@ -303,6 +310,7 @@ pub struct Pipeline {
     cfg: PipelineConfig,
     orientation: Option<Orientation>,
     motion: MotionDetector,
+    handling: Handling,
     detector: Detector,
     buf: VecDeque<NavSample>,
     history_s: f64,
@@ -343,6 +351,7 @@ impl Pipeline {
         let pocket = pocket::Pocket::new(&cfg);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
+            handling: Handling::new(cfg.handling),
             history_s: cfg
                 .heading
                 .history_s()
@@ -437,6 +446,12 @@ impl Pipeline {
         self.push_trunk_attitude(s.t, nav.attitude);
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
+        // The phone turned over in the hand walks nowhere.
+        let state = if self.handling.push(s.t, s.gyro.as_ref(), state) {
+            Motion::Still
+        } else {
+            state
+        };
         let m = self.motion.diagnostics();
         let mut x = DetectorInput {
             t: s.t,
@@ -524,6 +539,7 @@ impl Pipeline {
         self.diag.gaps += 1;
         self.diag.gap_time_s += dt;
         self.motion.clear_window();
+        self.handling.clear();
         self.buf.clear();
         self.detector.gap();
         if let Some(f) = &mut self.foot {
@@ -608,7 +624,7 @@ impl Pipeline {
     fn offer_fix(&mut self, f: &GnssFix) {
         if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
             let (e, n) = frame.en_of_fix(f);
-            let still = self.motion.state() == Motion::Still;
+            let still = self.prev_state == Motion::Still;
             fusion.push_fix(&FixInput {
                 t: f.t,
                 east_m: e,
@@ -668,9 +684,10 @@ impl Pipeline {
         let mut d = self.diag;
         d.hybrid = self.hybrid_diagnostics();
         let m = self.motion.diagnostics();
-        d.motion = self.orientation.as_ref().map(|_| m.state);
+        d.motion = self.orientation.as_ref().map(|_| self.prev_state);
         d.sigma_z = m.sigma_z;
         d.cadence_hz = m.cadence_hz;
+        d.handling_s = self.handling.diagnostics().total_s;
         if let Some(f) = &self.fusion {
             let f = f.diagnostics();
             d.fix_counts = Some(f.counts);
@@ -684,7 +701,7 @@ impl Pipeline {
             d.pll_locked = Some(p.locked);
         }
         d.activity = self.orientation.as_ref().map(|_| {
-            if m.state.is_moving() {
+            if self.prev_state.is_moving() {
                 self.steps.last().map_or(Activity::Walking, |s| s.activity)
             } else {
                 self.pocket.activity.diagnostics().activity
@@ -709,9 +726,9 @@ impl Pipeline {
         self.buf.back().map(|x| (x.up, x.e, x.n))
     }
 
-    /// The motion state now.
+    /// The motion state now: the motion detector's, still while the phone is being handled.
     pub fn motion_state(&self) -> Motion {
-        self.motion.state()
+        self.prev_state
     }
 
     /// The device → ENU attitude of the latest sample, when the orientation source has one.

@@ -136,6 +136,12 @@ pub fn run(
         }
     }
     out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
+    if d.handling_s > 0.0 {
+        out!(
+            "handling      {:.1} s (the phone turned over in the hand: no steps)",
+            d.handling_s
+        );
+    }
     if d.steps_without_heading > 0 {
         out!(
             "no heading    {} steps (orientation source gives no heading)",

@@ -1,0 +1,234 @@
+//! Handling: the phone turned over in the hand (a compass calibration's figure of eight, taking it
+//! out, looking at it from every side) is not a gait, whatever rhythm its acceleration has (ours;
+//! none of the papers has it).
+//! May import: the rest of `engine`.
+//!
+//! Every IPIN 2023 log opens with 30–40 s of such handling: σ_z of 2–7 m/s² at a rhythm the
+//! motion detector (Basso 2016 §II.B) takes for walking, so the PLL counted 22–65 steps (12–38 m)
+//! before each walk began, and the GNSS fusion learnt its corrections from them.
+//!
+//! The rule, over a window of [`HandlingConfig::window_s`]: the phone turns fast, mean |ω| ≥
+//! [`HandlingConfig::rate_min`], about no single axis, the largest eigenvalue of Σ ω ωᵀ is less
+//! than [`HandlingConfig::axis_share_max`] of its trace; and it is not running. A gait turns the
+//! phone slowly or about one axis:
+//! - IPIN 2023, hand-held walks: mean |ω| 0.1–0.5 rad/s walking, ≤ 1.1 rad/s in turns (about
+//!   the vertical, share ≥ 0.85); handling 2–7.5 rad/s, shares 0.46–0.88;
+//! - the simulator's thigh in 8 pocket poses (walking, stairs, sitting down): ≤ 2.4 rad/s;
+//!   running in the pocket: ≤ 3.0 rad/s, share ≥ 0.69 (p10 1.0).
+//!
+//! Handling lasts [`HandlingConfig::hold_s`] beyond the last window that shows it, so that the
+//! slower turns between two fast ones do not count as steps. Without a gyroscope the rule never
+//! fires.
+
+use super::motion::Motion;
+use super::types::{positive, ConfigError, DeviceVec};
+use nalgebra::{Matrix3, SymmetricEigen};
+use std::collections::VecDeque;
+
+/// Settings of the handling detector.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct HandlingConfig {
+    /// Window, s.
+    pub window_s: f64,
+    /// Smallest mean |ω| over the window, rad/s. 3: above the simulated thigh's 2.4 walking
+    /// and 3.0 running, below the 4–7 rad/s of most IPIN handling windows.
+    pub rate_min: f64,
+    /// Largest share of the rotation about its main axis, below 1. 0.85: a turn while walking
+    /// (IPIN) and a running thigh (simulator) are above it, most handling is below.
+    pub axis_share_max: f64,
+    /// How long handling lasts after the last window that shows it, s.
+    pub hold_s: f64,
+}
+
+impl Default for HandlingConfig {
+    fn default() -> Self {
+        HandlingConfig {
+            window_s: 2.0,
+            rate_min: 3.0,
+            axis_share_max: 0.85,
+            hold_s: 2.0,
+        }
+    }
+}
+
+impl HandlingConfig {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("handling.window_s", self.window_s)?;
+        positive("handling.rate_min", self.rate_min)?;
+        positive("handling.hold_s", self.hold_s)?;
+        if !(self.axis_share_max > 0.0 && self.axis_share_max <= 1.0) {
+            return Err(ConfigError::new(
+                "handling.axis_share_max",
+                "must be in (0, 1]",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The detector's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct HandlingDiagnostics {
+    /// The phone is being handled.
+    pub handling: bool,
+    /// Mean |ω| over the window, rad/s.
+    pub rate: f64,
+    /// Share of the rotation about its main axis (0 when the phone is at rest).
+    pub axis_share: f64,
+    /// Time spent handling so far, s.
+    pub total_s: f64,
+}
+
+/// The running detector.
+#[derive(Debug, Clone)]
+pub struct Handling {
+    cfg: HandlingConfig,
+    // (t, |ω|, ω ωᵀ) of the window's samples, and their sums.
+    buf: VecDeque<(f64, f64, Matrix3<f64>)>,
+    rate_sum: f64,
+    moment: Matrix3<f64>,
+    pops: u32,
+    until: Option<f64>,
+    last_t: Option<f64>,
+    diag: HandlingDiagnostics,
+}
+
+impl Handling {
+    /// A detector that has seen nothing.
+    pub fn new(cfg: HandlingConfig) -> Self {
+        Handling {
+            cfg,
+            buf: VecDeque::new(),
+            rate_sum: 0.0,
+            moment: Matrix3::zeros(),
+            pops: 0,
+            until: None,
+            last_t: None,
+            diag: HandlingDiagnostics::default(),
+        }
+    }
+
+    /// Adds a sample's angular rate (device frame, rad/s; `None` without a gyroscope) with the
+    /// motion detector's state, and says whether the phone is being handled.
+    pub fn push(&mut self, t: f64, gyro: Option<&DeviceVec>, motion: Motion) -> bool {
+        let dt = self.last_t.map_or(0.0, |l| (t - l).max(0.0));
+        self.last_t = Some(t);
+        if let Some(w) = gyro {
+            let m = w * w.transpose();
+            let r = w.norm();
+            self.buf.push_back((t, r, m));
+            self.rate_sum += r;
+            self.moment += m;
+        }
+        while let Some(&(t0, r0, m0)) = self.buf.front() {
+            if t0 >= t - self.cfg.window_s {
+                break;
+            }
+            self.buf.pop_front();
+            self.rate_sum -= r0;
+            self.moment -= m0;
+            self.pops += 1;
+        }
+        // Re-sum now and then so rounding in the running sums cannot accumulate.
+        if self.pops >= 4096 {
+            self.pops = 0;
+            self.rate_sum = self.buf.iter().map(|s| s.1).sum();
+            self.moment = self.buf.iter().map(|s| s.2).sum();
+        }
+        let span = self.buf.front().map_or(0.0, |f| t - f.0);
+        let n = self.buf.len() as f64;
+        self.diag.rate = if n > 0.0 { self.rate_sum / n } else { 0.0 };
+        let trace = self.moment.trace();
+        self.diag.axis_share = if trace > 0.0 {
+            let ev = SymmetricEigen::new(self.moment).eigenvalues;
+            ev.max() / trace
+        } else {
+            0.0
+        };
+        if span >= 0.5 * self.cfg.window_s
+            && self.diag.rate >= self.cfg.rate_min
+            && self.diag.axis_share < self.cfg.axis_share_max
+            && motion != Motion::Running
+        {
+            self.until = Some(t + self.cfg.hold_s);
+        }
+        let handling = self.until.is_some_and(|u| t <= u);
+        if handling && self.diag.handling {
+            self.diag.total_s += dt;
+        }
+        self.diag.handling = handling;
+        handling
+    }
+
+    /// Forgets the window (after a gap in the input).
+    pub fn clear(&mut self) {
+        self.buf.clear();
+        self.rate_sum = 0.0;
+        self.moment = Matrix3::zeros();
+        self.until = None;
+        self.last_t = None;
+        self.diag.handling = false;
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> HandlingDiagnostics {
+        self.diag
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::Vector3;
+
+    fn run(rate: impl Fn(f64) -> Vector3<f64>, motion: Motion) -> f64 {
+        let mut h = Handling::new(HandlingConfig::default());
+        let mut handled = 0.0;
+        for i in 0..2000 {
+            let t = i as f64 * 0.01;
+            if h.push(t, Some(&rate(t)), motion) {
+                handled += 0.01;
+            }
+        }
+        handled
+    }
+
+    #[test]
+    fn a_phone_turned_every_way_is_handled() {
+        // 4 rad/s about an axis that wanders round the sphere every 1.3 s.
+        let handled = run(
+            |t| {
+                let (a, b) = (t * 4.8, t * 2.9);
+                Vector3::new(a.cos() * b.cos(), a.sin() * b.cos(), b.sin()) * 4.0
+            },
+            Motion::Walking,
+        );
+        assert!(handled > 18.0, "{handled}");
+    }
+
+    #[test]
+    fn a_thigh_swinging_about_one_axis_is_not() {
+        // ±6 rad/s about one axis at 1 Hz (faster than any walk), a little about the others.
+        let handled = run(
+            |t| {
+                let s = (std::f64::consts::TAU * t).sin();
+                Vector3::new(6.0 * s, 0.8 * (3.0 * t).cos(), 0.5 * s)
+            },
+            Motion::Walking,
+        );
+        assert_eq!(handled, 0.0);
+    }
+
+    #[test]
+    fn running_is_not_handling_nor_is_a_missing_gyroscope() {
+        let every_way = |t: f64| {
+            let (a, b) = (t * 4.8, t * 2.9);
+            Vector3::new(a.cos() * b.cos(), a.sin() * b.cos(), b.sin()) * 4.0
+        };
+        assert_eq!(run(every_way, Motion::Running), 0.0);
+        let mut h = Handling::new(HandlingConfig::default());
+        assert!((0..500).all(|i| !h.push(i as f64 * 0.01, None, Motion::Walking)));
+    }
+}
