@@ -687,7 +687,7 @@ impl Pipeline {
         d.motion = self.orientation.as_ref().map(|_| self.prev_state);
         d.sigma_z = m.sigma_z;
         d.cadence_hz = m.cadence_hz;
-        d.handling_s = self.handling.diagnostics().total_s;
+        d.handling_s = self.handling.total_s();
         if let Some(f) = &self.fusion {
             let f = f.diagnostics();
             d.fix_counts = Some(f.counts);
