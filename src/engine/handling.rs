@@ -81,8 +81,9 @@ pub struct HandlingDiagnostics {
     pub total_s: f64,
 }
 
-/// The window is kept as blocks of this many seconds: a sample costs a few additions, a block a
-/// subtraction (a deque of samples cost 11 % of the default pipeline's instructions).
+/// The window is kept as blocks of this many seconds: a sample costs a few additions, a new block
+/// a sum over the window's nine (a deque of samples cost 11 % of the default pipeline's
+/// instructions, the blocks 9 %).
 const BLOCK_S: f64 = 0.25;
 
 /// Sums over some samples: their number, Σ |ω|, and Σ ω ωᵀ's six distinct entries (xx, yy, zz,
