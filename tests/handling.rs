@@ -66,6 +66,18 @@ fn the_ipin_walks_start_after_their_handling() {
         assert!(n <= 30, "{}: {n} steps before the walk", log.source);
         before += n;
     }
+    // The timeline says so: the first log's opening shows the activity "handling".
+    let mut p = pdr::engine::Pipeline::new(logs[0].dated(&PipelineConfig::default())).unwrap();
+    let mut handled = 0;
+    for r in &logs[0].records {
+        if p.push(r).is_ok()
+            && matches!(r, pdr::engine::types::Record::Imu(_))
+            && p.diagnostics().activity == Some(pdr::engine::Activity::Handling)
+        {
+            handled += 1;
+        }
+    }
+    assert!(handled > 500, "{handled} samples shown as handling");
     println!("steps counted before the first landmark: {before} over {} logs (925 before the handling detector)", logs.len());
     assert!(before <= 200, "{before} steps before the walks");
 }

@@ -22,6 +22,8 @@ pub enum Activity {
     Downstairs,
     /// Running (the motion detector's σ above its running threshold).
     Running,
+    /// No step: the phone is being turned over in the hand ([`crate::engine::handling`]).
+    Handling,
 }
 
 impl Activity {
@@ -35,11 +37,12 @@ impl Activity {
             Activity::Upstairs => "upstairs",
             Activity::Downstairs => "downstairs",
             Activity::Running => "running",
+            Activity::Handling => "handling",
         }
     }
 
     /// Every activity, in the order above.
-    pub const ALL: [Activity; 7] = [
+    pub const ALL: [Activity; 8] = [
         Activity::Still,
         Activity::Standing,
         Activity::Sitting,
@@ -47,6 +50,7 @@ impl Activity {
         Activity::Upstairs,
         Activity::Downstairs,
         Activity::Running,
+        Activity::Handling,
     ];
 
     /// Whether the walker takes steps.

@@ -206,6 +206,11 @@ impl Handling {
         self.diag.handling = false;
     }
 
+    /// Whether the phone is being handled now.
+    pub fn active(&self) -> bool {
+        self.diag.handling
+    }
+
     /// Time spent handling so far, s.
     pub fn total_s(&self) -> f64 {
         self.diag.total_s

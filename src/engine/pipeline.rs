@@ -701,7 +701,9 @@ impl Pipeline {
             d.pll_locked = Some(p.locked);
         }
         d.activity = self.orientation.as_ref().map(|_| {
-            if self.prev_state.is_moving() {
+            if self.handling.active() {
+                Activity::Handling
+            } else if self.prev_state.is_moving() {
                 self.steps.last().map_or(Activity::Walking, |s| s.activity)
             } else {
                 self.pocket.activity.diagnostics().activity

@@ -263,6 +263,7 @@ pub fn activity_words(a: crate::engine::activity::Activity) -> &'static str {
         Activity::Upstairs => "Walking upstairs",
         Activity::Downstairs => "Walking downstairs",
         Activity::Running => "Running",
+        Activity::Handling => "Handling the phone",
     }
 }
 

@@ -18,6 +18,7 @@ pub fn activity_colour(a: Activity, t: &Theme) -> Option<RGBColor> {
         Activity::Upstairs => Some(t.gnss),
         Activity::Downstairs => Some(t.smoothed),
         Activity::Running => Some(t.end),
+        Activity::Handling => Some(t.track),
     }
 }
 
@@ -108,7 +109,7 @@ mod tests {
                 .iter()
                 .filter_map(|&a| activity_colour(a, &t))
                 .collect();
-            assert_eq!(acts.len(), 6);
+            assert_eq!(acts.len(), Activity::ALL.len() - 1);
             let floors: Vec<RGBColor> = (-3..=3).map(|f| floor_colour(f, &t)).collect();
             for set in [&acts, &floors] {
                 for (i, a) in set.iter().enumerate() {
