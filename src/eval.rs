@@ -654,6 +654,7 @@ mod tests {
             up_m: 0.0,
             floor: 0,
             pitch_amplitude_deg: None,
+            carry: None,
         }
     }
 

@@ -372,7 +372,7 @@ function receiver(r, s) {
 function show(r, s) {
   const set = (id, v) => { const el = $(id); if (el.textContent !== v) el.textContent = v; };
   set('r-steps', String(r.steps));
-  set('r-motion', r.activity ?? 'waiting for motion');
+  set('r-motion', r.activity ? [r.activity, r.carry].filter(Boolean).join(' · ') : 'waiting for motion');
   // The floor change from the start ("+1 floor"), and the height with what it comes from.
   set('r-floor', r.floor_change ?? (r.samples ? 'start floor' : '–'));
   set('r-height', r.up_m != null ? `${r.up_m >= 0 ? '+' : '−'}${Math.abs(r.up_m).toFixed(1)} m${r.height_source ? ` · ${r.height_source}` : ''}` : (r.samples ? 'no height yet' : '–'));

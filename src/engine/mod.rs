@@ -60,6 +60,7 @@
 
 pub mod activity;
 pub mod calibration;
+pub mod carry;
 pub mod detector;
 pub mod foot;
 pub mod fusion;

@@ -28,6 +28,7 @@
 //!   leaves the state untouched.
 
 use super::activity::{Activity, ActivityConfig};
+use super::carry::{Carry, CarryConfig, CarryMode};
 use super::detector::DetectorInput;
 use super::foot::placement::{Placement, Recogniser};
 use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
@@ -65,6 +66,8 @@ pub struct PipelineConfig {
     pub motion: MotionConfig,
     /// Handling: the phone turned over in the hand is not a gait.
     pub handling: HandlingConfig,
+    /// The carrying mode ([`crate::engine::carry`]).
+    pub carry: CarryConfig,
     /// Step detector.
     pub detector: StepDetectorConfig,
     /// Heading method.
@@ -111,6 +114,7 @@ impl Default for PipelineConfig {
             orientation: OrientationSource::default(),
             motion: MotionConfig::default(),
             handling: HandlingConfig::default(),
+            carry: CarryConfig::default(),
             detector: StepDetectorConfig::default(),
             heading: HeadingConfig::default(),
             step_length: StepLengthModel::default(),
@@ -145,6 +149,7 @@ impl PipelineConfig {
         self.orientation.validate()?;
         self.motion.validate()?;
         self.handling.validate()?;
+        self.carry.validate()?;
         match &self.detector {
             StepDetectorConfig::Pll(c) => c.validate()?,
             StepDetectorConfig::Peak(c) => c.validate()?,
@@ -197,6 +202,10 @@ pub struct StepRecord {
     /// (Munoz Diaz 2015 eq. 4), when the leg pitch is known.
     #[serde(default)]
     pub pitch_amplitude_deg: Option<f64>,
+    /// Where the phone was carried when the step was counted ([`crate::engine::carry`]), once
+    /// the detector decided.
+    #[serde(default)]
+    pub carry: Option<CarryMode>,
 }
 
 /// The estimated position (east, north) at time `t`, interpolated between steps.
@@ -246,6 +255,8 @@ pub struct Diagnostics {
     pub gap_time_s: f64,
     /// Time the phone was being handled, not walked with ([`crate::engine::handling`]), s.
     pub handling_s: f64,
+    /// Where the phone is carried, once decided ([`crate::engine::carry`]).
+    pub carry: Option<CarryMode>,
     /// Steps counted.
     pub steps: u64,
     /// Steps recovered by the onset look-back.
@@ -311,6 +322,7 @@ pub struct Pipeline {
     orientation: Option<Orientation>,
     motion: MotionDetector,
     handling: Handling,
+    carry: Carry,
     detector: Detector,
     buf: VecDeque<NavSample>,
     history_s: f64,
@@ -352,6 +364,7 @@ impl Pipeline {
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             handling: Handling::new(cfg.handling),
+            carry: Carry::new(cfg.carry),
             history_s: cfg
                 .heading
                 .history_s()
@@ -447,12 +460,11 @@ impl Pipeline {
         self.attitude = nav.attitude;
         let state = self.motion.push(s.t, nav.up);
         // The phone turned over in the hand walks nowhere.
-        let state = if self.handling.push(s.t, s.gyro.as_ref(), state) {
-            Motion::Still
-        } else {
-            state
-        };
+        let handled = self.handling.push(s.t, s.gyro.as_ref(), state);
+        let state = if handled { Motion::Still } else { state };
         let m = self.motion.diagnostics();
+        self.carry
+            .push(s.t, &s.accel, nav.up, s.gyro.as_ref(), handled);
         let mut x = DetectorInput {
             t: s.t,
             dt,
@@ -540,6 +552,7 @@ impl Pipeline {
         self.diag.gap_time_s += dt;
         self.motion.clear_window();
         self.handling.clear();
+        self.carry.clear();
         self.buf.clear();
         self.detector.gap();
         if let Some(f) = &mut self.foot {
@@ -679,6 +692,11 @@ impl Pipeline {
         self.frame.as_ref()
     }
 
+    /// The carrying-mode detector's features and votes.
+    pub fn carry_diagnostics(&self) -> crate::engine::carry::CarryDiagnostics {
+        self.carry.diagnostics()
+    }
+
     /// Counters and current values.
     pub fn diagnostics(&self) -> Diagnostics {
         let mut d = self.diag;
@@ -688,6 +706,7 @@ impl Pipeline {
         d.sigma_z = m.sigma_z;
         d.cadence_hz = m.cadence_hz;
         d.handling_s = self.handling.total_s();
+        d.carry = self.carry.mode();
         if let Some(f) = &self.fusion {
             let f = f.diagnostics();
             d.fix_counts = Some(f.counts);

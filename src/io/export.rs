@@ -3,12 +3,16 @@
 //!
 //! CSV columns (stable; other tools read them): `t_s,east_m,north_m,heading_deg,length_m,freq_hz,
 //! motion`, then `lat,lon` when the track has a geodetic origin (the first GNSS fix), then
-//! `activity,up_m,floor` (last, so that readers of the older columns by position still work).
+//! `activity,up_m,floor`, then `carry` (each new group last, so that readers of the older
+//! columns by position still work).
 //! `t_s` is the log's own time base in seconds. `heading_deg` is empty for steps without a
 //! heading. `motion` is the motion detector's `still`/`walking`/`running`; `activity` the step's
 //! activity (Munoz Diaz 2015 §4.3: `walking`, `upstairs`, `downstairs`, `running`, …, as
 //! `engine::activity::Activity::as_str` writes it); `up_m` the height after the step above the
-//! walk's start, m; `floor` the floor after the step relative to the start (0, 1, −1, …).
+//! walk's start, m; `floor` the floor after the step relative to the start (0, 1, −1, …);
+//! `carry` where the phone was carried (`pocket`, `hand`, `swinging`, `ear`, `bag`, as
+//! `engine::carry::CarryMode::as_str` writes it; empty before the detector decided, and for a
+//! foot-mounted IMU).
 //!
 //! Fused-track CSV (`pdr run --fused`), one row per fused step: `t_s,east_m,north_m,sd_east_m,
 //! sd_north_m,scale,heading_correction_deg,fix,innovation_east_m,innovation_north_m,
@@ -42,9 +46,9 @@ use std::fmt::Write as _;
 /// The CSV header without and with geodetic columns.
 pub fn csv_header(geodetic: bool) -> &'static str {
     if geodetic {
-        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,lat,lon,activity,up_m,floor"
+        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,lat,lon,activity,up_m,floor,carry"
     } else {
-        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,activity,up_m,floor"
+        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,activity,up_m,floor,carry"
     }
 }
 
@@ -72,7 +76,14 @@ pub fn track_csv(track: &[StepRecord], frame: Option<&LocalFrame>) -> String {
             let (lat, lon, _) = f.to_geodetic([r.east_m, r.north_m, 0.0]);
             let _ = write!(s, ",{lat:.8},{lon:.8}");
         }
-        let _ = write!(s, ",{},{:.3},{}", r.activity.as_str(), r.up_m, r.floor);
+        let carry = r.carry.map_or("", |c| c.as_str());
+        let _ = write!(
+            s,
+            ",{},{:.3},{},{carry}",
+            r.activity.as_str(),
+            r.up_m,
+            r.floor
+        );
         s.push('\n');
     }
     s
@@ -366,31 +377,42 @@ mod height_tests {
                 up_m: up,
                 floor: i32::from(up > 2.0),
                 pitch_amplitude_deg: Some(40.0),
+                carry: Some(crate::engine::carry::CarryMode::Pocket),
             });
         }
         out
     }
 
     #[test]
-    fn csv_ends_with_activity_height_and_floor() {
+    fn csv_ends_with_activity_height_floor_and_carry() {
         let track = stair_walk();
         for frame in [None, Some(LocalFrame::new(45.0, 9.0, 120.0))] {
             let csv = track_csv(&track, frame.as_ref());
             let rows: Vec<Vec<&str>> = csv.lines().map(|l| l.split(',').collect()).collect();
             let head = &rows[0];
             assert_eq!(head[6], "motion", "the old columns keep their places");
-            assert_eq!(head[head.len() - 3..], ["activity", "up_m", "floor"]);
+            assert_eq!(
+                head[head.len() - 4..],
+                ["activity", "up_m", "floor", "carry"]
+            );
             assert_eq!(rows.len(), track.len() + 1);
             for (r, row) in track.iter().zip(&rows[1..]) {
                 assert_eq!(row.len(), head.len());
-                let n = row.len();
+                let n = row.len() - 1;
                 assert_eq!(row[6], "walking");
+                assert_eq!(row[n], "pocket");
                 assert_eq!(row[n - 3], r.activity.as_str());
                 assert!((row[n - 2].parse::<f64>().unwrap() - r.up_m).abs() < 1e-3);
                 assert_eq!(row[n - 1].parse::<i32>().unwrap(), r.floor);
             }
-            assert_eq!(rows[10][head.len() - 3..], ["walking", "2.800", "1"]);
-            assert_eq!(rows[5][head.len() - 3..], ["upstairs", "0.700", "0"]);
+            assert_eq!(
+                rows[10][head.len() - 4..],
+                ["walking", "2.800", "1", "pocket"]
+            );
+            assert_eq!(
+                rows[5][head.len() - 4..],
+                ["upstairs", "0.700", "0", "pocket"]
+            );
         }
     }
 

@@ -163,6 +163,11 @@ pub struct Readouts {
     pub activity: Option<&'static str>,
     /// The activity's name as the files write it (`upstairs`, …).
     pub activity_key: Option<&'static str>,
+    /// Where the phone is carried, in words ("In a pocket", "At the ear", …), once the
+    /// detector decided ([`crate::engine::carry`]).
+    pub carry: Option<&'static str>,
+    /// Its name as the CSV's `carry` column writes it.
+    pub carry_key: Option<&'static str>,
     /// Floor now relative to the start.
     pub floor: i32,
     /// The floor change for people: "+1 floor", "−2 floors"; none at the start's floor.
@@ -608,6 +613,8 @@ impl LiveSession {
             motion: d.motion.map(|m| m.as_str()),
             activity: activity_now(&d).map(crate::io::export::activity_words),
             activity_key: activity_now(&d).map(|a| a.as_str()),
+            carry: d.carry.map(|c| c.words()),
+            carry_key: d.carry.map(|c| c.as_str()),
             floor: d.floor,
             floor_change: crate::io::export::floor_change(d.floor),
             up_m: (d.vertical.is_some() || d.floor != 0 || d.up_m != 0.0).then_some(d.up_m),

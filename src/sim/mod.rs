@@ -48,6 +48,7 @@
 
 mod baro;
 pub mod body;
+pub mod carry;
 pub mod foot;
 pub mod formats;
 mod gnss;
@@ -58,6 +59,7 @@ pub mod thigh;
 mod truth;
 
 pub use baro::{standard_pressure_hpa, BaroSim};
+pub use carry::Carry;
 pub use foot::{FootImu, FootSimulation, FootStride};
 pub use gnss::GnssSim;
 pub use gnss_errors::{
@@ -333,6 +335,9 @@ pub struct Scenario {
     pub left_pocket: bool,
     /// Height of one floor, m, for the truth's floor numbers (None: no floors).
     pub floor_height_m: Option<f64>,
+    /// How the phone is carried ([`Carry::Pocket`]: `pose`, `left_pocket` and
+    /// `pocket_yaw_deg` say how it sits there; the other modes ignore them).
+    pub carry: Carry,
 }
 
 impl Scenario {
@@ -350,6 +355,7 @@ impl Scenario {
             pose: PocketPose::UprightOut,
             left_pocket: false,
             floor_height_m: None,
+            carry: Carry::Pocket,
         }
     }
 
@@ -547,6 +553,9 @@ impl Scenario {
     /// then yawed by `pocket_yaw_deg` about the vertical. Body frame: x forward, y left, z up.
     /// Other poses and the left pocket: [`PocketPose`].
     pub fn mount(&self) -> Matrix3<f64> {
+        if let Some(m) = self.carry.mount() {
+            return m;
+        }
         let base = self.pose.mount(self.left_pocket);
         rz(self.pocket_yaw_deg.to_radians()) * base
     }
@@ -636,9 +645,30 @@ impl Scenario {
             _ => pitch_amp * libm::cos(half + 0.5 * omega * dt),
         };
         let handled = st.gait == Gait::Handled;
+        // Out of the pocket the thigh's pitch is replaced by the carrying mode's limb.
+        let carried = self.carry != Carry::Pocket;
+        let k_limb = if !st.gait.moving() {
+            0.0
+        } else if st.gait == Gait::Run {
+            1.4
+        } else {
+            1.0
+        };
+        let limb = |dt: f64| {
+            if carried {
+                self.carry.limb(st.phi + omega * dt, k_limb).0
+            } else {
+                ry(pitch(dt))
+            }
+        };
+        let lever_m = if carried {
+            self.carry.limb(0.0, 0.0).1
+        } else {
+            w.lever_m
+        };
         let attitude = |dt: f64| {
             let heading = path(dt) + waist(dt);
-            let mut r = rz(FRAC_PI_2 - heading) * ry(pitch(dt));
+            let mut r = rz(FRAC_PI_2 - heading) * limb(dt);
             if handled {
                 let tt = st.tau + dt;
                 r *= rx(0.25 * libm::sin(TAU * 0.31 * tt))
@@ -661,6 +691,8 @@ impl Scenario {
         let mut a = Vector3::zeros();
         if st.gait.moving() {
             let (av, af, al) = amplitudes(st.gait, st.f, w.sway);
+            let b = self.carry.bounce();
+            let (av, af, al) = (b * av, b * af, b * al);
             let body_heading = st.psi + waist(0.0);
             let fwd = Vector3::new(libm::sin(body_heading), libm::cos(body_heading), 0.0);
             let path_fwd = Vector3::new(libm::sin(st.psi), libm::cos(st.psi), 0.0);
@@ -682,7 +714,7 @@ impl Scenario {
         // Thigh lever: second derivative of the pocket offset, by central differences.
         let offset = |dt: f64| {
             let heading = path(dt) + waist(dt);
-            rz(FRAC_PI_2 - heading) * ry(pitch(dt)) * Vector3::new(0.0, 0.0, -w.lever_m)
+            rz(FRAC_PI_2 - heading) * limb(dt) * Vector3::new(0.0, 0.0, -lever_m)
         };
         let hh = 1e-3;
         if let Some((_, body, t)) = ext {

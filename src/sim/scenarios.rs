@@ -408,3 +408,27 @@ pub fn pitch_calibration_walk(metres: f64) -> Scenario {
     ];
     pocket(segs, PocketPose::UprightOut, 1819)
 }
+
+/// A walk with the phone carried in `carry` (issue 20's detector and heading per mode): 3 s
+/// standing, 40 steps, a 90° turn over 8, 30 steps, 4 s standing, 30 steps turning back by 90°,
+/// 20 steps and 3 s standing. The seed sets the cadence (1.6–2.0 Hz) and, in the pocket, the
+/// pose ([`PocketPose::ALL`]) and the side.
+pub fn carried_walk(carry: super::Carry, seed: u64) -> Scenario {
+    let f = 1.6 + 0.1 * (seed % 5) as f64;
+    let segs = vec![
+        Segment::still(3.0),
+        steps(40.0, f, f),
+        steps(8.0, f, f).turning(90.0),
+        steps(30.0, f, f),
+        Segment::still(4.0),
+        steps(30.0, f, f).turning(-90.0),
+        steps(20.0, f, f),
+        Segment::still(3.0),
+    ];
+    let pose = PocketPose::ALL[(seed % 8) as usize];
+    Scenario {
+        carry,
+        left_pocket: seed % 2 == 1,
+        ..pocket(segs, pose, seed)
+    }
+}

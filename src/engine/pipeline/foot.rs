@@ -104,6 +104,7 @@ impl Pipeline {
             up_m: 0.0,
             floor: 0,
             pitch_amplitude_deg: None,
+            carry: None,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {

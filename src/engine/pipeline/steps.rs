@@ -124,6 +124,7 @@ impl Pipeline {
             up_m: self.pocket.vertical.up_m(),
             floor: self.pocket.vertical.floor(),
             pitch_amplitude_deg: pocket.amplitude_deg,
+            carry: self.carry.mode(),
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {

@@ -1,0 +1,170 @@
+//! How the phone is carried when it is not in a trouser pocket: in the hand with the screen up
+//! (texting or reading), swinging in the hand, at the ear (calling), or in a bag.
+//! May import: `engine` and `io`.
+//!
+//! # Model
+//! Body frame as in [`super::pose`]: x forward, y left, z up. Each mode has a mount (device →
+//! body) and a limb: a rotation of the mount about a pivot and the pivot's lever, both at the
+//! stride's phase, on top of the pelvis's accelerations (scaled by [`Carry::bounce`]: the arm
+//! damps them in the hand, the neck at the ear).
+//! - **Texting**: top forward, tilted up by [`TEXT_TILT_DEG`] (the Microsoft traces hold the
+//!   phone flat, the IPIN ones at 30–60°), screen up; the hand trembles by ±1.5° at the step
+//!   and at the stride frequency. No lever.
+//! - **Swinging**: the arm swings ±[`ARM_SWING_DEG`] about the shoulder, [`ARM_LEVER_M`] above
+//!   the hand, at the stride frequency and opposite to the leg on its side; the phone is gripped
+//!   top forward and down by 45°, screen out of the body (the Oxford swinging traces read
+//!   gravity at (−0.8, −0.6, 0) in the device frame, this mount at (−0.71, −0.71, 0)).
+//! - **Ear**: screen against the head, top up and back by [`EAR_TILT_DEG`] (the line from the
+//!   ear to the mouth); the head nods by ±1°.
+//! - **Bag**: a shoulder bag at the hip swings ±6° forward and ±4° sideways on a 0.35 m strap;
+//!   the phone lies in it screen forward, leaning 25° sideways and turned 35° about the vertical.
+//!
+//! [`Carry::Pocket`] is the pocket model of [`super`] and its [`super::PocketPose`]s, untouched.
+
+use nalgebra::{Matrix3, Vector3};
+
+/// Tilt of the texting phone's top above the horizontal, degrees.
+pub const TEXT_TILT_DEG: f64 = 30.0;
+/// Amplitude of the swinging arm, degrees (walking; running swings 1.4 times as far).
+pub const ARM_SWING_DEG: f64 = 30.0;
+/// Shoulder to hand, m.
+pub const ARM_LEVER_M: f64 = 0.65;
+/// Tilt of the phone at the ear from the vertical, top backwards, degrees.
+pub const EAR_TILT_DEG: f64 = 40.0;
+
+/// How the phone is carried.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Carry {
+    /// In a front trouser pocket ([`super::PocketPose`]).
+    #[default]
+    Pocket,
+    /// In the hand, screen up, in front of the body.
+    Texting,
+    /// In the hand of a swinging arm.
+    Swinging,
+    /// At the ear.
+    Ear,
+    /// In a shoulder bag.
+    Bag,
+}
+
+fn rot(axis: Vector3<f64>, a: f64) -> Matrix3<f64> {
+    nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), a).into_inner()
+}
+
+impl Carry {
+    /// Every mode.
+    pub const ALL: [Carry; 5] = [
+        Carry::Pocket,
+        Carry::Texting,
+        Carry::Swinging,
+        Carry::Ear,
+        Carry::Bag,
+    ];
+
+    /// Lower-case name.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Carry::Pocket => "pocket",
+            Carry::Texting => "texting",
+            Carry::Swinging => "swinging",
+            Carry::Ear => "ear",
+            Carry::Bag => "bag",
+        }
+    }
+
+    /// The mount (device → body), for the modes other than the pocket.
+    pub fn mount(self) -> Option<Matrix3<f64>> {
+        let from = |x: Vector3<f64>, y: Vector3<f64>| {
+            let (x, y) = (x.normalize(), y.normalize());
+            Matrix3::from_columns(&[x, y, x.cross(&y)])
+        };
+        let deg = |d: f64| libm::sincos(d.to_radians());
+        match self {
+            Carry::Pocket => None,
+            Carry::Texting => {
+                let (s, c) = deg(TEXT_TILT_DEG);
+                Some(from(Vector3::new(0.0, -1.0, 0.0), Vector3::new(c, 0.0, s)))
+            }
+            Carry::Swinging => {
+                let (s, c) = deg(45.0);
+                Some(from(Vector3::new(-s, 0.0, -c), Vector3::new(c, 0.0, -s)))
+            }
+            Carry::Ear => {
+                let (s, c) = deg(EAR_TILT_DEG);
+                Some(from(Vector3::new(-c, 0.0, -s), Vector3::new(-s, 0.0, c)))
+            }
+            Carry::Bag => {
+                let base = from(Vector3::new(0.0, 1.0, 0.0), Vector3::new(0.0, 0.0, 1.0));
+                Some(
+                    rot(Vector3::z(), 35f64.to_radians())
+                        * rot(Vector3::x(), 25f64.to_radians())
+                        * base,
+                )
+            }
+        }
+    }
+
+    /// The pelvis's accelerations as the phone feels them.
+    pub fn bounce(self) -> f64 {
+        match self {
+            Carry::Pocket | Carry::Swinging | Carry::Bag => 1.0,
+            Carry::Texting => 0.8,
+            Carry::Ear => 0.75,
+        }
+    }
+
+    /// The limb's rotation (body frame) at step phase `phi` (rad, 2π per step) of a gait whose
+    /// swings are `k` times a walk's (0 when still), and its lever below the pivot, m. Every
+    /// swing is at rest where a bout starts and ends (φ ≡ π mod 2π), so the attitude is
+    /// continuous across them.
+    pub fn limb(self, phi: f64, k: f64) -> (Matrix3<f64>, f64) {
+        let half = 0.5 * phi;
+        let d = |a: f64| k * a.to_radians();
+        match self {
+            Carry::Pocket => (Matrix3::identity(), 0.0),
+            Carry::Texting => (
+                rot(Vector3::y(), d(1.5) * libm::sin(phi))
+                    * rot(Vector3::x(), d(1.5) * libm::cos(half)),
+                0.0,
+            ),
+            // Opposite to the right leg: forward (a negative rotation about y) at the left
+            // leg's heel strike.
+            Carry::Swinging => (
+                rot(Vector3::y(), d(ARM_SWING_DEG) * libm::cos(half)),
+                ARM_LEVER_M,
+            ),
+            Carry::Ear => (rot(Vector3::y(), d(1.0) * libm::sin(phi)), 0.0),
+            Carry::Bag => (
+                rot(Vector3::y(), d(6.0) * libm::cos(half))
+                    * rot(Vector3::x(), d(4.0) * libm::sin(phi)),
+                0.35,
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mounts_are_rotations_and_gravity_sits_where_the_real_phones_read_it() {
+        for c in Carry::ALL.into_iter().skip(1) {
+            let m = c.mount().unwrap();
+            assert!((m.transpose() * m - Matrix3::identity()).norm() < 1e-12);
+            assert!((m.determinant() - 1.0).abs() < 1e-12, "{}", c.as_str());
+        }
+        // The accelerometer at rest reads +up: Mᵀ ẑ in device coordinates.
+        let up = |c: Carry| c.mount().unwrap().transpose() * Vector3::z();
+        assert!(up(Carry::Texting).z > 0.8, "screen up");
+        let s = up(Carry::Swinging);
+        assert!(s.x < -0.6 && s.y < -0.6 && s.z.abs() < 1e-12, "{s}");
+        let e = up(Carry::Ear);
+        assert!(
+            e.y > 0.7 && e.z.abs() < 1e-12,
+            "top up, screen sideways: {e}"
+        );
+    }
+}
