@@ -136,9 +136,9 @@ impl Default for CarryConfig {
     fn default() -> Self {
         CarryConfig {
             window_s: 3.0,
-            every_s: 0.25,
-            votes: 8,
-            switch_votes: 5,
+            every_s: 0.5,
+            votes: 6,
+            switch_votes: 4,
             accel_rms_min: 0.5,
             periodicity_min: 0.3,
             step_corr_max: 0.15,
@@ -205,7 +205,8 @@ pub struct CarryDiagnostics {
 }
 
 /// Samples are averaged over slots of this length before they enter the window: the features
-/// live below 5 Hz, and a 400 Hz phone then costs what a 50 Hz one does.
+/// live below 5 Hz, and a 400 Hz phone then costs what a 50 Hz one does. (40 ms slots cost
+/// half as much, but real back pockets fell from 82 % of their steps right to 67 %.)
 const SLOT_S: f64 = 0.02;
 
 #[derive(Debug, Clone, Copy, Default)]
@@ -323,8 +324,8 @@ impl Carry {
         }
         let count = |m: CarryMode| self.votes.iter().filter(|&&v| v == m).count();
         match self.diag.mode {
-            // The first decision takes the plurality of the first few votes.
-            None if self.votes.len() >= 3 => {
+            // The first decision takes the plurality of the first two votes (a second).
+            None if self.votes.len() >= 2 => {
                 self.diag.mode = CarryMode::ALL.into_iter().max_by_key(|&m| count(m));
             }
             Some(m) if m != raw && count(raw) >= self.cfg.switch_votes => {
@@ -347,11 +348,8 @@ impl Carry {
         let u = m / g;
         let tilt = libm::sqrt(
             a.iter()
-                .map(|v| {
-                    let c = (v.dot(&u) / v.norm().max(1e-9)).clamp(-1.0, 1.0);
-                    let x = libm::acos(c);
-                    x * x
-                })
+                // 2(1 − cos θ) = (2 sin(θ/2))², θ² within 0.7 % up to 30°, without an acos.
+                .map(|v| 2.0 * (1.0 - (v.dot(&u) / v.norm().max(1e-9)).clamp(-1.0, 1.0)))
                 .sum::<f64>()
                 / n,
         )
@@ -380,10 +378,18 @@ impl Carry {
                 / m as f64
                 / var_v.max(1e-12)
         };
+        // Every other lag, then the best one's neighbours: a third of the work of every lag.
+        let score = |k: usize| (k, 0.5 * (corr_v(k) + corr_v(2 * k)));
+        let best = |b: (usize, f64), x: (usize, f64)| if x.1 > b.1 { x } else { b };
         let lags = libm::round(0.28 / SLOT_S) as usize..=libm::round(0.85 / SLOT_S) as usize;
-        let (step, periodicity) = lags
-            .map(|k| (k, 0.5 * (corr_v(k) + corr_v(2 * k))))
-            .fold((0, f64::NEG_INFINITY), |b, x| if x.1 > b.1 { x } else { b });
+        let coarse = lags
+            .step_by(2)
+            .map(score)
+            .fold((0, f64::NEG_INFINITY), best);
+        let (step, periodicity) = [coarse.0 - 1, coarse.0 + 1]
+            .into_iter()
+            .map(score)
+            .fold(coarse, best);
         if periodicity < self.cfg.periodicity_min {
             return None;
         }

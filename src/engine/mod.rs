@@ -35,6 +35,7 @@
 //! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not, KF-NFA R scale and mismatch |
 //! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
 //! | [`handling::Handling`] | [`handling::HandlingConfig`] | t, angular rate, motion state | handled or not | rate, axis share, time handled |
+//! | [`carry::Carry`] | [`carry::CarryConfig`] | t, specific force, vertical acceleration, angular rate, handled | the carrying mode | features, raw answer, evaluations, switches |
 //! | [`pll::Pll`], [`peak::PeakDetector`], [`zero_crossing::ZeroCrossing`] | [`pll::PllConfig`], [`peak::PeakConfig`], [`zero_crossing::ZeroCrossingConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
 //! | [`step_length::StepLength`] | [`StepLengthModel`] | [`step_length::StepLengthInput`] | the length, m | last length |

@@ -103,7 +103,8 @@ test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown,
   await page.waitForTimeout(250);
   assert.equal(await page.textContent('#r-steps'), String(r.steps));
   assert.equal(await page.textContent('#r-gnss'), '±12 m');
-  assert.equal(await page.textContent('#r-motion'), r.activity);
+  // The activity, then where the phone is carried once the engine decided ("Walking · In a pocket").
+  assert.equal(await page.textContent('#r-motion'), [r.activity, r.carry].filter(Boolean).join(' · '));
   assert.equal(await page.textContent('#r-floor'), r.floor_change ?? 'start floor');
   assert.match(await page.textContent('#r-heading'), /^\d+° [NESW]{1,2}$/);
   assert.match(await page.textContent('#r-spm'), /^1\d\d steps\/min$/);
