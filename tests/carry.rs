@@ -160,3 +160,31 @@ fn real_walks_get_the_mode_they_were_walked_in() {
     assert!(share(ipin) >= 0.94, "IPIN {:.3}", share(ipin));
     assert!(share(oxford) >= 0.89, "Oxford {:.3}", share(oxford));
 }
+
+/// Pooled waypoint p75 of IPIN routes 01–25 (PDR only), m.
+fn ipin_flat_p75(logs: &[pdr::io::import::Log], hand_mode: bool) -> f64 {
+    let mut cfg = PipelineConfig::default();
+    if let Some(aid) = &mut cfg.heading.yaw_aid {
+        aid.hand_mode = hand_mode;
+    }
+    let results: Vec<_> = logs
+        .iter()
+        .filter(|l| !l.source.contains("Trial51"))
+        .map(|l| pdr::eval::evaluate(l, &l.dated(&cfg)))
+        .collect();
+    pdr::eval::summarise(&results).waypoint_p75_m.unwrap()
+}
+
+#[test]
+fn the_hand_walks_along_the_device_yaw_at_any_tilt() {
+    let Some(logs) = common::ipin::ipin_logs() else {
+        return;
+    };
+    // The IPIN walkers hold the phone 55–62° from level, beyond the reading pose's 35°.
+    let (with, without) = (ipin_flat_p75(&logs, true), ipin_flat_p75(&logs, false));
+    assert!(with <= 4.45, "routes 01–25: {with:.2} m (4.37 measured)");
+    assert!(
+        with < 0.85 * without,
+        "{with:.2} m against {without:.2} m without"
+    );
+}

@@ -162,7 +162,10 @@ impl CarryConfig {
         positive("carry.limb_tilt_deg", self.limb_tilt_deg)?;
         positive("carry.hand_tilt_deg", self.hand_tilt_deg)?;
         positive("carry.limb_rate_min", self.limb_rate_min)?;
-        if self.votes == 0 || self.switch_votes == 0 || self.switch_votes > self.votes {
+        if self.votes == 0 {
+            return Err(ConfigError::new("carry.votes", "must be at least 1"));
+        }
+        if self.switch_votes == 0 || self.switch_votes > self.votes {
             return Err(ConfigError::new(
                 "carry.switch_votes",
                 "must be in 1 ..= carry.votes",

@@ -232,6 +232,8 @@ pub struct StepInput<'a> {
     pub continued: bool,
     /// The orientation source gives horizontal axes referenced to a heading.
     pub has_heading: bool,
+    /// Where the phone is carried, once decided ([`crate::engine::carry`]).
+    pub carry: Option<crate::engine::carry::CarryMode>,
 }
 
 /// One step's heading.
@@ -314,6 +316,7 @@ impl Heading {
             window,
             continued,
             has_heading,
+            carry,
         } = *step;
         let theta = if has_heading {
             single_step(&self.cfg, buf, window)
@@ -330,9 +333,13 @@ impl Heading {
             Some(aid) if has_heading && self.attitude.is_some() => {
                 let yaw = self.yaw;
                 let prev = self.last_yaw.replace(yaw).filter(|_| continued);
-                let reading = self.attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
+                // In the hand, screen up, at any tilt the carrying mode allows; else (and before
+                // the mode is known) held nearly flat.
+                let reading = (aid.hand_mode
+                    && carry == Some(crate::engine::carry::CarryMode::Hand))
+                    || self.attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
                 if reading {
-                    // Held flat in front, screen up: the top of the phone is the way forward.
+                    // Held in front, screen up: the top of the phone is the way forward.
                     self.attitude.as_ref().and_then(device_twist)
                 } else if !aid.learn_offset {
                     None

@@ -14,6 +14,11 @@
 ///   step's heading is the device's yaw ψ, the twist of the attitude about the vertical,
 ///   2·atan2(q_z, q_w) (swing–twist decomposition; [`device_twist`]). Measured: waypoint p75
 ///   5.9 m against 8.7 m for tip-to-tail alone.
+/// - **The hand, at any tilt** ([`YawAid::hand_mode`], issue 20): when the carrying mode is
+///   `hand` ([`crate::engine::carry`]: screen up by up to 66°, held steady), the device's yaw
+///   too, whatever its tilt. The IPIN 2023 walkers hold the phone 55–62° from level, beyond the
+///   reading pose: pooled waypoint p75 of routes 01–25, PDR only, 5.48 → 4.4 m (a tilt limit of
+///   70° instead gave 4.37 m, but would take a swinging or pocketed phone's yaw too).
 /// - **Otherwise**, by default, the papers' acceleration heading. With
 ///   [`YawAid::learn_offset`] the engine instead walks along ψ̄ + δ: ψ integrated from the
 ///   attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on
@@ -36,6 +41,8 @@ pub struct YawAid {
     /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ (off by default: on
     /// simulated pockets it made straight walks worse, see the module notes).
     pub learn_offset: bool,
+    /// In the carrying mode `hand`, the device's yaw at any tilt (see above).
+    pub hand_mode: bool,
 }
 
 impl Default for YawAid {
@@ -46,6 +53,7 @@ impl Default for YawAid {
             straight_deg: 10.0,
             reading_tilt_deg: 35.0,
             learn_offset: false,
+            hand_mode: true,
         }
     }
 }

@@ -79,6 +79,7 @@ impl Pipeline {
             window: w,
             continued: cont.is_some(),
             has_heading,
+            carry: self.carry.mode(),
         });
         let heading_used = h.used;
         let pocket = self.step_pocket(c.t, state);
