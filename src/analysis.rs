@@ -330,6 +330,9 @@ impl Analysis {
                 fixed(sc.duration_s / 60.0, 1)
             ),
         );
+        if let Some(c) = self.carry_text() {
+            row("Carried", c);
+        }
         let without = self
             .steps
             .iter()
@@ -482,6 +485,34 @@ impl Analysis {
             deg(s.step_heading_rad),
             crate::io::export::activity_words(s.activity).to_lowercase()
         ))
+    }
+
+    /// Where the phone was carried, as shares of the steps, most first ("in a pocket 97 %, not
+    /// yet known 3 %"); `None` without steps or in foot mode.
+    pub fn carry_text(&self) -> Option<String> {
+        use crate::engine::carry::CarryMode;
+        if self.steps.is_empty() || self.score.strides.is_some() {
+            return None;
+        }
+        let n = self.steps.len() as f64;
+        let mut shares: Vec<(usize, &str)> = CarryMode::ALL
+            .iter()
+            .map(|&m| Some(m))
+            .chain([None])
+            .map(|m| {
+                let k = self.steps.iter().filter(|s| s.carry == m).count();
+                (k, m.map_or("not yet known", |m| m.words()))
+            })
+            .filter(|(k, _)| *k > 0)
+            .collect();
+        shares.sort_by(|a, b| b.0.cmp(&a.0));
+        Some(
+            shares
+                .iter()
+                .map(|(k, w)| format!("{} {} %", w.to_lowercase(), fixed(100.0 * *k as f64 / n, 0)))
+                .collect::<Vec<_>>()
+                .join(", "),
+        )
     }
 
     /// Whether the log has a height: the engine said where it came from, or a step or sample
@@ -684,6 +715,11 @@ mod tests {
             "{last}"
         );
         let rows = a.figures();
+        let c = rows
+            .iter()
+            .find(|r| r.0 == "Carried")
+            .expect("a Carried row");
+        assert!(c.1.starts_with("in a pocket "), "{}", c.1);
         let h = rows.iter().find(|r| r.0 == "Height").expect("a Height row");
         assert_eq!(
             h.1,

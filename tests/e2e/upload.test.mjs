@@ -214,6 +214,7 @@ test('stairs in a pocket (Munoz Diaz 2015): the height plot, the floors on the m
   // landmarks' floors scored.
   assert.match(figures, /Height[^]*4 floors visited \(0, \+1, \+2, \+3\); from leg pitch \+ barometer/);
   assert.match(figures, /Barometer\s*\d+ readings/);
+  assert.match(figures, /Carried\s*in a pocket \d+ %/, 'where the phone was carried');
   const [, right, of] = figures.match(/Floors\s*(\d+) of (\d+) landmarks on the right relative floor/);
   // `pdr eval` gives 14 of 16: the simulator drops a landmark every 10 s, and two fall on the
   // landings half-way between floors, where the floor is a matter of definition (the truth
