@@ -61,6 +61,34 @@ pub fn activity_of(d: &crate::engine::Diagnostics, motion: Motion) -> Activity {
     })
 }
 
+/// Where the phone was carried over a track, as shares of the steps, most first ("in a pocket
+/// 97 %, not yet known 3 %"); `None` without steps. Upload mode's figures and `pdr run` say it.
+pub fn carry_text(steps: &[StepRecord]) -> Option<String> {
+    use crate::engine::carry::CarryMode;
+    if steps.is_empty() {
+        return None;
+    }
+    let n = steps.len() as f64;
+    let mut shares: Vec<(usize, &str)> = CarryMode::ALL
+        .iter()
+        .map(|&m| Some(m))
+        .chain([None])
+        .map(|m| {
+            let k = steps.iter().filter(|s| s.carry == m).count();
+            (k, m.map_or("not yet known", |m| m.words()))
+        })
+        .filter(|(k, _)| *k > 0)
+        .collect();
+    shares.sort_by(|a, b| b.0.cmp(&a.0));
+    Some(
+        shares
+            .iter()
+            .map(|(k, w)| format!("{} {} %", w.to_lowercase(), fixed(100.0 * *k as f64 / n, 0)))
+            .collect::<Vec<_>>()
+            .join(", "),
+    )
+}
+
 /// An activity's index in `Activity::ALL` (the trace's code), and back.
 pub fn activity_code(a: Activity) -> u8 {
     Activity::ALL.iter().position(|&x| x == a).unwrap_or(0) as u8
@@ -487,32 +515,9 @@ impl Analysis {
         ))
     }
 
-    /// Where the phone was carried, as shares of the steps, most first ("in a pocket 97 %, not
-    /// yet known 3 %"); `None` without steps or in foot mode.
+    /// Where the phone was carried ([`carry_text`]); `None` in foot mode.
     pub fn carry_text(&self) -> Option<String> {
-        use crate::engine::carry::CarryMode;
-        if self.steps.is_empty() || self.score.strides.is_some() {
-            return None;
-        }
-        let n = self.steps.len() as f64;
-        let mut shares: Vec<(usize, &str)> = CarryMode::ALL
-            .iter()
-            .map(|&m| Some(m))
-            .chain([None])
-            .map(|m| {
-                let k = self.steps.iter().filter(|s| s.carry == m).count();
-                (k, m.map_or("not yet known", |m| m.words()))
-            })
-            .filter(|(k, _)| *k > 0)
-            .collect();
-        shares.sort_by(|a, b| b.0.cmp(&a.0));
-        Some(
-            shares
-                .iter()
-                .map(|(k, w)| format!("{} {} %", w.to_lowercase(), fixed(100.0 * *k as f64 / n, 0)))
-                .collect::<Vec<_>>()
-                .join(", "),
-        )
+        carry_text(&self.steps).filter(|_| self.score.strides.is_none())
     }
 
     /// Whether the log has a height: the engine said where it came from, or a step or sample

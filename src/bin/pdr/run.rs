@@ -135,6 +135,11 @@ pub fn run(
             );
         }
     }
+    if d.placement != pdr::engine::foot::placement::Placement::Foot {
+        if let Some(c) = pdr::analysis::carry_text(track) {
+            out!("carried       {c}");
+        }
+    }
     out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
     if d.handling_s > 0.0 {
         out!(
