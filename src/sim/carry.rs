@@ -16,8 +16,11 @@
 //!   gravity at (−0.8, −0.6, 0) in the device frame, this mount at (−0.71, −0.71, 0)).
 //! - **Ear**: screen against the head, top up and back by [`EAR_TILT_DEG`] (the line from the
 //!   ear to the mouth); the head nods by ±1°.
-//! - **Bag**: a shoulder bag at the hip swings ±6° forward and ±4° sideways on a 0.35 m strap;
-//!   the phone lies in it screen forward, leaning 25° sideways and turned 35° about the vertical.
+//! - **Bag**: a shoulder bag at the hip swings on a 0.35 m strap at the stride frequency, as the
+//!   pelvis sways, ±6° forward and ±4° sideways; the phone lies in it screen forward, leaning 25°
+//!   sideways and turned 35° about the vertical. (A sideways swing at the step frequency, tried
+//!   first, put 3 m/s² of lateral acceleration into the step's harmonic and turned the
+//!   acceleration heading by a constant 64°.)
 //!
 //! [`Carry::Pocket`] is the pocket model of [`super`] and its [`super::PocketPose`]s, untouched.
 
@@ -138,7 +141,7 @@ impl Carry {
             Carry::Ear => (rot(Vector3::y(), d(1.0) * libm::sin(phi)), 0.0),
             Carry::Bag => (
                 rot(Vector3::y(), d(6.0) * libm::cos(half))
-                    * rot(Vector3::x(), d(4.0) * libm::sin(phi)),
+                    * rot(Vector3::x(), d(4.0) * libm::cos(half)),
                 0.35,
             ),
         }
