@@ -4,6 +4,7 @@
 //! end error, m.
 //!
 //! `cargo run --release --example carry_heading`
+#![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 
 use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::{scenarios, Carry};

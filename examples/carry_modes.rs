@@ -5,6 +5,7 @@
 //! engine gave it (`none` before the detector decided).
 //!
 //! `cargo run --release --example carry_modes`
+#![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 
 use pdr::engine::carry::CarryMode;
 use pdr::engine::{replay, PipelineConfig, Record};

@@ -79,7 +79,7 @@ pub fn carry_text(steps: &[StepRecord]) -> Option<String> {
         })
         .filter(|(k, _)| *k > 0)
         .collect();
-    shares.sort_by(|a, b| b.0.cmp(&a.0));
+    shares.sort_by_key(|s| std::cmp::Reverse(s.0));
     Some(
         shares
             .iter()
