@@ -116,12 +116,13 @@ fn ipin_phone_fixes() {
         s.smoothed_p75_m.unwrap(),
     );
     println!("IPIN median of per-log p75: GNSS {g:.2} m, fused {f:.2} m, smoothed {sm:.2} m, fused worse than GNSS on {}", s.fused_worse_than_gnss);
-    // The figures of issue 17's closing note (GNSS 8.29, fused 7.30, smoothed 5.63 m, 4 logs
-    // worse than GNSS); they may only get better.
+    // Issue 17's closing note gave GNSS 8.29, fused 7.30, smoothed 5.63 m and 4 logs worse than
+    // GNSS; with the hand's heading at any tilt (issue 20) fused 6.53, smoothed 4.92 m, 2 logs.
+    // They may only get better.
     assert!(
-        f < 0.9 * g && f <= 7.35,
+        f < 0.8 * g && f <= 6.6,
         "fused {f:.2} m against GNSS {g:.2} m"
     );
-    assert!(sm <= 5.65, "smoothed {sm:.2} m");
-    assert!(s.fused_worse_than_gnss <= 4);
+    assert!(sm <= 5.0, "smoothed {sm:.2} m");
+    assert!(s.fused_worse_than_gnss <= 2);
 }
