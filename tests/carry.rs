@@ -64,7 +64,7 @@ fn the_simulated_modes_are_told_apart() {
 }
 
 #[test]
-fn a_phone_taken_out_of_the_pocket_is_followed() {
+fn a_phone_put_in_the_pocket_is_followed() {
     // The texting walk, then at once the pocket walk: one stream, no gap.
     let first = scenarios::carried_walk(Carry::Texting, 3)
         .generate()
