@@ -389,7 +389,7 @@ impl Carry {
             .step_by(2)
             .map(score)
             .fold((0, f64::NEG_INFINITY), best);
-        let (step, periodicity) = [coarse.0 - 1, coarse.0 + 1]
+        let (step, periodicity) = [coarse.0.saturating_sub(1), coarse.0 + 1]
             .into_iter()
             .map(score)
             .fold(coarse, best);
@@ -444,6 +444,33 @@ impl Carry {
             CarryMode::Ear
         } else {
             CarryMode::Bag
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_phone_at_rest_or_a_tiny_window_decides_nothing_and_never_panics() {
+        for window_s in [3.0, 0.1] {
+            let mut c = Carry::new(CarryConfig {
+                window_s,
+                ..CarryConfig::default()
+            });
+            let g = Vector3::new(0.0, 0.0, 9.81);
+            for i in 0..2000 {
+                let t = f64::from(i) * 0.01;
+                // At rest, then a bounce too fast and too small for a gait.
+                let a = if i < 1000 {
+                    g
+                } else {
+                    g * (1.0 + 0.01 * libm::sin(t * 60.0))
+                };
+                assert_eq!(c.push(t, &a, 0.0, Some(&Vector3::zeros()), false), None);
+            }
+            assert_eq!(c.diagnostics().evaluations, 0);
         }
     }
 }
