@@ -29,15 +29,20 @@ fn main() {
             let mut errs = Vec::new();
             let (mut h1, mut n1) = (0.0, 0);
             for s in tr {
+                let k = sim
+                    .truth
+                    .steps
+                    .partition_point(|x| x.t < s.t)
+                    .min(sim.truth.steps.len() - 1);
                 if let Some(h) = s.heading_rad {
-                    let k = sim
-                        .truth
-                        .steps
-                        .partition_point(|x| x.t < s.t)
-                        .min(sim.truth.steps.len() - 1);
-                    h1 += wrap(h - sim.truth.steps[k].heading_rad).to_degrees();
+                    let e = wrap(h - sim.truth.steps[k].heading_rad).to_degrees();
+                    h1 += e;
                     n1 += 1;
+                    herr += e.abs();
+                    nh += 1;
                 }
+                let (e, nn) = sim.truth.position_at(s.t);
+                errs.push(((s.east_m - e).powi(2) + (s.north_m - nn).powi(2)).sqrt());
             }
             if std::env::var("PER_SEED").is_ok() {
                 eprintln!(
@@ -45,19 +50,6 @@ fn main() {
                     carry.as_str(),
                     h1 / n1.max(1) as f64
                 );
-            }
-            for s in tr {
-                let k = sim
-                    .truth
-                    .steps
-                    .partition_point(|x| x.t < s.t)
-                    .min(sim.truth.steps.len() - 1);
-                if let Some(h) = s.heading_rad {
-                    herr += wrap(h - sim.truth.steps[k].heading_rad).abs().to_degrees();
-                    nh += 1;
-                }
-                let (e, nn) = sim.truth.position_at(s.t);
-                errs.push(((s.east_m - e).powi(2) + (s.north_m - nn).powi(2)).sqrt());
             }
             errs.sort_by(|a, b| a.total_cmp(b));
             p75s.push(errs[(errs.len() * 3) / 4]);

@@ -119,31 +119,35 @@ impl Carry {
     }
 
     /// The limb's rotation (body frame) at step phase `phi` (rad, 2π per step) of a gait whose
-    /// swings are `k` times a walk's (0 when still), and its lever below the pivot, m. Every
-    /// swing is at rest where a bout starts and ends (φ ≡ π mod 2π), so the attitude is
-    /// continuous across them.
-    pub fn limb(self, phi: f64, k: f64) -> (Matrix3<f64>, f64) {
+    /// swings are `k` times a walk's (0 when still). Every swing is at rest where a bout starts
+    /// and ends (φ ≡ π mod 2π), so the attitude is continuous across them.
+    pub fn limb(self, phi: f64, k: f64) -> Matrix3<f64> {
         let half = 0.5 * phi;
         let d = |a: f64| k * a.to_radians();
         match self {
-            Carry::Pocket => (Matrix3::identity(), 0.0),
-            Carry::Texting => (
+            Carry::Pocket => Matrix3::identity(),
+            Carry::Texting => {
                 rot(Vector3::y(), d(1.5) * libm::sin(phi))
-                    * rot(Vector3::x(), d(1.5) * libm::cos(half)),
-                0.0,
-            ),
+                    * rot(Vector3::x(), d(1.5) * libm::cos(half))
+            }
             // Opposite to the right leg: forward (a negative rotation about y) at the left
             // leg's heel strike.
-            Carry::Swinging => (
-                rot(Vector3::y(), d(ARM_SWING_DEG) * libm::cos(half)),
-                ARM_LEVER_M,
-            ),
-            Carry::Ear => (rot(Vector3::y(), d(1.0) * libm::sin(phi)), 0.0),
-            Carry::Bag => (
+            Carry::Swinging => rot(Vector3::y(), d(ARM_SWING_DEG) * libm::cos(half)),
+            Carry::Ear => rot(Vector3::y(), d(1.0) * libm::sin(phi)),
+            Carry::Bag => {
                 rot(Vector3::y(), d(6.0) * libm::cos(half))
-                    * rot(Vector3::x(), d(4.0) * libm::cos(half)),
-                0.35,
-            ),
+                    * rot(Vector3::x(), d(4.0) * libm::cos(half))
+            }
+        }
+    }
+
+    /// The limb's lever below its pivot, m (the shoulder, the strap's hook; 0 for a hand or a
+    /// head that carries the phone with the trunk).
+    pub fn lever_m(self) -> f64 {
+        match self {
+            Carry::Swinging => ARM_LEVER_M,
+            Carry::Bag => 0.35,
+            Carry::Pocket | Carry::Texting | Carry::Ear => 0.0,
         }
     }
 }

@@ -54,6 +54,7 @@ pub mod formats;
 mod gnss;
 mod gnss_errors;
 pub mod pose;
+mod rng;
 pub mod scenarios;
 pub mod thigh;
 mod truth;
@@ -74,6 +75,7 @@ use crate::engine::types::ImuSample;
 use crate::engine::Record;
 use gnss::merge_in_time;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
+use rng::Rng;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Standard gravity used by the simulator, m/s².
@@ -405,30 +407,6 @@ pub struct Simulation {
     pub truth: Truth,
 }
 
-/// SplitMix64 with Box–Muller normals.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let u1 = self.uniform().max(1e-300);
-        let u2 = self.uniform();
-        libm::sqrt(-2.0 * libm::log(u1)) * libm::cos(TAU * u2)
-    }
-    fn vec3(&mut self, s: f64) -> Vector3<f64> {
-        Vector3::new(self.normal() * s, self.normal() * s, self.normal() * s)
-    }
-}
-
 /// Kinematic state at one instant.
 struct State {
     gait: Gait,
@@ -656,13 +634,13 @@ impl Scenario {
         };
         let limb = |dt: f64| {
             if carried {
-                self.carry.limb(st.phi + omega * dt, k_limb).0
+                self.carry.limb(st.phi + omega * dt, k_limb)
             } else {
                 ry(pitch(dt))
             }
         };
         let lever_m = if carried {
-            self.carry.limb(0.0, 0.0).1
+            self.carry.lever_m()
         } else {
             w.lever_m
         };
