@@ -655,6 +655,7 @@ mod tests {
             floor: 0,
             pitch_amplitude_deg: None,
             carry: None,
+            gyro_heading: false,
         }
     }
 

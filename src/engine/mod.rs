@@ -33,6 +33,7 @@
 //! | Stage | Settings | `push` takes | gives | Diagnostics |
 //! |---|---|---|---|---|
 //! | [`orientation::Orientation`] | [`OrientationSource`] | a sample and its dt | the sample in the navigation frame | source, heading or not, KF-NFA R scale and mismatch |
+//! | [`magnetic::Magnetic`] | [`magnetic::MagneticConfig`] | a sample, its dt and the orientation's output | that output with the yaw held on the gyroscope where the field is bent | disturbed or not, time disturbed, reference field, yaw correction |
 //! | [`motion::MotionDetector`] | [`MotionConfig`] | t, vertical acceleration | the motion state | σ_z, μ_z, cadence |
 //! | [`handling::Handling`] | [`handling::HandlingConfig`] | t, angular rate, motion state | handled or not | rate, axis share, time handled |
 //! | [`carry::Carry`] | [`carry::CarryConfig`] | t, specific force, vertical acceleration, angular rate, handled | the carrying mode | features, raw answer, evaluations, switches |
@@ -71,6 +72,7 @@ pub mod handling;
 pub mod heading;
 pub mod hybrid;
 pub mod leg_pitch;
+pub mod magnetic;
 pub mod math;
 pub mod motion;
 pub mod orientation;

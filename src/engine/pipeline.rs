@@ -40,6 +40,7 @@ use super::handling::{Handling, HandlingConfig};
 use super::heading::{self, Heading, HeadingConfig, NavSample};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
 use super::leg_pitch::LegPitchConfig;
+use super::magnetic::{Magnetic, MagneticConfig};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::step_length::{StepLength, StepLengthModel};
@@ -68,6 +69,9 @@ pub struct PipelineConfig {
     pub handling: HandlingConfig,
     /// The carrying mode ([`crate::engine::carry`]).
     pub carry: CarryConfig,
+    /// The magnetic guard ([`crate::engine::magnetic`]): where the field is disturbed, the yaw
+    /// follows the gyroscope.
+    pub magnetic: MagneticConfig,
     /// Step detector.
     pub detector: StepDetectorConfig,
     /// Heading method.
@@ -115,6 +119,7 @@ impl Default for PipelineConfig {
             motion: MotionConfig::default(),
             handling: HandlingConfig::default(),
             carry: CarryConfig::default(),
+            magnetic: MagneticConfig::default(),
             detector: StepDetectorConfig::default(),
             heading: HeadingConfig::default(),
             step_length: StepLengthModel::default(),
@@ -150,6 +155,7 @@ impl PipelineConfig {
         self.motion.validate()?;
         self.handling.validate()?;
         self.carry.validate()?;
+        self.magnetic.validate()?;
         match &self.detector {
             StepDetectorConfig::Pll(c) => c.validate()?,
             StepDetectorConfig::Peak(c) => c.validate()?,
@@ -206,6 +212,10 @@ pub struct StepRecord {
     /// the detector decided.
     #[serde(default)]
     pub carry: Option<CarryMode>,
+    /// Whether the magnetometer was disturbed at the step, so that the heading followed the
+    /// gyroscope ([`crate::engine::magnetic`]).
+    #[serde(default)]
+    pub gyro_heading: bool,
 }
 
 /// The estimated position (east, north) at time `t`, interpolated between steps.
@@ -323,6 +333,7 @@ pub struct Pipeline {
     motion: MotionDetector,
     handling: Handling,
     carry: Carry,
+    magnetic: Magnetic,
     detector: Detector,
     buf: VecDeque<NavSample>,
     history_s: f64,
@@ -365,6 +376,7 @@ impl Pipeline {
             motion: MotionDetector::new(cfg.motion),
             handling: Handling::new(cfg.handling),
             carry: Carry::new(cfg.carry),
+            magnetic: Magnetic::new(cfg.magnetic),
             history_s: cfg
                 .heading
                 .history_s()
@@ -450,6 +462,7 @@ impl Pipeline {
             Orientation::new(src)
         });
         let nav = orientation.push(s, dt)?;
+        let nav = self.magnetic.push(s, dt, nav);
         if s.gyro.is_none() && matches!(self.detector, Detector::Pitch(_)) {
             // The leg pitch needs a gyroscope: the PLL counts this log's steps.
             self.detector = Detector::new(StepDetectorConfig::default());
@@ -553,6 +566,7 @@ impl Pipeline {
         self.motion.clear_window();
         self.handling.clear();
         self.carry.clear();
+        self.magnetic.reset();
         self.buf.clear();
         self.detector.gap();
         if let Some(f) = &mut self.foot {
@@ -695,6 +709,11 @@ impl Pipeline {
     /// The carrying-mode detector's features and votes.
     pub fn carry_diagnostics(&self) -> crate::engine::carry::CarryDiagnostics {
         self.carry.diagnostics()
+    }
+
+    /// The magnetic guard's reference, share disturbed and yaw correction.
+    pub fn magnetic_diagnostics(&self) -> crate::engine::magnetic::MagneticDiagnostics {
+        self.magnetic.diagnostics()
     }
 
     /// Counters and current values.

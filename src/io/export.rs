@@ -3,8 +3,8 @@
 //!
 //! CSV columns (stable; other tools read them): `t_s,east_m,north_m,heading_deg,length_m,freq_hz,
 //! motion`, then `lat,lon` when the track has a geodetic origin (the first GNSS fix), then
-//! `activity,up_m,floor`, then `carry` (each new group last, so that readers of the older
-//! columns by position still work).
+//! `activity,up_m,floor`, then `carry`, then `gyro_heading` (each new group last, so that readers
+//! of the older columns by position still work).
 //! `t_s` is the log's own time base in seconds. `heading_deg` is empty for steps without a
 //! heading. `motion` is the motion detector's `still`/`walking`/`running`; `activity` the step's
 //! activity (Munoz Diaz 2015 §4.3: `walking`, `upstairs`, `downstairs`, `running`, …, as
@@ -12,7 +12,8 @@
 //! walk's start, m; `floor` the floor after the step relative to the start (0, 1, −1, …);
 //! `carry` where the phone was carried (`pocket`, `hand`, `swinging`, `ear`, `bag`, as
 //! `engine::carry::CarryMode::as_str` writes it; empty before the detector decided, and for a
-//! foot-mounted IMU).
+//! foot-mounted IMU); `gyro_heading` 1 where the magnetometer was disturbed and the heading
+//! followed the gyroscope (`engine::magnetic`), else 0.
 //!
 //! Fused-track CSV (`pdr run --fused`), one row per fused step: `t_s,east_m,north_m,sd_east_m,
 //! sd_north_m,scale,heading_correction_deg,fix,innovation_east_m,innovation_north_m,
@@ -46,9 +47,9 @@ use std::fmt::Write as _;
 /// The CSV header without and with geodetic columns.
 pub fn csv_header(geodetic: bool) -> &'static str {
     if geodetic {
-        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,lat,lon,activity,up_m,floor,carry"
+        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,lat,lon,activity,up_m,floor,carry,gyro_heading"
     } else {
-        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,activity,up_m,floor,carry"
+        "t_s,east_m,north_m,heading_deg,length_m,freq_hz,motion,activity,up_m,floor,carry,gyro_heading"
     }
 }
 
@@ -79,10 +80,11 @@ pub fn track_csv(track: &[StepRecord], frame: Option<&LocalFrame>) -> String {
         let carry = r.carry.map_or("", |c| c.as_str());
         let _ = write!(
             s,
-            ",{},{:.3},{},{carry}",
+            ",{},{:.3},{},{carry},{}",
             r.activity.as_str(),
             r.up_m,
-            r.floor
+            r.floor,
+            u8::from(r.gyro_heading)
         );
         s.push('\n');
     }
@@ -378,13 +380,14 @@ mod height_tests {
                 floor: i32::from(up > 2.0),
                 pitch_amplitude_deg: Some(40.0),
                 carry: Some(crate::engine::carry::CarryMode::Pocket),
+                gyro_heading: k == 3,
             });
         }
         out
     }
 
     #[test]
-    fn csv_ends_with_activity_height_floor_and_carry() {
+    fn csv_ends_with_activity_height_floor_carry_and_gyro_heading() {
         let track = stair_walk();
         for frame in [None, Some(LocalFrame::new(45.0, 9.0, 120.0))] {
             let csv = track_csv(&track, frame.as_ref());
@@ -392,13 +395,14 @@ mod height_tests {
             let head = &rows[0];
             assert_eq!(head[6], "motion", "the old columns keep their places");
             assert_eq!(
-                head[head.len() - 4..],
-                ["activity", "up_m", "floor", "carry"]
+                head[head.len() - 5..],
+                ["activity", "up_m", "floor", "carry", "gyro_heading"]
             );
             assert_eq!(rows.len(), track.len() + 1);
             for (r, row) in track.iter().zip(&rows[1..]) {
                 assert_eq!(row.len(), head.len());
-                let n = row.len() - 1;
+                let n = row.len() - 2;
+                assert_eq!(row[n + 1], if r.gyro_heading { "1" } else { "0" });
                 assert_eq!(row[6], "walking");
                 assert_eq!(row[n], "pocket");
                 assert_eq!(row[n - 3], r.activity.as_str());
@@ -406,12 +410,12 @@ mod height_tests {
                 assert_eq!(row[n - 1].parse::<i32>().unwrap(), r.floor);
             }
             assert_eq!(
-                rows[10][head.len() - 4..],
-                ["walking", "2.800", "1", "pocket"]
+                rows[10][head.len() - 5..],
+                ["walking", "2.800", "1", "pocket", "0"]
             );
             assert_eq!(
-                rows[5][head.len() - 4..],
-                ["upstairs", "0.700", "0", "pocket"]
+                rows[4][head.len() - 5..],
+                ["walking", "0.000", "0", "pocket", "1"]
             );
         }
     }

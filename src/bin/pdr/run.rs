@@ -140,6 +140,15 @@ pub fn run(
             out!("carried       {c}");
         }
     }
+    let m = p.magnetic_diagnostics();
+    if let Some((size, dip)) = m.reference {
+        let held = track.iter().filter(|s| s.gyro_heading).count();
+        out!(
+            "magnetometer  disturbed {:.0} % of {:.0} s (reference {size:.1} µT, dip {dip:.1}°): {held} steps followed the gyroscope",
+            100.0 * m.disturbed_s / m.tested_s.max(1e-9),
+            m.tested_s
+        );
+    }
     out!("gaps          {} ({:.1} s)", d.gaps, d.gap_time_s);
     if d.handling_s > 0.0 {
         out!(

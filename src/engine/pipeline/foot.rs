@@ -105,6 +105,7 @@ impl Pipeline {
             floor: 0,
             pitch_amplitude_deg: None,
             carry: None,
+            gyro_heading: false,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {

@@ -126,12 +126,15 @@ impl Pipeline {
             floor: self.pocket.vertical.floor(),
             pitch_amplitude_deg: pocket.amplitude_deg,
             carry: self.carry.mode(),
+            gyro_heading: self.magnetic.diagnostics().disturbed,
         });
         if let Some(f) = &mut self.fusion {
             f.push_step(&fusion::StepInput {
                 t: c.t,
                 length_m: length,
-                heading_rad: heading_used,
+                // The fusion keeps the magnetometer's yaw: its heading correction is one
+                // constant, which a yaw held on the gyroscope does not have.
+                heading_rad: heading_used.map(|h| self.magnetic.unguarded(h)),
             });
         }
         self.diag.steps += 1;

@@ -1,0 +1,401 @@
+//! The magnetic guard: where the magnetometer is disturbed, the yaw follows the gyroscope.
+//! May import: the rest of `engine`.
+//!
+//! Our addition to the papers (issue 20). Every orientation source that has a heading takes its
+//! yaw from the magnetometer: the OS rotation vector, Madgwick with a magnetometer. Indoors the
+//! field is bent by steel and wiring: on the 24 Microsoft walks its size swings by ±6–9 µT
+//! (1 sd) about ~41 µT, from 17 to 67 µT, and the attitude's yaw is pulled with it. A constant
+//! offset is harmless (a learnt correction or the fusion removes it), a yaw that bends with the
+//! building is not.
+//!
+//! # Rule
+//! Each sample, the guard keeps a yaw correction δ (counter-clockwise about up, radians) and hands
+//! on the attitude `R_z(δ)·q`, with the horizontal acceleration turned alike:
+//! 1. **Predict** with the gyroscope: the previous guarded attitude turned by the body rate,
+//!    `q̂ = q'ₖ₋₁·exp(ω·dt)`. δ becomes the twist about up of `q̂·qₖ⁻¹` (the swing is dropped:
+//!    the source's tilt is kept, only its yaw is overruled).
+//! 2. **Test the field** against a reference: the field's size |B| and its inclination (dip,
+//!    below the horizontal, from the source's tilt). The field is *clean* when both are within
+//!    [`MagneticConfig::magnitude_tol`] and [`MagneticConfig::dip_tol_deg`] of the reference and
+//!    have been for [`MagneticConfig::settle_s`].
+//! 3. **Correct** only while clean: δ decays towards 0 (the source's own yaw) with time constant
+//!    [`MagneticConfig::tau_s`]. While disturbed δ is left as predicted: the heading follows the
+//!    gyroscope, and [`MagneticDiagnostics::disturbed`] says so.
+//!
+//! # Reference
+//! The median |B| and dip of the walk so far, from fixed histograms (0.5 µT and 0.5° bins: bounded
+//! memory, deterministic), once [`MagneticConfig::learn_s`] of samples are in. The walk's own
+//! median rather than the World Magnetic Model's value: a phone's magnetometer carries its own
+//! scale and hard-iron residue (Android calibrates it on the fly), and most uploads carry no
+//! position to look the model up at. A walk disturbed more than half the time has a reference
+//! within the disturbance; the test then still flags the swings about it.
+//!
+//! Without a gyroscope or a magnetometer on the sample, or with a source that has no heading,
+//! the attitude passes unchanged.
+
+use super::math::wrap_pi;
+use super::orientation::NavAccel;
+use super::types::{positive, ConfigError, ImuSample};
+use nalgebra::{UnitQuaternion, Vector3};
+
+/// Settings of the magnetic guard.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct MagneticConfig {
+    /// Whether the guard runs (default on).
+    pub enabled: bool,
+    /// Largest departure of |B| from the reference for a clean field, as a fraction of it.
+    pub magnitude_tol: f64,
+    /// Largest departure of the dip from the reference for a clean field, degrees.
+    pub dip_tol_deg: f64,
+    /// How long the field must stay clean before it corrects the yaw again, s.
+    pub settle_s: f64,
+    /// Time constant with which a clean field pulls the yaw back to the source's, s.
+    pub tau_s: f64,
+    /// Samples needed, in seconds of data, before the reference is trusted, s.
+    pub learn_s: f64,
+}
+
+impl Default for MagneticConfig {
+    fn default() -> Self {
+        MagneticConfig {
+            enabled: true,
+            magnitude_tol: 0.15,
+            dip_tol_deg: 5.0,
+            settle_s: 1.0,
+            tau_s: 3.0,
+            learn_s: 3.0,
+        }
+    }
+}
+
+impl MagneticConfig {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        positive("magnetic.magnitude_tol", self.magnitude_tol)?;
+        positive("magnetic.dip_tol_deg", self.dip_tol_deg)?;
+        positive("magnetic.tau_s", self.tau_s)?;
+        positive("magnetic.learn_s", self.learn_s)?;
+        if !(self.settle_s.is_finite() && self.settle_s >= 0.0) {
+            return Err(ConfigError::new(
+                "magnetic.settle_s",
+                "must be a finite number of seconds, 0 or more",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The guard's current values; read-only.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct MagneticDiagnostics {
+    /// Whether the last sample's field was disturbed (the yaw follows the gyroscope).
+    pub disturbed: bool,
+    /// Time spent disturbed so far, s.
+    pub disturbed_s: f64,
+    /// Time with a field tested so far, s.
+    pub tested_s: f64,
+    /// The reference field size, µT, and dip, degrees, once learnt.
+    pub reference: Option<(f64, f64)>,
+    /// The yaw correction now, degrees (counter-clockwise about up).
+    pub correction_deg: f64,
+}
+
+const MAG_BIN: f64 = 0.5;
+const MAG_BINS: usize = 400; // 0–200 µT
+const DIP_BIN: f64 = 0.5;
+const DIP_BINS: usize = 360; // −90…90°
+
+/// A median over fixed bins.
+#[derive(Debug, Clone)]
+struct Histogram {
+    counts: Vec<u32>,
+    total: u64,
+    lo: f64,
+    bin: f64,
+}
+
+impl Histogram {
+    fn new(lo: f64, bin: f64, bins: usize) -> Self {
+        Histogram {
+            counts: vec![0; bins],
+            total: 0,
+            lo,
+            bin,
+        }
+    }
+
+    fn add(&mut self, v: f64) {
+        let i = ((v - self.lo) / self.bin).floor();
+        if i.is_finite() {
+            let i = (i.max(0.0) as usize).min(self.counts.len() - 1);
+            self.counts[i] = self.counts[i].saturating_add(1);
+            self.total += 1;
+        }
+    }
+
+    fn median(&self) -> Option<f64> {
+        let half = self.total.div_ceil(2);
+        let mut acc = 0u64;
+        for (i, &c) in self.counts.iter().enumerate() {
+            acc += u64::from(c);
+            if acc >= half && self.total > 0 {
+                return Some(self.lo + (i as f64 + 0.5) * self.bin);
+            }
+        }
+        None
+    }
+}
+
+/// The magnetic guard stage.
+#[derive(Debug, Clone)]
+pub struct Magnetic {
+    cfg: MagneticConfig,
+    magnitude: Histogram,
+    dip: Histogram,
+    learnt_s: f64,
+    reference: Option<(f64, f64)>,
+    since_refresh_s: f64,
+    clean_for_s: f64,
+    delta: f64,
+    last: Option<UnitQuaternion<f64>>,
+    diag: MagneticDiagnostics,
+}
+
+impl Magnetic {
+    /// A stage with validated settings.
+    pub fn new(cfg: MagneticConfig) -> Self {
+        Magnetic {
+            cfg,
+            magnitude: Histogram::new(0.0, MAG_BIN, MAG_BINS),
+            dip: Histogram::new(-90.0, DIP_BIN, DIP_BINS),
+            learnt_s: 0.0,
+            reference: None,
+            since_refresh_s: 0.0,
+            clean_for_s: 0.0,
+            delta: 0.0,
+            last: None,
+            diag: MagneticDiagnostics {
+                disturbed: false,
+                disturbed_s: 0.0,
+                tested_s: 0.0,
+                reference: None,
+                correction_deg: 0.0,
+            },
+        }
+    }
+
+    /// After a gap: the yaw is the source's again (the gyroscope cannot bridge it).
+    pub fn reset(&mut self) {
+        self.delta = 0.0;
+        self.last = None;
+        self.clean_for_s = 0.0;
+    }
+
+    /// Feeds one sample, `dt` seconds after the previous (0 after a gap), with the orientation
+    /// source's output for it; returns that output with the guarded attitude.
+    pub fn push(&mut self, s: &ImuSample, dt: f64, nav: NavAccel) -> NavAccel {
+        let (Some(q), Some(gyro), Some(b), true) = (nav.attitude, s.gyro, s.mag, self.cfg.enabled)
+        else {
+            self.reset();
+            return nav;
+        };
+        // 1. Predict: the guarded attitude turned by the body rate; keep only its yaw.
+        if let Some(prev) = self.last.filter(|_| dt > 0.0) {
+            let predicted = prev * UnitQuaternion::from_scaled_axis(gyro * dt);
+            let d = predicted * q.inverse();
+            self.delta = wrap_pi(2.0 * libm::atan2(d.k, d.w));
+        }
+        // 2. Test the field.
+        let clean = self.clean(&q, &b, dt);
+        // 3. Correct while clean.
+        if clean {
+            self.delta *= libm::exp(-dt / self.cfg.tau_s);
+        }
+        let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), self.delta);
+        let guarded = turn * q;
+        self.last = Some(guarded);
+        self.diag.disturbed = !clean;
+        self.diag.correction_deg = self.delta.to_degrees();
+        NavAccel {
+            up: nav.up,
+            horizontal: nav.horizontal.map(|(e, n)| {
+                let (sn, cs) = libm::sincos(self.delta);
+                (cs * e - sn * n, sn * e + cs * n)
+            }),
+            attitude: Some(guarded),
+        }
+    }
+
+    /// Whether the field `b` (device frame, µT) is clean, seen through the source's tilt `q`;
+    /// learns the reference from it.
+    fn clean(&mut self, q: &UnitQuaternion<f64>, b: &Vector3<f64>, dt: f64) -> bool {
+        let size = b.norm();
+        if !(size.is_finite() && size > 1e-6) {
+            return true;
+        }
+        let dip = libm::asin((-(q * b).z / size).clamp(-1.0, 1.0)).to_degrees();
+        self.magnitude.add(size);
+        self.dip.add(dip);
+        self.learnt_s += dt;
+        self.since_refresh_s += dt;
+        if self.learnt_s >= self.cfg.learn_s
+            && (self.reference.is_none() || self.since_refresh_s >= 1.0)
+        {
+            self.since_refresh_s = 0.0;
+            self.reference = self.magnitude.median().zip(self.dip.median());
+            self.diag.reference = self.reference;
+        }
+        let Some((size_ref, dip_ref)) = self.reference else {
+            // Before a reference, the source's yaw is all there is.
+            self.clean_for_s += dt;
+            return true;
+        };
+        self.diag.tested_s += dt;
+        let ok = (size - size_ref).abs() <= self.cfg.magnitude_tol * size_ref
+            && (dip - dip_ref).abs() <= self.cfg.dip_tol_deg;
+        self.clean_for_s = if ok { self.clean_for_s + dt } else { 0.0 };
+        let clean = ok && self.clean_for_s >= self.cfg.settle_s;
+        if !clean {
+            self.diag.disturbed_s += dt;
+        }
+        clean
+    }
+
+    /// A compass heading (radians, clockwise from north) taken in the guarded attitude, turned
+    /// back into the source's: what the heading would have been without the guard.
+    pub fn unguarded(&self, heading_rad: f64) -> f64 {
+        super::math::wrap_2pi(heading_rad + self.delta)
+    }
+
+    /// The current values.
+    pub fn diagnostics(&self) -> MagneticDiagnostics {
+        self.diag
+    }
+}
+
+#[cfg(test)]
+#[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
+mod tests {
+    use super::*;
+    use crate::engine::orientation::G0;
+
+    /// A flat phone turning about up at `rate` rad/s (counter-clockwise), sampled at 100 Hz for
+    /// `secs`; the source's yaw is off by `bend(t)` rad and the field's size is scaled by
+    /// `scale(t)`. Returns the guard's yaw error (guarded yaw minus true yaw), rad, and whether
+    /// each sample was flagged.
+    fn run(
+        secs: f64,
+        rate: f64,
+        bend: impl Fn(f64) -> f64,
+        scale: impl Fn(f64) -> f64,
+        gyro: bool,
+    ) -> Vec<(f64, f64, bool)> {
+        let mut g = Magnetic::new(MagneticConfig::default());
+        // Earth's field in ENU: 20 µT north, 40 µT down (dip 63.4°).
+        let field = Vector3::new(0.0, 20.0, -40.0);
+        let dt = 0.01;
+        let mut out = Vec::new();
+        for i in 0..(secs / dt) as usize {
+            let t = i as f64 * dt;
+            let truth = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), rate * t);
+            let source = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), rate * t + bend(t));
+            let s = ImuSample {
+                t,
+                accel: Vector3::new(0.0, 0.0, G0),
+                gyro: gyro.then(|| Vector3::new(0.0, 0.0, rate)),
+                mag: Some(truth.inverse() * field * scale(t)),
+                orientation: Some(source),
+            };
+            let nav = NavAccel {
+                up: 0.0,
+                horizontal: Some((0.0, 0.0)),
+                attitude: Some(source),
+            };
+            let q = g
+                .push(&s, if i == 0 { 0.0 } else { dt }, nav)
+                .attitude
+                .unwrap();
+            let err = wrap_pi(2.0 * libm::atan2((q * truth.inverse()).k, (q * truth.inverse()).w));
+            out.push((t, err, g.diagnostics().disturbed));
+        }
+        out
+    }
+
+    #[test]
+    fn a_clean_field_leaves_the_source_yaw_alone() {
+        let r = run(20.0, 0.4, |_| 0.0, |_| 1.0, true);
+        assert!(r.iter().all(|&(_, e, d)| e.abs() < 1e-6 && !d));
+    }
+
+    #[test]
+    fn a_bent_field_is_flagged_and_the_gyroscope_holds_the_yaw() {
+        // From 10 to 20 s a steel beam: the field is 40 % stronger and the source's yaw is
+        // pulled 30° off.
+        let inside = |t: f64| (10.0..20.0).contains(&t);
+        let r = run(
+            40.0,
+            0.2,
+            |t| if inside(t) { 0.5 } else { 0.0 },
+            |t| if inside(t) { 1.4 } else { 1.0 },
+            true,
+        );
+        for &(t, e, d) in &r {
+            if inside(t) {
+                assert!(d, "flagged at {t}");
+                assert!(e.abs() < 1e-6, "held at {t}: {e}");
+            }
+            // Clean again: back on the source's (right) yaw within the settling time.
+            if t > 21.5 {
+                assert!(!d && e.abs() < 1e-6, "{t}: {e}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_field_bent_at_the_start_is_judged_against_the_walk() {
+        // The first 2 s are bent, before any reference: the source's yaw is taken, then the
+        // reference (learnt from the whole walk so far) settles on the true field and the
+        // yaw returns to the source's, right again.
+        let r = run(
+            30.0,
+            0.0,
+            |t| if t < 2.0 { 0.3 } else { 0.0 },
+            |t| if t < 2.0 { 1.5 } else { 1.0 },
+            true,
+        );
+        assert!(r.iter().filter(|x| x.0 > 10.0).all(|&(_, _, d)| !d));
+        assert!(r
+            .iter()
+            .filter(|x| x.0 > 25.0)
+            .all(|&(_, e, _)| e.abs() < 1e-3));
+    }
+
+    #[test]
+    fn without_a_gyroscope_the_attitude_passes_unchanged() {
+        let r = run(
+            20.0,
+            0.2,
+            |t| if t > 5.0 { 0.5 } else { 0.0 },
+            |t| if t > 5.0 { 1.4 } else { 1.0 },
+            false,
+        );
+        assert!(r
+            .iter()
+            .filter(|x| x.0 > 5.0)
+            .all(|&(_, e, _)| (e - 0.5).abs() < 1e-9));
+    }
+
+    #[test]
+    fn the_reference_is_a_median_of_bins() {
+        let mut h = Histogram::new(0.0, 0.5, 400);
+        for v in [30.0, 30.2, 30.4, 55.0, 31.0] {
+            h.add(v);
+        }
+        h.add(f64::NAN);
+        h.add(1e9);
+        assert_eq!(h.total, 6);
+        assert_eq!(h.median(), Some(30.25));
+        assert_eq!(Histogram::new(0.0, 0.5, 4).median(), None);
+    }
+}
