@@ -316,4 +316,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0xf7a9_9505_c2bf_53cc;
+const DEMO_DIGEST: u64 = 0xf83c_b411_5d34_a77e;
