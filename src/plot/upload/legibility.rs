@@ -126,6 +126,67 @@ mod tests {
     }
 
     #[test]
+    fn the_heading_plot_bands_each_steps_carrying_mode_and_the_gyroscope() {
+        use super::super::palette::carry_colour;
+        use crate::engine::carry::CarryMode;
+        let mut a = crate::analysis::three_floor_analysis();
+        assert!(a.steps.len() > 20);
+        let (t0, t1) = (a.trace.t[0], *a.trace.t.last().unwrap());
+        // The first half of the time in a pocket, the second in the hand; every third step held
+        // on the gyroscope.
+        for (i, s) in a.steps.iter_mut().enumerate() {
+            s.carry = Some(if s.t < 0.5 * (t0 + t1) {
+                CarryMode::Pocket
+            } else {
+                CarryMode::Hand
+            });
+            s.gyro_heading = i % 3 == 0;
+        }
+        let theme = Theme::LIGHT;
+        let (w, h) = (840, 170);
+        let (r, px) = raster::new(w, h);
+        let ((c0, c1), (_, r1)) = draw_plot_area(
+            &r.into_drawing_area(),
+            &a,
+            Plot::Heading,
+            (t0, t1),
+            None,
+            &theme,
+            1.0,
+        )
+        .unwrap();
+        // Which colours the band rows (the bottom 10 % of the plot) hold, left half and right.
+        let px = px.borrow();
+        let count = |c: plotters::style::RGBColor, left: bool| {
+            let (x0, x1) = if left {
+                (c0, (c0 + c1) / 2)
+            } else {
+                ((c0 + c1) / 2, c1)
+            };
+            (r1 - 14..r1)
+                .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+                .filter(|&(x, y)| px[(y as u32 * w + x as u32) as usize] == (c.0, c.1, c.2))
+                .count()
+        };
+        let (pocket, hand) = (
+            carry_colour(CarryMode::Pocket, &theme),
+            carry_colour(CarryMode::Hand, &theme),
+        );
+        // (One step may straddle the middle: a few pixels.)
+        let (pl, pr, hl, hr) = (
+            count(pocket, true),
+            count(pocket, false),
+            count(hand, true),
+            count(hand, false),
+        );
+        assert!(
+            pl > 1000 && pr < 50 && hr > 1000 && hl < 50,
+            "{pl} {pr} {hl} {hr}"
+        );
+        assert!(count(theme.reference, true) > 30 && count(theme.reference, false) > 30);
+    }
+
+    #[test]
     fn no_plot_of_a_three_floor_walk_is_a_block_of_one_colour() {
         check(&crate::analysis::three_floor_analysis());
     }

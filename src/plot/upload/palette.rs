@@ -1,8 +1,9 @@
-//! Upload mode's colours for the activities (Munoz Diaz 2015 §4.3) and the floors, and the key
-//! that names them on a line under a plot's title.
+//! Upload mode's colours for the activities (Munoz Diaz 2015 §4.3), the carrying modes and the
+//! floors, and the key that names them on a line under a plot's title.
 //! May import: `engine` (the activities), `analysis`, the theme; never `web`, `live` or `eval`.
 
 use crate::engine::activity::Activity;
+use crate::engine::carry::CarryMode;
 use crate::plot::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -48,6 +49,37 @@ pub fn activity_key(
                 .map(|c| (crate::analysis::activity_words(act).to_lowercase(), c))
         })
         .collect()
+}
+
+/// A carrying mode's colour in the heading plot's band (issue 20): none of the plot's own
+/// (single steps `gnss`, the average `track`, the device and the gyroscope band `reference`).
+pub fn carry_colour(m: CarryMode, t: &Theme) -> RGBColor {
+    match m {
+        CarryMode::Pocket => t.start,
+        CarryMode::Hand => t.pdr,
+        CarryMode::Swinging => t.end,
+        CarryMode::Ear => t.smoothed,
+        CarryMode::Bag => t.foreground,
+    }
+}
+
+/// The words of the heading plot's grey band: the steps whose heading followed the gyroscope
+/// because the magnetometer was disturbed (`engine::magnetic`).
+pub const GYRO_HELD: &str = "magnetometer bent: gyroscope";
+
+/// The carrying modes of `steps` that were decided, named and coloured in
+/// `CarryMode::ALL`'s order, and the gyroscope band's entry when a step had it: the heading
+/// plot's key.
+pub fn carry_key(steps: &[&crate::engine::StepRecord], theme: &Theme) -> Vec<(String, RGBColor)> {
+    let mut key: Vec<(String, RGBColor)> = CarryMode::ALL
+        .iter()
+        .filter(|&&m| steps.iter().any(|s| s.carry == Some(m)))
+        .map(|&m| (m.words().to_lowercase(), carry_colour(m, theme)))
+        .collect();
+    if steps.iter().any(|s| s.gyro_heading) {
+        key.push((GYRO_HELD.to_string(), theme.reference));
+    }
+    key
 }
 
 /// A floor's colour on the map: the start's floor the track's own colour, the floors above
@@ -123,6 +155,16 @@ mod tests {
                 }
             }
             assert_eq!(floor_colour(4, &t), floor_colour(1, &t));
+            let carry: Vec<RGBColor> = CarryMode::ALL
+                .iter()
+                .map(|&m| carry_colour(m, &t))
+                .collect();
+            for (i, a) in carry.iter().enumerate() {
+                let plot = [&t.reference, &t.background, &t.gnss, &t.track];
+                for b in carry[i + 1..].iter().chain(plot) {
+                    assert_ne!((a.0, a.1, a.2), (b.0, b.1, b.2));
+                }
+            }
         }
     }
 }

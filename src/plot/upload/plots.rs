@@ -5,7 +5,7 @@ use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
 use super::fusion::FusionSeries;
 use super::heading;
 use super::height::{floor_tick, HeightSeries};
-use super::palette::{activity_colour, activity_key, draw_key};
+use super::palette::{activity_colour, activity_key, carry_colour, carry_key, draw_key};
 use crate::analysis::activity_from_code;
 use crate::analysis::Analysis;
 use crate::plot::theme::Theme;
@@ -110,10 +110,11 @@ pub fn draw_plot_area<DB: DrawingBackend>(
         }
     );
     // The activities in the span, each with its colour: the timeline band's key.
-    let key = if plot == Plot::Sigma {
-        activity_key(a, t0, t1, theme)
-    } else {
-        Vec::new()
+    // The heading plot's band: the carrying mode, and where the gyroscope held the heading.
+    let key = match plot {
+        Plot::Sigma => activity_key(a, t0, t1, theme),
+        Plot::Heading => carry_key(&steps_in, theme),
+        _ => Vec::new(),
     };
     #[allow(clippy::type_complexity)]
     let (title, y_label, (y0, y1), right): (
@@ -160,9 +161,13 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             )
         }
         Plot::Heading => (
-            "heading (°, unwrapped): single step (dots), two-step average (line), device (grey)",
+            "heading (°, unwrapped): single step (dots), two-step average (line), device (grey), carrying mode (band along the bottom)",
             "°",
-            headings.as_ref().map_or((0.0, 360.0), Headings::range),
+            {
+                // Room under the headings for the band.
+                let (lo, hi) = headings.as_ref().map_or((0.0, 360.0), Headings::range);
+                (lo - 0.16 * (hi - lo), hi)
+            },
             None,
         ),
         Plot::Steps => {
@@ -378,6 +383,25 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             for run in &h.line {
                 chart.draw_series(LineSeries::new(run.clone(), line(theme.track, 2.0)))?;
             }
+            // Each step's carrying mode over its own period, and a grey strip above it where
+            // its heading followed the gyroscope.
+            let band = 0.06 * (y1 - y0);
+            let period = |s: &crate::engine::StepRecord| {
+                let p = 1.0 / s.freq_hz.max(0.3);
+                (rel((s.t - p).max(t0)), rel(s.t))
+            };
+            chart.draw_series(steps_in.iter().filter_map(|s| {
+                let (a, b) = period(s);
+                let c = carry_colour(s.carry?, theme);
+                Some(Rectangle::new([(a, y0), (b, y0 + band)], c.filled()))
+            }))?;
+            chart.draw_series(steps_in.iter().filter(|s| s.gyro_heading).map(|s| {
+                let (a, b) = period(s);
+                Rectangle::new(
+                    [(a, y0 + 1.2 * band), (b, y0 + 2.0 * band)],
+                    theme.reference.filled(),
+                )
+            }))?;
         }
         Plot::Height => {
             let h = heights.as_ref().expect("made for the height plot");
@@ -650,11 +674,23 @@ pub(super) fn draw_title<DB: DrawingBackend>(
         area.estimate_text_size(t, font)
             .is_ok_and(|(w, _)| w <= width)
     };
-    let breaks: Vec<usize> = title.match_indices(", ").map(|(i, _)| i).collect();
-    let lines: Vec<&str> = match breaks.into_iter().rev().find(|&i| fits(&title[..=i])) {
-        Some(i) if !fits(title) => vec![&title[..=i], &title[i + 2..]],
-        _ => vec![title],
-    };
+    // Greedy: each line takes as many ", "-separated parts as fit (at least one).
+    let mut lines: Vec<&str> = Vec::new();
+    let mut rest = title;
+    while !fits(rest) {
+        let Some(i) = rest
+            .match_indices(", ")
+            .map(|(i, _)| i)
+            .take_while(|&i| fits(&rest[..=i]))
+            .last()
+            .or_else(|| rest.find(", "))
+        else {
+            break;
+        };
+        lines.push(&rest[..=i]);
+        rest = &rest[i + 2..];
+    }
+    lines.push(rest);
     for (k, line) in lines.iter().enumerate() {
         area.draw(&Text::new(
             *line,
