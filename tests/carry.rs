@@ -8,9 +8,7 @@ mod common;
 
 use pdr::engine::carry::{CarryConfig, CarryMode};
 use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
-use pdr::io::import::{import_all, DirSet};
 use pdr::sim::{scenarios, Carry};
-use std::path::Path;
 
 fn expected(c: Carry) -> CarryMode {
     match c {
@@ -116,19 +114,8 @@ fn bad_votes_are_refused() {
 /// Steps right and steps of a set, per the mode each log was walked in (`None`: not one of the
 /// modes, not counted).
 fn real_set(set: &str, mode: impl Fn(Option<&str>) -> Option<CarryMode>) -> Option<(usize, usize)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
-        .join(set);
-    if !dir.is_dir() {
-        eprintln!(
-            "skipped: {} is absent (see ../shared/data/README.md)",
-            dir.display()
-        );
-        return None;
-    }
     let (mut ok, mut n) = (0, 0);
-    for log in import_all(&mut DirSet::new(&dir).unwrap()) {
-        let log = log.expect("log reads");
+    for log in common::ipin::shared_logs(set)? {
         let Some(m) = mode(log.group.as_deref()) else {
             continue;
         };

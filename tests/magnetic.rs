@@ -6,28 +6,7 @@ mod common;
 
 use pdr::engine::{replay, PipelineConfig};
 use pdr::eval::{evaluate, summarise, Summary};
-use pdr::io::import::{import_all, DirSet, Log};
-use std::path::Path;
-
-fn set(name: &str) -> Option<Vec<Log>> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
-        .join(name);
-    if !dir.is_dir() {
-        eprintln!(
-            "skipped: {} is absent (see ../shared/data/README.md)",
-            dir.display()
-        );
-        return None;
-    }
-    let mut s = DirSet::new(&dir).expect("the folder opens");
-    Some(
-        import_all(&mut s)
-            .into_iter()
-            .map(|r| r.expect("log reads"))
-            .collect(),
-    )
-}
+use pdr::io::import::Log;
 
 fn summary(logs: &[Log], guard: bool) -> Summary {
     let mut cfg = PipelineConfig::default();
@@ -38,7 +17,7 @@ fn summary(logs: &[Log], guard: bool) -> Summary {
 
 #[test]
 fn microsoft_indoor_walks_are_better_on_the_gyroscope_where_the_field_is_bent() {
-    let Some(logs) = set("ms-indoor") else {
+    let Some(logs) = common::ipin::shared_logs("ms-indoor") else {
         return;
     };
     let (with, without) = (summary(&logs, true), summary(&logs, false));
