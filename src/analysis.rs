@@ -479,6 +479,23 @@ mod tests {
             .find(|r| r.0 == "Carried")
             .expect("a Carried row");
         assert!(c.1.starts_with("in a pocket "), "{}", c.1);
+        // A clean simulated field: no step held on the gyroscope, no row; two held, said.
+        assert!(!rows.iter().any(|r| r.0 == "Gyroscope heading"));
+        let mut held = a.clone();
+        held.steps[3].gyro_heading = true;
+        held.steps[4].gyro_heading = true;
+        let rows_held = held.figures();
+        let g = rows_held
+            .iter()
+            .find(|r| r.0 == "Gyroscope heading")
+            .expect("a Gyroscope heading row");
+        assert_eq!(
+            g.1,
+            format!(
+                "2 of {} steps: the magnetometer was bent there",
+                a.steps.len()
+            )
+        );
         let h = rows.iter().find(|r| r.0 == "Height").expect("a Height row");
         assert_eq!(
             h.1,

@@ -94,6 +94,17 @@ impl Analysis {
         if let Some(c) = self.carry_text() {
             row("Carried", c);
         }
+        // Where the magnetometer was bent, the heading followed the gyroscope (engine::magnetic).
+        let held = self.steps.iter().filter(|s| s.gyro_heading).count();
+        if held > 0 {
+            row(
+                "Gyroscope heading",
+                format!(
+                    "{held} of {} steps: the magnetometer was bent there",
+                    self.steps.len()
+                ),
+            );
+        }
         let without = self
             .steps
             .iter()
