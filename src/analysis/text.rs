@@ -99,10 +99,7 @@ impl Analysis {
         if held > 0 {
             row(
                 "Gyroscope heading",
-                format!(
-                    "{held} of {} steps: the magnetometer was bent there",
-                    self.steps.len()
-                ),
+                format!("{held} of {n} steps: the magnetometer was bent there"),
             );
         }
         let without = self

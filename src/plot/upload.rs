@@ -5,7 +5,8 @@
 //! One file each: the map (`map`), the diagnostics plots (`plots`), the decimation of their
 //! signals to pixel columns (`decimate`), the unwrapping of their headings (`heading`), the
 //! height and floor plot's series (`height`), the fusion plot's series and ±1σ bands
-//! (`fusion`), the activities' and floors' colours and key (`palette`), their legibility test
+//! (`fusion`), the colours of the activities, carrying modes and floors, with the titles and keys
+//! (`palette`), the time axis's gestures (`time_axis`), the plots' legibility test
 //! (`legibility`) and the ellipse (`ellipse`).
 //! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
 
@@ -17,6 +18,7 @@ mod height;
 mod map;
 mod palette;
 mod plots;
+mod time_axis;
 
 #[cfg(test)]
 pub(crate) mod legibility;
@@ -25,7 +27,8 @@ pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
 pub use map::{draw_map, pdr_points, pick_step};
 pub use palette::{activity_colour, floor_colour};
-pub use plots::{draw_plot, draw_plot_area, Plot, TimeAxis};
+pub use plots::{draw_plot, draw_plot_area, Plot};
+pub use time_axis::TimeAxis;
 
 #[cfg(test)]
 mod tests {

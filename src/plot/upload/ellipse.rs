@@ -1,7 +1,7 @@
 //! Upload mode's horizontal-acceleration ellipse of one stride (Basso 2016 Fig. 5).
 //! May import: `analysis`, the theme and the axis labels; never `web`, `live` or `eval`.
 
-use super::plots::draw_title;
+use super::palette::draw_title;
 use crate::analysis::Analysis;
 use crate::plot::frame::tick;
 use crate::plot::theme::Theme;

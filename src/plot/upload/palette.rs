@@ -1,5 +1,5 @@
 //! Upload mode's colours for the activities (Munoz Diaz 2015 §4.3), the carrying modes and the
-//! floors, and the key that names them on a line under a plot's title.
+//! floors, a plot's title, and the key that names the colours on a line under it.
 //! May import: `engine` (the activities), `analysis`, the theme; never `web`, `live` or `eval`.
 
 use crate::engine::activity::Activity;
@@ -63,13 +63,9 @@ pub fn carry_colour(m: CarryMode, t: &Theme) -> RGBColor {
     }
 }
 
-/// The words of the heading plot's grey band: the steps whose heading followed the gyroscope
-/// because the magnetometer was disturbed (`engine::magnetic`).
-pub const GYRO_HELD: &str = "magnetometer bent: gyroscope";
-
 /// The carrying modes of `steps` that were decided, named and coloured in
-/// `CarryMode::ALL`'s order, and the gyroscope band's entry when a step had it: the heading
-/// plot's key.
+/// `CarryMode::ALL`'s order, and the grey strip's entry when a step's heading followed the
+/// gyroscope (`engine::magnetic`): the heading plot's key.
 pub fn carry_key(steps: &[&crate::engine::StepRecord], theme: &Theme) -> Vec<(String, RGBColor)> {
     let mut key: Vec<(String, RGBColor)> = CarryMode::ALL
         .iter()
@@ -77,7 +73,7 @@ pub fn carry_key(steps: &[&crate::engine::StepRecord], theme: &Theme) -> Vec<(St
         .map(|&m| (m.words().to_lowercase(), carry_colour(m, theme)))
         .collect();
     if steps.iter().any(|s| s.gyro_heading) {
-        key.push((GYRO_HELD.to_string(), theme.reference));
+        key.push(("magnetometer bent: gyroscope".to_string(), theme.reference));
     }
     key
 }
@@ -128,6 +124,47 @@ pub fn draw_key<DB: DrawingBackend>(
         x += need;
     }
     Ok(lines)
+}
+
+/// Draws a plot's title at its top left, on as many lines as it needs (a phone), broken after
+/// commas. Returns the number of lines.
+pub fn draw_title<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    font: &TextStyle,
+    scale: f64,
+) -> Result<usize, DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let width = area.dim_in_pixel().0.saturating_sub(px(16.0));
+    let fits = |t: &str| {
+        area.estimate_text_size(t, font)
+            .is_ok_and(|(w, _)| w <= width)
+    };
+    // Greedy: each line takes as many ", "-separated parts as fit (at least one).
+    let mut lines: Vec<&str> = Vec::new();
+    let mut rest = title;
+    while !fits(rest) {
+        let Some(i) = rest
+            .match_indices(", ")
+            .map(|(i, _)| i)
+            .take_while(|&i| fits(&rest[..=i]))
+            .last()
+            .or_else(|| rest.find(", "))
+        else {
+            break;
+        };
+        lines.push(&rest[..=i]);
+        rest = &rest[i + 2..];
+    }
+    lines.push(rest);
+    for (k, line) in lines.iter().enumerate() {
+        area.draw(&Text::new(
+            *line,
+            (px(8.0) as i32, px(4.0 + 15.0 * k as f64) as i32),
+            font.clone(),
+        ))?;
+    }
+    Ok(lines.len())
 }
 
 #[cfg(test)]
