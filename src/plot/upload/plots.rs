@@ -1,4 +1,5 @@
-//! Upload mode's diagnostics plots of an [`Analysis`] on one time axis (its zoom and pan: `time_axis`).
+//! Upload mode's diagnostics plots of an [`Analysis`] on one time axis (its zoom and pan:
+//! `time_axis`).
 //! May import: `engine` (step records), `analysis` and the theme; never `web`, `live` or `eval`.
 
 use super::decimate::{band, envelope, of, COARSE_COLUMN_S, GAP_S};
