@@ -27,6 +27,7 @@ use crate::engine::replay;
 use crate::io::import::{Log, Waypoint};
 use serde::{Deserialize, Serialize};
 
+pub mod ends;
 pub mod energy;
 pub mod floors;
 

@@ -198,6 +198,12 @@ impl Truth {
     /// before it. The published count (`steps`) stays the headline figure; this one is reported
     /// beside it.
     pub fn steps_debounced(&self) -> Option<u64> {
+        self.step_times_debounced().map(|t| t.len() as u64)
+    }
+
+    /// The times of the true steps without the contact bounces ([`Truth::steps_debounced`]),
+    /// s, when the truth device reports feet.
+    pub fn step_times_debounced(&self) -> Option<Vec<f64>> {
         let ev = &self.step_events;
         if ev.is_empty() || ev.iter().any(|e| e.foot.is_none()) {
             return None;
@@ -214,7 +220,7 @@ impl Truth {
             .collect();
         strides.sort_by(f64::total_cmp);
         let Some(&median) = strides.get(strides.len() / 2) else {
-            return Some(ev.len() as u64);
+            return Some(ev.iter().map(|e| e.t).collect());
         };
         let mut kept: Vec<TrueStep> = Vec::with_capacity(ev.len());
         for e in ev {
@@ -223,7 +229,7 @@ impl Truth {
                 _ => kept.push(*e),
             }
         }
-        Some(kept.len() as u64)
+        Some(kept.iter().map(|e| e.t).collect())
     }
 }
 
