@@ -22,17 +22,17 @@ use super::{Gait, Segment};
 use crate::engine::Activity;
 
 /// Quintic smoothstep and its first two derivatives, and its integral from 0.
-fn s5(x: f64) -> f64 {
+pub(super) fn s5(x: f64) -> f64 {
     let x = x.clamp(0.0, 1.0);
     x * x * x * (10.0 + x * (6.0 * x - 15.0))
 }
-fn s5d(x: f64) -> f64 {
+pub(super) fn s5d(x: f64) -> f64 {
     if !(0.0..=1.0).contains(&x) {
         return 0.0;
     }
     30.0 * x * x * (1.0 - x) * (1.0 - x)
 }
-fn s5dd(x: f64) -> f64 {
+pub(super) fn s5dd(x: f64) -> f64 {
     if !(0.0..=1.0).contains(&x) {
         return 0.0;
     }
@@ -97,6 +97,8 @@ pub struct Body {
     pub flights: Vec<Flight>,
     /// (start, end) of each sitting segment, s.
     pub sits: Vec<(f64, f64)>,
+    /// (start, end) of each segment taking the phone out of the pocket, s.
+    pub take_outs: Vec<(f64, f64)>,
     /// Duration of sitting down and of standing up, s.
     pub transition_s: f64,
     /// Hip drop when seated, m.
@@ -138,6 +140,10 @@ impl Body {
             let act = match s.gait {
                 Gait::Still => Activity::Standing,
                 Gait::Handled => Activity::Still,
+                Gait::TakeOut => {
+                    b.take_outs.push((t0, t1));
+                    Activity::Still
+                }
                 Gait::Walk => Activity::Walking,
                 Gait::Run => Activity::Running,
                 Gait::StairsUp => Activity::Upstairs,

@@ -42,6 +42,10 @@
 //! eight pocket poses in either front pocket ([`PocketPose`]), a barometer ([`BaroSim`]), and a
 //! truth with heights, floors, activities and the thigh's pitch ([`Truth`]).
 //!
+//! Opt-in, for the first and the last steps (issue 20): real-shaped ends ([`ends`],
+//! [`Scenario::real_ends`]): the standing sway, the first and the last steps at half strength,
+//! the body settling, and the phone taken out of the pocket ([`Gait::TakeOut`]).
+//!
 //! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,
 //! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
 //! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
@@ -49,6 +53,7 @@
 mod baro;
 pub mod body;
 pub mod carry;
+pub mod ends;
 pub mod foot;
 pub mod formats;
 mod gnss;
@@ -56,6 +61,7 @@ mod gnss_errors;
 pub mod pose;
 mod rng;
 pub mod scenarios;
+mod script;
 pub mod thigh;
 mod truth;
 
@@ -67,6 +73,7 @@ pub use gnss_errors::{
     Canyon, GnssErrors, Multipath, StaleFix, CANYON_RAMP_S, HOLD_AFTER_STANDING_S,
 };
 pub use pose::PocketPose;
+pub use script::{Gait, Segment, Stair};
 pub use thigh::{GaitThigh, ThighModel};
 pub use truth::{Truth, TruthStep};
 
@@ -80,151 +87,6 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Standard gravity used by the simulator, m/s².
 const G: f64 = crate::engine::orientation::G0;
-
-/// What the walker does during a segment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Gait {
-    /// Phone still in the pocket of a standing person.
-    Still,
-    /// Phone slowly handled (turned and moved by hand), below the motion threshold.
-    Handled,
-    /// Walking.
-    Walk,
-    /// Running.
-    Run,
-    /// Walking up a flight of stairs ([`Segment::stair`] gives riser and tread).
-    StairsUp,
-    /// Walking down a flight of stairs.
-    StairsDown,
-    /// Sitting: sits down over the first [`GaitThigh::transition_s`], stands up over the last.
-    Sit,
-}
-
-impl Gait {
-    fn moving(self) -> bool {
-        matches!(
-            self,
-            Gait::Walk | Gait::Run | Gait::StairsUp | Gait::StairsDown
-        )
-    }
-}
-
-/// The steps of a flight of stairs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Stair {
-    /// Height of a step, m.
-    pub riser_m: f64,
-    /// Depth of a step, m.
-    pub tread_m: f64,
-}
-
-/// One piece of the script.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Segment {
-    /// What the walker does.
-    pub gait: Gait,
-    /// Duration, s.
-    pub duration_s: f64,
-    /// Cadence at the start and at the end of the segment (linear ramp), Hz. Ignored when still.
-    pub cadence_hz: (f64, f64),
-    /// Total heading change over the segment, degrees, clockwise positive.
-    pub turn_deg: f64,
-    /// The stairs' riser and tread (stairs segments only).
-    pub stair: Option<Stair>,
-}
-
-impl Segment {
-    /// Standing still for `s` seconds.
-    pub fn still(s: f64) -> Self {
-        Segment {
-            gait: Gait::Still,
-            duration_s: s,
-            cadence_hz: (0.0, 0.0),
-            turn_deg: 0.0,
-            stair: None,
-        }
-    }
-
-    /// Sitting for `s` seconds, sitting down and standing up included.
-    pub fn sit(s: f64) -> Self {
-        Segment {
-            gait: Gait::Sit,
-            ..Segment::still(s)
-        }
-    }
-
-    /// Walking `n` steps (may be fractional) at cadence `f`.
-    pub fn walk_steps(n: f64, f: f64) -> Self {
-        Segment::walk(n / f, f)
-    }
-
-    /// `n` steps up a flight of stairs at cadence `f`: each footfall one `riser_m` up and one
-    /// `tread_m` forward.
-    pub fn stairs_up(n: usize, f: f64, riser_m: f64, tread_m: f64) -> Self {
-        Segment {
-            gait: Gait::StairsUp,
-            stair: Some(Stair { riser_m, tread_m }),
-            ..Segment::walk(n as f64 / f, f)
-        }
-    }
-
-    /// `n` steps down a flight of stairs at cadence `f`.
-    pub fn stairs_down(n: usize, f: f64, riser_m: f64, tread_m: f64) -> Self {
-        Segment {
-            gait: Gait::StairsDown,
-            ..Segment::stairs_up(n, f, riser_m, tread_m)
-        }
-    }
-
-    /// Handling the phone for `s` seconds.
-    pub fn handled(s: f64) -> Self {
-        Segment {
-            gait: Gait::Handled,
-            ..Segment::still(s)
-        }
-    }
-
-    /// Walking for `s` seconds at cadence `f` Hz.
-    pub fn walk(s: f64, f: f64) -> Self {
-        Segment {
-            gait: Gait::Walk,
-            duration_s: s,
-            cadence_hz: (f, f),
-            turn_deg: 0.0,
-            stair: None,
-        }
-    }
-
-    /// Running for `s` seconds at cadence `f` Hz.
-    pub fn run(s: f64, f: f64) -> Self {
-        Segment {
-            gait: Gait::Run,
-            ..Segment::walk(s, f)
-        }
-    }
-
-    /// Walking `metres` at cadence `f` with the walker's step-length law.
-    pub fn walk_distance(metres: f64, f: f64, walker: &Walker) -> Self {
-        Segment::walk(metres / (walker.step_length.length(f) * f), f)
-    }
-
-    /// The same segment turning by `deg` over its duration.
-    pub fn turning(self, deg: f64) -> Self {
-        Segment {
-            turn_deg: deg,
-            ..self
-        }
-    }
-
-    /// The same segment with the cadence ramping to `f_end`.
-    pub fn ramp_to(self, f_end: f64) -> Self {
-        Segment {
-            cadence_hz: (self.cadence_hz.0, f_end),
-            ..self
-        }
-    }
-}
 
 /// The walker's body.
 #[derive(Debug, Clone, PartialEq)]
@@ -340,6 +202,9 @@ pub struct Scenario {
     /// How the phone is carried ([`Carry::Pocket`]: `pose`, `left_pocket` and
     /// `pocket_yaw_deg` say how it sits there; the other modes ignore them).
     pub carry: Carry,
+    /// Real-shaped starts and stops ([`ends`]): the standing sway, the first and the last steps
+    /// at half strength, the body settling, the phone taken out ([`Gait::TakeOut`]).
+    pub real_ends: bool,
 }
 
 impl Scenario {
@@ -358,6 +223,7 @@ impl Scenario {
             left_pocket: false,
             floor_height_m: None,
             carry: Carry::Pocket,
+            real_ends: false,
         }
     }
 
@@ -587,7 +453,7 @@ impl Scenario {
 
     /// World attitude, world angular velocity and world acceleration of the phone. `ext` (the
     /// timeline, the body's slow motions and the time) turns on the opt-in models: the realistic
-    /// thigh, stairs and sitting; without it the historic model runs untouched.
+    /// thigh, stairs, sitting and real-shaped ends; without it the historic model runs untouched.
     fn kinematics(
         &self,
         st: &State,
@@ -609,9 +475,12 @@ impl Scenario {
         // Angles as functions of time near t (first order in the phase).
         // Pelvis yaw and thigh flexion both peak at the heel strike of the pocket leg.
         let real = matches!(w.thigh, ThighModel::Gait(_));
+        // Real-shaped ends ([`ends`]): every swing fades in and out with the bout.
+        let ends = ext.filter(|_| self.real_ends).map(|(_, body, t)| (body, t));
+        let env = |dt: f64| ends.map_or(1.0, |(body, t)| body.walk_envelope(t + dt));
         let waist = |dt: f64| match ext {
             // With the realistic thigh the pelvis's rotation fades in and out with the bout too.
-            Some((_, body, t)) if real => {
+            Some((_, body, t)) if real || self.real_ends => {
                 yaw_amp * body.walk_envelope(t + dt) * libm::cos(half + 0.5 * omega * dt)
             }
             _ => yaw_amp * libm::cos(half + 0.5 * omega * dt),
@@ -620,9 +489,17 @@ impl Scenario {
         let pitch = |dt: f64| match ext {
             // The body frame's y is the walker's left: flexion is a negative rotation about it.
             Some((tl, body, t)) if real => -self.thigh_deg(tl, body, t + dt).to_radians(),
-            _ => pitch_amp * libm::cos(half + 0.5 * omega * dt),
+            _ => pitch_amp * env(dt) * libm::cos(half + 0.5 * omega * dt),
         };
         let handled = st.gait == Gait::Handled;
+        // The mount, part-way out of the pocket while it is taken out.
+        let hand = Carry::Texting.mount().unwrap_or(*mount);
+        let mount_at = |dt: f64| match ends {
+            Some((body, t)) if self.carry == Carry::Pocket => ends::taken_out(body, t + dt)
+                .map_or(*mount, |w| ends::mount_between(mount, &hand, w)),
+            _ => *mount,
+        };
+        let swaying = ends.is_some() && st.gait == Gait::Still;
         // Out of the pocket the thigh's pitch is replaced by the carrying mode's limb.
         let carried = self.carry != Carry::Pocket;
         let k_limb = if !st.gait.moving() {
@@ -634,7 +511,7 @@ impl Scenario {
         };
         let limb = |dt: f64| {
             if carried {
-                self.carry.limb(st.phi + omega * dt, k_limb)
+                self.carry.limb(st.phi + omega * dt, k_limb * env(dt))
             } else {
                 ry(pitch(dt))
             }
@@ -652,7 +529,10 @@ impl Scenario {
                 r *= rx(0.25 * libm::sin(TAU * 0.31 * tt))
                     * ry(0.2 * libm::sin(TAU * 0.17 * tt + 1.0));
             }
-            r * mount
+            if let (true, Some((_, t))) = (swaying, ends) {
+                r *= ends::sway(t + dt).0;
+            }
+            r * mount_at(dt)
         };
         let r = attitude(0.0);
         // Angular velocity from the attitude's derivative: [ω]× = Ṙ Rᵀ (central difference of an
@@ -669,7 +549,7 @@ impl Scenario {
         let mut a = Vector3::zeros();
         if st.gait.moving() {
             let (av, af, al) = amplitudes(st.gait, st.f, w.sway);
-            let b = self.carry.bounce();
+            let b = self.carry.bounce() * env(0.0);
             let (av, af, al) = (b * av, b * af, b * al);
             let body_heading = st.psi + waist(0.0);
             let fwd = Vector3::new(libm::sin(body_heading), libm::cos(body_heading), 0.0);
@@ -687,6 +567,14 @@ impl Scenario {
                 Some((_, body, t)) => body.speed(t, v, dv),
                 None => (v, dv),
             };
+            // Getting under way and braking: the speed follows the envelope.
+            let (v, dv) = match ends {
+                Some((body, t)) => (
+                    v * env(0.0),
+                    dv * env(0.0) + v * ends::envelope_rate(body, t),
+                ),
+                None => (v, dv),
+            };
             a += path_fwd * dv + right * (v * st.psi_dot);
         }
         // Thigh lever: second derivative of the pocket offset, by central differences.
@@ -701,6 +589,16 @@ impl Scenario {
             a += Vector3::z() * (body.stairs_accel(t) - body.sit_drop_m * body.sit(t).2);
         } else if st.gait.moving() {
             a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
+        }
+        if let Some((body, t)) = ends {
+            let turn = rz(FRAC_PI_2 - st.psi);
+            a += Vector3::z() * ends::settle(body, t);
+            if swaying {
+                a += turn * ends::sway(t).1;
+            }
+            if self.carry == Carry::Pocket {
+                a += turn * ends::take_out_accel(body, t);
+            }
         }
         if handled {
             let tt = st.tau;
@@ -717,7 +615,8 @@ impl Scenario {
     pub fn generate(&self) -> Simulation {
         let tl = Timeline::new(self);
         let body = self.body();
-        let extended = matches!(self.walker.thigh, ThighModel::Gait(_))
+        let extended = self.real_ends
+            || matches!(self.walker.thigh, ThighModel::Gait(_))
             || !body.flights.is_empty()
             || !body.sits.is_empty();
         let mut rng = Rng(self.seed ^ 0x5EED_0F0D);

@@ -432,3 +432,25 @@ pub fn carried_walk(carry: super::Carry, seed: u64) -> Scenario {
         ..pocket(segs, pose, seed)
     }
 }
+
+/// Issue 20's short walk: 20 steps between 3 s of standing, carried as [`carried_walk`] carries
+/// it (the seed sets the cadence, the pose and the side). With `real_ends`
+/// ([`Scenario::real_ends`]) the steps at both ends are real-shaped, and a phone in the pocket is
+/// taken out half a second after the last step (over 1.5 s, then 2 s standing).
+pub fn short_walk(carry: super::Carry, seed: u64, real_ends: bool) -> Scenario {
+    let f = 1.6 + 0.1 * (seed % 5) as f64;
+    let mut segments = vec![
+        Segment::still(3.0),
+        Segment::walk_steps(20.0, f),
+        Segment::still(3.0),
+    ];
+    if real_ends && carry == super::Carry::Pocket {
+        segments[2] = Segment::still(0.5);
+        segments.extend([Segment::take_out(1.5), Segment::still(2.0)]);
+    }
+    Scenario {
+        segments,
+        real_ends,
+        ..carried_walk(carry, seed)
+    }
+}

@@ -148,6 +148,10 @@ impl Scenario {
                 if stairs {
                     v = body.speed(0.5 * (t + t1), v, 0.0).0;
                 }
+                if self.real_ends {
+                    // Getting under way and braking ([`super::ends`]).
+                    v *= body.walk_envelope(0.5 * (t + t1));
+                }
                 let ds = v * (t1 - t);
                 e += ds * libm::sin(mid.psi);
                 n += ds * libm::cos(mid.psi);
