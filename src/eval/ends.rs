@@ -23,8 +23,8 @@ pub struct EndErrors {
 }
 
 /// Splits the count of `found` (step times, s, in order) against `truth` (true step times, s,
-/// in order) into the first and the last `window_s` of the walk and its middle. `None` when
-/// there are fewer than two true steps.
+/// in order) into the first and the last `window_s` of the walk and its middle (empty when the
+/// walk is shorter than both windows). `None` when there are fewer than two true steps.
 pub fn end_errors(found: &[f64], truth: &[f64], window_s: f64) -> Option<EndErrors> {
     let (&t0, &t1) = (truth.first()?, truth.last()?);
     if truth.len() < 2 {
@@ -52,7 +52,9 @@ pub fn end_errors(found: &[f64], truth: &[f64], window_s: f64) -> Option<EndErro
         let i = truth.partition_point(|&x| x < t).clamp(1, truth.len() - 1);
         0.5 * (truth[i - 1] + truth[i])
     };
-    let (a, b) = (between(t0 + window_s), between(t1 - window_s));
+    // A walk shorter than both windows has no middle.
+    let a = between(t0 + window_s);
+    let b = between(t1 - window_s).max(a);
     let start = below(found, lag_s, a) - below(truth, 0.0, a);
     let end =
         (found.len() as i64 - below(found, lag_s, b)) - (truth.len() as i64 - below(truth, 0.0, b));
