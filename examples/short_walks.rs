@@ -41,7 +41,7 @@ fn main() {
                 whole += usize::from(found.len() == truth.len());
                 if (e.start, e.middle, e.end) != (0, 0, 0) && !shown {
                     shown = true;
-                    let ends = |t: &[f64]| {
+                    let span = |t: &[f64]| {
                         format!(
                             "first {:.2} s, last {:.2} s",
                             t.first().copied().unwrap_or(f64::NAN),
@@ -54,9 +54,9 @@ fn main() {
                         e.middle,
                         e.end,
                         found.len(),
-                        ends(&found),
+                        span(&found),
                         truth.len(),
-                        ends(&truth)
+                        span(&truth)
                     );
                 }
             }

@@ -493,10 +493,13 @@ impl Scenario {
         };
         let handled = st.gait == Gait::Handled;
         // The mount, part-way out of the pocket while it is taken out.
-        let hand = Carry::Texting.mount().unwrap_or(*mount);
         let mount_at = |dt: f64| match ends {
-            Some((body, t)) if self.carry == Carry::Pocket => ends::taken_out(body, t + dt)
-                .map_or(*mount, |w| ends::mount_between(mount, &hand, w)),
+            Some((body, t)) if self.carry == Carry::Pocket => {
+                ends::taken_out(body, t + dt).map_or(*mount, |w| {
+                    let hand = Carry::Texting.mount().unwrap_or(*mount);
+                    ends::mount_between(mount, &hand, w)
+                })
+            }
             _ => *mount,
         };
         let swaying = ends.is_some() && st.gait == Gait::Still;
