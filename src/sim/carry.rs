@@ -23,6 +23,14 @@
 //!   acceleration heading by a constant 64°.)
 //!
 //! [`Carry::Pocket`] is the pocket model of [`super`] and its [`super::PocketPose`]s, untouched.
+//!
+//! # A change of mode mid-walk ([`Switch`], opt-in: [`super::Scenario::switches`])
+//! Over the switch's seconds the walk goes on while the hand moves the phone: its attitude in
+//! the body (limb ∘ mount) is the slerp from the old mode's to the new one's, and its place (the
+//! limb's pivot, [`Carry::anchor`], plus the lever) and the pelvis's share ([`Carry::bounce`])
+//! blend linearly, all by the quintic smoothstep of the time; the move's acceleration is the
+//! second derivative of that place. The pocket's pivot is the hip; the texting hand's is in front
+//! of the chest, the swinging arm's the shoulder, the ear's the head, the bag's its strap's hook.
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -141,6 +149,19 @@ impl Carry {
         }
     }
 
+    /// The limb's pivot in the body frame (x forward, y left, z up), m from the middle of the
+    /// pelvis: the hip of the pocket's side (`left_pocket`), in front of the chest, the right
+    /// shoulder, the right ear, the strap's hook.
+    pub fn anchor(self, left_pocket: bool) -> Vector3<f64> {
+        match self {
+            Carry::Pocket => Vector3::new(0.0, if left_pocket { 0.1 } else { -0.1 }, 0.0),
+            Carry::Texting => Vector3::new(0.3, 0.0, 0.5),
+            Carry::Swinging => Vector3::new(0.0, -0.2, 0.55),
+            Carry::Ear => Vector3::new(0.0, -0.08, 0.75),
+            Carry::Bag => Vector3::new(0.0, -0.15, 0.35),
+        }
+    }
+
     /// The limb's lever below its pivot, m (the shoulder, the strap's hook; 0 for a hand or a
     /// head that carries the phone with the trunk).
     pub fn lever_m(self) -> f64 {
@@ -148,6 +169,33 @@ impl Carry {
             Carry::Swinging => ARM_LEVER_M,
             Carry::Bag => 0.35,
             Carry::Pocket | Carry::Texting | Carry::Ear => 0.0,
+        }
+    }
+}
+
+/// A change of carrying mode while the walk goes on: from `t_s` (simulation time, s) over
+/// `seconds` the phone moves to `to` (see the module notes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Switch {
+    /// When the hand starts to move the phone, s.
+    pub t_s: f64,
+    /// How long the move takes, s.
+    pub seconds: f64,
+    /// The new mode.
+    pub to: Carry,
+}
+
+/// The modes at `t` and how far the move between them has gone: (from, to, w), w the quintic
+/// smoothstep from 0 to 1 over the switch; before the first switch (`first`, `first`, 0).
+/// `switches` are in time order.
+pub fn phase(first: Carry, switches: &[Switch], t: f64) -> (Carry, Carry, f64) {
+    let k = switches.partition_point(|s| s.t_s <= t);
+    match k.checked_sub(1) {
+        None => (first, first, 0.0),
+        Some(i) => {
+            let s = &switches[i];
+            let from = i.checked_sub(1).map_or(first, |j| switches[j].to);
+            (from, s.to, super::body::s5((t - s.t_s) / s.seconds))
         }
     }
 }
@@ -173,5 +221,44 @@ mod tests {
             e.y > 0.7 && e.z.abs() < 1e-12,
             "top up, screen sideways: {e}"
         );
+    }
+
+    #[test]
+    fn a_switch_moves_the_phone_from_one_mount_to_the_other() {
+        let sw = [Switch {
+            t_s: 10.0,
+            seconds: 2.0,
+            to: Carry::Ear,
+        }];
+        assert_eq!(
+            phase(Carry::Texting, &sw, 5.0),
+            (Carry::Texting, Carry::Texting, 0.0)
+        );
+        assert_eq!(
+            phase(Carry::Texting, &sw, 11.0),
+            (Carry::Texting, Carry::Ear, 0.5)
+        );
+        assert_eq!(
+            phase(Carry::Texting, &sw, 20.0),
+            (Carry::Texting, Carry::Ear, 1.0)
+        );
+        // Gravity in the device, standing before the walk and after it, is each mode's.
+        let sc = crate::sim::scenarios::switched_walk(Carry::Texting, Carry::Ear, 1);
+        let sim = sc.generate();
+        let mean_up = |t0: f64, t1: f64| {
+            let v: Vector3<f64> = sim
+                .records
+                .iter()
+                .filter_map(|r| match r {
+                    crate::engine::Record::Imu(s) if s.t >= t0 && s.t < t1 => Some(s.accel),
+                    _ => None,
+                })
+                .sum();
+            v.normalize()
+        };
+        let up = |c: Carry| c.mount().unwrap().transpose() * Vector3::z();
+        let end = sc.duration_s();
+        assert!((mean_up(0.5, 2.5) - up(Carry::Texting)).norm() < 0.02);
+        assert!((mean_up(end - 2.5, end - 0.5) - up(Carry::Ear)).norm() < 0.02);
     }
 }

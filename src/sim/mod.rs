@@ -46,6 +46,9 @@
 //! [`Scenario::real_ends`]): the standing sway, the first and the last steps at half strength,
 //! the body settling, and the phone taken out of the pocket ([`Gait::TakeOut`]).
 //!
+//! Opt-in, for the heading across a change of carrying mode (issue 20): the phone moved from one
+//! mode to another while the walk goes on ([`Scenario::switches`], [`carry::Switch`]).
+//!
 //! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,
 //! with gaps removed. Noise comes from a seeded SplitMix64 generator with Box–Muller normals over
 //! `libm`, so a scenario gives bit-identical samples natively and in WebAssembly.
@@ -205,6 +208,9 @@ pub struct Scenario {
     /// Real-shaped starts and stops ([`ends`]): the standing sway, the first and the last steps
     /// at half strength, the body settling, the phone taken out ([`Gait::TakeOut`]).
     pub real_ends: bool,
+    /// Changes of carrying mode mid-walk, in time order ([`carry::Switch`]; `carry` is the
+    /// first mode).
+    pub switches: Vec<carry::Switch>,
 }
 
 impl Scenario {
@@ -224,6 +230,7 @@ impl Scenario {
             floor_height_m: None,
             carry: Carry::Pocket,
             real_ends: false,
+            switches: Vec::new(),
         }
     }
 
@@ -397,9 +404,11 @@ impl Scenario {
     /// then yawed by `pocket_yaw_deg` about the vertical. Body frame: x forward, y left, z up.
     /// Other poses and the left pocket: [`PocketPose`].
     pub fn mount(&self) -> Matrix3<f64> {
-        if let Some(m) = self.carry.mount() {
-            return m;
-        }
+        self.carry.mount().unwrap_or_else(|| self.pocket_mount())
+    }
+
+    /// The pocket's mount, whatever `carry` says.
+    fn pocket_mount(&self) -> Matrix3<f64> {
         let base = self.pose.mount(self.left_pocket);
         rz(self.pocket_yaw_deg.to_radians()) * base
     }
@@ -503,8 +512,6 @@ impl Scenario {
             _ => *mount,
         };
         let swaying = ends.is_some() && st.gait == Gait::Still;
-        // Out of the pocket the thigh's pitch is replaced by the carrying mode's limb.
-        let carried = self.carry != Carry::Pocket;
         let k_limb = if !st.gait.moving() {
             0.0
         } else if st.gait == Gait::Run {
@@ -512,20 +519,42 @@ impl Scenario {
         } else {
             1.0
         };
-        let limb = |dt: f64| {
-            if carried {
-                self.carry.limb(st.phi + omega * dt, k_limb * env(dt))
-            } else {
+        // Out of the pocket the thigh's pitch is replaced by the carrying mode's limb.
+        let limb_of = |c: Carry, dt: f64| {
+            if c == Carry::Pocket {
                 ry(pitch(dt))
+            } else {
+                c.limb(st.phi + omega * dt, k_limb * env(dt))
             }
         };
-        let lever_m = if carried {
-            self.carry.lever_m()
-        } else {
-            w.lever_m
+        let lever_of = |c: Carry| {
+            if c == Carry::Pocket {
+                w.lever_m
+            } else {
+                c.lever_m()
+            }
         };
+        let limb = |dt: f64| limb_of(self.carry, dt);
+        let lever_m = lever_of(self.carry);
+        // A change of mode mid-walk ([`carry::Switch`]): each mode's limb, mount and place.
+        let switching = ext.filter(|_| !self.switches.is_empty()).map(|(_, _, t)| t);
+        let phase = |dt: f64| {
+            switching.map_or((self.carry, self.carry, 0.0), |t| {
+                carry::phase(self.carry, &self.switches, t + dt)
+            })
+        };
+        let mount_of = |c: Carry| c.mount().unwrap_or_else(|| self.pocket_mount());
         let attitude = |dt: f64| {
             let heading = path(dt) + waist(dt);
+            if switching.is_some() {
+                let (from, to, k) = phase(dt);
+                let q = |c: Carry| {
+                    let m = limb_of(c, dt) * mount_of(c);
+                    UnitQuaternion::from_matrix(&m)
+                };
+                let r = q(from).slerp(&q(to), k).to_rotation_matrix().into_inner();
+                return rz(FRAC_PI_2 - heading) * r;
+            }
             let mut r = rz(FRAC_PI_2 - heading) * limb(dt);
             if handled {
                 let tt = st.tau + dt;
@@ -552,7 +581,8 @@ impl Scenario {
         let mut a = Vector3::zeros();
         if st.gait.moving() {
             let (av, af, al) = amplitudes(st.gait, st.f, w.sway);
-            let b = self.carry.bounce() * env(0.0);
+            let (from, to, k) = phase(0.0);
+            let b = ((1.0 - k) * from.bounce() + k * to.bounce()) * env(0.0);
             let (av, af, al) = (b * av, b * af, b * al);
             let body_heading = st.psi + waist(0.0);
             let fwd = Vector3::new(libm::sin(body_heading), libm::cos(body_heading), 0.0);
@@ -583,6 +613,14 @@ impl Scenario {
         // Thigh lever: second derivative of the pocket offset, by central differences.
         let offset = |dt: f64| {
             let heading = path(dt) + waist(dt);
+            if switching.is_some() {
+                let (from, to, k) = phase(dt);
+                let place = |c: Carry| {
+                    c.anchor(self.left_pocket)
+                        + limb_of(c, dt) * Vector3::new(0.0, 0.0, -lever_of(c))
+                };
+                return rz(FRAC_PI_2 - heading) * ((1.0 - k) * place(from) + k * place(to));
+            }
             rz(FRAC_PI_2 - heading) * limb(dt) * Vector3::new(0.0, 0.0, -lever_m)
         };
         let hh = 1e-3;
@@ -619,6 +657,7 @@ impl Scenario {
         let tl = Timeline::new(self);
         let body = self.body();
         let extended = self.real_ends
+            || !self.switches.is_empty()
             || matches!(self.walker.thigh, ThighModel::Gait(_))
             || !body.flights.is_empty()
             || !body.sits.is_empty();

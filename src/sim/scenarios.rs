@@ -454,3 +454,28 @@ pub fn short_walk(carry: super::Carry, seed: u64, real_ends: bool) -> Scenario {
         ..carried_walk(carry, seed)
     }
 }
+
+/// A change of carrying mode mid-walk (issue 20: the heading carried across it): 3 s standing,
+/// 30 steps, the phone moved from `from` to `to` over 2 s while 16 more steps go on straight,
+/// a 90° turn over 8 steps, 30 steps and 3 s standing. The seed sets the cadence, the pocket's
+/// pose and side, as [`carried_walk`] does. The switch starts 3 s + 32 steps in.
+pub fn switched_walk(from: super::Carry, to: super::Carry, seed: u64) -> Scenario {
+    let f = 1.6 + 0.1 * (seed % 5) as f64;
+    let segments = vec![
+        Segment::still(3.0),
+        steps(30.0, f, f),
+        steps(16.0, f, f),
+        steps(8.0, f, f).turning(90.0),
+        steps(30.0, f, f),
+        Segment::still(3.0),
+    ];
+    Scenario {
+        segments,
+        switches: vec![super::carry::Switch {
+            t_s: 3.0 + 32.0 / f,
+            seconds: 2.0,
+            to,
+        }],
+        ..carried_walk(from, seed)
+    }
+}
