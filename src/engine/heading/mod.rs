@@ -26,11 +26,12 @@
 //! cos/sin coefficients of a_h·u and (c, d) those of a_up ([`forward_sign`]).
 
 pub mod closed_form;
+pub mod continuity;
 pub mod pca;
 pub mod tip_to_tail;
 pub mod yaw_aid;
 
-pub use yaw_aid::{device_twist, reading_pose, YawAid, YawOffset};
+pub use yaw_aid::{device_twist, reading_pose, screen_up, YawAid, YawOffset};
 
 use super::math::{circular_mean2, wrap_2pi, wrap_pi};
 use super::types::{positive, ConfigError};
@@ -95,6 +96,9 @@ pub struct HeadingConfig {
     /// Steer the heading with the device's own yaw between steps (see [`YawAid`]); `None`
     /// uses the acceleration heading of each step alone, as the papers do.
     pub yaw_aid: Option<YawAid>,
+    /// Carry the heading across a change of its source or of the carrying mode
+    /// ([`continuity`]); `None` lets each source stand alone.
+    pub continuity: Option<continuity::Continuity>,
 }
 
 impl Default for HeadingConfig {
@@ -104,6 +108,7 @@ impl Default for HeadingConfig {
             average_two: true,
             pca_window_s: 2.0,
             yaw_aid: Some(YawAid::default()),
+            continuity: Some(continuity::Continuity::default()),
         }
     }
 }
@@ -116,6 +121,29 @@ impl HeadingConfig {
             positive("heading.yaw_aid.steps", a.steps)?;
             positive("heading.yaw_aid.gate_deg", a.gate_deg)?;
             positive("heading.yaw_aid.straight_deg", a.straight_deg)?;
+            positive("heading.yaw_aid.hand_steady_deg", a.hand_steady_deg)?;
+            if !(-1.0..=1.0).contains(&a.hand_screen_up_min) {
+                return Err(ConfigError::new(
+                    "heading.yaw_aid.hand_screen_up_min",
+                    "must be within −1 … 1",
+                ));
+            }
+        }
+        if let Some(c) = &self.continuity {
+            if c.steps == 0 {
+                return Err(ConfigError::new(
+                    "heading.continuity.steps",
+                    "must be at least 1",
+                ));
+            }
+            positive("heading.continuity.max_gap_s", c.max_gap_s)?;
+            positive("heading.continuity.moved_deg", c.moved_deg)?;
+            if !(0.0..=1.0).contains(&c.agreement_min) {
+                return Err(ConfigError::new(
+                    "heading.continuity.agreement_min",
+                    "must be within 0 … 1",
+                ));
+            }
         }
         Ok(())
     }
@@ -253,6 +281,9 @@ pub struct HeadingDiagnostics {
     pub last_rad: Option<f64>,
     /// The learnt offset δ from the device's yaw to the direction of walking, rad.
     pub yaw_offset_rad: Option<f64>,
+    /// The offset added to the acceleration heading since the last change of source or mode
+    /// ([`continuity`]), rad.
+    pub continuity_offset_rad: f64,
 }
 
 /// The heading stage: the configured method at each step, the two-step average (A-HE) and the
@@ -268,6 +299,11 @@ pub struct Heading {
     yaw: f64,
     last_yaw: Option<f64>,
     yaw_offset: YawOffset,
+    // The last steps' times and the headings they walked, the latest last.
+    recent: VecDeque<(f64, f64)>,
+    // Where gravity sat in the device at the last steps, the latest last.
+    ups: VecDeque<nalgebra::Vector3<f64>>,
+    carried: continuity::Carried,
 }
 
 impl Heading {
@@ -281,6 +317,9 @@ impl Heading {
             yaw: 0.0,
             last_yaw: None,
             yaw_offset: YawOffset::default(),
+            recent: VecDeque::with_capacity(continuity::RECENT),
+            ups: VecDeque::with_capacity(continuity::UPS),
+            carried: continuity::Carried::default(),
         }
     }
 
@@ -318,6 +357,14 @@ impl Heading {
             has_heading,
             carry,
         } = *step;
+        let up = self.attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
+        let previous_up = self.ups.back().copied();
+        if let Some(u) = up {
+            if self.ups.len() == continuity::UPS {
+                self.ups.pop_front();
+            }
+            self.ups.push_back(u);
+        }
         let theta = if has_heading {
             single_step(&self.cfg, buf, window)
         } else {
@@ -335,8 +382,14 @@ impl Heading {
                 let prev = self.last_yaw.replace(yaw).filter(|_| continued);
                 // In the hand, screen up, at any tilt the carrying mode allows; else (and before
                 // the mode is known) held nearly flat.
+                let steady = match (up, previous_up) {
+                    (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
+                    _ => true,
+                };
                 let reading = (aid.hand_mode
-                    && carry == Some(crate::engine::carry::CarryMode::Hand))
+                    && carry == Some(crate::engine::carry::CarryMode::Hand)
+                    && steady
+                    && self.attitude.as_ref().is_some_and(|q| screen_up(q, aid)))
                     || self.attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
                 if reading {
                     // Held in front, screen up: the top of the phone is the way forward.
@@ -358,12 +411,43 @@ impl Heading {
             }
             _ => None,
         };
-        let used = aided.or(averaged).or(self.last_used);
+        let walked = match &self.cfg.continuity {
+            Some(c) if has_heading => {
+                let source = if aided.is_some() {
+                    continuity::Source::Yaw
+                } else {
+                    continuity::Source::Acceleration
+                };
+                let h = aided.or(averaged);
+                let settled = source == continuity::Source::Yaw
+                    || carry != Some(crate::engine::carry::CarryMode::Hand)
+                    || !self.cfg.yaw_aid.is_some_and(|a| a.hand_mode);
+                let moved = continuity::moved(&self.ups, c);
+                self.carried.push(
+                    c,
+                    &continuity::Step {
+                        source,
+                        mode: carry,
+                        settled,
+                        moved,
+                        t: window.t_k,
+                        heading: h,
+                    },
+                    &self.recent,
+                )
+            }
+            _ => aided.or(averaged),
+        };
+        let used = walked.or(self.last_used);
         if theta.is_some() {
             self.last_single = theta;
         }
-        if used.is_some() {
+        if let Some(u) = used {
             self.last_used = used;
+            if self.recent.len() == continuity::RECENT {
+                self.recent.pop_front();
+            }
+            self.recent.push_back((window.t_k, u));
         }
         StepHeading {
             used,
@@ -382,6 +466,7 @@ impl Heading {
         HeadingDiagnostics {
             last_rad: self.last_used,
             yaw_offset_rad: self.yaw_offset.get(),
+            continuity_offset_rad: self.carried.offset(),
         }
     }
 }

@@ -18,7 +18,13 @@
 ///   `hand` ([`crate::engine::carry`]: screen up by up to 66°, held steady), the device's yaw
 ///   too, whatever its tilt. The IPIN 2023 walkers hold the phone 55–62° from level, beyond the
 ///   reading pose: pooled waypoint p75 of routes 01–25, PDR only, 5.48 → 4.4 m (a tilt limit of
-///   70° instead gave 4.37 m, but would take a swinging or pocketed phone's yaw too).
+///   70° instead gave 4.37 m, but would take a swinging or pocketed phone's yaw too). Only while
+///   the screen faces up at the step (its normal's up component ≥
+///   [`YawAid::hand_screen_up_min`]) and gravity turned in the device by at most
+///   [`YawAid::hand_steady_deg`] since the last step: the mode is a vote over seconds, so a phone
+///   being put away or lifted to the ear is still `hand` for a few steps, and its yaw then turns
+///   with the hand (on the simulator 75–130° off for 4 steps). 20°: 8° and 12° also took real
+///   IPIN steps in sharp turns (pooled p75 3.47 → 3.77 / 3.59 m); 20–30° leave IPIN unchanged.
 /// - **Otherwise**, by default, the papers' acceleration heading. With
 ///   [`YawAid::learn_offset`] the engine instead walks along ψ̄ + δ: ψ integrated from the
 ///   attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on
@@ -41,8 +47,16 @@ pub struct YawAid {
     /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ (off by default: on
     /// simulated pockets it made straight walks worse, see the module notes).
     pub learn_offset: bool,
-    /// In the carrying mode `hand`, the device's yaw at any tilt (see above).
+    /// In the carrying mode `hand`, the device's yaw at any tilt (see above), while the phone is
+    /// steady and its screen faces up at the step ([`YawAid::hand_steady_deg`],
+    /// [`YawAid::hand_screen_up_min`]).
     pub hand_mode: bool,
+    /// The up component of the screen's normal the hand's yaw needs at the step (see
+    /// [`YawAid::hand_mode`]).
+    pub hand_screen_up_min: f64,
+    /// The largest turn of gravity in the device from the last step for the hand's yaw,
+    /// degrees: a phone being moved to another place is not steady.
+    pub hand_steady_deg: f64,
 }
 
 impl Default for YawAid {
@@ -54,6 +68,8 @@ impl Default for YawAid {
             reading_tilt_deg: 35.0,
             learn_offset: false,
             hand_mode: true,
+            hand_screen_up_min: 0.2,
+            hand_steady_deg: 20.0,
         }
     }
 }
@@ -75,6 +91,11 @@ pub fn device_twist(q: &nalgebra::UnitQuaternion<f64>) -> Option<f64> {
 pub fn reading_pose(q: &nalgebra::UnitQuaternion<f64>, aid: &YawAid) -> bool {
     let up = (q * nalgebra::Vector3::z()).z;
     up > libm::cos(aid.reading_tilt_deg.to_radians())
+}
+
+/// Whether the screen faces up by at least [`YawAid::hand_screen_up_min`].
+pub fn screen_up(q: &nalgebra::UnitQuaternion<f64>, aid: &YawAid) -> bool {
+    (q * nalgebra::Vector3::z()).z >= aid.hand_screen_up_min
 }
 
 /// The running estimate of δ, the angle from the device's yaw to the direction of walking.

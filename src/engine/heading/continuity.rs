@@ -1,0 +1,332 @@
+//! The heading carried across a change of its source (issue 20; ours, none of the papers
+//! changes the carrying mode mid-walk).
+//! May import: the rest of `engine`.
+//!
+//! Each carrying mode walks along its own source ([`super::Heading`]): the device's yaw in the
+//! hand, the acceleration heading elsewhere. The acceleration heading is absolute but only as
+//! good as its forward sign and its axis, which a limb can turn (on the simulator a swinging
+//! hand reads it 176° off, 3 of the 8 pocket poses 120–150°); the yaw in the hand is what a
+//! walker looks along. So when the source or the mode changes, the walker is taken to go on the
+//! way they went: the steps keep the last heading while [`Continuity::steps`] acceleration
+//! headings are gathered, and the offset from their circular mean to that heading is then added
+//! to every acceleration heading of this source and mode, until the next change.
+//!
+//! - The heading carried is the median of the last [`RECENT`] steps': the mode is a vote over
+//!   seconds, so the phone may already be moving at the last step before the change.
+//! - Only a recent heading is carried: the last step at most [`Continuity::max_gap_s`] before
+//!   (a walker who stood still longer may have turned).
+//! - [`Continuity::sign_only`] keeps only the offset's sign: 180° when the mean is more than
+//!   90° off, else 0.
+
+use super::super::carry::CarryMode;
+use super::super::math::{wrap_2pi, wrap_pi};
+use std::collections::VecDeque;
+
+/// How many of the last steps' headings the anchor is the median of.
+pub const RECENT: usize = 3;
+
+/// The heading among `hs` closest to the others (the sum of absolute angles to them least):
+/// a median that a turn of the phone on the last step before a change does not move.
+fn circular_median(hs: impl Iterator<Item = f64> + Clone) -> Option<f64> {
+    let cost = |a: f64| hs.clone().map(|b| wrap_pi(a - b).abs()).sum::<f64>();
+    hs.clone().min_by(|&a, &b| cost(a).total_cmp(&cost(b)))
+}
+
+/// Settings.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct Continuity {
+    /// Acceleration headings gathered after a change before the offset is set, steps.
+    pub steps: usize,
+    /// Longest time from the last step before the change, s.
+    pub max_gap_s: f64,
+    /// Keep only the offset's sign (0 or 180°).
+    pub sign_only: bool,
+    /// The least mean resultant length of the gathered headings (1: all alike, about 0.44 for
+    /// four random ones) for their offset to be learnt.
+    pub agreement_min: f64,
+    /// How far gravity must turn in the device for a change between two modes of one source to
+    /// count as the phone moved, degrees ([`moved`]).
+    pub moved_deg: f64,
+}
+
+impl Default for Continuity {
+    fn default() -> Self {
+        Continuity {
+            steps: 4,
+            max_gap_s: 4.0,
+            sign_only: false,
+            agreement_min: 0.7,
+            moved_deg: 30.0,
+        }
+    }
+}
+
+/// Where a step's heading comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// The device's yaw (the hand, the reading pose, the learnt offset).
+    Yaw,
+    /// The acceleration heading.
+    Acceleration,
+}
+
+/// How many of the last steps' device "up" vectors [`moved`] looks at.
+pub const UPS: usize = 9;
+
+/// Whether the phone moved in the body: gravity's mean direction in the device over the last 3
+/// steps is more than [`Continuity::moved_deg`] from its mean over the 3 steps 6 before.
+pub fn moved(ups: &VecDeque<nalgebra::Vector3<f64>>, cfg: &Continuity) -> bool {
+    if ups.len() < UPS {
+        return false;
+    }
+    let mean =
+        |r: std::ops::Range<usize>| ups.range(r).fold(nalgebra::Vector3::zeros(), |a, u| a + u);
+    let (old, new) = (mean(0..3), mean(UPS - 3..UPS));
+    let cos = old.dot(&new) / (old.norm() * new.norm());
+    !(cos >= libm::cos(cfg.moved_deg.to_radians()))
+}
+
+/// One step as [`Carried::push`] sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct Step {
+    /// Where its heading comes from.
+    pub source: Source,
+    /// The carrying mode, once decided.
+    pub mode: Option<CarryMode>,
+    /// False while the mode still names another source (the hand's, with the phone already
+    /// moving): such steps keep the heading carried and teach nothing.
+    pub settled: bool,
+    /// The phone moved in the body lately ([`moved`]).
+    pub moved: bool,
+    /// Its time, s.
+    pub t: f64,
+    /// Its heading from that source, rad.
+    pub heading: Option<f64>,
+}
+
+/// The running state.
+#[derive(Debug, Clone, Default)]
+pub struct Carried {
+    key: Option<(Source, Option<CarryMode>)>,
+    // While a change is open: the heading carried, and the acceleration headings gathered since
+    // the last change of key (as the sum of unit vectors of anchor − θ) and all told.
+    anchor: Option<f64>,
+    sum: (f64, f64),
+    n: usize,
+    open_steps: usize,
+    offset: f64,
+}
+
+impl Carried {
+    /// One step, given the last steps' times and walked headings ([`RECENT`], the latest
+    /// last); returns the heading to walk (`None` when nothing is known).
+    pub fn push(
+        &mut self,
+        cfg: &Continuity,
+        step: &Step,
+        recent: &VecDeque<(f64, f64)>,
+    ) -> Option<f64> {
+        let &Step {
+            source,
+            mode,
+            settled,
+            moved,
+            t,
+            heading: h,
+        } = step;
+        let key = (source, mode);
+        let old = self.key.replace(key);
+        // A change of source, or of mode with the phone moved in the body: the first decision
+        // of the mode, and a vote that flickers between two modes of one source while the phone
+        // stays put (a pocket on stairs), change nothing on the phone.
+        let change = match old {
+            Some(o) if o != key => o.0 != source || (o.1.is_some() && moved),
+            _ => false,
+        };
+        if change {
+            if self.anchor.is_none() {
+                // Carry the last heading if it is recent. While a change is open (the mode
+                // settles over a few votes) its anchor stays.
+                self.anchor = recent
+                    .back()
+                    .filter(|&&(tl, _)| t - tl <= cfg.max_gap_s)
+                    .and_then(|_| circular_median(recent.iter().map(|r| r.1)));
+                self.open_steps = 0;
+            }
+            self.sum = (0.0, 0.0);
+            self.n = 0;
+            self.offset = 0.0;
+        }
+        if source == Source::Yaw {
+            // The yaw is the walker's own heading: nothing to carry.
+            self.anchor = None;
+            return h;
+        }
+        let Some(anchor) = self.anchor else {
+            return h.map(|th| self.turn(th));
+        };
+        self.open_steps += 1;
+        if !settled && self.open_steps < 4 * cfg.steps {
+            return Some(anchor);
+        }
+        if let Some(th) = h {
+            let (s, c) = libm::sincos(wrap_pi(anchor - th));
+            self.sum = (self.sum.0 + c, self.sum.1 + s);
+            self.n += 1;
+        }
+        if self.n < cfg.steps && self.open_steps < 4 * cfg.steps {
+            return Some(anchor);
+        }
+        let agree = libm::hypot(self.sum.0, self.sum.1) >= cfg.agreement_min * self.n as f64;
+        let mean = if self.n > 0 && agree {
+            libm::atan2(self.sum.1, self.sum.0)
+        } else {
+            0.0
+        };
+        self.offset = if !cfg.sign_only {
+            mean
+        } else if mean.abs() > std::f64::consts::FRAC_PI_2 {
+            std::f64::consts::PI
+        } else {
+            0.0
+        };
+        self.anchor = None;
+        h.map(|th| self.turn(th))
+    }
+
+    /// The offset added to the acceleration heading now, rad.
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// `th` turned by the offset; untouched, bit for bit, when there is none.
+    fn turn(&self, th: f64) -> f64 {
+        if self.offset == 0.0 {
+            th
+        } else {
+            wrap_2pi(th + self.offset)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn step(source: Source, mode: CarryMode, t: f64, deg: f64) -> Step {
+        Step {
+            source,
+            mode: Some(mode),
+            settled: true,
+            moved: true,
+            t,
+            heading: Some(deg.to_radians()),
+        }
+    }
+
+    /// Feeds `steps` and returns the headings walked, degrees.
+    fn walk(c: &mut Carried, steps: &[Step]) -> Vec<f64> {
+        let cfg = Continuity::default();
+        let mut recent = VecDeque::new();
+        steps
+            .iter()
+            .map(|s| {
+                let h = c.push(&cfg, s, &recent).unwrap();
+                if recent.len() == RECENT {
+                    recent.pop_front();
+                }
+                recent.push_back((s.t, h));
+                wrap_2pi(h).to_degrees()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_change_keeps_the_heading_then_learns_the_offset() {
+        let mut c = Carried::default();
+        let mut steps: Vec<Step> = (0..5)
+            .map(|i| step(Source::Yaw, CarryMode::Hand, 0.5 * i as f64, 10.0))
+            .collect();
+        // The last yaw step already turns with the phone: the median of three ignores it.
+        steps[4].heading = Some(40f64.to_radians());
+        // In the pocket the acceleration heading reads 150° off, then the walker turns by 30°.
+        for i in 5..15 {
+            let turn = if i >= 11 { 30.0 } else { 0.0 };
+            steps.push(step(
+                Source::Acceleration,
+                CarryMode::Pocket,
+                0.5 * i as f64,
+                160.0 + turn,
+            ));
+        }
+        let h = walk(&mut c, &steps);
+        for (i, &d) in h.iter().enumerate().skip(5).take(3) {
+            assert!((d - 10.0).abs() < 1e-9, "step {i} keeps 10°: {d}");
+        }
+        assert!(
+            (h[8] - 10.0).abs() < 1e-9 && (h[14] - 40.0).abs() < 1e-9,
+            "{h:?}"
+        );
+        assert!((wrap_pi(c.offset()).to_degrees() + 150.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn headings_that_disagree_teach_no_offset_and_the_yaw_ends_the_carry() {
+        let cfg = Continuity::default();
+        let mut c = Carried::default();
+        let recent: VecDeque<(f64, f64)> = [(0.0, 0.0), (0.5, 0.0), (1.0, 0.0)].into();
+        c.push(&cfg, &step(Source::Yaw, CarryMode::Hand, 1.0, 0.0), &recent);
+        for (i, d) in [90.0, 270.0, 0.0, 180.0].into_iter().enumerate() {
+            let s = step(Source::Acceleration, CarryMode::Swinging, 1.5 + i as f64, d);
+            c.push(&cfg, &s, &recent);
+        }
+        assert_eq!(c.offset(), 0.0);
+        // Back in the hand: the yaw as it is.
+        let s = step(Source::Yaw, CarryMode::Hand, 6.0, 77.0);
+        let h = c.push(&cfg, &s, &recent).unwrap();
+        assert!((h.to_degrees() - 77.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_flickering_vote_or_an_old_heading_carries_nothing() {
+        let cfg = Continuity::default();
+        let recent: VecDeque<(f64, f64)> = [(0.0, 1.0), (0.5, 1.0), (1.0, 1.0)].into();
+        let mut c = Carried::default();
+        c.push(
+            &cfg,
+            &step(Source::Acceleration, CarryMode::Pocket, 1.0, 100.0),
+            &recent,
+        );
+        // Pocket → bag with the phone where it was (a pocket on stairs): nothing carried.
+        let mut s = step(Source::Acceleration, CarryMode::Bag, 1.5, 100.0);
+        s.moved = false;
+        let h = c.push(&cfg, &s, &recent).unwrap();
+        assert!((h.to_degrees() - 100.0).abs() < 1e-9);
+        // A change 10 s after the last step: too old to carry.
+        let s = step(Source::Acceleration, CarryMode::Ear, 11.0, 200.0);
+        let h = c.push(&cfg, &s, &recent).unwrap();
+        assert!((h.to_degrees() - 200.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_phone_moved_when_gravity_turned_in_it() {
+        let cfg = Continuity::default();
+        let still: VecDeque<_> = (0..UPS).map(|_| nalgebra::Vector3::y()).collect();
+        assert!(!moved(&still, &cfg));
+        let turned: VecDeque<_> = (0..UPS)
+            .map(|i| {
+                if i < 3 {
+                    nalgebra::Vector3::y()
+                } else {
+                    nalgebra::Vector3::z()
+                }
+            })
+            .collect();
+        assert!(moved(&turned, &cfg));
+        assert!(
+            !moved(&turned.range(1..).copied().collect(), &cfg),
+            "too few steps"
+        );
+    }
+}
