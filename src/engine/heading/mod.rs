@@ -7,6 +7,8 @@
 //!   time of maximal planar acceleration in closed form).
 //! - [`pca`]: principal component of the horizontal acceleration over a 2 s window, the literature
 //!   baseline (Steinhoff & Schiele 2010) that Basso 2016 §I argues against.
+//! - [`yaw_aid`] (ours): the device's own yaw in the hand and the reading pose.
+//! - [`continuity`] (ours): the heading carried across a change of source or carrying mode.
 //!
 //! # Angles
 //! Headings are compass headings in radians, clockwise from north, in [0, 2π). Averages of two
