@@ -177,7 +177,9 @@ impl Carried {
             return h.map(|th| self.turn(th));
         };
         self.open_steps += 1;
-        if !settled && self.open_steps < 4 * cfg.steps {
+        // A mode that has not settled within four times the steps ends the carry.
+        let open = self.open_steps < 4 * cfg.steps;
+        if !settled && open {
             return Some(anchor);
         }
         if let Some(th) = h {
@@ -185,7 +187,7 @@ impl Carried {
             self.sum = (self.sum.0 + c, self.sum.1 + s);
             self.n += 1;
         }
-        if self.n < cfg.steps && self.open_steps < 4 * cfg.steps {
+        if self.n < cfg.steps && open {
             return Some(anchor);
         }
         let agree = libm::hypot(self.sum.0, self.sum.1) >= cfg.agreement_min * self.n as f64;

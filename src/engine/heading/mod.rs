@@ -33,7 +33,7 @@ pub mod pca;
 pub mod tip_to_tail;
 pub mod yaw_aid;
 
-pub use yaw_aid::{device_twist, reading_pose, screen_up, YawAid, YawOffset};
+pub use yaw_aid::{device_twist, reading_pose, YawAid, YawOffset};
 
 use super::math::{circular_mean2, wrap_2pi, wrap_pi};
 use super::types::{positive, ConfigError};
@@ -391,7 +391,7 @@ impl Heading {
                 let reading = (aid.hand_mode
                     && carry == Some(crate::engine::carry::CarryMode::Hand)
                     && steady
-                    && self.attitude.as_ref().is_some_and(|q| screen_up(q, aid)))
+                    && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
                     || self.attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
                 if reading {
                     // Held in front, screen up: the top of the phone is the way forward.
@@ -413,6 +413,7 @@ impl Heading {
             }
             _ => None,
         };
+        let h = aided.or(averaged);
         let walked = match &self.cfg.continuity {
             Some(c) if has_heading => {
                 let source = if aided.is_some() {
@@ -420,7 +421,6 @@ impl Heading {
                 } else {
                     continuity::Source::Acceleration
                 };
-                let h = aided.or(averaged);
                 let settled = source == continuity::Source::Yaw
                     || carry != Some(crate::engine::carry::CarryMode::Hand)
                     || !self.cfg.yaw_aid.is_some_and(|a| a.hand_mode);
@@ -438,7 +438,7 @@ impl Heading {
                     &self.recent,
                 )
             }
-            _ => aided.or(averaged),
+            _ => h,
         };
         let used = walked.or(self.last_used);
         if theta.is_some() {

@@ -93,11 +93,6 @@ pub fn reading_pose(q: &nalgebra::UnitQuaternion<f64>, aid: &YawAid) -> bool {
     up > libm::cos(aid.reading_tilt_deg.to_radians())
 }
 
-/// Whether the screen faces up by at least [`YawAid::hand_screen_up_min`].
-pub fn screen_up(q: &nalgebra::UnitQuaternion<f64>, aid: &YawAid) -> bool {
-    (q * nalgebra::Vector3::z()).z >= aid.hand_screen_up_min
-}
-
 /// The running estimate of δ, the angle from the device's yaw to the direction of walking.
 #[derive(Debug, Clone, Default)]
 pub struct YawOffset {
