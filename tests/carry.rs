@@ -194,10 +194,16 @@ fn heading_mae(carry: Carry) -> f64 {
 }
 
 #[test]
-fn texting_at_the_ear_and_in_a_bag_the_heading_holds() {
-    // Measured (seeds 1–8): texting 0.9°, ear 2.7°, bag 9.0°. The pocket (70°: the
-    // tip-to-tail sign in 3 of 8 poses) and the swinging hand (175°) are the rest of issue 20.
-    for (carry, max) in [(Carry::Texting, 2.0), (Carry::Ear, 4.0), (Carry::Bag, 12.0)] {
+fn the_heading_holds_in_every_mode() {
+    // Measured (seeds 1–4): texting 0.9°, ear 3.2°, bag 9.4°; the pocket 12.4° and the
+    // swinging hand 5.5° with the sign from the limb (seeds 1–8 before it: 71° and 175°).
+    for (carry, max) in [
+        (Carry::Texting, 2.0),
+        (Carry::Ear, 4.0),
+        (Carry::Bag, 12.0),
+        (Carry::Pocket, 15.5),
+        (Carry::Swinging, 7.0),
+    ] {
         let e = heading_mae(carry);
         assert!(e <= max, "{}: {e:.1}°", carry.as_str());
     }
@@ -234,9 +240,9 @@ fn the_heading_is_carried_across_a_change_of_mode() {
     let carried = PipelineConfig::default();
     let mut alone = PipelineConfig::default();
     alone.heading.continuity = None;
-    // Measured: pocket 9.6° / 2.30 m, swinging 3.6° / 1.68 m, ear 2.9° / 0.90 m, bag 5.3° /
-    // 1.66 m; each source alone: pocket 68° / 21.1 m, swinging 165° / 47.6 m, ear 3.3° /
-    // 0.73 m, bag 14.8° / 5.26 m.
+    // Measured: pocket 10.0° / 2.31 m, swinging 3.6° / 1.68 m, ear 2.9° / 0.90 m, bag 5.3° /
+    // 1.66 m; each source alone: pocket 18.5° / 5.10 m, swinging 14.6° / 3.25 m (68° / 21.1 m
+    // and 165° / 47.6 m before the limb gave the sign), ear 3.3° / 0.73 m, bag 14.8° / 5.26 m.
     for (to, max_deg, max_m) in [
         (Carry::Pocket, 11.0, 2.6),
         (Carry::Swinging, 4.5, 1.9),
@@ -252,7 +258,7 @@ fn the_heading_is_carried_across_a_change_of_mode() {
         if matches!(to, Carry::Pocket | Carry::Swinging) {
             let (deg0, m0) = after_a_switch(to, &alone);
             assert!(
-                deg0 > 4.0 * deg && m0 > 4.0 * m,
+                deg0 > 1.5 * deg && m0 > 1.5 * m,
                 "texting → {}: {deg0:.1}° and {m0:.2} m alone",
                 to.as_str()
             );

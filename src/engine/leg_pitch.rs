@@ -166,10 +166,12 @@ pub struct LegPitch {
     level_refs: u32,
     stride_sum: Vector3<f64>,
     vote: f64,
+    vote_periods: f64,
     up: Option<Vector3<f64>>,
     last: Option<f64>,
     amplitudes: std::collections::VecDeque<f64>,
     thigh: bool,
+    thigh_like: bool,
 }
 
 /// Samples between two power iterations of the swing axis (about 0.1 s).
@@ -181,6 +183,13 @@ const THIGH_MAX_AMPLITUDE_DEG: f64 = 100.0;
 
 /// The shortest stride of a thigh, s: two steps at 2.5 Hz, beyond brisk walking (1.6–2.2 Hz).
 const THIGH_MIN_STRIDE_S: f64 = 0.8;
+
+/// Strides that must look like a thigh's before its swing gives the heading's sign.
+const EARLY_STRIDES: usize = 2;
+
+/// The votes' net share of the strides they span that makes the sign clear enough for the
+/// heading.
+const SIGN_CLEAR: f64 = 0.1;
 
 /// Weight kept by the sign's vote per stride (about the last 30 strides count).
 const SIGN_KEEP: f64 = 0.97;
@@ -198,10 +207,12 @@ impl LegPitch {
             level_refs: 0,
             stride_sum: Vector3::zeros(),
             vote: 0.0,
+            vote_periods: 0.0,
             up: None,
             last: None,
             amplitudes: std::collections::VecDeque::new(),
             thigh: false,
+            thigh_like: false,
         }
     }
 
@@ -359,6 +370,7 @@ impl LegPitch {
             let rise = stride.t_max - stride.t_min;
             if rise > 0.0 && rise < p {
                 self.vote = self.vote * SIGN_KEEP + (0.5 * p - rise);
+                self.vote_periods = self.vote_periods * SIGN_KEEP + p;
             }
         }
         if amplitude_deg > THIGH_MAX_AMPLITUDE_DEG
@@ -366,6 +378,7 @@ impl LegPitch {
         {
             self.amplitudes.clear();
             self.thigh = false;
+            self.thigh_like = false;
             return false;
         }
         if self.amplitudes.len() == self.cfg.thigh_strides {
@@ -376,16 +389,32 @@ impl LegPitch {
         a.sort_by(f64::total_cmp);
         let median = a[a.len() / 2];
         let spread = a[a.len() - 1] - a[0];
-        self.thigh = a.len() == self.cfg.thigh_strides
+        self.thigh_like = a.len() >= EARLY_STRIDES
             && median >= self.cfg.thigh_min_amplitude_deg
             && spread <= median
             && self.share >= self.cfg.thigh_min_axis_share;
+        self.thigh = self.thigh_like && a.len() == self.cfg.thigh_strides;
         self.thigh
     }
 
     /// Whether the phone rides on a thigh ([`Self::push_stride`]).
     pub fn on_thigh(&self) -> bool {
         self.thigh
+    }
+
+    /// The axis, in the device frame, about which the thigh swings *forward* (the swing axis
+    /// turned by the voted sign), while the phone rides on a thigh whose swing dominates and
+    /// the strides have voted. A point below the hip on a thigh turning by +θ̇ about the
+    /// world axis L moves along θ̇·(ẑ × L): with L this axis in the world frame, ẑ × L is the
+    /// way the walker goes ([`crate::engine::heading::HeadingConfig::limb_sign`]).
+    pub fn forward_axis(&self) -> Option<Vector3<f64>> {
+        if !(self.thigh_like
+            && self.share >= self.cfg.thigh_min_axis_share
+            && self.vote.abs() >= SIGN_CLEAR * self.vote_periods)
+        {
+            return None;
+        }
+        self.axis.map(|a| a * self.sign())
     }
 
     /// The current values.

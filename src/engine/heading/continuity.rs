@@ -207,6 +207,11 @@ impl Carried {
         h.map(|th| self.turn(th))
     }
 
+    /// A change is open: the heading is carried while the new source's offset is learnt.
+    pub fn carrying(&self) -> bool {
+        self.anchor.is_some()
+    }
+
     /// The offset added to the acceleration heading now, rad.
     pub fn offset(&self) -> f64 {
         self.offset

@@ -27,6 +27,7 @@
 //! evaluated on the coefficients at the step frequency: ∫ = (T/2)·ω·(p·d − q·c) with (p, q) the
 //! cos/sin coefficients of a_h·u and (c, d) those of a_up ([`forward_sign`]).
 
+pub mod arm;
 pub mod closed_form;
 pub mod continuity;
 pub mod pca;
@@ -35,6 +36,7 @@ pub mod yaw_aid;
 
 pub use yaw_aid::{device_twist, reading_pose, YawAid, YawOffset};
 
+use super::carry::CarryMode;
 use super::math::{circular_mean2, wrap_2pi, wrap_pi};
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
@@ -101,6 +103,9 @@ pub struct HeadingConfig {
     /// Carry the heading across a change of its source or of the carrying mode
     /// ([`continuity`]); `None` lets each source stand alone.
     pub continuity: Option<continuity::Continuity>,
+    /// On a thigh, take the acceleration heading's 180° sign from the thigh's swing
+    /// ([`StepInput::limb_forward`]) instead of the pelvis's vertical phase. Default on.
+    pub limb_sign: bool,
 }
 
 impl Default for HeadingConfig {
@@ -111,6 +116,7 @@ impl Default for HeadingConfig {
             pca_window_s: 2.0,
             yaw_aid: Some(YawAid::default()),
             continuity: Some(continuity::Continuity::default()),
+            limb_sign: true,
         }
     }
 }
@@ -173,6 +179,17 @@ pub struct Harmonic {
 /// irregular samples, with the end values interpolated at t0 and t1.
 /// Returns `None` when the buffer does not cover the window or has fewer than 4 samples in it.
 pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic; 2]> {
+    fourier_of(buf, t0, t1, |p| [p.e, p.n, p.up])
+}
+
+/// [`fourier`] of three channels taken from each sample by `channels` (the east, north and up
+/// slots of the [`Harmonic`]s), the end values taken from the samples interpolated at t0 and t1.
+pub fn fourier_of(
+    buf: &VecDeque<NavSample>,
+    t0: f64,
+    t1: f64,
+    channels: impl Fn(&NavSample) -> [f64; 3],
+) -> Option<[Harmonic; 2]> {
     let period = t1 - t0;
     let first = buf.front()?;
     let last = buf.back()?;
@@ -193,7 +210,7 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
     let mut acc = [[0.0f64; 4]; 3];
     let mut add = |p: &NavSample, weight: f64, (c1, s1): (f64, f64)| {
         let trig = [c1, s1, c1 * c1 - s1 * s1, 2.0 * s1 * c1];
-        for (a, v) in acc.iter_mut().zip([p.e, p.n, p.up]) {
+        for (a, v) in acc.iter_mut().zip(channels(p)) {
             let vw = v * weight;
             for j in 0..4 {
                 a[j] += vw * trig[j];
@@ -227,17 +244,26 @@ pub fn fourier(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<[Harmonic;
     ])
 }
 
+/// The weight a swinging hand's forward vote keeps per step (the last 2–3 steps count).
+const ARM_KEEP: f64 = 0.5;
+
 /// Returns +1 or −1: the sign that makes the horizontal unit vector `u` = (east, north) point
 /// forward, from the harmonic `h` at the step frequency (see the module documentation).
 pub fn forward_sign(h: &Harmonic, u: (f64, f64)) -> f64 {
-    let p = h.alpha[0] * u.0 + h.alpha[1] * u.1;
-    let q = h.beta[0] * u.0 + h.beta[1] * u.1;
-    let (c, d) = (h.alpha[2], h.beta[2]);
-    if p * d - q * c >= 0.0 {
+    if forwardness(h, u) >= 0.0 {
         1.0
     } else {
         -1.0
     }
+}
+
+/// The integral [`forward_sign`] takes the sign of, (T/2ω)⁻¹·∫ (a_h·u)(d a_up/dt) dt = p·d − q·c:
+/// positive when `u` points forward, m²/s⁴.
+pub fn forwardness(h: &Harmonic, u: (f64, f64)) -> f64 {
+    let p = h.alpha[0] * u.0 + h.alpha[1] * u.1;
+    let q = h.beta[0] * u.0 + h.beta[1] * u.1;
+    let (c, d) = (h.alpha[2], h.beta[2]);
+    p * d - q * c
 }
 
 /// Step boundaries handed to a heading method.
@@ -264,6 +290,9 @@ pub struct StepInput<'a> {
     pub has_heading: bool,
     /// Where the phone is carried, once decided ([`crate::engine::carry`]).
     pub carry: Option<crate::engine::carry::CarryMode>,
+    /// The way forward (east, north) a swinging thigh shows, when the phone rides on one
+    /// ([`crate::engine::leg_pitch::LegPitch::forward_axis`]); see [`HeadingConfig::limb_sign`].
+    pub limb_forward: Option<(f64, f64)>,
 }
 
 /// One step's heading.
@@ -294,6 +323,10 @@ pub struct HeadingDiagnostics {
 pub struct Heading {
     cfg: HeadingConfig,
     last_single: Option<f64>,
+    // Whether the limb gave that direction's sign ([`Self::limb_signed`]).
+    last_limb_signed: bool,
+    // The swinging arm's forward vote, east and north ([`Self::limb_signed`]).
+    arm_vote: (f64, f64),
     last_used: Option<f64>,
     attitude: Option<nalgebra::UnitQuaternion<f64>>,
     // Device yaw integrated from the attitude increments about the vertical, compass radians,
@@ -314,6 +347,8 @@ impl Heading {
         Heading {
             cfg,
             last_single: None,
+            last_limb_signed: false,
+            arm_vote: (0.0, 0.0),
             last_used: None,
             attitude: None,
             yaw: 0.0,
@@ -358,6 +393,7 @@ impl Heading {
             continued,
             has_heading,
             carry,
+            limb_forward,
         } = *step;
         let up = self.attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
         let previous_up = self.ups.back().copied();
@@ -372,8 +408,20 @@ impl Heading {
         } else {
             None
         };
+        let (theta, limb_signed) = match theta {
+            Some(th) if self.cfg.limb_sign => {
+                self.limb_signed(buf, window, th, carry, limb_forward)
+            }
+            th => (th, false),
+        };
+        // A mode whose sign comes from its limb has not settled until the limb gave it.
+        let limb_mode =
+            self.cfg.limb_sign && matches!(carry, Some(CarryMode::Pocket | CarryMode::Swinging));
+        // A direction the limb signed is not averaged with one it did not sign: they may
+        // point opposite ways.
+        let comparable = !limb_mode || limb_signed == self.last_limb_signed;
         let averaged = match (theta, self.last_single) {
-            (Some(th), Some(prev)) if self.cfg.average_two && continued => {
+            (Some(th), Some(prev)) if self.cfg.average_two && continued && comparable => {
                 Some(circular_mean2(prev, th))
             }
             (th, _) => th,
@@ -422,8 +470,9 @@ impl Heading {
                     continuity::Source::Acceleration
                 };
                 let settled = source == continuity::Source::Yaw
-                    || carry != Some(crate::engine::carry::CarryMode::Hand)
-                    || !self.cfg.yaw_aid.is_some_and(|a| a.hand_mode);
+                    || ((carry != Some(CarryMode::Hand)
+                        || !self.cfg.yaw_aid.is_some_and(|a| a.hand_mode))
+                        && (limb_signed || !limb_mode));
                 let moved = continuity::moved(&self.ups, c);
                 self.carried.push(
                     c,
@@ -443,6 +492,7 @@ impl Heading {
         let used = walked.or(self.last_used);
         if theta.is_some() {
             self.last_single = theta;
+            self.last_limb_signed = limb_signed;
         }
         if let Some(u) = used {
             self.last_used = used;
@@ -454,6 +504,55 @@ impl Heading {
         StepHeading {
             used,
             single: theta,
+        }
+    }
+
+    /// `theta` (rad from north) with its 180° from the limb the phone rides
+    /// ([`HeadingConfig::limb_sign`]), and whether the limb gave it:
+    /// - the thigh's swing (`limb_forward`) while the mode is the pocket or not yet known (a
+    ///   swinging arm passes for a thigh, one axis and a leg's amplitude, but its swing says
+    ///   nothing of the way forward);
+    /// - in a swinging hand, the pelvis with the arm's pendulum taken out ([`arm`]), voted over
+    ///   the last steps ([`ARM_KEEP`]): the phone is moved into the hand over seconds, and one
+    ///   stride of it can point back.
+    fn limb_signed(
+        &mut self,
+        buf: &VecDeque<NavSample>,
+        window: StepWindow,
+        theta: f64,
+        carry: Option<CarryMode>,
+        limb_forward: Option<(f64, f64)>,
+    ) -> (Option<f64>, bool) {
+        let (s, c) = libm::sincos(theta);
+        let turned = |back: bool| {
+            Some(if back {
+                wrap_2pi(theta + std::f64::consts::PI)
+            } else {
+                theta
+            })
+        };
+        if carry != Some(CarryMode::Swinging) {
+            self.arm_vote = (0.0, 0.0);
+        }
+        // While a heading is carried across a change (and only then: on stairs the limb can
+        // stay silent for long, through turns), a limb's mode keeps the side of the heading
+        // last walked until the limb says.
+        let kept = |last: Option<f64>| match last {
+            Some(l) if self.carried.carrying() => (turned(libm::cos(theta - l) < 0.0), true),
+            _ => (Some(theta), false),
+        };
+        match (carry, limb_forward) {
+            (None | Some(CarryMode::Pocket), Some((e, n))) => (turned(s * e + c * n < 0.0), true),
+            (Some(CarryMode::Pocket), None) => kept(self.last_used),
+            (Some(CarryMode::Swinging), _) => match arm::forwardness(buf, window, (s, c)) {
+                Some(f) => {
+                    let v = &mut self.arm_vote;
+                    *v = (v.0 * ARM_KEEP + f * s, v.1 * ARM_KEEP + f * c);
+                    (turned(s * v.0 + c * v.1 < 0.0), true)
+                }
+                None => kept(self.last_used),
+            },
+            _ => (Some(theta), false),
         }
     }
 

@@ -80,6 +80,16 @@ impl Pipeline {
             continued: cont.is_some(),
             has_heading,
             carry: self.carry.mode(),
+            limb_forward: self
+                .pocket
+                .leg
+                .forward_axis()
+                .zip(self.attitude)
+                .map(|(a, q)| {
+                    // ẑ × L, L the forward swing axis in the world (east, north, up).
+                    let l = q * a;
+                    (-l.y, l.x)
+                }),
         });
         let heading_used = h.used;
         let pocket = self.step_pocket(c.t, state);
