@@ -427,3 +427,65 @@ impl LegPitch {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stride of period 1.1 s whose raw angle rises from its minimum to its maximum in
+    /// `rise_share` of it (a thigh's swing phase: about 0.33).
+    fn stride(t_max: f64, rise_share: f64) -> PitchStride {
+        PitchStride {
+            t_max,
+            max_deg: 25.0,
+            min_deg: -15.0,
+            t_min: t_max - rise_share * 1.1,
+            amplitude_deg: 40.0,
+            period_s: Some(1.1),
+        }
+    }
+
+    /// A leg pitch whose gyroscope turns about the device's x axis only, the phone upright.
+    fn swinging_about_x() -> LegPitch {
+        let mut leg = LegPitch::new(LegPitchConfig::default());
+        for i in 0..400 {
+            let w = 3.0 * libm::sin(i as f64 * 0.05);
+            leg.push(&LegPitchInput {
+                dt: 0.01,
+                gyro: Some(Vector3::new(w, 0.0, 0.0)),
+                attitude: Some(UnitQuaternion::identity()),
+                moving: true,
+            });
+        }
+        leg
+    }
+
+    #[test]
+    fn the_forward_axis_needs_thigh_strides_and_a_clear_vote() {
+        let mut leg = swinging_about_x();
+        assert_eq!(leg.forward_axis(), None, "no stride yet");
+        leg.push_stride(&stride(1.0, 0.33));
+        assert_eq!(leg.forward_axis(), None, "one stride");
+        leg.push_stride(&stride(2.1, 0.33));
+        // Forward is a positive raw angle: the axis as found, turned by the sign.
+        let a = leg
+            .forward_axis()
+            .expect("two thigh strides with a clear vote");
+        let found = leg.axis.unwrap();
+        assert!(
+            (a - found * leg.sign()).norm() < 1e-12 && a.x.abs() > 0.99,
+            "{a:?}"
+        );
+        // The rise taking the longer part turns it over.
+        let mut back = swinging_about_x();
+        back.push_stride(&stride(1.0, 0.67));
+        back.push_stride(&stride(2.1, 0.67));
+        assert!((back.forward_axis().unwrap() + a).norm() < 1e-12);
+        // A symmetric swing (a sinusoid) votes nothing clear.
+        let mut even = swinging_about_x();
+        for k in 0..6 {
+            even.push_stride(&stride(1.0 + 1.1 * k as f64, 0.5 + 0.02 * (k % 2) as f64));
+        }
+        assert_eq!(even.forward_axis(), None);
+    }
+}

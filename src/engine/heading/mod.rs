@@ -9,6 +9,7 @@
 //!   baseline (Steinhoff & Schiele 2010) that Basso 2016 §I argues against.
 //! - [`yaw_aid`] (ours): the device's own yaw in the hand and the reading pose.
 //! - [`continuity`] (ours): the heading carried across a change of source or carrying mode.
+//! - [`arm`] (ours): the swinging hand's 180°, the arm's pendulum taken out of the pelvis's rule.
 //!
 //! # Angles
 //! Headings are compass headings in radians, clockwise from north, in [0, 2π). Averages of two
@@ -26,6 +27,11 @@
 //! ∫ (a_h · u) (d a_up/dt) dt > 0 over the window. For the Fourier methods this integral is
 //! evaluated on the coefficients at the step frequency: ∫ = (T/2)·ω·(p·d − q·c) with (p, q) the
 //! cos/sin coefficients of a_h·u and (c, d) those of a_up ([`forward_sign`]).
+//!
+//! A phone on a limb adds a vertical term of its own at the step frequency, in antiphase with the
+//! pelvis's (a pendulum is highest at the ends of its swing, which are the heel strikes); with
+//! [`HeadingConfig::limb_sign`] the pocket takes the 180° from the thigh's swing and the swinging
+//! hand from the pelvis's rule with the arm's term taken out ([`arm`]).
 
 pub mod arm;
 pub mod closed_form;
@@ -103,8 +109,10 @@ pub struct HeadingConfig {
     /// Carry the heading across a change of its source or of the carrying mode
     /// ([`continuity`]); `None` lets each source stand alone.
     pub continuity: Option<continuity::Continuity>,
-    /// On a thigh, take the acceleration heading's 180° sign from the thigh's swing
-    /// ([`StepInput::limb_forward`]) instead of the pelvis's vertical phase. Default on.
+    /// Take the acceleration heading's 180° from the limb the phone rides, not from the
+    /// pelvis's vertical phase alone: in a pocket the thigh's forward swing
+    /// ([`StepInput::limb_forward`]), in a swinging hand the pelvis's rule with the arm's
+    /// pendulum taken out ([`arm`]). Default on.
     pub limb_sign: bool,
 }
 
