@@ -20,7 +20,7 @@
 //! arm's coefficient is −(2ω)²·L times that of θ²/2. L is [`ARM_LEVER_M`], the shoulder to the
 //! grip of an adult (about 0.36 of the stature); 20 % off it leaves a fifth of the arm's term.
 
-use super::{fourier, fourier_of, NavSample, StepWindow};
+use super::{fourier_of, NavSample, StepWindow};
 use std::collections::VecDeque;
 use std::f64::consts::TAU;
 
@@ -32,28 +32,26 @@ pub const ARM_LEVER_M: f64 = 0.65;
 /// the data or a sample in it has no swing angle.
 pub fn forwardness(buf: &VecDeque<NavSample>, w: StepWindow, u: (f64, f64)) -> Option<f64> {
     let (t0, t1) = (w.t_km2, w.t_k);
-    let h = fourier(buf, t0, t1)?;
-    let half_sq = |p: &NavSample| {
+    // The step frequency is the stride window's second harmonic; the Fourier coefficients are
+    // linear, so the arm's term is taken out sample by sample, in the same pass.
+    let w2 = 2.0 * TAU / (t1 - t0);
+    let k = w2 * w2 * ARM_LEVER_M;
+    let pelvis = |p: &NavSample| {
         let th = p.pitch.map_or(f64::NAN, f64::to_radians);
-        [0.0, 0.0, 0.5 * th * th]
+        [p.e, p.n, p.up + k * 0.5 * th * th]
     };
-    let g = fourier_of(buf, t0, t1, half_sq)?;
-    let (c, d) = (g[1].alpha[2], g[1].beta[2]);
+    let h = fourier_of(buf, t0, t1, pelvis)?;
+    let (c, d) = (h[1].alpha[2], h[1].beta[2]);
     if !(c.is_finite() && d.is_finite()) {
         return None;
     }
-    // The step frequency is the stride window's second harmonic.
-    let w2 = 2.0 * TAU / (t1 - t0);
-    let k = w2 * w2 * ARM_LEVER_M;
-    let mut pelvis = h[1];
-    pelvis.alpha[2] += k * c;
-    pelvis.beta[2] += k * d;
-    Some(super::forwardness(&pelvis, u))
+    Some(super::forwardness(&h[1], u))
 }
 
 #[cfg(test)]
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
+    use super::super::fourier;
     use super::*;
 
     /// A stride of a walker going north: the pelvis's vertical cos(2ωt) (peaks at double
