@@ -26,6 +26,10 @@ pub struct DetectorInput {
     /// The leg pitch's raw angle about the swing axis, degrees, when known
     /// ([`super::leg_pitch::LegPitch::push`]; its sign is arbitrary).
     pub pitch_deg: Option<f64>,
+    /// How far the swing axis of the thigh the phone rides on is tilted from the horizontal,
+    /// degrees, when the leg pitch knows it is on a thigh
+    /// ([`super::leg_pitch::LegPitch::axis_tilt_deg`]).
+    pub axis_tilt_deg: Option<f64>,
 }
 
 /// A step candidate from a detector: its time, and the detector's period estimate for it.

@@ -487,9 +487,11 @@ impl Pipeline {
             motion: state,
             cadence_hz: m.cadence_hz,
             pitch_deg: None,
+            axis_tilt_deg: None,
         };
         self.pocket_sample(s, dt, state, &x);
         x.pitch_deg = self.pocket.pitch;
+        x.axis_tilt_deg = self.pocket.leg.axis_tilt_deg();
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
         self.buf.push_back(NavSample {
             t: s.t,
@@ -497,6 +499,7 @@ impl Pipeline {
             n,
             up: nav.up,
             pitch: x.pitch_deg,
+            axis_tilt: x.axis_tilt_deg,
         });
         while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
             self.buf.pop_front();

@@ -108,7 +108,34 @@ pub struct PllConfig {
     /// Pixel_Jamie_Carpet_InHand_1/2 at 1.3 Hz: +50 % counted at 2.6 Hz). k = 1.4, just under
     /// √2, the geometric midpoint between f and 2f (and f/2), so the loop can never hold either.
     pub cadence_band_ratio: f64,
+    /// The first step of a walk, from standing, lifts the pelvis weakly: with the phone in a
+    /// pocket its cycle's RMS is 0.4–0.5 σ_z of the walk (the simulator's real-shaped starts)
+    /// and fails [`PllConfig::cycle_rms_rel`], while the thigh already swings nearly a full
+    /// step. So with the leg pitch known ([`DetectorInput::pitch_deg`]), a cycle that fails
+    /// only the σ-relative gate just before the first step counted since a restart is counted
+    /// too ([`Pll::take_first_step`]) when the limb swung over it by at least this share of
+    /// that step's swing, itself at least [`FIRST_SWING_MIN_DEG`]. Departure from the paper;
+    /// 0 turns it off.
+    pub first_swing_rel: f64,
+    /// With the phone on a thigh, the first cycle over which the thigh's swing axis tilts
+    /// further than this from the horizontal ([`DetectorInput::axis_tilt_deg`]) is no step: the
+    /// phone is leaving the thigh. The cycles after it count as any phone's until one is level
+    /// again, so a phone moved to the hand mid-walk loses one step, not the rest of the walk.
+    /// Departure from the paper: taking the phone out of the pocket after a walk jerks it at a
+    /// walking rhythm, and was counted as a step after every simulated pocket walk (its cycle
+    /// tilts the axis by 14–39°; the walk's cycles by less than 0.5° on the simulator, and by
+    /// about the hip's ab- and adduction and the pelvis's roll on a real thigh, ±5° each).
+    /// 15°: between the two, set by the real thigh.
+    pub axis_tilt_max_deg: f64,
 }
+
+/// The leg pitch's range over a cycle that has had no sample yet.
+const NO_PITCH_YET: (f64, f64) = (f64::INFINITY, f64::NEG_INFINITY);
+
+/// The least swing of the limb over the first counted cycle, degrees, for the cycle before it
+/// to be weighed by [`PllConfig::first_swing_rel`]: a thigh's or an arm's step swings it by
+/// 20–40° over a cycle, a hand-held phone rocks about its dominant axis by a few degrees.
+pub const FIRST_SWING_MIN_DEG: f64 = 15.0;
 
 impl Default for PllConfig {
     fn default() -> Self {
@@ -125,6 +152,8 @@ impl Default for PllConfig {
             same_leg_rel: 0.6,
             peak_share_min: 0.5,
             cadence_band_ratio: 1.4,
+            first_swing_rel: 0.6,
+            axis_tilt_max_deg: 15.0,
         }
     }
 }
@@ -139,6 +168,10 @@ impl PllConfig {
         positive("pll.cycle_rms_rel", self.cycle_rms_rel)?;
         positive("pll.same_leg_rel", self.same_leg_rel)?;
         positive("pll.peak_share_min", self.peak_share_min)?;
+        positive("pll.axis_tilt_max_deg", self.axis_tilt_max_deg)?;
+        if !(0.0..=1.0).contains(&self.first_swing_rel) {
+            return Err(ConfigError::new("pll.first_swing_rel", "must be in [0, 1]"));
+        }
         if !(self.cadence_band_ratio > 1.0) {
             return Err(ConfigError::new("pll.cadence_band_ratio", "must exceed 1"));
         }
@@ -185,6 +218,11 @@ pub struct Pll {
     kp: f64,
     ki: f64,
     s: PllState,
+    // Whether the last cycle tilted the thigh's swing axis beyond [`PllConfig::axis_tilt_max_deg`]:
+    // the phone left the thigh in the first such cycle, which was refused, and until a cycle
+    // is level again (the axis learnt afresh, or the phone back) the tilt refuses no other.
+    // Kept across a restart: it says where the phone is, not what the loop does.
+    tilted: bool,
 }
 
 /// The loop's running state, apart from its settings: a restart is a fresh state.
@@ -206,6 +244,18 @@ struct PllState {
     pending: Option<(f64, f64)>,
     // RMS of the last two cycles, newest first, and whether they counted.
     prev_cycles: [(f64, bool); 2],
+    // The leg pitch's least and largest raw angle over the cycle, degrees ([`NO_PITCH_YET`]
+    // before its first sample); `None` once a sample of the cycle had none.
+    cycle_pitch: Option<(f64, f64)>,
+    // The largest tilt of the thigh's swing axis over the cycle, degrees (0 without one).
+    cycle_tilt: f64,
+    // Whether a cycle counted since the restart.
+    counted: bool,
+    // The last cycle, when it failed only the σ-relative gate before any counted: its step
+    // and the limb's swing over it.
+    quiet: Option<(Candidate, f64)>,
+    // The step before the first one counted, taken back ([`Pll::take_first_step`]).
+    first_step: Option<Candidate>,
     output: f64,
     phasor: (f64, f64),
     // Acquisition aid: times of upward zero crossings (with hysteresis) of the input.
@@ -232,6 +282,11 @@ impl PllState {
             cycle_cc: 0.0,
             peak_max: f64::NEG_INFINITY,
             prev_cycles: [(0.0, false); 2],
+            cycle_pitch: Some(NO_PITCH_YET),
+            cycle_tilt: 0.0,
+            counted: false,
+            quiet: None,
+            first_step: None,
             pending: None,
             output: 1.0,
             phasor: (0.0, 1.0),
@@ -257,6 +312,7 @@ impl Pll {
             cfg,
             kp,
             ki,
+            tilted: false,
         }
     }
 
@@ -321,6 +377,8 @@ impl Pll {
         self.s.cycle_cc = 0.0;
         self.s.peak_max = f64::NEG_INFINITY;
         self.s.prev_cycles = [(0.0, false); 2];
+        self.s.cycle_pitch = Some(NO_PITCH_YET);
+        self.s.cycle_tilt = 0.0;
         self.s.pending = None;
         self.s.loop_lpf.reset();
         self.s.n_cross = 0;
@@ -357,8 +415,10 @@ impl Pll {
             sigma,
             motion,
             cadence_hz: cadence,
-            pitch_deg: _,
+            pitch_deg,
+            axis_tilt_deg,
         } = *x;
+        let tilt = axis_tilt_deg.unwrap_or(0.0);
         if self.s.band_key != Some((motion, cadence)) {
             self.s.band_key = Some((motion, cadence));
             self.s.band_val = self.band(motion, cadence);
@@ -395,34 +455,71 @@ impl Pll {
             let frac = (PI - from) / (self.s.phase - from);
             let sq = self.s.cycle_sq + d * d * dt * frac;
             let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
+            let tilted = self.s.cycle_tilt.max(tilt) > self.cfg.axis_tilt_max_deg;
+            let left_thigh = tilted && !self.tilted;
+            self.tilted = tilted;
             if let Some((t_peak, period_s)) = self.s.pending.take() {
                 let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
-                let counts = rms >= self.cfg.cycle_rms_min
+                let moving = rms >= self.cfg.cycle_rms_min
+                    && self.s.peak_max >= self.cfg.peak_share_min * rms
+                    && !left_thigh;
+                let counts = moving
                     && (rms >= self.cfg.cycle_rms_rel * sigma
-                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg))
-                    && self.s.peak_max >= self.cfg.peak_share_min * rms;
+                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
                 self.s.prev_cycles = [(rms, counts), self.s.prev_cycles[0]];
+                let den = self.s.cycle_cc * sq;
+                let c = Candidate {
+                    t: t_peak,
+                    period_s,
+                    coherence: if den > 0.0 {
+                        self.s.cycle_xc / libm::sqrt(den)
+                    } else {
+                        0.0
+                    },
+                };
+                let swing = self
+                    .s
+                    .cycle_pitch
+                    .map(|(lo, hi)| hi - lo)
+                    .filter(|s| *s >= 0.0);
                 if counts {
-                    let den = self.s.cycle_cc * sq;
-                    out = Some(Candidate {
-                        t: t_peak,
-                        period_s,
-                        coherence: if den > 0.0 {
-                            self.s.cycle_xc / libm::sqrt(den)
-                        } else {
-                            0.0
-                        },
-                    });
+                    if !self.s.counted {
+                        // The first step counted since the restart: the quiet one before it, if
+                        // the limb swung over it nearly as much.
+                        self.s.first_step = self
+                            .s
+                            .quiet
+                            .zip(swing)
+                            .filter(|&((_, q), s)| {
+                                self.cfg.first_swing_rel > 0.0
+                                    && s >= FIRST_SWING_MIN_DEG
+                                    && q >= self.cfg.first_swing_rel * s
+                            })
+                            .map(|(q, _)| q.0);
+                    }
+                    self.s.counted = true;
+                    out = Some(c);
                 }
+                self.s.quiet = swing
+                    .filter(|_| moving && !counts && !self.s.counted)
+                    .map(|s| (c, s));
             }
             self.s.cycle_xc = 0.0;
             self.s.cycle_cc = 0.0;
             self.s.peak_max = f64::NEG_INFINITY;
             self.s.cycle_sq = d * d * dt * (1.0 - frac);
             self.s.cycle_dt = dt * (1.0 - frac);
+            self.s.cycle_pitch = pitch_deg.map(|p| (p, p));
+            self.s.cycle_tilt = tilt;
         } else {
+            self.s.cycle_tilt = self.s.cycle_tilt.max(tilt);
             self.s.cycle_sq += d * d * dt;
             self.s.cycle_dt += dt;
+            self.s.cycle_pitch = self
+                .s
+                .cycle_pitch
+                .zip(pitch_deg)
+                .map(|((lo, hi), p)| (lo.min(p), hi.max(p)));
         }
         // Phase detector on the normalised input. The floor keeps noise small while still.
         let x = (d / sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
@@ -456,6 +553,13 @@ impl Pll {
         self.s.integ = (self.s.integ + self.ki * e * dt).clamp(lo, hi);
         self.s.freq = (self.s.integ + self.kp * e).clamp(lo, hi);
         out
+    }
+
+    /// The step before the first one counted since the restart, when its cycle failed only the
+    /// σ-relative gate but the limb swung over it ([`PllConfig::first_swing_rel`]); taken once,
+    /// right after [`Pll::push`] gave that first step.
+    pub fn take_first_step(&mut self) -> Option<Candidate> {
+        self.s.first_step.take()
     }
 
     /// The settings.
@@ -527,6 +631,7 @@ mod tests {
                 motion: Motion::Walking,
                 cadence_hz: None,
                 pitch_deg: None,
+                axis_tilt_deg: None,
             };
             if p.push(&x).is_some() {
                 n += 1;
@@ -546,5 +651,86 @@ mod tests {
             );
             assert!((fr - f).abs() < 0.05, "f={f}: tracked {fr}");
         }
+    }
+
+    /// A walk at 1.8 Hz sampled at 100 Hz for `seconds`: the vertical acceleration's amplitude,
+    /// the leg pitch (degrees) and the axis tilt at each time. Returns the steps found, with the
+    /// step [`Pll::take_first_step`] gave back after any of them.
+    fn walk(
+        seconds: f64,
+        amplitude: impl Fn(f64) -> f64,
+        pitch: impl Fn(f64) -> Option<f64>,
+        tilt: impl Fn(f64) -> Option<f64>,
+    ) -> (Vec<f64>, Option<f64>) {
+        let f = 1.8;
+        let mut p = Pll::new(PllConfig::default());
+        let (mut steps, mut first) = (Vec::new(), None);
+        for i in 1..(seconds * 100.0) as usize {
+            let t = i as f64 / 100.0;
+            let c = p.push(&DetectorInput {
+                t,
+                dt: 0.01,
+                up: amplitude(t) * (TAU * f * t).cos(),
+                mean: 0.0,
+                sigma: 3.0 / 2f64.sqrt(),
+                motion: Motion::Walking,
+                cadence_hz: Some(f),
+                pitch_deg: pitch(t),
+                axis_tilt_deg: tilt(t),
+            });
+            if let Some(c) = c {
+                steps.push(c.t);
+                first = first.or(p.take_first_step().map(|c| c.t));
+            }
+        }
+        (steps, first)
+    }
+
+    #[test]
+    fn the_cycle_in_which_the_phone_leaves_the_thigh_is_no_step() {
+        // The thigh's pitch swings ±15° at the stride frequency, 30° over each step's cycle.
+        let swing = |t: f64| Some(15.0 * (std::f64::consts::PI * 1.8 * t).sin());
+        let level = walk(20.0, |_| 3.0, swing, |_| Some(0.0)).0;
+        // From 10 s on the axis tilts by `tilt` and stays tilted: the first cycle over which it
+        // exceeds 15° is refused, and no other (the phone is elsewhere now).
+        for (tilt, lost) in [(10.0, 0), (20.0, 1)] {
+            let steps = walk(
+                20.0,
+                |_| 3.0,
+                swing,
+                |t| Some(if t < 10.0 { 0.0 } else { tilt }),
+            )
+            .0;
+            assert_eq!(steps.len() + lost, level.len(), "tilt {tilt}°: {steps:?}");
+        }
+        // Tilted for a second at 6 s and at 12 s, level between: each departure costs a step.
+        let tilt = |t: f64| {
+            Some(if (6.0..7.0).contains(&t) || (12.0..13.0).contains(&t) {
+                30.0
+            } else {
+                0.0
+            })
+        };
+        let steps = walk(20.0, |_| 3.0, swing, tilt).0;
+        assert_eq!(steps.len() + 2, level.len(), "{steps:?}");
+        let counted_in = |a: f64, b: f64| steps.iter().any(|&t| t > a && t < b);
+        assert!(counted_in(7.5, 11.5) && counted_in(13.5, 20.0), "{steps:?}");
+    }
+
+    #[test]
+    fn a_quiet_first_step_counts_when_the_limb_swung_over_it() {
+        let f = 1.8;
+        // The first judged cycle, around the peak at 1/f, at 0.3 of the walk's amplitude: its
+        // RMS is 0.3 σ, below the σ-relative gate's 0.5.
+        let amplitude = |t: f64| if t < 1.5 / f { 0.9 } else { 3.0 };
+        let thigh = |a: f64| move |t: f64| Some(a * (std::f64::consts::PI * f * t).sin());
+        let (steps, first) = walk(6.0, amplitude, thigh(15.0), |_| Some(0.0));
+        let first = first.expect("the quiet first step, given back");
+        assert!((first - 1.0 / f).abs() < 0.02, "{first}");
+        assert!((steps[0] - 2.0 / f).abs() < 0.02, "{steps:?}");
+        // Without a leg pitch, or with a limb that barely swings (10° over a step, a hand's
+        // rocking), the quiet cycle stays out.
+        assert_eq!(walk(6.0, amplitude, |_| None, |_| None).1, None);
+        assert_eq!(walk(6.0, amplitude, thigh(5.0), |_| Some(0.0)).1, None);
     }
 }

@@ -71,6 +71,7 @@ mod tests {
                 n: -(2.0 * w * t).sin() + 3.0 * (w * t).sin(),
                 up: (2.0 * w * t).cos() - ARM_LEVER_M * a * a * w * w * (2.0 * w * t).cos(),
                 pitch: pitch.then_some(theta.to_degrees()),
+                axis_tilt: None,
             });
         }
         let win = StepWindow {

@@ -61,6 +61,9 @@ pub struct NavSample {
     pub up: f64,
     /// The leg pitch, degrees, when known ([`crate::engine::leg_pitch`]).
     pub pitch: Option<f64>,
+    /// How far the limb's swing axis is tilted from the horizontal, degrees, while the phone
+    /// rides on a thigh ([`crate::engine::leg_pitch::LegPitch::axis_tilt_deg`]).
+    pub axis_tilt: Option<f64>,
 }
 
 impl NavSample {
@@ -76,6 +79,7 @@ impl NavSample {
             n: a.n + w * (b.n - a.n),
             up: a.up + w * (b.up - a.up),
             pitch: a.pitch,
+            axis_tilt: a.axis_tilt,
         }
     }
 }
@@ -609,6 +613,7 @@ mod tests {
                 n: 0.7 * (w * tau).sin() + 0.2,
                 up: 2.0 * (2.0 * w * tau).cos(),
                 pitch: None,
+                axis_tilt: None,
             });
             i += 1;
             t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;

@@ -60,6 +60,15 @@ impl Detector {
         }
     }
 
+    /// The PLL's step before the first one counted since its restart, taken back
+    /// ([`Pll::take_first_step`]); the other detectors have none.
+    pub(super) fn take_first_step(&mut self) -> Option<Candidate> {
+        match self {
+            Detector::Pll(p) => p.take_first_step(),
+            _ => None,
+        }
+    }
+
     /// Starts afresh on a gait already under way: the PLL at the motion detector's cadence with
     /// its phase fitted to `samples` (time, vertical acceleration) about their mean `mean`; the
     /// peak detector empty.

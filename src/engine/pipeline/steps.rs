@@ -5,7 +5,7 @@ use super::{Pipeline, StepRecord};
 use crate::engine::activity::Activity;
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
-use crate::engine::heading::{self, StepWindow};
+use crate::engine::heading::{self, NavSample, StepWindow};
 use crate::engine::motion::Motion;
 use crate::engine::orientation::Orientation;
 use crate::engine::step_length::StepLengthInput;
@@ -13,34 +13,33 @@ use crate::engine::step_length::StepLengthInput;
 impl Pipeline {
     /// Restarts the step detector at time `t` on the samples of the last
     /// [`PipelineConfig::onset_lookback_s`] and returns the steps it finds in them. The PLL
-    /// starts at the motion detector's cadence with its phase fitted to those samples; the
-    /// peak detector starts empty.
+    /// starts at the motion detector's cadence with its phase fitted to those samples (and
+    /// gives back a quiet first step the thigh swung over, [`crate::engine::pll::Pll::take_first_step`]);
+    /// the peak detector starts empty.
     pub(super) fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
         let since = t - self.cfg.onset_lookback_s;
-        let samples: Vec<(f64, f64, Option<f64>)> = self
-            .buf
-            .iter()
-            .filter(|x| x.t >= since)
-            .map(|x| (x.t, x.up, x.pitch))
-            .collect();
+        let samples: Vec<&NavSample> = self.buf.iter().filter(|x| x.t >= since).collect();
         let m = self.motion.diagnostics();
-        let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.0, s.1)).collect();
+        let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.up)).collect();
         self.detector.restart(m.cadence_hz, &ups, m.mean_z);
         let mut out = Vec::new();
         let mut last = None;
-        for &(ts, up, pitch_deg) in &samples {
-            let dt = last.map_or(0.0, |l| ts - l);
-            last = Some(ts);
-            out.extend(self.detector.push(&DetectorInput {
-                t: ts,
+        for s in samples {
+            let dt = last.map_or(0.0, |l| s.t - l);
+            last = Some(s.t);
+            let c = self.detector.push(&DetectorInput {
+                t: s.t,
                 dt,
-                up,
+                up: s.up,
                 mean: m.mean_z,
                 sigma: m.sigma_z,
                 motion: state,
                 cadence_hz: m.cadence_hz,
-                pitch_deg,
-            }));
+                pitch_deg: s.pitch,
+                axis_tilt_deg: s.axis_tilt,
+            });
+            out.extend(self.detector.take_first_step());
+            out.extend(c);
         }
         // The gait began after the last step that does not follow its rhythm.
         let first = out
