@@ -399,7 +399,7 @@ impl LegPitch {
 
     /// How far the swing axis is tilted from the horizontal now, degrees, while the phone rides
     /// on a thigh ([`Self::on_thigh`]): asin |a·u| for the axis a and the up direction u in
-    /// the device. The axis is learnt from the horizontal rotation of the last seconds
+    /// the device, both unit vectors. The axis is learnt from the horizontal rotation of the last seconds
     /// ([`LegPitchConfig::axis_tau_s`]), so it stays near 0 while the phone rides the thigh
     /// (the simulator's thighs: 0.0–0.4°; a real hip's ab- and adduction and the pelvis's
     /// roll are about ±5° each), and grows when the phone turns in a way the thigh does not:
@@ -407,7 +407,7 @@ impl LegPitch {
     pub fn axis_tilt_deg(&self) -> Option<f64> {
         let (a, u) = (self.axis?, self.up?);
         self.thigh
-            .then(|| libm::asin((a.dot(&u) / u.norm()).abs().min(1.0)).to_degrees())
+            .then(|| libm::asin(a.dot(&u).abs().min(1.0)).to_degrees())
     }
 
     /// Whether the phone rides on a thigh ([`Self::push_stride`]).
