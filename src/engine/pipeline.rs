@@ -341,6 +341,8 @@ pub struct Pipeline {
     last_gnss_t: Option<f64>,
     last_pressure_t: Option<f64>,
     prev_state: Motion,
+    // The last gait the motion detector saw (walking or running).
+    last_gait: Motion,
     // Step history of the current bout.
     t_km1: Option<f64>,
     t_km2: Option<f64>,
@@ -393,6 +395,7 @@ impl Pipeline {
             origin: OriginVote::default(),
             last_pressure_t: None,
             prev_state: Motion::Still,
+            last_gait: Motion::Walking,
             t_km1: None,
             t_km2: None,
             attitude: None,
@@ -500,11 +503,15 @@ impl Pipeline {
             up: nav.up,
             pitch: x.pitch_deg,
             axis_tilt: x.axis_tilt_deg,
+            attitude: nav.attitude,
+            yaw: self.heading.yaw(),
         });
         while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
             self.buf.pop_front();
         }
         let cand = self.detector.push(&x);
+        // A step the PLL decided only now, earlier than `cand`.
+        let late = self.detector.take_late_step();
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
@@ -517,13 +524,21 @@ impl Pipeline {
                 }
                 if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
                     self.diag.onset_steps += 1;
-                    self.emit(c, state);
+                    self.emit(c, state, false);
                 }
             }
-        } else if let Some(c) = cand.filter(|_| state.is_moving()) {
-            if self.placement != Placement::Foot {
-                self.emit(c, state);
+        } else if self.placement != Placement::Foot {
+            // A step held while a gait was seen counts even when the motion detector has
+            // stopped seeing it since.
+            if let Some(c) = late {
+                self.emit(c, self.last_gait, true);
             }
+            if let Some(c) = cand.filter(|_| state.is_moving()) {
+                self.emit(c, state, false);
+            }
+        }
+        if state.is_moving() {
+            self.last_gait = state;
         }
         self.prev_state = state;
         // Recognising a foot replaces the steps so far by the strides: all are new then.

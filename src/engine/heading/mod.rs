@@ -64,6 +64,10 @@ pub struct NavSample {
     /// How far the limb's swing axis is tilted from the horizontal, degrees, while the phone
     /// rides on a thigh ([`crate::engine::leg_pitch::LegPitch::axis_tilt_deg`]).
     pub axis_tilt: Option<f64>,
+    /// The device → ENU attitude, when the orientation source has one.
+    pub attitude: Option<nalgebra::UnitQuaternion<f64>>,
+    /// The device's yaw integrated by the heading stage ([`Heading::yaw`]), compass radians.
+    pub yaw: f64,
 }
 
 impl NavSample {
@@ -80,6 +84,8 @@ impl NavSample {
             up: a.up + w * (b.up - a.up),
             pitch: a.pitch,
             axis_tilt: a.axis_tilt,
+            attitude: a.attitude,
+            yaw: a.yaw,
         }
     }
 }
@@ -305,6 +311,10 @@ pub struct StepInput<'a> {
     /// The way forward (east, north) a swinging thigh shows, when the phone rides on one
     /// ([`crate::engine::leg_pitch::LegPitch::forward_axis`]); see [`HeadingConfig::limb_sign`].
     pub limb_forward: Option<(f64, f64)>,
+    /// For a step the step detector decided a cycle late, the sample half a period after its
+    /// peak, when a step is judged: its attitude and yaw are the step's, not the latest
+    /// sample's.
+    pub judged_at: Option<&'a NavSample>,
 }
 
 /// One step's heading.
@@ -377,6 +387,12 @@ impl Heading {
         &self.cfg
     }
 
+    /// The device's yaw integrated from the attitude's increments, compass radians, unwrapped
+    /// (with [`YawAid::learn_offset`]; else 0).
+    pub fn yaw(&self) -> f64 {
+        self.yaw
+    }
+
     /// The latest sample's device → ENU attitude, when the orientation source has one.
     pub fn attitude(&self) -> Option<nalgebra::UnitQuaternion<f64>> {
         self.attitude
@@ -406,8 +422,10 @@ impl Heading {
             has_heading,
             carry,
             limb_forward,
+            judged_at,
         } = *step;
-        let up = self.attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
+        let (attitude, yaw) = judged_at.map_or((self.attitude, self.yaw), |s| (s.attitude, s.yaw));
+        let up = attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
         let previous_up = self.ups.back().copied();
         if let Some(u) = up {
             if self.ups.len() == continuity::UPS {
@@ -439,8 +457,7 @@ impl Heading {
             (th, _) => th,
         };
         let aided = match &self.cfg.yaw_aid {
-            Some(aid) if has_heading && self.attitude.is_some() => {
-                let yaw = self.yaw;
+            Some(aid) if has_heading && attitude.is_some() => {
                 let prev = self.last_yaw.replace(yaw).filter(|_| continued);
                 // In the hand, screen up, at any tilt the carrying mode allows; else (and before
                 // the mode is known) held nearly flat.
@@ -452,10 +469,10 @@ impl Heading {
                     && carry == Some(crate::engine::carry::CarryMode::Hand)
                     && steady
                     && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
-                    || self.attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
+                    || attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
                 if reading {
                     // Held in front, screen up: the top of the phone is the way forward.
-                    self.attitude.as_ref().and_then(device_twist)
+                    attitude.as_ref().and_then(device_twist)
                 } else if !aid.learn_offset {
                     None
                 } else {
@@ -614,6 +631,8 @@ mod tests {
                 up: 2.0 * (2.0 * w * tau).cos(),
                 pitch: None,
                 axis_tilt: None,
+                attitude: None,
+                yaw: 0.0,
             });
             i += 1;
             t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;

@@ -60,11 +60,20 @@ impl Detector {
         }
     }
 
-    /// The PLL's step before the first one counted since its restart, taken back
-    /// ([`Pll::take_first_step`]); the other detectors have none.
-    pub(super) fn take_first_step(&mut self) -> Option<Candidate> {
+    /// The PLL's step decided only with a later cycle, earlier than the step its push gave
+    /// ([`Pll::take_late_step`]); the other detectors have none.
+    pub(super) fn take_late_step(&mut self) -> Option<Candidate> {
         match self {
-            Detector::Pll(p) => p.take_first_step(),
+            Detector::Pll(p) => p.take_late_step(),
+            _ => None,
+        }
+    }
+
+    /// The PLL's step held for the next cycle, given up undecided ([`Pll::release_held`]); the
+    /// other detectors hold none.
+    pub(super) fn release_held(&mut self) -> Option<Candidate> {
+        match self {
+            Detector::Pll(p) => p.release_held(),
             _ => None,
         }
     }

@@ -14,7 +14,7 @@ impl Pipeline {
     /// Restarts the step detector at time `t` on the samples of the last
     /// [`PipelineConfig::onset_lookback_s`] and returns the steps it finds in them. The PLL
     /// starts at the motion detector's cadence with its phase fitted to those samples (and
-    /// gives back a quiet first step the thigh swung over, [`crate::engine::pll::Pll::take_first_step`]);
+    /// gives back the steps it decides a cycle late, [`crate::engine::pll::Pll::take_late_step`]);
     /// the peak detector starts empty.
     pub(super) fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
         let since = t - self.cfg.onset_lookback_s;
@@ -38,9 +38,11 @@ impl Pipeline {
                 pitch_deg: s.pitch,
                 axis_tilt_deg: s.axis_tilt,
             });
-            out.extend(self.detector.take_first_step());
+            out.extend(self.detector.take_late_step());
             out.extend(c);
         }
+        // A step held for a cycle the look-back has not reached is weighed with the rest.
+        out.extend(self.detector.release_held());
         // The gait began after the last step that does not follow its rhythm.
         let first = out
             .iter()
@@ -49,7 +51,12 @@ impl Pipeline {
         out.split_off(first)
     }
 
-    pub(super) fn emit(&mut self, c: Candidate, state: Motion) {
+    /// Emits a step; `late` when the step detector decided it a cycle late
+    /// ([`crate::engine::pll::Pll::take_late_step`]): its heading then takes the attitude of the
+    /// sample at which a step is judged, half a period after its peak, as an on-time step's
+    /// does. The onset look-back's steps keep the latest attitude (README, "The pocket's lone
+    /// last jolt": giving them theirs was measured, and mixed).
+    pub(super) fn emit(&mut self, c: Candidate, state: Motion, late: bool) {
         if self.two.is_some() {
             // With a foot sensor, the track is its strides (see `two_sensor`).
             return;
@@ -73,22 +80,25 @@ impl Pipeline {
             .orientation
             .as_ref()
             .is_some_and(Orientation::has_heading);
+        let judged_at = late
+            .then(|| {
+                let t = c.t + 0.5 * c.period_s;
+                self.buf.iter().find(|s| s.t >= t)
+            })
+            .flatten();
+        let attitude = judged_at.map_or(self.attitude, |s| s.attitude);
         let h = self.heading.push(&heading::StepInput {
             buf: &self.buf,
             window: w,
             continued: cont.is_some(),
             has_heading,
             carry: self.carry.mode(),
-            limb_forward: self
-                .pocket
-                .leg
-                .forward_axis()
-                .zip(self.attitude)
-                .map(|(a, q)| {
-                    // ẑ × L, L the forward swing axis in the world (east, north, up).
-                    let l = q * a;
-                    (-l.y, l.x)
-                }),
+            limb_forward: self.pocket.leg.forward_axis().zip(attitude).map(|(a, q)| {
+                // ẑ × L, L the forward swing axis in the world (east, north, up).
+                let l = q * a;
+                (-l.y, l.x)
+            }),
+            judged_at,
         });
         let heading_used = h.used;
         let pocket = self.step_pocket(c.t, state);
