@@ -269,7 +269,8 @@ struct PllState {
     // and the limb's swing over it.
     quiet: Option<(Candidate, f64)>,
     // A step counted only with the next cycle's judgement ([`Pll::take_late_step`]): the
-    // quiet one before the first counted, or the held one below once the next cycle moved.
+    // quiet one before the first counted, or the held one below once the next cycle stepped
+    // or stood.
     late: Option<Candidate>,
     // A step after a standing cycle, held until the next cycle is judged
     // ([`PllConfig::lone_step_confirm`]).
