@@ -343,6 +343,8 @@ pub struct Pipeline {
     prev_state: Motion,
     // The last gait the motion detector saw (walking or running).
     last_gait: Motion,
+    // The heading stage's pose when the step detector began to hold a step for the next cycle.
+    held_pose: Option<heading::Pose>,
     // Step history of the current bout.
     t_km1: Option<f64>,
     t_km2: Option<f64>,
@@ -396,6 +398,7 @@ impl Pipeline {
             last_pressure_t: None,
             prev_state: Motion::Still,
             last_gait: Motion::Walking,
+            held_pose: None,
             t_km1: None,
             t_km2: None,
             attitude: None,
@@ -503,15 +506,23 @@ impl Pipeline {
             up: nav.up,
             pitch: x.pitch_deg,
             axis_tilt: x.axis_tilt_deg,
-            attitude: nav.attitude,
-            yaw: self.heading.yaw(),
         });
         while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
             self.buf.pop_front();
         }
         let cand = self.detector.push(&x);
-        // A step the PLL decided only now, earlier than `cand`.
+        // A step the PLL decided only now, earlier than `cand`, with the pose at which it was
+        // held for the next cycle, if it was.
         let late = self.detector.take_late_step();
+        let late_pose = if late.is_some() {
+            self.held_pose.take()
+        } else {
+            None
+        };
+        let holding = self.detector.holding();
+        if holding != self.held_pose.is_some() {
+            self.held_pose = holding.then(|| self.heading.pose());
+        }
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
@@ -524,17 +535,17 @@ impl Pipeline {
                 }
                 if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
                     self.diag.onset_steps += 1;
-                    self.emit(c, state, false);
+                    self.emit(c, state, None);
                 }
             }
         } else if self.placement != Placement::Foot {
             // A step held while a gait was seen counts even when the motion detector has
             // stopped seeing it since.
             if let Some(c) = late {
-                self.emit(c, self.last_gait, true);
+                self.emit(c, self.last_gait, late_pose);
             }
             if let Some(c) = cand.filter(|_| state.is_moving()) {
-                self.emit(c, state, false);
+                self.emit(c, state, None);
             }
         }
         if state.is_moving() {

@@ -607,6 +607,11 @@ impl Pll {
         self.s.late.take()
     }
 
+    /// Whether a step is held for the next cycle's judgement ([`PllConfig::lone_step_confirm`]).
+    pub fn holding(&self) -> bool {
+        self.s.held.is_some()
+    }
+
     /// The step held for the next cycle's judgement ([`PllConfig::lone_step_confirm`]), given
     /// up undecided: counted, as without the rule. The onset look-back ends with it, so that
     /// its step is weighed with the others found there.

@@ -72,8 +72,6 @@ mod tests {
                 up: (2.0 * w * t).cos() - ARM_LEVER_M * a * a * w * w * (2.0 * w * t).cos(),
                 pitch: pitch.then_some(theta.to_degrees()),
                 axis_tilt: None,
-                attitude: None,
-                yaw: 0.0,
             });
         }
         let win = StepWindow {

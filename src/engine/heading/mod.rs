@@ -64,10 +64,6 @@ pub struct NavSample {
     /// How far the limb's swing axis is tilted from the horizontal, degrees, while the phone
     /// rides on a thigh ([`crate::engine::leg_pitch::LegPitch::axis_tilt_deg`]).
     pub axis_tilt: Option<f64>,
-    /// The device → ENU attitude, when the orientation source has one.
-    pub attitude: Option<nalgebra::UnitQuaternion<f64>>,
-    /// The device's yaw integrated by the heading stage ([`Heading::yaw`]), compass radians.
-    pub yaw: f64,
 }
 
 impl NavSample {
@@ -84,8 +80,6 @@ impl NavSample {
             up: a.up + w * (b.up - a.up),
             pitch: a.pitch,
             axis_tilt: a.axis_tilt,
-            attitude: a.attitude,
-            yaw: a.yaw,
         }
     }
 }
@@ -311,10 +305,19 @@ pub struct StepInput<'a> {
     /// The way forward (east, north) a swinging thigh shows, when the phone rides on one
     /// ([`crate::engine::leg_pitch::LegPitch::forward_axis`]); see [`HeadingConfig::limb_sign`].
     pub limb_forward: Option<(f64, f64)>,
-    /// For a step the step detector decided a cycle late, the sample half a period after its
-    /// peak, when a step is judged: its attitude and yaw are the step's, not the latest
-    /// sample's.
-    pub judged_at: Option<&'a NavSample>,
+    /// For a step the step detector decided a cycle late, the stage's [`Pose`] when it was
+    /// judged: the step's heading takes it, not the latest sample's.
+    pub judged_at: Option<Pose>,
+}
+
+/// The heading stage's view of the device at one sample ([`Heading::pose`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pose {
+    /// The device → ENU attitude, when the orientation source has one.
+    pub attitude: Option<nalgebra::UnitQuaternion<f64>>,
+    /// The device's yaw integrated from the attitude's increments, compass radians, unwrapped
+    /// (with [`YawAid::learn_offset`]; else 0).
+    pub yaw: f64,
 }
 
 /// One step's heading.
@@ -387,10 +390,12 @@ impl Heading {
         &self.cfg
     }
 
-    /// The device's yaw integrated from the attitude's increments, compass radians, unwrapped
-    /// (with [`YawAid::learn_offset`]; else 0).
-    pub fn yaw(&self) -> f64 {
-        self.yaw
+    /// The latest sample's attitude and integrated yaw.
+    pub fn pose(&self) -> Pose {
+        Pose {
+            attitude: self.attitude,
+            yaw: self.yaw,
+        }
     }
 
     /// The latest sample's device → ENU attitude, when the orientation source has one.
@@ -424,7 +429,7 @@ impl Heading {
             limb_forward,
             judged_at,
         } = *step;
-        let (attitude, yaw) = judged_at.map_or((self.attitude, self.yaw), |s| (s.attitude, s.yaw));
+        let Pose { attitude, yaw } = judged_at.unwrap_or_else(|| self.pose());
         let up = attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
         let previous_up = self.ups.back().copied();
         if let Some(u) = up {
@@ -631,8 +636,6 @@ mod tests {
                 up: 2.0 * (2.0 * w * tau).cos(),
                 pitch: None,
                 axis_tilt: None,
-                attitude: None,
-                yaw: 0.0,
             });
             i += 1;
             t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;

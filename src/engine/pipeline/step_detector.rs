@@ -69,6 +69,11 @@ impl Detector {
         }
     }
 
+    /// Whether the PLL holds a step for the next cycle's judgement ([`Pll::holding`]).
+    pub(super) fn holding(&self) -> bool {
+        matches!(self, Detector::Pll(p) if p.holding())
+    }
+
     /// The PLL's step held for the next cycle, given up undecided ([`Pll::release_held`]); the
     /// other detectors hold none.
     pub(super) fn release_held(&mut self) -> Option<Candidate> {

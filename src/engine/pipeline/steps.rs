@@ -5,7 +5,7 @@ use super::{Pipeline, StepRecord};
 use crate::engine::activity::Activity;
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
-use crate::engine::heading::{self, NavSample, StepWindow};
+use crate::engine::heading::{self, NavSample, Pose, StepWindow};
 use crate::engine::motion::Motion;
 use crate::engine::orientation::Orientation;
 use crate::engine::step_length::StepLengthInput;
@@ -51,12 +51,12 @@ impl Pipeline {
         out.split_off(first)
     }
 
-    /// Emits a step; `late` when the step detector decided it a cycle late
-    /// ([`crate::engine::pll::Pll::take_late_step`]): its heading then takes the attitude of the
-    /// sample at which a step is judged, half a period after its peak, as an on-time step's
-    /// does. The onset look-back's steps keep the latest attitude (README, "The pocket's lone
-    /// last jolt": giving them theirs was measured, and mixed).
-    pub(super) fn emit(&mut self, c: Candidate, state: Motion, late: bool) {
+    /// Emits a step. `judged_at`: for a step the step detector held for a cycle
+    /// ([`crate::engine::pll::Pll::take_late_step`]), the heading stage's pose when it was judged,
+    /// which its heading takes, as an on-time step's takes the latest. The onset look-back's
+    /// steps keep the latest (README, "The pocket's lone last jolt": giving them theirs was
+    /// measured, and mixed).
+    pub(super) fn emit(&mut self, c: Candidate, state: Motion, judged_at: Option<Pose>) {
         if self.two.is_some() {
             // With a foot sensor, the track is its strides (see `two_sensor`).
             return;
@@ -80,13 +80,7 @@ impl Pipeline {
             .orientation
             .as_ref()
             .is_some_and(Orientation::has_heading);
-        let judged_at = late
-            .then(|| {
-                let t = c.t + 0.5 * c.period_s;
-                self.buf.iter().find(|s| s.t >= t)
-            })
-            .flatten();
-        let attitude = judged_at.map_or(self.attitude, |s| s.attitude);
+        let attitude = judged_at.map_or(self.attitude, |p| p.attitude);
         let h = self.heading.push(&heading::StepInput {
             buf: &self.buf,
             window: w,
