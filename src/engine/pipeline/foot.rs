@@ -3,7 +3,7 @@
 
 use super::{Pipeline, StepRecord};
 use crate::engine::activity::Activity;
-use crate::engine::foot::placement::{Placement, DECIDE_WITHIN_S};
+use crate::engine::foot::placement::{Placement, Verdict, DECIDE_WITHIN_S};
 use crate::engine::foot::Stride;
 use crate::engine::fusion;
 use crate::engine::motion::Motion;
@@ -30,15 +30,24 @@ impl Pipeline {
                 false
             }
             Placement::Auto => {
+                let mut verdict = Verdict::Undecided;
                 if let Some(st) = stride {
                     self.pending.push(st);
-                    if self.recogniser.push(&st) {
-                        self.become_foot();
-                        return true;
-                    }
+                    let steps_in_swing = self
+                        .steps
+                        .iter()
+                        .rev()
+                        .take_while(|k| k.t >= st.t_start)
+                        .filter(|k| k.t <= st.t_end)
+                        .count();
+                    verdict = self.recogniser.push(&st, steps_in_swing);
                 }
                 let start = self.diag.time_span.map_or(s.t, |p| p.0);
-                if s.t - start > DECIDE_WITHIN_S {
+                if verdict == Verdict::Foot {
+                    self.become_foot();
+                    return true;
+                }
+                if verdict == Verdict::Body || s.t - start > DECIDE_WITHIN_S {
                     self.placement = Placement::Body;
                     self.foot = None;
                     self.pending = Vec::new();
