@@ -548,12 +548,29 @@ impl Scenario {
             let heading = path(dt) + waist(dt);
             if switching.is_some() {
                 let (from, to, k) = phase(dt);
+                // Each mode's attitude as a quaternion whose sign is its resting mount's, and
+                // the two signs chosen by the resting mounts alone: the slerp then follows one
+                // path all through the move. (The shortest path, nalgebra's, flipped from sample
+                // to sample between the ear and the swinging hand, whose mounts are about 180°
+                // apart, and the attitude's derivative gave rates of thousands of rad/s.)
+                let rest = |c: Carry| UnitQuaternion::from_matrix(&mount_of(c)).into_inner();
                 let q = |c: Carry| {
-                    let m = limb_of(c, dt) * mount_of(c);
-                    UnitQuaternion::from_matrix(&m)
+                    let q = UnitQuaternion::from_matrix(&(limb_of(c, dt) * mount_of(c)));
+                    let q = q.into_inner().coords;
+                    if q.dot(&rest(c).coords) < 0.0 {
+                        -q
+                    } else {
+                        q
+                    }
                 };
-                let r = q(from).slerp(&q(to), k).to_rotation_matrix().into_inner();
-                return rz(FRAC_PI_2 - heading) * r;
+                let (a, mut b) = (q(from), q(to));
+                if rest(from).coords.dot(&rest(to).coords) < 0.0 {
+                    b = -b;
+                }
+                let v =
+                    nalgebra::Unit::new_unchecked(a).slerp(&nalgebra::Unit::new_unchecked(b), k);
+                let r = UnitQuaternion::new_unchecked(nalgebra::Quaternion::from(v.into_inner()));
+                return rz(FRAC_PI_2 - heading) * r.to_rotation_matrix().into_inner();
             }
             let mut r = rz(FRAC_PI_2 - heading) * limb(dt);
             if handled {
