@@ -167,6 +167,12 @@ pub struct LegPitch {
     stride_sum: Vector3<f64>,
     vote: f64,
     vote_periods: f64,
+    /// The swing axis the votes refer to (the axis when they began).
+    vote_axis: Option<Vector3<f64>>,
+    /// The swing axis at the end of the last stride.
+    stride_axis: Option<Vector3<f64>>,
+    /// Whether the axis held still over the last stride.
+    stride_steady: bool,
     up: Option<Vector3<f64>>,
     last: Option<f64>,
     amplitudes: std::collections::VecDeque<f64>,
@@ -194,6 +200,14 @@ const SIGN_CLEAR: f64 = 0.1;
 /// Weight kept by the sign's vote per stride (about the last 30 strides count).
 const SIGN_KEEP: f64 = 0.97;
 
+/// The votes start again when the swing axis has turned in the device by more than this from
+/// the axis they began on (cos 45°): the phone was moved in the body.
+const REMOUNT_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// A stride votes only if the swing axis turned in the device by less than this since the
+/// last stride (cos 15°): a phone being moved swings about no axis of its own.
+const STEADY_AXIS_COS: f64 = 0.966;
+
 impl LegPitch {
     /// A stage with validated settings.
     pub fn new(cfg: LegPitchConfig) -> Self {
@@ -208,6 +222,9 @@ impl LegPitch {
             stride_sum: Vector3::zeros(),
             vote: 0.0,
             vote_periods: 0.0,
+            vote_axis: None,
+            stride_axis: None,
+            stride_steady: true,
             up: None,
             last: None,
             amplitudes: std::collections::VecDeque::new(),
@@ -333,7 +350,7 @@ impl LegPitch {
     /// Another kind of stride only starts the next one afresh ([`Self::skip_stride`]).
     pub fn commit_level_stride(&mut self) {
         let n = self.stride_sum.norm();
-        if n > 1e-9 {
+        if n > 1e-9 && self.stride_steady {
             let m = self.stride_sum / n;
             let w = if self.level_refs == 0 {
                 1.0
@@ -355,20 +372,44 @@ impl LegPitch {
         self.stride_sum = Vector3::zeros();
     }
 
-    /// A stride ended (its Δθ, period, and the times of its extremes): its vote on the sign,
-    /// and whether the phone rides on a thigh, by the last [`LegPitchConfig::thigh_strides`]
-    /// strides.
+    /// A stride ended (its Δθ, period, and the times of its extremes): its vote on the sign
+    /// (when `votes`: the caller's word that the stride may be a thigh's, for the carrying mode
+    /// may say a swinging hand), and whether the phone rides on a thigh, by the last
+    /// [`LegPitchConfig::thigh_strides`] strides.
     ///
     /// A thigh's strides are regular, last two steps, and swing a leg's angle. Three tests say
     /// no: a stride beyond [`THIGH_MAX_AMPLITUDE_DEG`] (no thigh swings that far: the angle is
     /// about another axis, a turning hand), a stride shorter than [`THIGH_MIN_STRIDE_S`] (a hand
     /// rocks once per step, a thigh once per two), and amplitudes that spread by more than
     /// their median (the hand-held IPIN walks' strides range 8–70° within five).
-    pub fn push_stride(&mut self, stride: &PitchStride) -> bool {
+    pub fn push_stride(&mut self, stride: &PitchStride, votes: bool) -> bool {
         let (amplitude_deg, period_s) = (stride.amplitude_deg, stride.period_s);
-        if let Some(p) = period_s {
+        // A stride over which the swing axis itself turned in the device is the phone being
+        // moved, not a swing: it neither votes on the sign nor joins the reference.
+        let steady = match (
+            self.axis,
+            self.stride_axis.replace(self.axis.unwrap_or_default()),
+        ) {
+            (Some(a), Some(prev)) => a.dot(&prev) >= STEADY_AXIS_COS,
+            _ => true,
+        };
+        self.stride_steady = steady;
+        // The first steady stride after a move: a phone moved in the body (from a bag into the
+        // pocket) swings about another axis of the device, which the power iteration reached
+        // from the old one with either sign, so the votes so far would give it a coin's sign
+        // for the next 30 strides (the simulated bag → pocket walked 100–160° off on 3 seeds of
+        // 8). Only the votes start again: the reference follows the new mount stride by stride
+        // (started afresh from the first stride it turned a swinging hand's sign over after a
+        // move from a bag: 7.3° → 108°), and the thigh's tests look at the last strides anyway.
+        if steady && self.moved() {
+            self.forget_votes();
+        }
+        if let Some(p) = period_s.filter(|_| steady && votes) {
             let rise = stride.t_max - stride.t_min;
             if rise > 0.0 && rise < p {
+                if self.vote_axis.is_none() {
+                    self.vote_axis = self.axis;
+                }
                 self.vote = self.vote * SIGN_KEEP + (0.5 * p - rise);
                 self.vote_periods = self.vote_periods * SIGN_KEEP + p;
             }
@@ -397,6 +438,22 @@ impl LegPitch {
         self.thigh
     }
 
+    /// Whether the phone sits in the body otherwise than when the votes began: the swing axis
+    /// turned in the device by more than 45° from the one they began on. (The stride's mean up
+    /// direction more than 45° from the reference was tried as a sign too: it fired on a phone
+    /// moved from the hand into a swinging hand, whose sign then turned over for 4 steps on 2
+    /// of 8 simulated walks.)
+    fn moved(&self) -> bool {
+        matches!((self.axis, self.vote_axis), (Some(a), Some(v)) if a.dot(&v) < REMOUNT_COS)
+    }
+
+    /// Forgets the sign's votes: the strides they came from were not this thigh's.
+    fn forget_votes(&mut self) {
+        self.vote = 0.0;
+        self.vote_periods = 0.0;
+        self.vote_axis = None;
+    }
+
     /// How far the swing axis is tilted from the horizontal now, degrees, while the phone rides
     /// on a thigh ([`Self::on_thigh`]): asin |a·u| for the axis a and the up direction u in
     /// the device, both unit vectors. The axis is learnt from the horizontal rotation of the last seconds
@@ -423,6 +480,7 @@ impl LegPitch {
     pub fn forward_axis(&self) -> Option<Vector3<f64>> {
         if !(self.thigh_like
             && self.share >= self.cfg.thigh_min_axis_share
+            && self.vote_periods > 0.0
             && self.vote.abs() >= SIGN_CLEAR * self.vote_periods)
         {
             return None;
@@ -461,25 +519,56 @@ mod tests {
     /// A leg pitch whose gyroscope turns about the device's x axis only, the phone upright.
     fn swinging_about_x() -> LegPitch {
         let mut leg = LegPitch::new(LegPitchConfig::default());
-        for i in 0..400 {
-            let w = 3.0 * libm::sin(i as f64 * 0.05);
+        swing(&mut leg, Vector3::x(), 4.0);
+        leg
+    }
+
+    /// `seconds` of a swing about the device axis `axis`, the phone upright.
+    fn swing(leg: &mut LegPitch, axis: Vector3<f64>, seconds: f64) {
+        for i in 0..(seconds * 100.0) as u32 {
+            let w = 3.0 * libm::sin(f64::from(i) * 0.05);
             leg.push(&LegPitchInput {
                 dt: 0.01,
-                gyro: Some(Vector3::new(w, 0.0, 0.0)),
+                gyro: Some(axis * w),
                 attitude: Some(UnitQuaternion::identity()),
                 moving: true,
             });
         }
-        leg
+    }
+
+    #[test]
+    fn the_votes_are_the_thighs_and_start_again_when_the_phone_is_moved() {
+        let strides = |leg: &mut LegPitch, t0: f64, rise: f64, votes: bool| {
+            for k in 0..4 {
+                leg.push_stride(&stride(t0 + 1.1 * f64::from(k), rise), votes);
+            }
+        };
+        // Strides the caller says are no thigh's (a swinging hand's) vote nothing.
+        let mut leg = swinging_about_x();
+        strides(&mut leg, 1.0, 0.33, false);
+        assert_eq!(leg.forward_axis(), None);
+        // A thigh swinging forward about +x, then the phone moved to swing about y the other
+        // way round: the strides while the axis turned vote nothing, and the first steady one
+        // about the new axis starts the votes again, whose sign the old ones would have
+        // outweighed for 30 strides.
+        let mut leg = swinging_about_x();
+        strides(&mut leg, 1.0, 0.33, true);
+        assert!((leg.forward_axis().unwrap() - Vector3::x()).norm() < 1e-6);
+        swing(&mut leg, Vector3::new(0.1, 1.0, 0.0).normalize(), 8.0);
+        strides(&mut leg, 10.0, 0.67, true);
+        let a = leg.axis.unwrap();
+        assert!(a.y.abs() > 0.99, "{a}");
+        assert!((leg.forward_axis().unwrap() + a).norm() < 1e-12);
+        assert!(leg.vote < 0.0 && leg.vote_periods < 4.0 * 1.1);
     }
 
     #[test]
     fn the_forward_axis_needs_thigh_strides_and_a_clear_vote() {
         let mut leg = swinging_about_x();
         assert_eq!(leg.forward_axis(), None, "no stride yet");
-        leg.push_stride(&stride(1.0, 0.33));
+        leg.push_stride(&stride(1.0, 0.33), true);
         assert_eq!(leg.forward_axis(), None, "one stride");
-        leg.push_stride(&stride(2.1, 0.33));
+        leg.push_stride(&stride(2.1, 0.33), true);
         // Forward is a positive raw angle: the axis as found, turned by the sign.
         let a = leg
             .forward_axis()
@@ -491,13 +580,16 @@ mod tests {
         );
         // The rise taking the longer part turns it over.
         let mut back = swinging_about_x();
-        back.push_stride(&stride(1.0, 0.67));
-        back.push_stride(&stride(2.1, 0.67));
+        back.push_stride(&stride(1.0, 0.67), true);
+        back.push_stride(&stride(2.1, 0.67), true);
         assert!((back.forward_axis().unwrap() + a).norm() < 1e-12);
         // A symmetric swing (a sinusoid) votes nothing clear.
         let mut even = swinging_about_x();
         for k in 0..6 {
-            even.push_stride(&stride(1.0 + 1.1 * k as f64, 0.5 + 0.02 * (k % 2) as f64));
+            even.push_stride(
+                &stride(1.0 + 1.1 * k as f64, 0.5 + 0.02 * (k % 2) as f64),
+                true,
+            );
         }
         assert_eq!(even.forward_axis(), None);
     }
