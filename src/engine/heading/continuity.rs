@@ -16,10 +16,12 @@
 //!   modes of one source while the phone stays where it was (a pocket on stairs: up to 13 times
 //!   on the simulator) changes nothing; carried there, it took the simulated stairs walks' end
 //!   errors from 4–10 m to 15–22 m.
-//! - **The heading carried** is the median of the last [`RECENT`] steps': the mode is a vote over
-//!   seconds, so the phone may already be moving at the last step before the change. Only a
-//!   recent one: the last step at most [`Continuity::max_gap_s`] before (a walker who stood
-//!   still longer may have turned).
+//! - **The heading carried** is the median of the last [`RECENT`] steps' walked at least
+//!   [`Continuity::lag_s`] before the change: the mode is a vote over seconds, so the phone was
+//!   already moving for that long, and the steps meanwhile can walk its move (taken from the
+//!   last 3 steps, an ear's move into a swinging hand was carried 180° off on 4 of 8 simulated
+//!   walks). Only a recent one: the last step at most [`Continuity::max_gap_s`] before (a
+//!   walker who stood still longer may have turned).
 //! - **What teaches the offset:** steps of the settled mode only (a step the vote still calls
 //!   `hand` but whose yaw the hand's gates refused is the phone on its way), and only headings
 //!   that agree ([`Continuity::agreement_min`]); else the offset is 0. A mode that has not
@@ -34,6 +36,10 @@ use std::collections::VecDeque;
 
 /// How many of the last steps' headings the anchor is the median of.
 pub const RECENT: usize = 3;
+
+/// How many of the last steps' times and headings the heading stage keeps for the anchor: the
+/// [`RECENT`] before the [`Continuity::lag_s`] and the steps within it (up to 9, running).
+pub const KEPT: usize = 12;
 
 /// The heading among `hs` closest to the others (the sum of absolute angles to them least):
 /// a median that a turn of the phone on the last step before a change does not move.
@@ -58,6 +64,11 @@ pub struct Continuity {
     /// How far gravity must turn in the device for a change between two modes of one source to
     /// count as the phone moved, degrees ([`moved`]).
     pub moved_deg: f64,
+    /// How long before a change the heading carried was walked, s: the carrying mode's vote
+    /// turns [`crate::engine::carry::CarryConfig::switch_votes`] evaluations
+    /// [`crate::engine::carry::CarryConfig::every_s`] apart after the phone began to move
+    /// (4 × 0.5 s), and the steps meanwhile are the phone on its way.
+    pub lag_s: f64,
 }
 
 impl Default for Continuity {
@@ -68,6 +79,7 @@ impl Default for Continuity {
             sign_only: false,
             agreement_min: 0.7,
             moved_deg: 30.0,
+            lag_s: 2.0,
         }
     }
 }
@@ -129,7 +141,7 @@ pub struct Carried {
 }
 
 impl Carried {
-    /// One step, given the last steps' times and walked headings ([`RECENT`], the latest
+    /// One step, given the last steps' times and walked headings (up to [`KEPT`], the latest
     /// last); returns the heading to walk (`None` when nothing is known).
     pub fn push(
         &mut self,
@@ -158,10 +170,14 @@ impl Carried {
             if self.anchor.is_none() {
                 // Carry the last heading if it is recent. While a change is open (the mode
                 // settles over a few votes) its anchor stays.
+                // The steps of the last `lag_s` were walked while the phone was already on its
+                // way, the vote not yet turned.
+                let before = recent.iter().filter(|r| r.0 <= t - cfg.lag_s);
+                let skip = before.clone().count().saturating_sub(RECENT);
                 self.anchor = recent
                     .back()
                     .filter(|&&(tl, _)| t - tl <= cfg.max_gap_s)
-                    .and_then(|_| circular_median(recent.iter().map(|r| r.1)));
+                    .and_then(|_| circular_median(before.skip(skip).map(|r| r.1)));
                 self.open_steps = 0;
             }
             self.sum = (0.0, 0.0);
@@ -250,7 +266,7 @@ mod tests {
             .iter()
             .map(|s| {
                 let h = c.push(&cfg, s, &recent).unwrap();
-                if recent.len() == RECENT {
+                if recent.len() == KEPT {
                     recent.pop_front();
                 }
                 recent.push_back((s.t, h));
@@ -286,6 +302,41 @@ mod tests {
             "{h:?}"
         );
         assert!((wrap_pi(c.offset()).to_degrees() + 150.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn the_steps_of_the_phone_on_its_way_are_not_carried() {
+        // At the ear the walk goes north; the phone is moved to a swinging hand, and for 2 s the
+        // vote still says the ear while its acceleration heading reads 180° (the move). Then
+        // the swinging hand reads north again.
+        let mut steps: Vec<Step> = (0..8)
+            .map(|i| step(Source::Acceleration, CarryMode::Ear, 0.5 * i as f64, 0.0))
+            .collect();
+        for i in 8..12 {
+            steps.push(step(
+                Source::Acceleration,
+                CarryMode::Ear,
+                0.5 * i as f64,
+                180.0,
+            ));
+        }
+        for i in 12..20 {
+            steps.push(step(
+                Source::Acceleration,
+                CarryMode::Swinging,
+                0.5 * i as f64,
+                1.0,
+            ));
+        }
+        let mut c = Carried::default();
+        let h = walk(&mut c, &steps);
+        for (i, &d) in h.iter().enumerate().skip(12) {
+            assert!(
+                wrap_pi(d.to_radians()).abs() < 2f64.to_radians(),
+                "step {i}: {d}"
+            );
+        }
+        assert!(wrap_pi(c.offset()).to_degrees().abs() < 2.0);
     }
 
     #[test]

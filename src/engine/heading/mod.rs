@@ -158,6 +158,12 @@ impl HeadingConfig {
             }
             positive("heading.continuity.max_gap_s", c.max_gap_s)?;
             positive("heading.continuity.moved_deg", c.moved_deg)?;
+            if !(c.lag_s >= 0.0 && c.lag_s <= c.max_gap_s) {
+                return Err(ConfigError::new(
+                    "heading.continuity.lag_s",
+                    "must be in 0 ..= heading.continuity.max_gap_s",
+                ));
+            }
             if !(0.0..=1.0).contains(&c.agreement_min) {
                 return Err(ConfigError::new(
                     "heading.continuity.agreement_min",
@@ -379,7 +385,7 @@ impl Heading {
             yaw: 0.0,
             last_yaw: None,
             yaw_offset: YawOffset::default(),
-            recent: VecDeque::with_capacity(continuity::RECENT),
+            recent: VecDeque::with_capacity(continuity::KEPT),
             ups: VecDeque::with_capacity(continuity::UPS),
             carried: continuity::Carried::default(),
         }
@@ -530,7 +536,7 @@ impl Heading {
         }
         if let Some(u) = used {
             self.last_used = used;
-            if self.recent.len() == continuity::RECENT {
+            if self.recent.len() == continuity::KEPT {
                 self.recent.pop_front();
             }
             self.recent.push_back((window.t_k, u));
