@@ -18,10 +18,12 @@
 //! long as the walk goes on, while the foot stage integrates its gyroscope's bias into its tilt
 //! (0.1 rad in 20 s). Moved into a trouser pocket within the first 30 s, the thigh turns at up
 //! to 4.1 rad/s at 1.8–2.0 Hz on the simulator and sits still enough at heel strike for a
-//! stance, and the tilted filter turns gravity into strides of 0.7–1.6 m: plausible foot strides,
-//! and the walk's steps were replaced by them (3–4 of 8 simulated walks; a phone put into the
-//! pocket from the hand or the ear: none). The real pocket and hand-held logs of `../shared/data` are never recognised as
-//! feet (`tests/foot.rs`).
+//! stance, and the tilted filter turns gravity into strides of 0.7–1.6 m: plausible foot
+//! strides, and the walk's steps were replaced by them (5 of 8 simulated walks from a bag and
+//! from a swinging hand; from the hand or the ear: none).
+//!
+//! The real pocket and hand-held logs of `../shared/data` are never recognised as feet
+//! (`tests/foot.rs`).
 //!
 //! No importer hint is needed or used: uploaded, replayed and live logs are recognised alike,
 //! inside [`crate::engine::Pipeline::push`].

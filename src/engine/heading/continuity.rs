@@ -168,10 +168,9 @@ impl Carried {
         };
         if change {
             if self.anchor.is_none() {
-                // Carry the last heading if it is recent. While a change is open (the mode
-                // settles over a few votes) its anchor stays.
-                // The steps of the last `lag_s` were walked while the phone was already on its
-                // way, the vote not yet turned.
+                // Carry the heading of the steps before the last `lag_s` (walked while the
+                // phone was already on its way, the vote not yet turned) if the walk is recent.
+                // While a change is open (the mode settles over a few votes) its anchor stays.
                 let before = recent.iter().filter(|r| r.0 <= t - cfg.lag_s);
                 let skip = before.clone().count().saturating_sub(RECENT);
                 self.anchor = recent
