@@ -386,10 +386,8 @@ impl LegPitch {
         let (amplitude_deg, period_s) = (stride.amplitude_deg, stride.period_s);
         // A stride over which the swing axis itself turned in the device is the phone being
         // moved, not a swing: it neither votes on the sign nor joins the reference.
-        let steady = match (
-            self.axis,
-            self.stride_axis.replace(self.axis.unwrap_or_default()),
-        ) {
+        let previous = std::mem::replace(&mut self.stride_axis, self.axis);
+        let steady = match (self.axis, previous) {
             (Some(a), Some(prev)) => a.dot(&prev) >= STEADY_AXIS_COS,
             _ => true,
         };

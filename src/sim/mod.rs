@@ -553,20 +553,16 @@ impl Scenario {
                 // path all through the move. (The shortest path, nalgebra's, flipped from sample
                 // to sample between the ear and the swinging hand, whose mounts are about 180°
                 // apart, and the attitude's derivative gave rates of thousands of rad/s.)
-                let rest = |c: Carry| UnitQuaternion::from_matrix(&mount_of(c)).into_inner();
                 let q = |c: Carry| {
+                    let rest = UnitQuaternion::from_matrix(&mount_of(c))
+                        .into_inner()
+                        .coords;
                     let q = UnitQuaternion::from_matrix(&(limb_of(c, dt) * mount_of(c)));
                     let q = q.into_inner().coords;
-                    if q.dot(&rest(c).coords) < 0.0 {
-                        -q
-                    } else {
-                        q
-                    }
+                    (if q.dot(&rest) < 0.0 { -q } else { q }, rest)
                 };
-                let (a, mut b) = (q(from), q(to));
-                if rest(from).coords.dot(&rest(to).coords) < 0.0 {
-                    b = -b;
-                }
+                let ((a, rest_a), (b, rest_b)) = (q(from), q(to));
+                let b = if rest_a.dot(&rest_b) < 0.0 { -b } else { b };
                 let v =
                     nalgebra::Unit::new_unchecked(a).slerp(&nalgebra::Unit::new_unchecked(b), k);
                 let r = UnitQuaternion::new_unchecked(nalgebra::Quaternion::from(v.into_inner()));
