@@ -295,17 +295,24 @@ fn the_changes_between_the_other_modes_keep_the_steps_and_the_heading() {
     // thigh's sign kept the votes of the bag or the hand (60° and 83° from 5 s after the change
     // on), and the swinging hand's those of the bag (134°); and the heading carried was the one
     // walked while the phone was on its way (ear → swinging 33°, ear → pocket 28°).
-    // Measured from the change on (the move included):
-    // bag → pocket 17.8° / 6.49 m, swinging → pocket 38.2° / 12.15 m (2 of 8 walks still turn
-    // over: the arm's sign during the move), bag → swinging 18.9° / 6.33 m, ear → swinging
-    // 15.0° / 4.31 m, ear → pocket 14.2° / 3.98 m.
+    // Then, with the heading carried the whole way (before the two sources were weighed by
+    // their trust, and the heading carried taken from before the limb turned its sign):
+    // swinging → pocket 38.2° / 12.15 m (2 of 8 walks turned over: the arm's sign during the
+    // move), ear → swinging 15.0° / 4.31 m, pocket → swinging 27.6° / 16.96 m (1 of 8 walks
+    // turned over: the arm's first votes), bag → ear 13.7° / 7.77 m (the bag's error carried).
+    // Measured from the change on (the move included): bag → pocket 18.0° / 6.61 m,
+    // swinging → pocket 21.0° / 9.42 m, bag → swinging 19.0° / 6.30 m, ear → swinging
+    // 11.8° / 2.62 m, ear → pocket 14.3° / 3.97 m, pocket → swinging 9.4° / 11.50 m,
+    // bag → ear 4.0° / 4.20 m.
     let cfg = PipelineConfig::default();
     for (from, to, max_deg, max_m) in [
         (Carry::Bag, Carry::Pocket, 19.5, 7.0),
-        (Carry::Swinging, Carry::Pocket, 42.0, 13.5),
+        (Carry::Swinging, Carry::Pocket, 23.0, 10.5),
         (Carry::Bag, Carry::Swinging, 21.0, 7.0),
-        (Carry::Ear, Carry::Swinging, 16.5, 4.8),
+        (Carry::Ear, Carry::Swinging, 13.5, 3.2),
         (Carry::Ear, Carry::Pocket, 16.0, 4.5),
+        (Carry::Pocket, Carry::Swinging, 11.0, 12.5),
+        (Carry::Bag, Carry::Ear, 5.0, 4.8),
     ] {
         let r = after_a_switch(from, to, &cfg);
         let what = format!("{} → {}: {r:?}", from.as_str(), to.as_str());

@@ -8,8 +8,8 @@
 //! hand reads it 176° off, 3 of the 8 pocket poses 120–150°); the yaw in the hand is what a
 //! walker looks along. So at a change the walker is taken to go on the way they went: the steps
 //! keep the heading carried while [`Continuity::steps`] acceleration headings of the new mode are
-//! gathered, and the offset from their circular mean to the heading carried is then added to
-//! every acceleration heading, until the next change.
+//! gathered, and the offset from their circular mean to the heading carried, weighed by how far
+//! each is trusted (below), is then added to every acceleration heading, until the next change.
 //!
 //! - **A change** is one of the source (the hand's yaw to the acceleration heading), or one of
 //!   the mode with the phone moved in the body ([`moved`]). A vote that flickers between two
@@ -21,14 +21,24 @@
 //!   already moving for that long, and the steps meanwhile can walk its move (taken from the
 //!   last 3 steps, an ear's move into a swinging hand was carried 180° off on 4 of 8 simulated
 //!   walks). Only a recent one: the last step at most [`Continuity::max_gap_s`] before (a
-//!   walker who stood still longer may have turned).
+//!   walker who stood still longer may have turned). Nor from a step at or after one whose limb
+//!   turned its way forward (the thigh's sign or the swinging arm's vote, [`Walked::flipped`]):
+//!   that is the phone on its way too, more than 2 s before the vote turned (on the simulator a
+//!   swinging hand's arm vote turned over for 3–7 steps while the phone went to the pocket).
+//! - **How much of the offset:** the heading carried and the new source's are weighed by how
+//!   far each source is off over a walk ([`SourceErrors`]): from a pocket into a swinging hand
+//!   or to the ear the new source keeps nearly its own heading; from the hand's yaw into a
+//!   pocket the pocket takes nearly all of the offset. Headings more than 90° apart: the one
+//!   trusted more wins (the new source's sign is turned only by a heading carried that is
+//!   trusted more).
 //! - **What teaches the offset:** steps of the settled mode only (a step the vote still calls
 //!   `hand` but whose yaw the hand's gates refused is the phone on its way), and only headings
 //!   that agree ([`Continuity::agreement_min`]); else the offset is 0. A mode that has not
 //!   settled within 4 × [`Continuity::steps`] steps ends the carry with what was gathered.
 //! - **The hand's yaw** is the walker's own: it ends a carry and is taken as it is.
 //! - [`Continuity::sign_only`] keeps only the offset's sign: 180° when the mean is more than
-//!   90° off, else 0 (measured worse on the simulator: a pocket 15.7° against 11.3°).
+//!   90° off (and the heading carried is trusted more), else 0 (measured worse on the
+//!   simulator: a pocket 15.7° against 11.3°).
 
 use super::super::carry::CarryMode;
 use super::super::math::{wrap_2pi, wrap_pi};
@@ -69,6 +79,77 @@ pub struct Continuity {
     /// [`crate::engine::carry::CarryConfig::every_s`] apart after the phone began to move
     /// (4 × 0.5 s), and the steps meanwhile are the phone on its way.
     pub lag_s: f64,
+    /// How far each source's heading is off over a walk, degrees: what weighs the heading
+    /// carried against the new source's own ([`SourceErrors`]).
+    pub errors: SourceErrors,
+}
+
+/// The typical error of each source's heading over a walk, degrees: the part a constant offset
+/// carries (a bias; the step-to-step scatter averages out). At a change the heading carried and
+/// the new source's are two estimates of one walking direction, weighed by the inverse of
+/// their variances (a one-state Kalman update): a source trusted less than the one before takes
+/// the offset to the heading carried, a source trusted more keeps its own (its sign still
+/// turned when the two are more than 90° apart).
+///
+/// The defaults are the simulator's (`examples/carry_heading`, seeds 1–8, one mode per walk:
+/// the RMS over the walks of each walk's mean signed heading error, rounded up to 0.5°): no
+/// log here has a pocket, a swinging hand, the ear or a bag with a heading truth.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct SourceErrors {
+    /// The device's yaw in the hand (0.13° on the simulator; a real yaw's field is bent
+    /// indoors, but it is still the walker's own line).
+    pub yaw: f64,
+    /// The acceleration heading in a pocket (6.92°).
+    pub pocket: f64,
+    /// In a swinging hand (1.89°).
+    pub swinging: f64,
+    /// At the ear (1.29°).
+    pub ear: f64,
+    /// In a bag (8.04°).
+    pub bag: f64,
+    /// In the hand or before the mode is known: the largest.
+    pub other: f64,
+}
+
+impl Default for SourceErrors {
+    fn default() -> Self {
+        SourceErrors {
+            yaw: 0.5,
+            pocket: 7.0,
+            swinging: 2.0,
+            ear: 1.5,
+            bag: 8.5,
+            other: 8.5,
+        }
+    }
+}
+
+impl SourceErrors {
+    /// The error's variance for a step of `source` in `mode`, degrees².
+    fn variance(&self, source: Source, mode: Option<CarryMode>) -> f64 {
+        let e = match (source, mode) {
+            (Source::Yaw, _) => self.yaw,
+            (_, Some(CarryMode::Pocket)) => self.pocket,
+            (_, Some(CarryMode::Swinging)) => self.swinging,
+            (_, Some(CarryMode::Ear)) => self.ear,
+            (_, Some(CarryMode::Bag)) => self.bag,
+            (_, Some(CarryMode::Hand) | None) => self.other,
+        };
+        e * e
+    }
+
+    /// Every error, with its setting's name.
+    pub fn named(&self) -> [(&'static str, f64); 6] {
+        [
+            ("heading.continuity.errors.yaw", self.yaw),
+            ("heading.continuity.errors.pocket", self.pocket),
+            ("heading.continuity.errors.swinging", self.swinging),
+            ("heading.continuity.errors.ear", self.ear),
+            ("heading.continuity.errors.bag", self.bag),
+            ("heading.continuity.errors.other", self.other),
+        ]
+    }
 }
 
 impl Default for Continuity {
@@ -80,6 +161,7 @@ impl Default for Continuity {
             agreement_min: 0.7,
             moved_deg: 30.0,
             lag_s: 2.0,
+            errors: SourceErrors::default(),
         }
     }
 }
@@ -107,6 +189,17 @@ pub fn moved(ups: &VecDeque<nalgebra::Vector3<f64>>, cfg: &Continuity) -> bool {
     let (old, new) = (mean(0..3), mean(UPS - 3..UPS));
     let cos = old.dot(&new) / (old.norm() * new.norm());
     !(cos >= libm::cos(cfg.moved_deg.to_radians()))
+}
+
+/// A step walked, as the heading stage keeps it for the heading carried.
+#[derive(Debug, Clone, Copy)]
+pub struct Walked {
+    /// Its time, s.
+    pub t: f64,
+    /// The heading it walked, rad.
+    pub heading: f64,
+    /// The limb that signs the heading turned its way forward at it (the phone moving).
+    pub flipped: bool,
 }
 
 /// One step as [`Carried::push`] sees it.
@@ -138,16 +231,20 @@ pub struct Carried {
     n: usize,
     open_steps: usize,
     offset: f64,
+    // The variance of the heading walked, degrees² (`None`: its source's own), and of the
+    // heading carried while a change is open.
+    var: Option<f64>,
+    anchor_var: f64,
 }
 
 impl Carried {
-    /// One step, given the last steps' times and walked headings (up to [`KEPT`], the latest
-    /// last); returns the heading to walk (`None` when nothing is known).
+    /// One step, given the last steps walked (up to [`KEPT`], the latest last); returns the
+    /// heading to walk (`None` when nothing is known).
     pub fn push(
         &mut self,
         cfg: &Continuity,
         step: &Step,
-        recent: &VecDeque<(f64, f64)>,
+        recent: &VecDeque<Walked>,
     ) -> Option<f64> {
         let &Step {
             source,
@@ -171,14 +268,22 @@ impl Carried {
                 // Carry the heading of the steps before the last `lag_s` (walked while the
                 // phone was already on its way, the vote not yet turned) if the walk is recent.
                 // While a change is open (the mode settles over a few votes) its anchor stays.
-                let before = recent.iter().filter(|r| r.0 <= t - cfg.lag_s);
+                // A limb that turned its way forward lately was the phone on its way too: the
+                // heading carried is from before the first such step.
+                let before = recent
+                    .iter()
+                    .take_while(|r| !r.flipped)
+                    .filter(|r| r.t <= t - cfg.lag_s);
                 let skip = before.clone().count().saturating_sub(RECENT);
                 self.anchor = recent
                     .back()
-                    .filter(|&&(tl, _)| t - tl <= cfg.max_gap_s)
-                    .and_then(|_| circular_median(before.skip(skip).map(|r| r.1)));
+                    .filter(|r| t - r.t <= cfg.max_gap_s)
+                    .and_then(|_| circular_median(before.skip(skip).map(|r| r.heading)));
                 self.open_steps = 0;
+                let (s0, m0) = old.unwrap_or(key);
+                self.anchor_var = self.var.unwrap_or_else(|| cfg.errors.variance(s0, m0));
             }
+            self.var = None;
             self.sum = (0.0, 0.0);
             self.n = 0;
             self.offset = 0.0;
@@ -211,13 +316,24 @@ impl Carried {
         } else {
             0.0
         };
-        self.offset = if !cfg.sign_only {
-            mean
-        } else if mean.abs() > std::f64::consts::FRAC_PI_2 {
-            std::f64::consts::PI
-        } else {
-            0.0
+        // Two headings more than 90° apart: one has the wrong sign, and the one trusted more
+        // wins (the heading carried turns the new source's sign, with the rest weighed). Else
+        // the two are weighed by their trust.
+        let var = cfg.errors.variance(source, mode);
+        let w = var / (var + self.anchor_var);
+        let flip = mean.abs() > std::f64::consts::FRAC_PI_2;
+        self.offset = match (flip, cfg.sign_only) {
+            (true, _) if w < 0.5 => 0.0,
+            (true, true) => std::f64::consts::PI,
+            (true, false) => {
+                wrap_pi(std::f64::consts::PI + w * wrap_pi(mean - std::f64::consts::PI))
+            }
+            (false, true) => 0.0,
+            (false, false) => w * mean,
         };
+        if self.n > 0 && agree && !cfg.sign_only {
+            self.var = Some(w * self.anchor_var);
+        }
         self.anchor = None;
         h.map(|th| self.turn(th))
     }
@@ -245,6 +361,7 @@ impl Carried {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
 
     fn step(source: Source, mode: CarryMode, t: f64, deg: f64) -> Step {
         Step {
@@ -254,6 +371,14 @@ mod tests {
             moved: true,
             t,
             heading: Some(deg.to_radians()),
+        }
+    }
+
+    fn walked(t: f64, heading: f64, flipped: bool) -> Walked {
+        Walked {
+            t,
+            heading,
+            flipped,
         }
     }
 
@@ -268,7 +393,7 @@ mod tests {
                 if recent.len() == KEPT {
                     recent.pop_front();
                 }
-                recent.push_back((s.t, h));
+                recent.push_back(walked(s.t, h, false));
                 wrap_2pi(h).to_degrees()
             })
             .collect()
@@ -296,11 +421,74 @@ mod tests {
         for (i, &d) in h.iter().enumerate().skip(5).take(3) {
             assert!((d - 10.0).abs() < 1e-9, "step {i} keeps 10°: {d}");
         }
+        // Its sign turned, and the rest weighed: the yaw (0.5°) against the pocket (7°) leaves
+        // 0.25 / 49.25 of the pocket's own 30°.
+        let left = 30.0 * 0.25 / 49.25;
         assert!(
-            (h[8] - 10.0).abs() < 1e-9 && (h[14] - 40.0).abs() < 1e-9,
+            (h[8] - 10.0 + left).abs() < 1e-9 && (h[14] - 40.0 + left).abs() < 1e-9,
             "{h:?}"
         );
-        assert!((wrap_pi(c.offset()).to_degrees() + 150.0).abs() < 1e-9);
+        assert!((wrap_pi(c.offset()).to_degrees() + 150.0 + left).abs() < 1e-9);
+    }
+
+    /// Walks 8 steps in `from` reading 0°, then 8 in `to` reading `deg`; returns the last
+    /// heading walked, degrees within ±180.
+    fn changed(from: CarryMode, to: CarryMode, deg: f64) -> f64 {
+        let steps: Vec<Step> = (0..16)
+            .map(|i| {
+                let (mode, d) = if i < 8 { (from, 0.0) } else { (to, deg) };
+                step(Source::Acceleration, mode, 0.5 * i as f64, d)
+            })
+            .collect();
+        let h = walk(&mut Carried::default(), &steps);
+        wrap_pi(h[15].to_radians()).to_degrees()
+    }
+
+    #[test]
+    fn the_source_trusted_more_weighs_more() {
+        // From the pocket (7°) to the ear (1.5°): the ear's own heading, 4 % of the way to the
+        // pocket's; and back: 96 % of the way to the ear's.
+        let to_ear = changed(CarryMode::Pocket, CarryMode::Ear, 10.0);
+        assert!((to_ear - 9.56).abs() < 0.01, "{to_ear}");
+        let to_pocket = changed(CarryMode::Ear, CarryMode::Pocket, 10.0);
+        assert!((to_pocket - 0.44).abs() < 0.01, "{to_pocket}");
+    }
+
+    #[test]
+    fn only_a_heading_trusted_more_turns_the_new_sign() {
+        // The ear's heading turns a pocket that reads 185°: its sign, and most of the rest.
+        let h = changed(CarryMode::Ear, CarryMode::Pocket, 185.0);
+        assert!((h - 0.22).abs() < 0.01, "{h}");
+        // The pocket's does not turn a swinging hand's.
+        let h = changed(CarryMode::Pocket, CarryMode::Swinging, 185.0);
+        assert!((h + 175.0).abs() < 1e-9, "{h}");
+    }
+
+    #[test]
+    fn the_heading_carried_is_from_before_the_limb_turned() {
+        // A swinging hand walks north; 3 s before the change its limb turns the way forward
+        // (the phone moving) and the steps walk south.
+        let recent: VecDeque<Walked> = (0..10)
+            .map(|i| {
+                let t = 0.5 * i as f64;
+                walked(t, if t < 2.5 { 0.0 } else { PI }, t == 2.5)
+            })
+            .collect();
+        let cfg = Continuity::default();
+        let mut c = Carried::default();
+        c.push(
+            &cfg,
+            &step(Source::Acceleration, CarryMode::Swinging, 5.0, 180.0),
+            &recent,
+        );
+        let h = c
+            .push(
+                &cfg,
+                &step(Source::Acceleration, CarryMode::Pocket, 5.5, 90.0),
+                &recent,
+            )
+            .unwrap();
+        assert!(c.carrying() && h.abs() < 1e-9, "{}", h.to_degrees());
     }
 
     #[test]
@@ -342,7 +530,7 @@ mod tests {
     fn headings_that_disagree_teach_no_offset_and_the_yaw_ends_the_carry() {
         let cfg = Continuity::default();
         let mut c = Carried::default();
-        let recent: VecDeque<(f64, f64)> = [(0.0, 0.0), (0.5, 0.0), (1.0, 0.0)].into();
+        let recent: VecDeque<Walked> = [0.0, 0.5, 1.0].map(|t| walked(t, 0.0, false)).into();
         c.push(&cfg, &step(Source::Yaw, CarryMode::Hand, 1.0, 0.0), &recent);
         for (i, d) in [90.0, 270.0, 0.0, 180.0].into_iter().enumerate() {
             let s = step(Source::Acceleration, CarryMode::Swinging, 1.5 + i as f64, d);
@@ -358,7 +546,7 @@ mod tests {
     #[test]
     fn a_flickering_vote_or_an_old_heading_carries_nothing() {
         let cfg = Continuity::default();
-        let recent: VecDeque<(f64, f64)> = [(0.0, 1.0), (0.5, 1.0), (1.0, 1.0)].into();
+        let recent: VecDeque<Walked> = [0.0, 0.5, 1.0].map(|t| walked(t, 1.0, false)).into();
         let mut c = Carried::default();
         c.push(
             &cfg,

@@ -164,6 +164,9 @@ impl HeadingConfig {
                     "must be in 0 ..= heading.continuity.max_gap_s",
                 ));
             }
+            for (name, e) in c.errors.named() {
+                positive(name, e)?;
+            }
             if !(0.0..=1.0).contains(&c.agreement_min) {
                 return Err(ConfigError::new(
                     "heading.continuity.agreement_min",
@@ -358,6 +361,10 @@ pub struct Heading {
     last_limb_signed: bool,
     // The swinging arm's forward vote, east and north ([`Self::limb_signed`]).
     arm_vote: (f64, f64),
+    // The way forward the limb last gave (east, north), and whether the last step's turned
+    // against it.
+    limb_forward: Option<(f64, f64)>,
+    limb_flipped: bool,
     last_used: Option<f64>,
     attitude: Option<nalgebra::UnitQuaternion<f64>>,
     // Device yaw integrated from the attitude increments about the vertical, compass radians,
@@ -365,8 +372,8 @@ pub struct Heading {
     yaw: f64,
     last_yaw: Option<f64>,
     yaw_offset: YawOffset,
-    // The last steps' times and the headings they walked, the latest last.
-    recent: VecDeque<(f64, f64)>,
+    // The last steps walked, the latest last.
+    recent: VecDeque<continuity::Walked>,
     // Where gravity sat in the device at the last steps, the latest last.
     ups: VecDeque<nalgebra::Vector3<f64>>,
     carried: continuity::Carried,
@@ -380,6 +387,8 @@ impl Heading {
             last_single: None,
             last_limb_signed: false,
             arm_vote: (0.0, 0.0),
+            limb_forward: None,
+            limb_flipped: false,
             last_used: None,
             attitude: None,
             yaw: 0.0,
@@ -449,6 +458,7 @@ impl Heading {
         } else {
             None
         };
+        self.limb_flipped = false;
         let (theta, limb_signed) = match theta {
             Some(th) if self.cfg.limb_sign => {
                 self.limb_signed(buf, window, th, carry, limb_forward)
@@ -460,7 +470,8 @@ impl Heading {
             self.cfg.limb_sign && matches!(carry, Some(CarryMode::Pocket | CarryMode::Swinging));
         // A direction the limb signed is not averaged with one it did not sign: they may
         // point opposite ways.
-        let comparable = !limb_mode || limb_signed == self.last_limb_signed;
+        // Nor one the limb turned against the last.
+        let comparable = !limb_mode || (limb_signed == self.last_limb_signed && !self.limb_flipped);
         let averaged = match (theta, self.last_single) {
             (Some(th), Some(prev)) if self.cfg.average_two && continued && comparable => {
                 Some(circular_mean2(prev, th))
@@ -539,7 +550,11 @@ impl Heading {
             if self.recent.len() == continuity::KEPT {
                 self.recent.pop_front();
             }
-            self.recent.push_back((window.t_k, u));
+            self.recent.push_back(continuity::Walked {
+                t: window.t_k,
+                heading: u,
+                flipped: self.limb_flipped,
+            });
         }
         StepHeading {
             used,
@@ -581,13 +596,23 @@ impl Heading {
             Some(l) if self.carried.carrying() => (turned(libm::cos(theta - l) < 0.0), true),
             _ => (Some(theta), false),
         };
+        let mut gave = |f: (f64, f64)| {
+            if let Some(l) = self.limb_forward.replace(f) {
+                self.limb_flipped = l.0 * f.0 + l.1 * f.1 < 0.0;
+            }
+        };
         match (carry, limb_forward) {
-            (None | Some(CarryMode::Pocket), Some((e, n))) => (turned(s * e + c * n < 0.0), true),
+            (None | Some(CarryMode::Pocket), Some((e, n))) => {
+                gave((e, n));
+                (turned(s * e + c * n < 0.0), true)
+            }
             (Some(CarryMode::Pocket), None) => kept(self.last_used),
             (Some(CarryMode::Swinging), _) => match arm::forwardness(buf, window, (s, c)) {
                 Some(f) => {
                     let v = &mut self.arm_vote;
                     *v = (v.0 * ARM_KEEP + f * s, v.1 * ARM_KEEP + f * c);
+                    let v = *v;
+                    gave(v);
                     (turned(s * v.0 + c * v.1 < 0.0), true)
                 }
                 None => kept(self.last_used),
