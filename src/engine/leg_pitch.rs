@@ -68,6 +68,13 @@ pub struct LegPitchConfig {
     pub thigh_min_axis_share: f64,
     /// Strides the thigh test looks at. Default 5.
     pub thigh_strides: usize,
+    /// The thigh gives the way forward ([`LegPitch::forward_axis`]) only while its swing axis
+    /// lies within this of the horizontal ([`LegPitch::axis_tilt_deg`]): the phone rides the
+    /// thigh now. Default 15°, the real thigh's bound of [`crate::engine::pll::PllConfig::axis_tilt_max_deg`]
+    /// (a hip's ab- and adduction and the pelvis's roll, ±5° each). The axis is learnt over
+    /// seconds, so a phone taken from the pocket to the ear kept the thigh's sign for 3–4 s
+    /// on the simulator and walked 180° off.
+    pub riding_tilt_max_deg: f64,
 }
 
 impl Default for LegPitchConfig {
@@ -80,6 +87,7 @@ impl Default for LegPitchConfig {
             thigh_min_amplitude_deg: 25.0,
             thigh_min_axis_share: 0.8,
             thigh_strides: 5,
+            riding_tilt_max_deg: 15.0,
         }
     }
 }
@@ -110,6 +118,7 @@ impl LegPitchConfig {
                 "must lie strictly between 0 and 1",
             ));
         }
+        positive("leg_pitch.riding_tilt_max_deg", self.riding_tilt_max_deg)?;
         if self.thigh_strides == 0 {
             return Err(ConfigError::new(
                 "leg_pitch.thigh_strides",
@@ -471,15 +480,18 @@ impl LegPitch {
     }
 
     /// The axis, in the device frame, about which the thigh swings *forward* (the swing axis
-    /// turned by the voted sign), while the phone rides on a thigh whose swing dominates and
-    /// the strides have voted. A point below the hip on a thigh turning by +θ̇ about the
+    /// turned by the voted sign), while the phone rides on a thigh whose swing dominates, the
+    /// strides have voted, and the axis is level ([`LegPitchConfig::riding_tilt_max_deg`]). A point below the hip on a thigh turning by +θ̇ about the
     /// world axis L moves along θ̇·(ẑ × L): with L this axis in the world frame, ẑ × L is the
     /// way the walker goes ([`crate::engine::heading::HeadingConfig::limb_sign`]).
     pub fn forward_axis(&self) -> Option<Vector3<f64>> {
         if !(self.thigh_like
             && self.share >= self.cfg.thigh_min_axis_share
             && self.vote_periods > 0.0
-            && self.vote.abs() >= SIGN_CLEAR * self.vote_periods)
+            && self.vote.abs() >= SIGN_CLEAR * self.vote_periods
+            && self
+                .axis_tilt_deg()
+                .map_or(true, |t| t <= self.cfg.riding_tilt_max_deg))
         {
             return None;
         }
@@ -590,5 +602,31 @@ mod tests {
             );
         }
         assert_eq!(even.forward_axis(), None);
+    }
+
+    #[test]
+    fn the_forward_axis_needs_the_phone_on_the_thigh_now() {
+        let mut leg = swinging_about_x();
+        for k in 0..5 {
+            leg.push_stride(&stride(1.0 + 1.1 * f64::from(k), 0.33), true);
+        }
+        assert!(leg.on_thigh());
+        // The phone turned about its y axis: the x axis, learnt over seconds, tilts with it.
+        let mut turned = |deg: f64| {
+            leg.push(&LegPitchInput {
+                dt: 0.01,
+                gyro: Some(Vector3::zeros()),
+                attitude: Some(UnitQuaternion::from_axis_angle(
+                    &Vector3::y_axis(),
+                    deg.to_radians(),
+                )),
+                moving: true,
+            });
+            (leg.axis_tilt_deg().unwrap(), leg.forward_axis())
+        };
+        let (tilt, a) = turned(10.0);
+        assert!((tilt - 10.0).abs() < 0.5 && a.is_some(), "{tilt}");
+        let (tilt, a) = turned(30.0);
+        assert!((tilt - 30.0).abs() < 0.5 && a.is_none(), "{tilt}");
     }
 }
