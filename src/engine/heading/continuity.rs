@@ -35,6 +35,9 @@
 //!   `hand` but whose yaw the hand's gates refused is the phone on its way), and only headings
 //!   that agree ([`Continuity::agreement_min`]); else the offset is 0. A mode that has not
 //!   settled within 4 × [`Continuity::steps`] steps ends the carry with what was gathered.
+//! - **Before the vote turns** ([`Continuity::hold_while_moved`]): a phone moving in the body
+//!   ([`moved`]) in a walk under way ([`KEPT`] steps without a stop) walks the heading walked
+//!   before the move, by the same rule as the heading carried.
 //! - **The hand's yaw** is the walker's own: it ends a carry and is taken as it is.
 //! - [`Continuity::sign_only`] keeps only the offset's sign: 180° when the mean is more than
 //!   90° off (and the heading carried is trusted more), else 0 (measured worse on the
@@ -82,6 +85,11 @@ pub struct Continuity {
     /// How far each source's heading is off over a walk, degrees: what weighs the heading
     /// carried against the new source's own ([`SourceErrors`]).
     pub errors: SourceErrors,
+    /// While the phone moves in the body ([`moved`]) and no change is open, an acceleration
+    /// heading's step walks the heading walked before the move: the mode's vote turns 2 s or
+    /// more after the phone began to move, and meanwhile the acceleration heading is the
+    /// move's (on the simulator 30–90° off over the 5 s from a change onto a limb).
+    pub hold_while_moved: bool,
 }
 
 /// The typical error of each source's heading over a walk, degrees: the part a constant offset
@@ -162,6 +170,7 @@ impl Default for Continuity {
             moved_deg: 30.0,
             lag_s: 2.0,
             errors: SourceErrors::default(),
+            hold_while_moved: true,
         }
     }
 }
@@ -202,6 +211,37 @@ pub struct Walked {
     pub flipped: bool,
 }
 
+/// The heading walked before the phone began to move, at a step at `t`: the median of the last
+/// [`RECENT`] steps walked at least [`Continuity::lag_s`] before (walked while the phone was
+/// already on its way, the vote not yet turned) and before the first step at which a limb
+/// turned its way forward (the phone on its way too); `None` when the last step is more than
+/// [`Continuity::max_gap_s`] old.
+fn walked_before(cfg: &Continuity, t: f64, recent: &VecDeque<Walked>) -> Option<f64> {
+    let before = recent
+        .iter()
+        .take_while(|r| !r.flipped)
+        .filter(|r| r.t <= t - cfg.lag_s);
+    let skip = before.clone().count().saturating_sub(RECENT);
+    recent
+        .back()
+        .filter(|r| t - r.t <= cfg.max_gap_s)
+        .and_then(|_| circular_median(before.skip(skip).map(|r| r.heading)))
+}
+
+/// Whether the [`KEPT`] steps up to `t` were walked without a stop (no gap over 1 s): a walk
+/// under way for that long, so that gravity's turn in the device is the phone's move, not a
+/// walker who stood and set off again, nor a hand that began to swing (on the simulator a
+/// swinging hand's first steps read 160–180° off, and held that for 10 steps).
+fn walked_on(t: f64, recent: &VecDeque<Walked>) -> bool {
+    let mut last = t;
+    recent.len() == KEPT
+        && recent.iter().rev().all(|r| {
+            let ok = last - r.t <= 1.0;
+            last = r.t;
+            ok
+        })
+}
+
 /// One step as [`Carried::push`] sees it.
 #[derive(Debug, Clone, Copy)]
 pub struct Step {
@@ -235,6 +275,10 @@ pub struct Carried {
     // heading carried while a change is open.
     var: Option<f64>,
     anchor_var: f64,
+    // The heading walked while the phone moves before a change ([`Continuity::hold_while_moved`]),
+    // and the steps since the last change.
+    held: Option<f64>,
+    since_change: usize,
 }
 
 impl Carried {
@@ -263,22 +307,13 @@ impl Carried {
             Some(o) if o != key => o.0 != source || (o.1.is_some() && moved),
             _ => false,
         };
+        self.since_change = self.since_change.saturating_add(1);
         if change {
+            self.since_change = 0;
+            self.held = None;
             if self.anchor.is_none() {
-                // Carry the heading of the steps before the last `lag_s` (walked while the
-                // phone was already on its way, the vote not yet turned) if the walk is recent.
                 // While a change is open (the mode settles over a few votes) its anchor stays.
-                // A limb that turned its way forward lately was the phone on its way too: the
-                // heading carried is from before the first such step.
-                let before = recent
-                    .iter()
-                    .take_while(|r| !r.flipped)
-                    .filter(|r| r.t <= t - cfg.lag_s);
-                let skip = before.clone().count().saturating_sub(RECENT);
-                self.anchor = recent
-                    .back()
-                    .filter(|r| t - r.t <= cfg.max_gap_s)
-                    .and_then(|_| circular_median(before.skip(skip).map(|r| r.heading)));
+                self.anchor = walked_before(cfg, t, recent);
                 self.open_steps = 0;
                 let (s0, m0) = old.unwrap_or(key);
                 self.anchor_var = self.var.unwrap_or_else(|| cfg.errors.variance(s0, m0));
@@ -291,9 +326,21 @@ impl Carried {
         if source == Source::Yaw {
             // The yaw is the walker's own heading: nothing to carry.
             self.anchor = None;
+            self.held = None;
             return h;
         }
         let Some(anchor) = self.anchor else {
+            // The phone moving in the body before the vote turned: its acceleration heading is
+            // the move's, so the step walks the heading walked before. Not for the [`UPS`]
+            // steps after a change, over which `moved` still sees the move the change was.
+            if !moved || !cfg.hold_while_moved {
+                self.held = None;
+            } else if self.held.is_none() && self.since_change >= UPS && walked_on(t, recent) {
+                self.held = walked_before(cfg, t, recent);
+            }
+            if self.held.is_some() {
+                return self.held;
+            }
             return h.map(|th| self.turn(th));
         };
         self.open_steps += 1;
@@ -382,14 +429,22 @@ mod tests {
         }
     }
 
-    /// Feeds `steps` and returns the headings walked, degrees.
+    /// Feeds `steps` and returns the headings walked, degrees. Every step of [`step`] says the
+    /// phone moved, so the hold is off here (it has its own test).
     fn walk(c: &mut Carried, steps: &[Step]) -> Vec<f64> {
-        let cfg = Continuity::default();
+        let cfg = Continuity {
+            hold_while_moved: false,
+            ..Continuity::default()
+        };
+        walk_with(&cfg, c, steps)
+    }
+
+    fn walk_with(cfg: &Continuity, c: &mut Carried, steps: &[Step]) -> Vec<f64> {
         let mut recent = VecDeque::new();
         steps
             .iter()
             .map(|s| {
-                let h = c.push(&cfg, s, &recent).unwrap();
+                let h = c.push(cfg, s, &recent).unwrap();
                 if recent.len() == KEPT {
                     recent.pop_front();
                 }
@@ -442,6 +497,38 @@ mod tests {
             .collect();
         let h = walk(&mut Carried::default(), &steps);
         wrap_pi(h[15].to_radians()).to_degrees()
+    }
+
+    #[test]
+    fn a_phone_moving_in_the_body_walks_the_heading_walked_before() {
+        // 14 steps north in the pocket, then the phone moves (gravity turns in it) and its
+        // acceleration heading reads 150° for 4 steps before the vote turns; then it stays put.
+        let steps: Vec<Step> = (0..22)
+            .map(|i| {
+                let moving = (14..18).contains(&i);
+                let mut s = step(
+                    Source::Acceleration,
+                    CarryMode::Pocket,
+                    0.5 * i as f64,
+                    if moving { 150.0 } else { 5.0 },
+                );
+                s.moved = moving;
+                s
+            })
+            .collect();
+        let h = walk_with(&Continuity::default(), &mut Carried::default(), &steps);
+        assert!(h[14..18].iter().all(|&d| (d - 5.0).abs() < 1e-9), "{h:?}");
+        assert!((h[18] - 5.0).abs() < 1e-9, "{h:?}");
+        // Not within a walk's first steps (a hand that begins to swing moves too), nor with it
+        // off.
+        let h = walk_with(&Continuity::default(), &mut Carried::default(), &steps[4..]);
+        assert!((h[10] - 150.0).abs() < 1e-9, "{h:?}");
+        let off = Continuity {
+            hold_while_moved: false,
+            ..Continuity::default()
+        };
+        let h = walk_with(&off, &mut Carried::default(), &steps);
+        assert!((h[14] - 150.0).abs() < 1e-9, "{h:?}");
     }
 
     #[test]
