@@ -228,7 +228,8 @@ fn walked_before(cfg: &Continuity, t: f64, recent: &VecDeque<Walked>) -> Option<
         .and_then(|_| circular_median(before.skip(skip).map(|r| r.heading)))
 }
 
-/// Whether the [`KEPT`] steps up to `t` were walked without a stop (no gap over 1 s): a walk
+/// Whether the [`KEPT`] steps up to `t` were walked without a stop (no gap over 1 s, longer than
+/// a step of the slowest walking, 1.2 Hz): a walk
 /// under way for that long, so that gravity's turn in the device is the phone's move, not a
 /// walker who stood and set off again, nor a hand that began to swing (on the simulator a
 /// swinging hand's first steps read 160–180° off, and held that for 10 steps).
