@@ -234,13 +234,8 @@ fn walked_before(cfg: &Continuity, t: f64, recent: &VecDeque<Walked>) -> Option<
 /// walker who stood and set off again, nor a hand that began to swing (on the simulator a
 /// swinging hand's first steps read 160–180° off, and held that for 10 steps).
 fn walked_on(t: f64, recent: &VecDeque<Walked>) -> bool {
-    let mut last = t;
-    recent.len() == KEPT
-        && recent.iter().rev().all(|r| {
-            let ok = last - r.t <= 1.0;
-            last = r.t;
-            ok
-        })
+    let times = recent.iter().map(|r| r.t).chain([t]);
+    recent.len() == KEPT && times.clone().zip(times.skip(1)).all(|(a, b)| b - a <= 1.0)
 }
 
 /// One step as [`Carried::push`] sees it.
