@@ -30,6 +30,7 @@ use serde::{Deserialize, Serialize};
 pub mod ends;
 pub mod energy;
 pub mod floors;
+pub mod turns;
 
 pub use floors::FloorResult;
 

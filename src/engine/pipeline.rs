@@ -506,6 +506,10 @@ impl Pipeline {
             up: nav.up,
             pitch: x.pitch_deg,
             axis_tilt: x.axis_tilt_deg,
+            yaw: self.heading.pose().yaw,
+            device_up: nav.attitude.map_or([0.0; 3], |q| {
+                q.inverse_transform_vector(&nalgebra::Vector3::z()).into()
+            }),
         });
         while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
             self.buf.pop_front();

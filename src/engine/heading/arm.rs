@@ -72,6 +72,8 @@ mod tests {
                 up: (2.0 * w * t).cos() - ARM_LEVER_M * a * a * w * w * (2.0 * w * t).cos(),
                 pitch: pitch.then_some(theta.to_degrees()),
                 axis_tilt: None,
+                yaw: 0.0,
+                device_up: [0.0; 3],
             });
         }
         let win = StepWindow {

@@ -10,6 +10,7 @@
 //! - [`yaw_aid`] (ours): the device's own yaw in the hand and the reading pose.
 //! - [`continuity`] (ours): the heading carried across a change of source or carrying mode.
 //! - [`arm`] (ours): the swinging hand's 180°, the arm's pendulum taken out of the pelvis's rule.
+//! - [`turn`] (ours): the gyroscope's turn from the heading's window to the step walked.
 //!
 //! # Angles
 //! Headings are compass headings in radians, clockwise from north, in [0, 2π). Averages of two
@@ -38,6 +39,7 @@ pub mod closed_form;
 pub mod continuity;
 pub mod pca;
 pub mod tip_to_tail;
+pub mod turn;
 pub mod yaw_aid;
 
 pub use yaw_aid::{device_twist, reading_pose, YawAid, YawOffset};
@@ -64,6 +66,12 @@ pub struct NavSample {
     /// How far the limb's swing axis is tilted from the horizontal, degrees, while the phone
     /// rides on a thigh ([`crate::engine::leg_pitch::LegPitch::axis_tilt_deg`]).
     pub axis_tilt: Option<f64>,
+    /// The device's turn about the vertical since the start, compass radians, unwrapped: the
+    /// attitude's increments integrated ([`Heading::push_attitude`]; 0 without an attitude).
+    pub yaw: f64,
+    /// Up in the device frame, unit, from the attitude (zero without one): where gravity sits
+    /// in the device.
+    pub device_up: [f64; 3],
 }
 
 impl NavSample {
@@ -80,6 +88,8 @@ impl NavSample {
             up: a.up + w * (b.up - a.up),
             pitch: a.pitch,
             axis_tilt: a.axis_tilt,
+            yaw: a.yaw + w * (b.yaw - a.yaw),
+            device_up: a.device_up,
         }
     }
 }
@@ -118,6 +128,9 @@ pub struct HeadingConfig {
     /// ([`StepInput::limb_forward`]), in a swinging hand the pelvis's rule with the arm's
     /// pendulum taken out ([`arm`]). Default on.
     pub limb_sign: bool,
+    /// Add to the acceleration heading the device's turn from the middle of the windows it was
+    /// found over to the middle of the step ([`turn`]). Default on; off, as the papers.
+    pub turn_lead: bool,
 }
 
 impl Default for HeadingConfig {
@@ -129,6 +142,7 @@ impl Default for HeadingConfig {
             yaw_aid: Some(YawAid::default()),
             continuity: Some(continuity::Continuity::default()),
             limb_sign: true,
+            turn_lead: true,
         }
     }
 }
@@ -324,8 +338,7 @@ pub struct StepInput<'a> {
 pub struct Pose {
     /// The device → ENU attitude, when the orientation source has one.
     pub attitude: Option<nalgebra::UnitQuaternion<f64>>,
-    /// The device's yaw integrated from the attitude's increments, compass radians, unwrapped
-    /// (with [`YawAid::learn_offset`]; else 0).
+    /// The device's yaw integrated from the attitude's increments, compass radians, unwrapped.
     pub yaw: f64,
 }
 
@@ -377,6 +390,7 @@ pub struct Heading {
     // Where gravity sat in the device at the last steps, the latest last.
     ups: VecDeque<nalgebra::Vector3<f64>>,
     carried: continuity::Carried,
+    turn: turn::TurnLead,
 }
 
 impl Heading {
@@ -397,6 +411,7 @@ impl Heading {
             recent: VecDeque::with_capacity(continuity::KEPT),
             ups: VecDeque::with_capacity(continuity::UPS),
             carried: continuity::Carried::default(),
+            turn: turn::TurnLead::default(),
         }
     }
 
@@ -418,17 +433,15 @@ impl Heading {
         self.attitude
     }
 
-    /// Each sample's device → ENU attitude, when the orientation source has one. With
-    /// [`YawAid::learn_offset`] the device's yaw is integrated from its increments.
+    /// Each sample's device → ENU attitude, when the orientation source has one; the device's
+    /// yaw is integrated from its increments.
     #[inline]
     pub fn push_attitude(&mut self, q: Option<nalgebra::UnitQuaternion<f64>>) {
-        if self.cfg.yaw_aid.is_some_and(|a| a.learn_offset) {
-            if let (Some(q), Some(p)) = (&q, &self.attitude) {
-                // World-frame increment q·p⁻¹; for a small rotation its vertical component is
-                // half the yaw change (counter-clockwise, so subtracted for a compass angle).
-                let d = q * p.inverse();
-                self.yaw -= 2.0 * d.k * d.w.signum();
-            }
+        if let (Some(q), Some(p)) = (&q, &self.attitude) {
+            // World-frame increment q·p⁻¹; for a small rotation its vertical component is
+            // half the yaw change (counter-clockwise, so subtracted for a compass angle).
+            let d = q * p.inverse();
+            self.yaw -= 2.0 * d.k * d.w.signum();
         }
         self.attitude = q;
     }
@@ -472,11 +485,24 @@ impl Heading {
         // point opposite ways.
         // Nor one the limb turned against the last.
         let comparable = !limb_mode || (limb_signed == self.last_limb_signed && !self.limb_flipped);
-        let averaged = match (theta, self.last_single) {
+        let (averaged, two) = match (theta, self.last_single) {
             (Some(th), Some(prev)) if self.cfg.average_two && continued && comparable => {
-                Some(circular_mean2(prev, th))
+                (Some(circular_mean2(prev, th)), true)
             }
-            (th, _) => th,
+            (th, _) => (th, false),
+        };
+        let averaged = match averaged {
+            Some(a) if self.cfg.turn_lead => {
+                let lead =
+                    self.turn
+                        .push(buf, window, turn::window(&self.cfg, window), continued, two);
+                Some(wrap_2pi(a + lead))
+            }
+            a => {
+                // A step without a direction of its own breaks the run the lead compares.
+                self.turn.clear();
+                a
+            }
         };
         let aided = match &self.cfg.yaw_aid {
             Some(aid) if has_heading && attitude.is_some() => {
@@ -625,6 +651,7 @@ impl Heading {
     pub fn end_bout(&mut self) {
         self.last_single = None;
         self.last_yaw = None;
+        self.turn.clear();
     }
 
     /// The current values.
@@ -667,6 +694,8 @@ mod tests {
                 up: 2.0 * (2.0 * w * tau).cos(),
                 pitch: None,
                 axis_tilt: None,
+                yaw: 0.0,
+                device_up: [0.0; 3],
             });
             i += 1;
             t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;
@@ -700,6 +729,8 @@ mod tests {
                     up: (w * t).cos(),
                     pitch: None,
                     axis_tilt: None,
+                    yaw: 0.0,
+                    device_up: [0.0; 3],
                 }
             })
             .collect();
