@@ -90,12 +90,6 @@ fn mean_over<const N: usize>(
     Some(sum.map(|v| v / (t1 - t0)))
 }
 
-/// The mean of [`NavSample::yaw`] over (t0, t1), compass radians; `None` when the buffer does
-/// not span the window.
-pub fn mean_yaw(buf: &VecDeque<NavSample>, t0: f64, t1: f64) -> Option<f64> {
-    mean_over(buf, t0, t1, |s| [s.yaw]).map(|[y]| y)
-}
-
 /// The device over the stride around a time: its yaw, and where gravity sits in it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stride {
@@ -236,12 +230,14 @@ mod tests {
     }
 
     #[test]
-    fn the_mean_yaw_of_a_steady_turn_is_its_value_at_the_middle() {
+    fn the_yaw_around_a_time_in_a_steady_turn_is_its_value_then() {
         let buf = turning(0.3, 0.0, 1.0);
-        let m = mean_yaw(&buf, 2.005, 3.333).unwrap();
-        assert!((m - 0.3 * 0.5 * (2.005 + 3.333)).abs() < 1e-9, "{m}");
-        assert_eq!(mean_yaw(&buf, -1.0, 1.0), None);
-        assert_eq!(mean_yaw(&buf, 9.0, 11.0), None);
+        let (c, period) = (2.669, 0.664);
+        let m = around(&buf, c, period).unwrap();
+        assert!((m.yaw - 0.3 * c).abs() < 1e-9, "{m:?}");
+        assert_eq!(m.up, nalgebra::Vector3::z());
+        assert_eq!(around(&buf, 0.5, 1.0), None);
+        assert_eq!(around(&buf, 9.5, 1.0), None);
     }
 
     #[test]
