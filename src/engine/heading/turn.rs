@@ -179,7 +179,11 @@ impl TurnLead {
         continued: bool,
         averaged: bool,
     ) -> f64 {
-        self.run = if continued { self.run + 1 } else { 0 };
+        self.run = if continued {
+            self.run.saturating_add(1)
+        } else {
+            0
+        };
         let here = around(buf, 0.5 * (win.0 + win.1), w.t_k - w.t_km1);
         let last = std::mem::replace(&mut self.last, here);
         if self.run < FIRST_LEAD_STEP {
@@ -196,7 +200,13 @@ impl TurnLead {
         if !from.iter().all(|f| at.steady_with(f)) {
             return 0.0;
         }
-        at.yaw - 0.5 * (from[0].yaw + from[1].yaw)
+        let lead = at.yaw - 0.5 * (from[0].yaw + from[1].yaw);
+        // Never a NaN into the heading: without a finite yaw there is no lead.
+        if lead.is_finite() {
+            lead
+        } else {
+            0.0
+        }
     }
 
     /// Forgets the last step (a stop or a gap).
