@@ -341,18 +341,7 @@ fn the_acceleration_heading_does_not_cut_the_corners() {
         for seed in 1..=4 {
             let sim = scenarios::carried_walk(carry, seed).generate();
             let run = replay(cfg.clone(), &sim.records).unwrap();
-            let found: Vec<Found> = run
-                .pipeline
-                .track()
-                .iter()
-                .filter_map(|s| {
-                    s.heading_rad.map(|h| Found {
-                        t: s.t,
-                        heading_rad: h,
-                        length_m: s.length_m,
-                    })
-                })
-                .collect();
+            let found = Found::from_track(run.pipeline.track());
             let truth: Vec<(f64, f64, f64)> = sim
                 .truth
                 .steps

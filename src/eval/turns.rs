@@ -26,6 +26,22 @@ pub struct Found {
     pub length_m: f64,
 }
 
+impl Found {
+    /// The steps of a track that have a heading.
+    pub fn from_track(track: &[crate::engine::StepRecord]) -> Vec<Found> {
+        track
+            .iter()
+            .filter_map(|s| {
+                s.heading_rad.map(|h| Found {
+                    t: s.t,
+                    heading_rad: h,
+                    length_m: s.length_m,
+                })
+            })
+            .collect()
+    }
+}
+
 /// The shift of each turn, m (signed: positive to the right of the path), and each found
 /// step's heading error against the true step's direction, rad. `truth` holds the true
 /// footfalls' times, s, and positions (east, north), m, in order. Turns within the walk's first
