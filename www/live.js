@@ -342,6 +342,7 @@ class Session {
     for (const off of this.handlers) off();
     for (const s of this.sensors) s.stop();
     this.geoOff();
+    this.live.finish();
     clearInterval(this.flushTimer);
     this.wakeLock?.release().catch(() => {});
     this.wakeLock = null;

@@ -267,7 +267,8 @@ pub struct Diagnostics {
     pub handling_s: f64,
     /// Where the phone is carried, once decided ([`crate::engine::carry`]).
     pub carry: Option<CarryMode>,
-    /// Steps counted.
+    /// Steps counted, with those a bout's opening still holds off the track
+    /// ([`heading::opening`]).
     pub steps: u64,
     /// Steps recovered by the onset look-back.
     pub onset_steps: u64,
@@ -326,6 +327,15 @@ pub struct Diagnostics {
     pub vertical: Option<super::vertical::VerticalSource>,
 }
 
+/// What waits while a bout's opening is held ([`heading::opening`]).
+#[derive(Debug, Clone, Copy)]
+enum Held {
+    /// A step, with its heading in the magnetometer's yaw for the fusion.
+    Step(StepRecord, Option<f64>),
+    /// A fix for the fusion: it gets steps and fixes in the order they came.
+    Fix(crate::engine::fusion::FixInput),
+}
+
 /// The streaming engine.
 pub struct Pipeline {
     cfg: PipelineConfig,
@@ -353,6 +363,9 @@ pub struct Pipeline {
     attitude: Option<nalgebra::UnitQuaternion<f64>>,
     pos: (f64, f64),
     steps: Vec<StepRecord>,
+    // Steps the heading stage holds at a bout's opening (at most `heading.opening_steps`),
+    // and the fixes for the fusion that came meanwhile, in their order.
+    held: Vec<Held>,
     fixes: Vec<GnssFix>,
     frame: Option<LocalFrame>,
     fusion: Option<Fusion>,
@@ -404,6 +417,7 @@ impl Pipeline {
             attitude: None,
             pos: (0.0, 0.0),
             steps: Vec::new(),
+            held: Vec::new(),
             fixes: Vec::new(),
             frame: None,
             fusion: None,
@@ -454,6 +468,20 @@ impl Pipeline {
             return Err(e);
         }
         let first = self.steps.len();
+        // A bout whose opening is held and has had no step for two strides has ended (the step
+        // detector gives a step up to two periods after its time).
+        if self
+            .held
+            .iter()
+            .rev()
+            .find_map(|h| match h {
+                Held::Step(k, _) => Some(k),
+                Held::Fix(_) => None,
+            })
+            .is_some_and(|k| s.t - k.t > 4.0 / k.freq_hz)
+        {
+            self.release_opening();
+        }
         let mut dt = self.last_t.map_or(0.0, |l| s.t - l);
         if dt > self.cfg.gap_s {
             self.gap(dt);
@@ -609,6 +637,7 @@ impl Pipeline {
     }
 
     fn end_bout(&mut self) {
+        self.release_opening();
         if let Some(f) = &mut self.fusion {
             f.end_bout();
         }
@@ -628,9 +657,26 @@ impl Pipeline {
         }
     }
 
-    /// Every step so far.
+    /// The input has ended: places the steps still held at a bout's opening
+    /// ([`heading::opening`]) and returns them.
+    pub fn finish(&mut self) -> &[StepRecord] {
+        let first = self.steps.len();
+        self.release_opening();
+        &self.steps[first..]
+    }
+
+    /// Every step so far (without the few a bout's opening may still hold, [`Self::finish`]).
     pub fn track(&self) -> &[StepRecord] {
         &self.steps
+    }
+
+    /// The steps a bout's opening holds off the track, in order: they follow [`Self::track`]
+    /// when released ([`heading::opening`]); their positions are not yet known (0).
+    pub fn held_steps(&self) -> impl Iterator<Item = &StepRecord> {
+        self.held.iter().filter_map(|h| match h {
+            Held::Step(s, _) => Some(s),
+            Held::Fix(_) => None,
+        })
     }
 
     /// Accepted GNSS fixes.

@@ -80,6 +80,7 @@ pub fn replay_observed<'a>(
 ) -> Result<Replay, ConfigError> {
     let mut pipeline = Pipeline::new(cfg)?;
     let r = feed(&mut pipeline, records, observer);
+    pipeline.finish();
     Ok(Replay {
         pipeline,
         errors: r.errors,

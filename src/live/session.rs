@@ -275,9 +275,15 @@ impl FuzzyLengths {
     }
 
     /// Catches up with the steps the pipeline emitted since the last call (call it after every
-    /// record, before the next one moves the buffer).
+    /// record, before the next one moves the buffer), those a bout's opening holds too: they
+    /// follow the track in this order.
     fn observe(&mut self, p: &Pipeline) {
-        for step in p.track().iter().skip(self.lengths.len()) {
+        for step in p
+            .track()
+            .iter()
+            .chain(p.held_steps())
+            .skip(self.lengths.len())
+        {
             let l = fuzzy_step(&self.model, &p.step_length_input(step)).centroid_m;
             self.lengths.push(l);
         }
@@ -579,6 +585,12 @@ impl LiveSession {
             }
         }
         total + d(kept, last)
+    }
+
+    /// The recording has stopped: places the steps a bout's opening still holds
+    /// ([`Pipeline::finish`]), as a replay of the recording does; returns how many.
+    pub fn finish(&mut self) -> usize {
+        self.pipeline.finish().len()
     }
 
     /// The recording since the last call, pdr-log lines (the first call starts with the

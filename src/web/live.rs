@@ -200,6 +200,12 @@ impl Live {
         self.session.mark_gap(t0_ms, t1_ms);
     }
 
+    /// The recording has stopped: places the steps still held at a bout's opening (see
+    /// `live::LiveSession::finish`); returns how many.
+    pub fn finish(&mut self) -> usize {
+        self.session.finish()
+    }
+
     /// The recording since the last call, as pdr-log lines.
     pub fn take_log(&mut self) -> String {
         self.session.take_log()

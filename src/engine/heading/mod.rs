@@ -11,6 +11,7 @@
 //! - [`continuity`] (ours): the heading carried across a change of source or carrying mode.
 //! - [`arm`] (ours): the swinging hand's 180°, the arm's pendulum taken out of the pelvis's rule.
 //! - [`turn`] (ours): the gyroscope's turn from the heading's window to the step walked.
+//! - [`opening`] (ours): a bout's first steps held until a limb or the yaw gives their side.
 //!
 //! # Angles
 //! Headings are compass headings in radians, clockwise from north, in [0, 2π). Averages of two
@@ -37,6 +38,7 @@
 pub mod arm;
 pub mod closed_form;
 pub mod continuity;
+pub mod opening;
 pub mod pca;
 pub mod tip_to_tail;
 pub mod turn;
@@ -131,6 +133,9 @@ pub struct HeadingConfig {
     /// Add to the acceleration heading the device's turn from the middle of the windows it was
     /// found over to the middle of the step ([`turn`]). Default on; off, as the papers.
     pub turn_lead: bool,
+    /// With [`Self::limb_sign`], hold at most this many of a bout's first steps whose side only
+    /// the pelvis gives, until a limb or the device's yaw gives it ([`opening`]); 0 holds none.
+    pub opening_steps: usize,
 }
 
 impl Default for HeadingConfig {
@@ -143,6 +148,7 @@ impl Default for HeadingConfig {
             continuity: Some(continuity::Continuity::default()),
             limb_sign: true,
             turn_lead: true,
+            opening_steps: 12,
         }
     }
 }
@@ -350,6 +356,11 @@ pub struct StepHeading {
     pub used: Option<f64>,
     /// The single-step direction θ_k before averaging, rad from north.
     pub single: Option<f64>,
+    /// The step's side is not known yet: it waits, with the steps held before it, for the
+    /// next step's [`Self::release`] ([`opening`]).
+    pub held: bool,
+    /// The steps held before this one are released, turned by 180° when `true`.
+    pub release: Option<bool>,
 }
 
 /// The heading stage's current values; read-only.
@@ -391,6 +402,7 @@ pub struct Heading {
     ups: VecDeque<nalgebra::Vector3<f64>>,
     carried: continuity::Carried,
     turn: turn::TurnLead,
+    opening: opening::Opening,
 }
 
 impl Heading {
@@ -412,6 +424,7 @@ impl Heading {
             ups: VecDeque::with_capacity(continuity::UPS),
             carried: continuity::Carried::default(),
             turn: turn::TurnLead::default(),
+            opening: opening::Opening::default(),
         }
     }
 
@@ -478,6 +491,34 @@ impl Heading {
             }
             th => (th, false),
         };
+        // A new bout: the last one's held steps go as the pelvis voted.
+        let mut release = None;
+        if !continued {
+            release = self.release_held();
+            self.opening = opening::Opening::default();
+        }
+        let waiting = self.cfg.limb_sign
+            && self.cfg.opening_steps > 0
+            && has_heading
+            && !limb_signed
+            && !self.opening.settled();
+        let theta = match theta {
+            Some(th) if waiting => {
+                // The yaw at the step's own time: the onset look-back's steps come together.
+                let at = buf.partition_point(|x| x.t < window.t_k);
+                let yaw_k = buf.get(at).map_or(yaw, |x| x.yaw);
+                Some(self.opening.chain(th, self.last_single, yaw_k))
+            }
+            th => th,
+        };
+        // A limb's side settles the bout: the steps held turn to it before it is averaged.
+        let mut turned = false;
+        if let (Some(th), Some(l), true) = (theta, self.last_single, limb_signed) {
+            if self.opening.held() > 0 && libm::cos(th - l) < 0.0 {
+                self.turn_held(true);
+                turned = true;
+            }
+        }
         // A mode whose sign comes from its limb has not settled until the limb gave it.
         let limb_mode =
             self.cfg.limb_sign && matches!(carry, Some(CarryMode::Pocket | CarryMode::Swinging));
@@ -566,7 +607,44 @@ impl Heading {
             }
             _ => h,
         };
-        let used = walked.or(self.last_used);
+        let mut used = walked.or(self.last_used);
+        let mut theta = theta;
+        let mut held = false;
+        if waiting && aided.is_none() {
+            if self.opening.held() + 1 >= self.cfg.opening_steps {
+                // Held long enough: this step and those before go as the pelvis voted.
+                let n = self.opening.held();
+                let turn = self.opening.release_by_vote();
+                if n > 0 {
+                    self.turn_held_n(n, turn);
+                    release = Some(turn);
+                }
+                if turn {
+                    let back = |h: Option<f64>| h.map(|h| wrap_2pi(h + std::f64::consts::PI));
+                    used = back(used);
+                    theta = back(theta);
+                }
+            } else {
+                self.opening.hold();
+                held = true;
+            }
+        } else if !self.opening.settled() {
+            // The first step whose side is known: the steps held turn to it (a limb's turned
+            // them already).
+            if self.opening.held() > 0 {
+                let turn = match (used, self.last_used) {
+                    (Some(u), Some(l)) => libm::cos(u - l) < 0.0,
+                    _ => false,
+                };
+                self.turn_held(turn);
+                if turn && waiting {
+                    // This step's own direction was chained to theirs.
+                    theta = theta.map(|h| wrap_2pi(h + std::f64::consts::PI));
+                }
+                release = Some(turn != turned);
+            }
+            self.opening.settle();
+        }
         if theta.is_some() {
             self.last_single = theta;
             self.last_limb_signed = limb_signed;
@@ -585,7 +663,42 @@ impl Heading {
         StepHeading {
             used,
             single: theta,
+            held,
+            release,
         }
+    }
+
+    /// Releases the steps held at the bout's opening as the pelvis voted ([`opening`]), the
+    /// bout then settled; returns whether they turn by 180° (`None`: none were held). The
+    /// pipeline calls it when the bout ends without a step that says (a stop, a gap, the end
+    /// of the input).
+    pub fn release_held(&mut self) -> Option<bool> {
+        let n = self.opening.held();
+        if n == 0 {
+            return None;
+        }
+        let turn = self.opening.release_by_vote();
+        self.turn_held_n(n, turn);
+        Some(turn)
+    }
+
+    fn turn_held(&mut self, turn: bool) {
+        let n = self.opening.held();
+        self.turn_held_n(n, turn);
+    }
+
+    // The last `n` steps walked (those held) turned by 180°, when `turn`.
+    fn turn_held_n(&mut self, n: usize, turn: bool) {
+        if !turn {
+            return;
+        }
+        let back = |h: f64| wrap_2pi(h + std::f64::consts::PI);
+        let k = self.recent.len();
+        for w in self.recent.range_mut(k.saturating_sub(n)..) {
+            w.heading = back(w.heading);
+        }
+        self.last_used = self.last_used.map(back);
+        self.last_single = self.last_single.map(back);
     }
 
     /// `theta` (rad from north) with its 180° from the limb the phone rides

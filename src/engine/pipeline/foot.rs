@@ -62,6 +62,7 @@ impl Pipeline {
     /// strides (foot mode, or a second, foot-mounted sensor) take their place.
     pub(super) fn forget_body_steps(&mut self) {
         self.steps.clear();
+        self.held.clear();
         self.diag.steps = 0;
         self.diag.onset_steps = 0;
         self.diag.steps_without_heading = 0;

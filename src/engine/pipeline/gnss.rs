@@ -64,14 +64,19 @@ impl Pipeline {
     fn offer_fix(&mut self, f: &GnssFix) {
         if let (Some(frame), Some(fusion)) = (&self.frame, &mut self.fusion) {
             let (e, n) = frame.en_of_fix(f);
-            let still = self.prev_state == Motion::Still;
-            fusion.push_fix(&FixInput {
+            let fix = FixInput {
                 t: f.t,
                 east_m: e,
                 north_m: n,
                 accuracy_m: f.h_accuracy_m,
-                still,
-            });
+                still: self.prev_state == Motion::Still,
+            };
+            // While steps are held, the fix waits behind them.
+            if self.held.is_empty() {
+                fusion.push_fix(&fix);
+            } else {
+                self.held.push(super::Held::Fix(fix));
+            }
         }
     }
 

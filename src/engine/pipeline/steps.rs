@@ -1,7 +1,7 @@
 //! From the step detector's candidates to steps: the onset look-back, and each step's heading,
 //! activity, length, position and height. May import: the rest of `engine`.
 
-use super::{Pipeline, StepRecord};
+use super::{Held, Pipeline, StepRecord};
 use crate::engine::activity::Activity;
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
@@ -112,19 +112,10 @@ impl Pipeline {
             Activity::Upstairs | Activity::Downstairs => self.cfg.vertical.stair_tread_m,
             _ => modelled,
         };
-        match heading_used {
-            Some(h) => {
-                let (sh, ch) = libm::sincos(h);
-                self.pos.0 += length * sh;
-                self.pos.1 += length * ch;
-                self.diag.distance_m += length;
-            }
-            None => self.diag.steps_without_heading += 1,
-        }
-        self.steps.push(StepRecord {
+        let step = StepRecord {
             t: c.t,
-            east_m: self.pos.0,
-            north_m: self.pos.1,
+            east_m: 0.0,
+            north_m: 0.0,
             heading_rad: heading_used,
             step_heading_rad: h.single,
             length_m: length,
@@ -140,19 +131,75 @@ impl Pipeline {
             pitch_amplitude_deg: pocket.amplitude_deg,
             carry: self.carry.mode(),
             gyro_heading: self.magnetic.diagnostics().disturbed,
-        });
-        if let Some(f) = &mut self.fusion {
-            f.push_step(&fusion::StepInput {
-                t: c.t,
-                length_m: length,
-                // The fusion keeps the magnetometer's yaw: its heading correction is one
-                // constant, which a yaw held on the gyroscope does not have.
-                heading_rad: heading_used.map(|h| self.magnetic.unguarded(h)),
-            });
+        };
+        // The fusion keeps the magnetometer's yaw: its heading correction is one constant,
+        // which a yaw held on the gyroscope does not have.
+        let unguarded = heading_used.map(|h| self.magnetic.unguarded(h));
+        if let Some(turn) = h.release {
+            self.release_held(turn);
         }
+        if h.held {
+            self.held.push(Held::Step(step, unguarded));
+        } else {
+            self.place(step, unguarded);
+        }
+        // Counted now, held or not: the live count does not wait for the side.
         self.diag.steps += 1;
         self.t_km2 = cont;
         self.t_km1 = Some(c.t);
+    }
+
+    /// Puts a step on the track, after the last, and gives it to the fusion (with `unguarded`,
+    /// its heading in the magnetometer's yaw).
+    fn place(&mut self, mut step: StepRecord, unguarded: Option<f64>) {
+        match step.heading_rad {
+            Some(h) => {
+                let (sh, ch) = libm::sincos(h);
+                self.pos.0 += step.length_m * sh;
+                self.pos.1 += step.length_m * ch;
+                self.diag.distance_m += step.length_m;
+            }
+            None => self.diag.steps_without_heading += 1,
+        }
+        (step.east_m, step.north_m) = self.pos;
+        if let Some(f) = &mut self.fusion {
+            f.push_step(&fusion::StepInput {
+                t: step.t,
+                length_m: step.length_m,
+                heading_rad: unguarded,
+            });
+        }
+        self.steps.push(step);
+    }
+
+    /// Places the steps the heading stage held at the bout's opening
+    /// ([`crate::engine::heading::opening`]), turned by 180° when `turn`, and gives the fusion
+    /// the fixes that came meanwhile, in their order.
+    pub(super) fn release_held(&mut self, turn: bool) {
+        let back = |h: f64| crate::engine::math::wrap_2pi(h + std::f64::consts::PI);
+        let back_if = |h: Option<f64>| h.map(|h| if turn { back(h) } else { h });
+        for held in std::mem::take(&mut self.held) {
+            match held {
+                Held::Step(mut step, unguarded) => {
+                    step.heading_rad = back_if(step.heading_rad);
+                    step.step_heading_rad = back_if(step.step_heading_rad);
+                    self.place(step, back_if(unguarded));
+                }
+                Held::Fix(f) => {
+                    if let Some(fusion) = &mut self.fusion {
+                        fusion.push_fix(&f);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Releases the steps held at a bout's opening as the pelvis voted, when the bout ended
+    /// without a step that says their side (a stop, a gap, the end of the input).
+    pub(super) fn release_opening(&mut self) {
+        if let Some(turn) = self.heading.release_held() {
+            self.release_held(turn);
+        }
     }
 
     /// What the step-length stage was given for `step`, one of this pipeline's steps just
