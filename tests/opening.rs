@@ -93,6 +93,21 @@ fn the_steps_held_are_late_not_lost() {
 }
 
 #[test]
+fn a_gap_places_the_steps_held_and_returns_them() {
+    let records = cut(2.0);
+    let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
+    for r in &records {
+        p.push(r).unwrap();
+    }
+    let held = p.held_steps().count();
+    assert!(held >= 3, "{held} held");
+    let end = p.diagnostics().time_span.unwrap().1;
+    let placed = p.push(&Record::Gap(end, end + 5.0)).unwrap().len();
+    assert_eq!(placed, held);
+    assert_eq!(p.held_steps().count(), 0);
+}
+
+#[test]
 fn a_bout_that_ends_while_held_is_released_by_itself() {
     // Walk a few steps, then stand: no step comes for two strides, and the bout's held steps
     // are placed without `finish`.

@@ -441,23 +441,25 @@ impl Pipeline {
     }
 
     /// Feeds one record of a log: the one entry every caller uses, live or replayed. Returns the
-    /// steps it completed (usually none, sometimes several when the onset look-back releases
-    /// held steps). A refused record leaves the state untouched.
+    /// steps it placed on the track (usually none, sometimes several: the onset look-back's, or
+    /// those a bout's opening held, [`heading::opening`]). A refused record leaves the state
+    /// untouched.
     pub fn push(&mut self, r: &Record) -> Result<&[StepRecord], InputError> {
         match r {
             Record::Imu(s) => self.push_imu(s),
             Record::Gnss(f) => self.push_gnss(f).map(|()| &[][..]),
             Record::Gap(t0, t1) => {
+                // A gap ends the bout: the steps its opening held are placed.
+                let first = self.steps.len();
                 self.mark_gap(*t0, *t1);
-                Ok(&[])
+                Ok(&self.steps[first..])
             }
             Record::Foot(s) => self.push_foot_imu(s),
             Record::Pressure(p) => self.push_pressure(p).map(|()| &[][..]),
         }
     }
 
-    /// Feeds one IMU sample. Returns the steps this sample completed (usually none, sometimes
-    /// several when the onset look-back releases held steps).
+    /// Feeds one IMU sample. Returns the steps it placed on the track (see [`Self::push`]).
     pub fn push_imu(&mut self, s: &ImuSample) -> Result<&[StepRecord], InputError> {
         if let Err(e) = self.check(s) {
             match e {
