@@ -288,6 +288,8 @@ pub struct Heading {
     last_limb_signed: bool,
     // The swinging arm's forward vote, east and north ([`Self::limb_signed`]).
     arm_vote: (f64, f64),
+    // Steps in that vote.
+    arm_steps: u32,
     // The way forward the limb last gave (east, north), and whether the last step's turned
     // against it.
     limb_forward: Option<(f64, f64)>,
@@ -316,6 +318,7 @@ impl Heading {
             last_single: None,
             last_limb_signed: false,
             arm_vote: (0.0, 0.0),
+            arm_steps: 0,
             limb_forward: None,
             limb_flipped: false,
             last_used: None,
@@ -400,11 +403,16 @@ impl Heading {
             release = self.release_held();
             self.opening = opening::Opening::default();
         }
+        // A swinging arm's first vote is one stride's, which can point back: it settles a
+        // bout's opening from its second.
+        let young_arm = limb_signed && carry == Some(CarryMode::Swinging) && self.arm_steps < 2;
         let waiting = self.cfg.limb_sign
             && self.cfg.opening_steps > 0
             && has_heading
-            && !limb_signed
+            && (!limb_signed || young_arm)
             && !self.opening.settled();
+        // Held, it is chained as the pelvis's steps are, and not averaged as a limb's.
+        let limb_signed = limb_signed && !waiting;
         let theta = match theta {
             Some(th) if waiting => {
                 // The yaw at the step's own time: the onset look-back's steps come together.
@@ -630,6 +638,7 @@ impl Heading {
         };
         if carry != Some(CarryMode::Swinging) {
             self.arm_vote = (0.0, 0.0);
+            self.arm_steps = 0;
         }
         // While a heading is carried across a change (and only then: on stairs the limb can
         // stay silent for long, through turns), a limb's mode keeps the side of the heading
@@ -651,6 +660,7 @@ impl Heading {
             (Some(CarryMode::Pocket), None) => kept(self.last_used),
             (Some(CarryMode::Swinging), _) => match arm::forwardness(buf, window, (s, c)) {
                 Some(f) => {
+                    self.arm_steps = self.arm_steps.saturating_add(1);
                     let v = &mut self.arm_vote;
                     *v = (v.0 * ARM_KEEP + f * s, v.1 * ARM_KEEP + f * c);
                     let v = *v;
