@@ -154,3 +154,11 @@ fn the_fusion_gets_every_fix_behind_the_steps_held() {
     let (held, unheld) = (used(PipelineConfig::default()), used(with_opening(0)));
     assert_eq!(held, unheld);
 }
+
+#[test]
+fn an_opening_longer_than_the_bound_is_refused() {
+    let max = pdr::engine::heading::opening::MAX_STEPS;
+    let e = with_opening(max + 1).validate().unwrap_err();
+    assert!(e.to_string().contains("heading.opening_steps"), "{e}");
+    assert!(with_opening(max).validate().is_ok());
+}

@@ -159,6 +159,12 @@ impl HeadingConfig {
     /// Checks the values.
     pub fn validate(&self) -> Result<(), ConfigError> {
         positive("heading.pca_window_s", self.pca_window_s)?;
+        if self.opening_steps > opening::MAX_STEPS {
+            return Err(ConfigError::new(
+                "heading.opening_steps",
+                format!("must be at most {}", opening::MAX_STEPS),
+            ));
+        }
         if let Some(a) = &self.yaw_aid {
             positive("heading.yaw_aid.steps", a.steps)?;
             positive("heading.yaw_aid.gate_deg", a.gate_deg)?;

@@ -25,6 +25,10 @@
 //! A held step is late, not lost: live mode draws the walk's first steps a few seconds late,
 //! as the onset look-back already does with the first second.
 
+/// The most steps [`super::HeadingConfig::opening_steps`] may hold: what a walk's opening holds
+/// stays bounded (about half a minute of walking).
+pub const MAX_STEPS: usize = 64;
+
 /// The state of the bout's opening.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Opening {
