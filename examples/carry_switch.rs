@@ -9,7 +9,7 @@
 //! 9 runs walks no constant was chosen with)
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 
-use pdr::engine::{math::wrap_pi, replay, PipelineConfig};
+use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::{scenarios, Carry};
 
 fn main() {
@@ -38,9 +38,7 @@ fn main() {
                 n += track.len();
                 nt += sim.truth.observed_steps();
                 for s in track {
-                    let k = sim.truth.steps.partition_point(|x| x.t < s.t);
-                    let truth = sim.truth.steps[k.min(sim.truth.steps.len() - 1)].heading_rad;
-                    if let Some(h) = s.heading_rad {
+                    if let Some(err) = sim.truth.heading_error(s) {
                         let part = if s.t < t_switch {
                             0
                         } else if s.t < t_switch + 5.0 {
@@ -48,7 +46,7 @@ fn main() {
                         } else {
                             2
                         };
-                        e[part].0 += wrap_pi(h - truth).abs().to_degrees();
+                        e[part].0 += err.abs().to_degrees();
                         e[part].1 += 1;
                     }
                 }

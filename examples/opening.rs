@@ -8,7 +8,6 @@
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path
 
 use pdr::engine::heading::HeadingConfig;
-use pdr::engine::math::wrap_pi;
 use pdr::engine::{replay, PipelineConfig};
 use pdr::sim::{scenarios, Carry, Scenario};
 
@@ -24,10 +23,9 @@ fn measure(walks: &[Scenario], cfg: &PipelineConfig) -> (usize, usize, f64, f64)
             .iter()
             .take(8)
             .filter(|s| {
-                let k = sim.truth.steps.partition_point(|x| x.t < s.t);
-                let truth = sim.truth.steps[k.min(sim.truth.steps.len() - 1)].heading_rad;
-                s.heading_rad
-                    .is_some_and(|h| wrap_pi(h - truth).abs() > std::f64::consts::FRAC_PI_2)
+                sim.truth
+                    .heading_error(s)
+                    .is_some_and(|e| e.abs() > std::f64::consts::FRAC_PI_2)
             })
             .count();
         steps += off;

@@ -25,13 +25,7 @@ fn main() {
                 let sim = scenarios::carried_walk(carry, seed).generate();
                 let run = replay(cfg.clone(), &sim.records).unwrap();
                 let found = Found::from_track(run.pipeline.track());
-                let truth: Vec<(f64, f64, f64)> = sim
-                    .truth
-                    .steps
-                    .iter()
-                    .map(|s| (s.t, s.east_m, s.north_m))
-                    .collect();
-                let (s, e) = turn_shifts(&found, &truth, 0.1);
+                let (s, e) = turn_shifts(&found, &sim.truth.step_points(), 0.1);
                 shifts.extend(s.iter().map(|x| x.abs()));
                 errors.extend(e.iter().map(|x| x.abs().to_degrees()));
             }

@@ -184,10 +184,12 @@ fn heading_mae(carry: Carry) -> f64 {
         let sim = scenarios::carried_walk(carry, seed).generate();
         let run = replay(PipelineConfig::default(), &sim.records).unwrap();
         for s in run.pipeline.track() {
-            let k = sim.truth.steps.partition_point(|x| x.t < s.t);
-            let truth = sim.truth.steps[k.min(sim.truth.steps.len() - 1)].heading_rad;
-            let h = s.heading_rad.expect("a heading");
-            sum += pdr::engine::math::wrap_pi(h - truth).abs().to_degrees();
+            sum += sim
+                .truth
+                .heading_error(s)
+                .expect("a heading")
+                .abs()
+                .to_degrees();
             n += 1;
         }
     }
@@ -226,10 +228,12 @@ fn after_a_switch(from: Carry, to: Carry, cfg: &PipelineConfig) -> Switched {
         r.true_steps += sim.truth.observed_steps();
         r.feet += usize::from(run.pipeline.diagnostics().placement == Placement::Foot);
         for s in track.iter().filter(|s| s.t >= t_switch) {
-            let k = sim.truth.steps.partition_point(|x| x.t < s.t);
-            let truth = sim.truth.steps[k.min(sim.truth.steps.len() - 1)].heading_rad;
-            let h = s.heading_rad.expect("a heading");
-            r.deg += pdr::engine::math::wrap_pi(h - truth).abs().to_degrees();
+            r.deg += sim
+                .truth
+                .heading_error(s)
+                .expect("a heading")
+                .abs()
+                .to_degrees();
             n += 1;
         }
         let last = track.last().unwrap();
@@ -342,13 +346,7 @@ fn the_acceleration_heading_does_not_cut_the_corners() {
             let sim = scenarios::carried_walk(carry, seed).generate();
             let run = replay(cfg.clone(), &sim.records).unwrap();
             let found = Found::from_track(run.pipeline.track());
-            let truth: Vec<(f64, f64, f64)> = sim
-                .truth
-                .steps
-                .iter()
-                .map(|s| (s.t, s.east_m, s.north_m))
-                .collect();
-            let (s, _) = turn_shifts(&found, &truth, 0.1);
+            let (s, _) = turn_shifts(&found, &sim.truth.step_points(), 0.1);
             assert_eq!(s.len(), 2, "{carry:?} seed {seed}: two turns");
             all.extend(s.iter().map(|x| x.abs()));
         }

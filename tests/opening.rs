@@ -3,7 +3,6 @@
 //! held are late, never lost, and the fusion still gets every fix in its order.
 
 use pdr::engine::heading::HeadingConfig;
-use pdr::engine::math::wrap_pi;
 use pdr::engine::{replay, Pipeline, PipelineConfig, Record};
 use pdr::sim::{scenarios, Carry};
 
@@ -31,10 +30,9 @@ fn backwards(carry: Carry, real_ends: bool, cfg: &PipelineConfig) -> (usize, usi
             .iter()
             .take(8)
             .filter(|s| {
-                let k = sim.truth.steps.partition_point(|x| x.t < s.t);
-                let truth = sim.truth.steps[k.min(sim.truth.steps.len() - 1)].heading_rad;
-                s.heading_rad
-                    .is_some_and(|h| wrap_pi(h - truth).abs() > std::f64::consts::FRAC_PI_2)
+                sim.truth
+                    .heading_error(s)
+                    .is_some_and(|e| e.abs() > std::f64::consts::FRAC_PI_2)
             })
             .count();
         steps += off;
@@ -77,14 +75,20 @@ fn cut(seconds: f64) -> Vec<Record> {
         .collect()
 }
 
+/// A default pipeline fed `records` one by one, as live mode feeds it (not finished).
+fn fed<'a>(records: impl IntoIterator<Item = &'a Record>) -> Pipeline {
+    let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
+    for r in records {
+        p.push(r).unwrap();
+    }
+    p
+}
+
 #[test]
 fn the_steps_held_are_late_not_lost() {
     // Four steps in: the thigh has not given its side yet, so they are held.
     let records = cut(2.0);
-    let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
-    for r in &records {
-        p.push(r).unwrap();
-    }
+    let mut p = fed(&records);
     assert!(p.track().is_empty(), "{} steps placed", p.track().len());
     let released = p.finish().len();
     assert!(released >= 3, "{released} released at the end");
@@ -99,10 +103,7 @@ fn the_steps_held_are_late_not_lost() {
 #[test]
 fn a_gap_places_the_steps_held_and_returns_them() {
     let records = cut(2.0);
-    let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
-    for r in &records {
-        p.push(r).unwrap();
-    }
+    let mut p = fed(&records);
     let held = p.held_steps().count();
     assert!(held >= 3, "{held} held");
     let end = p.diagnostics().time_span.unwrap().1;
@@ -118,26 +119,19 @@ fn a_bout_that_ends_while_held_is_released_by_itself() {
     let sim = scenarios::short_walk(Carry::Pocket, 1, true).generate();
     let first = sim.truth.steps[0].t;
     let stop = first + 2.0;
+    // The standing before the walk, again after the stop.
     let still: Vec<Record> = sim
         .records
         .iter()
         .filter_map(|r| match r {
-            Record::Imu(s) if s.t < first - 0.5 => Some(*s),
+            Record::Imu(s) if s.t < first - 0.5 => Some(Record::Imu(pdr::engine::ImuSample {
+                t: s.t + stop + 1.0,
+                ..*s
+            })),
             _ => None,
         })
-        .collect::<Vec<_>>()
-        .into_iter()
-        .map(|s| {
-            Record::Imu(pdr::engine::ImuSample {
-                t: s.t + stop + 1.0,
-                ..s
-            })
-        })
         .collect();
-    let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
-    for r in cut(2.0).iter().chain(&still) {
-        p.push(r).unwrap();
-    }
+    let mut p = fed(cut(2.0).iter().chain(&still));
     assert!(!p.track().is_empty(), "the held steps were not released");
     assert!(p.finish().is_empty());
 }

@@ -85,6 +85,24 @@ impl Truth {
         }
     }
 
+    /// A found step's heading error against the direction of the true step it ends (the first
+    /// true step at or after its time, else the last), rad in (−π, π]; `None` without a heading
+    /// or a true step.
+    pub fn heading_error(&self, step: &crate::engine::StepRecord) -> Option<f64> {
+        let k = self.steps.partition_point(|x| x.t < step.t);
+        let truth = self.steps.get(k).or(self.steps.last())?.heading_rad;
+        step.heading_rad
+            .map(|h| crate::engine::math::wrap_pi(h - truth))
+    }
+
+    /// Each true step's time and position after it, (t, east, north).
+    pub fn step_points(&self) -> Vec<(f64, f64, f64)> {
+        self.steps
+            .iter()
+            .map(|s| (s.t, s.east_m, s.north_m))
+            .collect()
+    }
+
     /// Steps that fall outside sampling gaps.
     pub fn observed_steps(&self) -> usize {
         self.steps.iter().filter(|s| s.observed).count()

@@ -432,7 +432,7 @@ impl Heading {
         let mut turned = false;
         if let (Some(th), Some(l), true) = (theta, self.last_single, limb_signed) {
             if self.opening.held() > 0 && libm::cos(th - l) < 0.0 {
-                self.turn_held(true);
+                self.turn_held(self.opening.held(), true);
                 turned = true;
             }
         }
@@ -533,7 +533,7 @@ impl Heading {
                 let n = self.opening.held();
                 let turn = self.opening.release_by_vote();
                 if n > 0 {
-                    self.turn_held_n(n, turn);
+                    self.turn_held(n, turn);
                     release = Some(turn);
                 }
                 if turn {
@@ -553,7 +553,7 @@ impl Heading {
                     (Some(u), Some(l)) => libm::cos(u - l) < 0.0,
                     _ => false,
                 };
-                self.turn_held(turn);
+                self.turn_held(self.opening.held(), turn);
                 if turn && waiting {
                     // This step's own direction was chained to theirs.
                     theta = theta.map(|h| wrap_2pi(h + std::f64::consts::PI));
@@ -595,17 +595,12 @@ impl Heading {
             return None;
         }
         let turn = self.opening.release_by_vote();
-        self.turn_held_n(n, turn);
+        self.turn_held(n, turn);
         Some(turn)
     }
 
-    fn turn_held(&mut self, turn: bool) {
-        let n = self.opening.held();
-        self.turn_held_n(n, turn);
-    }
-
     // The last `n` steps walked (those held) turned by 180°, when `turn`.
-    fn turn_held_n(&mut self, n: usize, turn: bool) {
+    fn turn_held(&mut self, n: usize, turn: bool) {
         if !turn {
             return;
         }
