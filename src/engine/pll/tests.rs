@@ -199,4 +199,28 @@ fn a_quiet_first_step_counts_when_the_limb_swung_over_it() {
     // rocking), the quiet cycle stays out.
     assert!(walk(6.0, amplitude, |_| None, |_| None).1.is_empty());
     assert!(walk(6.0, amplitude, thigh(5.0), |_| Some(0.0)).1.is_empty());
+    // The quiet cycle runs from 0.5/f to 1.5/f. Its swing as a share of the next cycle's: a
+    // trailing thigh's, which only extends, 0.45, counts; 0.3 does not.
+    let first_share = |k: f64| {
+        move |t: f64| {
+            let k = if t < 1.5 / f { k } else { 1.0 };
+            Some(15.0 * k * (std::f64::consts::PI * f * t).sin())
+        }
+    };
+    assert_eq!(
+        walk(6.0, amplitude, first_share(0.45), |_| Some(0.0))
+            .1
+            .len(),
+        1
+    );
+    assert!(walk(6.0, amplitude, first_share(0.3), |_| Some(0.0))
+        .1
+        .is_empty());
+    // The pitch known over the quiet cycle's last half only: not weighed, though the swing
+    // there is half of the next cycle's (a phone handled in the hand, its rotation's axis
+    // dominant by turns, looked so on a hand-held IPIN 2023 walk).
+    let known_from = |t0: f64| move |t: f64| (t >= t0 / f).then(|| thigh(15.0)(t)).flatten();
+    assert!(walk(6.0, amplitude, known_from(1.0), |_| Some(0.0))
+        .1
+        .is_empty());
 }
