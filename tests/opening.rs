@@ -6,14 +6,26 @@ use pdr::engine::heading::HeadingConfig;
 use pdr::engine::{replay, Pipeline, PipelineConfig, Record};
 use pdr::sim::{scenarios, Carry};
 
-fn with_opening(steps: usize) -> PipelineConfig {
+fn with_heading(heading: HeadingConfig) -> PipelineConfig {
     PipelineConfig {
-        heading: HeadingConfig {
-            opening_steps: steps,
-            ..HeadingConfig::default()
-        },
+        heading,
         ..PipelineConfig::default()
     }
+}
+
+fn with_opening(steps: usize) -> PipelineConfig {
+    with_heading(HeadingConfig {
+        opening_steps: steps,
+        ..HeadingConfig::default()
+    })
+}
+
+/// With the steps held until a limb signs them, the cap or the bout's end whatever the tilt.
+fn waiting_for_the_limb() -> PipelineConfig {
+    with_heading(HeadingConfig {
+        opening_limb_tilt_deg: 0.0,
+        ..HeadingConfig::default()
+    })
 }
 
 /// Over the short walks of seeds 1–20 (with real-shaped ends or the historic ones): how many of
@@ -60,6 +72,49 @@ fn a_walk_on_a_limb_does_not_start_backwards() {
         walks >= 10,
         "without the hold the pocket's pelvis gives the side: {steps} steps on {walks} walks"
     );
+    // A limb is not taken for the trunk: the opening's tilt test (`opening_limb_tilt_deg`,
+    // 12.5°) at twice its value let the pocket's walks go as the pelvis voted.
+    let (steps, walks) = backwards(
+        Carry::Pocket,
+        true,
+        &with_heading(HeadingConfig {
+            opening_limb_tilt_deg: 25.0,
+            ..HeadingConfig::default()
+        }),
+    );
+    assert!(walks >= 10, "{steps} steps backwards on {walks} walks");
+}
+
+/// The most steps held at once while the short walks in `carry` (seeds 1–20, real-shaped
+/// ends) are fed sample by sample, as live mode feeds them.
+fn most_held(carry: Carry, cfg: &PipelineConfig) -> usize {
+    (1..=20)
+        .map(|seed| {
+            let sim = scenarios::short_walk(carry, seed, true).generate();
+            let mut p = Pipeline::new(cfg.clone()).unwrap();
+            let mut most = 0;
+            for r in &sim.records {
+                p.push(r).unwrap();
+                most = most.max(p.held_steps().count());
+            }
+            most
+        })
+        .max()
+        .unwrap_or(0)
+}
+
+#[test]
+fn a_phone_no_limb_carries_is_not_held_for_one() {
+    // At the ear and in a bag the phone tilts by 0.2–7.8° a step, and its steps go as the
+    // pelvis voted at the bout's third. Measured: at most 2 held; 11 (the cap less one) when
+    // waiting for the limb, which never signs there.
+    for carry in [Carry::Ear, Carry::Bag] {
+        assert!(
+            most_held(carry, &PipelineConfig::default()) <= 2,
+            "{carry:?}"
+        );
+        assert_eq!(most_held(carry, &waiting_for_the_limb()), 11, "{carry:?}");
+    }
 }
 
 /// A pocket walk's records up to `seconds` after its first true step.

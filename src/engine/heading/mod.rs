@@ -138,6 +138,14 @@ pub struct HeadingConfig {
     /// With [`Self::limb_sign`], hold at most this many of a bout's first steps whose side only
     /// the pelvis gives, until a limb or the device's yaw gives it ([`opening`]); 0 holds none.
     pub opening_steps: usize,
+    /// The held steps go as the pelvis voted once [`opening::TRUNK_STEPS`] steps in a row after
+    /// the bout's first tilt the phone by less than this, degrees ([`opening::step_tilt_deg`]):
+    /// no limb carries it, and none will sign the side. Default 12.5°, half the least stride of
+    /// a thigh the leg pitch recognises
+    /// ([`crate::engine::leg_pitch::LegPitchConfig::thigh_min_amplitude_deg`], 25°): a step
+    /// swings a thigh from one end of its stride to the other, so a phone that tilts less about
+    /// its mean is one the thigh's sign will not come for. 0 waits for the limb or the cap.
+    pub opening_limb_tilt_deg: f64,
 }
 
 impl Default for HeadingConfig {
@@ -151,6 +159,7 @@ impl Default for HeadingConfig {
             limb_sign: true,
             turn_lead: true,
             opening_steps: 12,
+            opening_limb_tilt_deg: 12.5,
         }
     }
 }
@@ -159,6 +168,12 @@ impl HeadingConfig {
     /// Checks the values.
     pub fn validate(&self) -> Result<(), ConfigError> {
         positive("heading.pca_window_s", self.pca_window_s)?;
+        if !(self.opening_limb_tilt_deg >= 0.0 && self.opening_limb_tilt_deg <= 90.0) {
+            return Err(ConfigError::new(
+                "heading.opening_limb_tilt_deg",
+                "must be in [0, 90]",
+            ));
+        }
         if self.opening_steps > opening::MAX_STEPS {
             return Err(ConfigError::new(
                 "heading.opening_steps",
@@ -424,6 +439,10 @@ impl Heading {
                 // The yaw at the step's own time: the onset look-back's steps come together.
                 let at = buf.partition_point(|x| x.t < window.t_k);
                 let yaw_k = buf.get(at).map_or(yaw, |x| x.yaw);
+                self.opening.tilt(
+                    opening::step_tilt_deg(buf, window.t_km1, window.t_k),
+                    self.cfg.opening_limb_tilt_deg,
+                );
                 Some(self.opening.chain(th, self.last_single, yaw_k))
             }
             th => th,
@@ -528,8 +547,9 @@ impl Heading {
         let mut theta = theta;
         let mut held = false;
         if waiting && aided.is_none() {
-            if self.opening.held() + 1 >= self.cfg.opening_steps {
-                // Held long enough: this step and those before go as the pelvis voted.
+            if self.opening.held() + 1 >= self.cfg.opening_steps || self.opening.no_limb() {
+                // Held long enough, or no limb carries the phone: this step and those before go
+                // as the pelvis voted.
                 let n = self.opening.held();
                 let turn = self.opening.release_by_vote();
                 if n > 0 {
