@@ -104,6 +104,32 @@ fn live_events_count_like_the_log_and_both_platforms_agree() {
 }
 
 #[wasm_bindgen_test(unsupported = test)]
+fn the_steps_held_at_a_walks_opening_are_counted_and_shown_as_held() {
+    // A pocket walk cut 2 s after its first step: the thigh has not said yet which way is
+    // forward, so its steps are counted but not on the track.
+    let sim = scenarios::short_walk(pdr::sim::Carry::Pocket, 1, true).generate();
+    let end = sim.truth.steps[0].t + 2.0;
+    let cut: Vec<Record> = sim
+        .records
+        .iter()
+        .filter(|r| !matches!(r, Record::Imu(s) if s.t > end))
+        .copied()
+        .collect();
+    let mut live = feed(&cut, Platform::Android);
+    let r = live.readouts();
+    assert!(
+        r.held_steps >= 3 && r.steps == r.held_steps && r.heading_deg.is_none(),
+        "{r:?}"
+    );
+    // Stop: they are placed.
+    assert_eq!(live.finish(), r.held_steps);
+    let r = live.readouts();
+    assert_eq!(r.held_steps, 0);
+    assert_eq!(live.pipeline().track().len(), r.steps);
+    assert!(r.heading_deg.is_some());
+}
+
+#[wasm_bindgen_test(unsupported = test)]
 fn the_recording_replays_to_the_same_track() {
     let sim = scenarios::demo_walk().generate();
     let mut live = feed(&sim.records, Platform::Ios);

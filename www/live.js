@@ -383,7 +383,12 @@ function show(r, s) {
   set('r-spm', r.cadence_hz != null ? `${Math.round(r.cadence_hz * 60)} steps/min` : '– steps/min');
   const h = r.heading_deg != null ? ((r.heading_deg % 360) + 360) % 360 : null;
   set('r-heading', h != null ? `${Math.round(h)}° ${compassPoint(h)}` : '–');
-  set('r-heading-ref', r.absolute_heading ? 'from north' : (r.samples ? 'relative to start' : '–'));
+  // A walk's first steps wait off the track until the limb says which way is forward.
+  set('r-heading-ref', r.held_steps
+    ? `${r.held_steps} step${r.held_steps > 1 ? 's' : ''} waiting`
+    : (r.absolute_heading ? 'from north' : (r.samples ? 'relative to start' : '–')));
+  $('r-heading-ref').title = r.held_steps
+    ? 'A walk’s first steps wait off the track until the phone’s swing says which way is forward.' : '';
   set('r-gnss', r.gnss_accuracy_m != null ? `±${Math.round(r.gnss_accuracy_m)} m` : '–');
   set('r-fixes', r.fixes ? `${r.fixes} fix${r.fixes > 1 ? 'es' : ''}${receiver(r, s)}` : (s.gnssMode === 'off' ? 'off' : 'no fix'));
   // What the fusion learnt, ± 1σ (words from the engine), and its notice when it waits for a

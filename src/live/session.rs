@@ -156,6 +156,9 @@ pub struct Readouts {
     pub cadence_hz: Option<f64>,
     /// Heading of the last step, degrees from north.
     pub heading_deg: Option<f64>,
+    /// Steps counted but not yet on the track: a walk's first steps wait until something
+    /// knows which way is forward ([`crate::engine::heading::opening`]).
+    pub held_steps: usize,
     /// `still`, `walking` or `running`.
     pub motion: Option<&'static str>,
     /// The activity in words ("Walking upstairs", "Sitting", …; Munoz Diaz 2015 §4.3): the
@@ -622,6 +625,7 @@ impl LiveSession {
             distance_m: d.distance_m,
             cadence_hz: last.map(|s| s.freq_hz),
             heading_deg: last.and_then(|s| s.heading_rad).map(f64::to_degrees),
+            held_steps: self.pipeline.held_steps().count(),
             motion: d.motion.map(|m| m.as_str()),
             activity: activity_now(&d).map(crate::io::export::activity_words),
             activity_key: activity_now(&d).map(|a| a.as_str()),

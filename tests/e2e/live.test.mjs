@@ -66,16 +66,33 @@ async function liveWalk({ ios }) {
   await start(page);
   const base = await page.evaluate(() => performance.now());
   const half = Math.floor(w.events.length / 2);
-  await dispatch(page, w.events, { base, ios, to: half });
+  // A second at a time until the walk's first steps are held (the thigh has not said yet
+  // which way is forward): what the heading's card says then.
+  let opening = null;
+  let i = 0;
+  for (; i < half && !opening; i += 100) {
+    await dispatch(page, w.events, { base, ios, from: i, to: Math.min(i + 100, half) });
+    await page.waitForTimeout(150); // a redraw
+    const r = await readouts(page);
+    if (r.held_steps > 0) {
+      opening = { held: r.held_steps, steps: r.steps, ref: await page.textContent('#r-heading-ref') };
+      await page.screenshot({ path: path.join(ARTIFACTS, `live-opening-${ios ? 'ios' : 'android'}.png`) });
+    }
+  }
+  await dispatch(page, w.events, { base, ios, from: i, to: half });
   await page.waitForTimeout(150); // a redraw
   const mid = { shown: Number(await page.textContent('#g-steps')), steps: (await readouts(page)).steps };
   await dispatch(page, w.events, { base, ios, from: half });
   await page.waitForTimeout(300); // one more redraw
-  return { ...session, w, mid, r: await readouts(page) };
+  return { ...session, w, mid, opening, r: await readouts(page) };
 }
 
 test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown, pocket guard looks deliberate', async () => {
-  const { context, page, w, r, mid, errors } = await liveWalk({ ios: false });
+  const { context, page, w, r, mid, opening, errors } = await liveWalk({ ios: false });
+  // The walk's first steps waited for their side, counted, and the heading's card said so.
+  assert.ok(opening, 'no step was held at the walk\'s opening');
+  assert.equal(opening.ref, `${opening.held} step${opening.held > 1 ? 's' : ''} waiting`);
+  assert.ok(opening.steps >= opening.held, `${opening.steps} counted, ${opening.held} held`);
   // Halfway, the guard showed the steps so far.
   assert.ok(mid.shown > 0.3 * w.truth_steps && mid.shown < 0.7 * w.truth_steps, `halfway: ${mid.shown} shown`);
   assert.ok(Math.abs(mid.shown - mid.steps) <= 3, `halfway: ${mid.shown} shown, ${mid.steps} counted`);
