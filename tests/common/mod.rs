@@ -3,6 +3,8 @@
 #![allow(dead_code)]
 
 pub mod fusion;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod import;
 pub mod ipin;
 
 use pdr::engine::types::{GnssFix, ImuSample};
