@@ -6,6 +6,8 @@ pub mod fusion;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod import;
 pub mod ipin;
+#[cfg(not(target_arch = "wasm32"))]
+pub mod recipe;
 
 use pdr::engine::types::{GnssFix, ImuSample};
 use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
