@@ -42,11 +42,11 @@ pub const MAX_STEPS: usize = 64;
 
 /// Steps in a row, after a bout's first, that must tilt the phone by less than
 /// [`super::HeadingConfig::opening_limb_tilt_deg`] to say that no limb carries it. Two: a
-/// pocket's second step tilted the simulated phone by 12.6–21°, its third by 14.6–24°.
+/// pocket's second step tilted the simulated phone by 12.6–21°, its third by 14.6–24.5°.
 pub const TRUNK_STEPS: usize = 2;
 
 /// The phone's tilt over a step: the largest angle, degrees, between its up direction at the
-/// samples of `buf` in [`from`, `to`] and their mean (a step swings a thigh from one end of its
+/// samples of `buf` from `from` to `to` and their mean (a step swings a thigh from one end of its
 /// stride to the other, so about half the stride's swing). `None` without an attitude.
 pub fn step_tilt_deg(buf: &VecDeque<NavSample>, from: f64, to: f64) -> Option<f64> {
     let start = buf.partition_point(|x| x.t < from);
