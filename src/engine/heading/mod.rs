@@ -159,7 +159,9 @@ impl Default for HeadingConfig {
             limb_sign: true,
             turn_lead: true,
             opening_steps: 12,
-            opening_limb_tilt_deg: 12.5,
+            opening_limb_tilt_deg: crate::engine::leg_pitch::LegPitchConfig::default()
+                .thigh_min_amplitude_deg
+                / 2.0,
         }
     }
 }
