@@ -302,21 +302,23 @@ impl LegPitch {
                 .unwrap_or(0);
             c.column(i).into_owned()
         });
-        let mut a = start;
+        // C·a of the axis so far: each iteration's product gives its share and the next step.
+        let (mut a, mut ca) = (start, c * start);
         for i in 0..=CATCH_UP_ITERATIONS {
-            let next = c * a;
-            let n = next.norm();
+            let n = ca.norm();
             if !(n > 0.0) {
                 if i == 0 {
                     return;
                 }
                 break;
             }
-            let share = next.dot(&(c * next)) / (n * n * trace);
+            let next = ca / n;
+            let c_next = c * next;
+            let share = next.dot(&c_next) / trace;
             if i > 0 && !(share > self.share) {
                 break;
             }
-            a = next / n;
+            (a, ca) = (next, c_next);
             self.share = share;
             if share >= self.cfg.min_axis_share {
                 break;

@@ -66,14 +66,10 @@ mod tests {
             let t = i as f64 * 0.005;
             let theta = a * (w * t).cos();
             buf.push_back(NavSample {
-                t,
-                e: 0.0,
                 n: -(2.0 * w * t).sin() + 3.0 * (w * t).sin(),
                 up: (2.0 * w * t).cos() - ARM_LEVER_M * a * a * w * w * (2.0 * w * t).cos(),
                 pitch: pitch.then_some(theta.to_degrees()),
-                axis_tilt: None,
-                yaw: 0.0,
-                device_up: [0.0; 3],
+                ..NavSample::empty(t)
             });
         }
         let win = StepWindow {

@@ -121,14 +121,10 @@ mod tests {
         while t < 10.7 {
             let tau = t - t0;
             buf.push_back(NavSample {
-                t,
                 e: 1.5 * (w * tau).cos() - 0.5 * (2.0 * w * tau).sin(),
                 n: 0.7 * (w * tau).sin() + 0.2,
                 up: 2.0 * (2.0 * w * tau).cos(),
-                pitch: None,
-                axis_tilt: None,
-                yaw: 0.0,
-                device_up: [0.0; 3],
+                ..NavSample::empty(t)
             });
             i += 1;
             t += 0.004 + 0.002 * ((i * 7919) % 13) as f64 / 13.0;

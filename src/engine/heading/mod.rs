@@ -79,6 +79,22 @@ pub struct NavSample {
 }
 
 impl NavSample {
+    /// A sample at `t` with nothing in it: no acceleration, pitch, turn or attitude (tests
+    /// set what they need over it).
+    #[cfg(test)]
+    pub(crate) fn empty(t: f64) -> Self {
+        NavSample {
+            t,
+            e: 0.0,
+            n: 0.0,
+            up: 0.0,
+            pitch: None,
+            axis_tilt: None,
+            yaw: 0.0,
+            device_up: [0.0; 3],
+        }
+    }
+
     fn lerp(a: &NavSample, b: &NavSample, t: f64) -> NavSample {
         let w = if b.t > a.t {
             (t - a.t) / (b.t - a.t)
@@ -737,14 +753,10 @@ mod tests {
                 let t = 0.01 * i as f64;
                 let phi = 20f64.to_radians() * t;
                 NavSample {
-                    t,
                     e: -(w * t).sin() * phi.sin(),
                     n: -(w * t).sin() * phi.cos(),
                     up: (w * t).cos(),
-                    pitch: None,
-                    axis_tilt: None,
-                    yaw: 0.0,
-                    device_up: [0.0; 3],
+                    ..NavSample::empty(t)
                 }
             })
             .collect();

@@ -179,14 +179,8 @@ mod tests {
                 let t = i as f64 * 0.01;
                 let a = lean(t).to_radians();
                 NavSample {
-                    t,
-                    e: 0.0,
-                    n: 0.0,
-                    up: 0.0,
-                    pitch: None,
-                    axis_tilt: None,
-                    yaw: 0.0,
                     device_up: [0.0, libm::sin(a), libm::cos(a)],
+                    ..NavSample::empty(t)
                 }
             })
             .collect()

@@ -226,14 +226,9 @@ mod tests {
             .map(|i| {
                 let t = i as f64 * 0.01;
                 NavSample {
-                    t,
-                    e: 0.0,
-                    n: 0.0,
-                    up: 0.0,
-                    pitch: None,
-                    axis_tilt: None,
                     yaw: rate * t + sway * (std::f64::consts::TAU * t / stride_s).sin(),
                     device_up: [0.0, 0.0, 1.0],
+                    ..NavSample::empty(t)
                 }
             })
             .collect()
