@@ -5,7 +5,7 @@
 
 mod common;
 use common::import::*;
-use common::peak_rss;
+use common::{assert_peak_grew_less, peak_rss};
 use nalgebra::Vector3;
 use pdr::engine::Record;
 use pdr::io::import::{import_all, DirSet};
@@ -291,13 +291,7 @@ fn two_gigabytes_of_junk_behind_a_real_header() {
             }
         }
     }
-    if let (Some(a), Some(b)) = (before, peak_rss()) {
-        assert!(
-            b.saturating_sub(a) < 256 << 20,
-            "peak memory grew by {} MB",
-            (b - a) >> 20
-        );
-    }
+    assert_peak_grew_less(before, 256 << 20);
 }
 
 #[test]

@@ -27,6 +27,18 @@ pub fn peak_rss() -> Option<u64> {
     Some(kb * 1024)
 }
 
+/// Fails when the peak resident memory grew by `limit` bytes or more since `before` (a
+/// [`peak_rss`]; nothing is checked where the platform has none).
+pub fn assert_peak_grew_less(before: Option<u64>, limit: u64) {
+    if let (Some(a), Some(b)) = (before, peak_rss()) {
+        assert!(
+            b.saturating_sub(a) < limit,
+            "peak memory grew by {} MB",
+            (b - a) >> 20
+        );
+    }
+}
+
 /// FNV-1a over the bits of a sequence of numbers: the digests that the bit-identical replay
 /// tests check natively and in Chromium against one constant.
 pub fn fnv1a(values: impl IntoIterator<Item = f64>) -> u64 {
