@@ -149,24 +149,21 @@ fn pdr_run_and_eval_take_a_recipe() {
     assert_eq!(v["logs"][0]["steps"].as_u64(), Some(steps as u64), "{out}");
     // A recipe that does not match says why; a broken recipe names its file and field.
     let wrong = dir.join("wrong.json");
-    std::fs::write(
-        &wrong,
-        formats::PLAIN_CSV_RECIPE.replace("\"acc.csv\"", "\"accel.csv\""),
-    )
-    .unwrap();
-    let (ok, _, err) = pdr(&["run", d, "--recipe", wrong.to_str().unwrap()]);
+    // The error of `pdr run` with the recipe whose `from` is replaced by `to`.
+    let refused = |from: &str, to: &str| {
+        std::fs::write(&wrong, formats::PLAIN_CSV_RECIPE.replace(from, to)).unwrap();
+        let (ok, _, err) = pdr(&["run", d, "--recipe", wrong.to_str().unwrap()]);
+        assert!(!ok, "a broken recipe was taken");
+        err
+    };
+    let err = refused("\"acc.csv\"", "\"accel.csv\"");
     assert!(
-        !ok && err.contains("matches no folder") && err.contains("no file matches \"accel.csv\""),
+        err.contains("matches no folder") && err.contains("no file matches \"accel.csv\""),
         "{err}"
     );
-    std::fs::write(
-        &wrong,
-        formats::PLAIN_CSV_RECIPE.replace("\"unit\": \"rad/s\"", "\"unit\": \"g\""),
-    )
-    .unwrap();
-    let (ok, _, err) = pdr(&["run", d, "--recipe", wrong.to_str().unwrap()]);
+    let err = refused("\"unit\": \"rad/s\"", "\"unit\": \"g\"");
     assert!(
-        !ok && err.contains("wrong.json") && err.contains("does not fit a gyroscope"),
+        err.contains("wrong.json") && err.contains("does not fit a gyroscope"),
         "{err}"
     );
     let _ = std::fs::remove_dir_all(&dir);
