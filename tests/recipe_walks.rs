@@ -198,6 +198,17 @@ fn recipes_apply_inside_zip_archives() {
     assert!(zipped.source.starts_with("walk.zip/"), "{}", zipped.source);
 }
 
+/// A recipe for x-io Gait-Tracking CSVs (time, gyroscope in deg/s, accelerometer in g in one
+/// headed file) named by `pattern`: an entry per sensor.
+fn xio_recipe(pattern: &str) -> String {
+    r#"{"recipe": 1, "name": "x-io", "files": [
+      {"match": "PATTERN", "sensor": "accelerometer", "header": true, "time_unit": "s", "unit": "g",
+       "columns": {"t": "Time (s)", "x": "Accelerometer X (g)", "y": "Accelerometer Y (g)", "z": "Accelerometer Z (g)"}},
+      {"match": "PATTERN", "sensor": "gyroscope", "header": true, "time_unit": "s", "unit": "deg/s",
+       "columns": {"t": "Time (s)", "x": "Gyroscope X (deg/s)", "y": "Gyroscope Y (deg/s)", "z": "Gyroscope Z (deg/s)"}}]}"#
+        .replace("PATTERN", pattern)
+}
+
 #[test]
 fn one_file_of_several_sensors_reads_as_its_own_reader_does() {
     // The x-io Gait-Tracking CSV (a real recording's first lines, tests/fixtures/import): time,
@@ -208,12 +219,8 @@ fn one_file_of_several_sensors_reads_as_its_own_reader_does() {
         "/tests/fixtures/import/xio_foot.csv"
     );
     let bytes = std::fs::read(path).unwrap();
-    let json = r#"{"recipe": 1, "name": "x-io", "files": [
-      {"match": "*.csv", "sensor": "accelerometer", "header": true, "time_unit": "s", "unit": "g",
-       "columns": {"t": "Time (s)", "x": "Accelerometer X (g)", "y": "Accelerometer Y (g)", "z": "Accelerometer Z (g)"}},
-      {"match": "*.csv", "sensor": "gyroscope", "header": true, "time_unit": "s", "unit": "deg/s",
-       "columns": {"t": "Time (s)", "x": "Gyroscope X (deg/s)", "y": "Gyroscope Y (deg/s)", "z": "Gyroscope Z (deg/s)"}}]}"#;
-    let r = Recipe::from_json(json).unwrap();
+    let json = xio_recipe("*.csv");
+    let r = Recipe::from_json(&json).unwrap();
     let files = vec![("xio/walk.csv".to_string(), bytes.clone())];
     let (by_recipe, report) = read(files, &r);
     let native = pdr::io::import::xio::read_xio(&bytes[..], "walk.csv").unwrap();
@@ -251,12 +258,7 @@ fn shared_xio_walks_read_by_a_recipe_as_by_their_reader() {
         );
         return;
     }
-    let json = r#"{"recipe": 1, "name": "x-io", "files": [
-      {"match": "*_walk.csv", "sensor": "accelerometer", "header": true, "time_unit": "s", "unit": "g",
-       "columns": {"t": "Time (s)", "x": "Accelerometer X (g)", "y": "Accelerometer Y (g)", "z": "Accelerometer Z (g)"}},
-      {"match": "*_walk.csv", "sensor": "gyroscope", "header": true, "time_unit": "s", "unit": "deg/s",
-       "columns": {"t": "Time (s)", "x": "Gyroscope X (deg/s)", "y": "Gyroscope Y (deg/s)", "z": "Gyroscope Z (deg/s)"}}]}"#;
-    let r = Recipe::from_json(json).unwrap();
+    let r = Recipe::from_json(&xio_recipe("*_walk.csv")).unwrap();
     for name in ["short_walk.csv", "long_walk.csv"] {
         let bytes = std::fs::read(dir.join(name)).unwrap();
         let native = pdr::io::import::xio::read_xio(&bytes[..], name).unwrap();
