@@ -128,6 +128,7 @@ fn main() {
     let mut pooled: Vec<Vec<f64>> = vec![Vec::new(); rows.len()];
     let (mut long_err, mut long_diff, mut span_err) = (Vec::new(), Vec::new(), Vec::new());
     let mut walks = 0;
+    let mut scales = Vec::new();
     for log in &logs {
         let run = match replay(log.dated(&cfg), &log.records) {
             Ok(r) => r,
@@ -155,6 +156,7 @@ fn main() {
             .collect();
         let k = truth.iter().map(|&t| len(t)).sum::<f64>()
             / d.iter().map(|&x| len(x)).sum::<f64>().max(1e-9);
+        scales.push(k);
         let scaled = |x: Xy| (x.0 * k, x.1 * k);
         // The truth's bearings are in the plan frame; the chain is aligned as a whole after,
         // so a segment on its true bearing is the truth's direction at the estimated length.
@@ -220,6 +222,14 @@ fn main() {
     for (row, e) in rows.iter().zip(pooled) {
         println!("  {row:<50} {:5.2} m", p75(e));
     }
+    scales.sort_by(f64::total_cmp);
+    println!(
+        "the walks' perfect scales (true path / estimated): {:.2}..{:.2}, median {:.2}, sd {:.3}",
+        scales.first().copied().unwrap_or(f64::NAN),
+        scales.last().copied().unwrap_or(f64::NAN),
+        median(scales.clone()),
+        sd(&scales)
+    );
     let abs: Vec<f64> = long_err.iter().map(|e| e.abs()).collect();
     println!(
         "segments >= {LONG_M} m ({}): |bearing error| mean {:.1}°, p75 {:.1}°; sd {:.1}°, of two consecutive ones' difference {:.1}° (sqrt 2 x sd = {:.1}° if each were its own)",
