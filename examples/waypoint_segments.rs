@@ -145,21 +145,26 @@ fn main() {
         walks += 1;
         let wps = &log.truth.waypoints;
         let pos: Vec<Xy> = wps.iter().map(|w| position_at(track, w.t)).collect();
-        let d: Vec<Xy> = pos
-            .windows(2)
-            .map(|p| (p[1].0 - p[0].0, p[1].1 - p[0].1))
-            .collect();
-        // Waypoints as (east, north)-like plan coordinates: x then y, as the alignment reads them.
+        // The waypoints' plan coordinates, x then y, as the alignment reads them.
         let truth: Vec<Xy> = wps
             .windows(2)
             .map(|p| (p[1].x_m - p[0].x_m, p[1].y_m - p[0].y_m))
+            .collect();
+        // The estimate's segments turned into the plan frame by the rotation that scores the
+        // walk, so that estimated and true segments can be mixed in one chain.
+        let est: Vec<Xy> = pos
+            .windows(2)
+            .map(|p| (p[1].0 - p[0].0, p[1].1 - p[0].1))
+            .collect();
+        let (s, c) = alignment(&est, &truth).sin_cos();
+        let d: Vec<Xy> = est
+            .iter()
+            .map(|x| (c * x.0 - s * x.1, s * x.0 + c * x.1))
             .collect();
         let k = truth.iter().map(|&t| len(t)).sum::<f64>()
             / d.iter().map(|&x| len(x)).sum::<f64>().max(1e-9);
         scales.push(k);
         let scaled = |x: Xy| (x.0 * k, x.1 * k);
-        // The truth's bearings are in the plan frame; the chain is aligned as a whole after,
-        // so a segment on its true bearing is the truth's direction at the estimated length.
         let true_bearing: Vec<Xy> = d
             .iter()
             .zip(&truth)
@@ -185,19 +190,15 @@ fn main() {
                 .map(|(&e, &t)| with_length(e, len(t)))
                 .collect(),
         ];
-        // The first two chains are scored in the truth's frame only through the alignment;
-        // the true-bearing chains are already in it (the alignment then turns them by ~0).
         for (row, chain) in pooled.iter_mut().zip(&chains) {
             row.extend(chain_errors(template, wps, chain));
         }
-        // Bearings of the estimate after the walk's alignment (the rotation that scores it).
-        let rot = alignment_deg(&d, &truth);
         let mut prev: Option<f64> = None;
         for (e, t) in d.iter().zip(&truth) {
             if len(*t) < LONG_M {
                 continue;
             }
-            let err = diff_deg(bearing(*e) - rot, bearing(*t));
+            let err = diff_deg(bearing(*e), bearing(*t));
             long_err.push(err);
             if let Some(p) = prev {
                 long_diff.push(err - p);
@@ -208,9 +209,11 @@ fn main() {
         while let Some(j) = (i + 1..wps.len())
             .find(|&j| len((wps[j].x_m - wps[i].x_m, wps[j].y_m - wps[i].y_m)) >= SPAN_M)
         {
-            let e = (pos[j].0 - pos[i].0, pos[j].1 - pos[i].1);
+            let e = d[i..j]
+                .iter()
+                .fold((0.0, 0.0), |a, x| (a.0 + x.0, a.1 + x.1));
             let t = (wps[j].x_m - wps[i].x_m, wps[j].y_m - wps[i].y_m);
-            span_err.push(diff_deg(bearing(e) - rot, bearing(t)).abs());
+            span_err.push(diff_deg(bearing(e), bearing(t)).abs());
             i = j;
         }
     }
@@ -248,10 +251,9 @@ fn main() {
     );
 }
 
-/// The least-squares rotation of the estimate's cumulative positions onto the truth's, as
-/// `eval::waypoint_errors` aligns them, in compass degrees (the estimate's bearing minus the
-/// truth's).
-fn alignment_deg(d: &[Xy], truth: &[Xy]) -> f64 {
+/// The least-squares rotation (radians, counter-clockwise in the plan's x–y) of the estimate's
+/// cumulative positions onto the truth's: `eval::waypoint_errors`'s alignment.
+fn alignment(d: &[Xy], truth: &[Xy]) -> f64 {
     let (mut e, mut r) = ((0.0, 0.0), (0.0, 0.0));
     let (mut dot, mut cross) = (0.0, 0.0);
     for (x, t) in d.iter().zip(truth) {
@@ -260,7 +262,5 @@ fn alignment_deg(d: &[Xy], truth: &[Xy]) -> f64 {
         dot += e.0 * r.0 + e.1 * r.1;
         cross += e.0 * r.1 - e.1 * r.0;
     }
-    // atan2(cross, dot) turns the estimate counter-clockwise onto the truth: its compass
-    // bearings are that much clockwise of the truth's.
-    cross.atan2(dot).to_degrees()
+    cross.atan2(dot)
 }
