@@ -75,10 +75,12 @@ fn chain_errors(template: &StepRecord, wps: &[Waypoint], d: &[Xy]) -> Vec<f64> {
         .unwrap_or_default()
 }
 
-/// Compass bearing of `v` (east, north) in degrees, and the difference `a − b` in (−180, 180].
+/// Compass bearing of `v` (east, north) in degrees.
 fn bearing(v: Xy) -> f64 {
     v.0.atan2(v.1).to_degrees()
 }
+
+/// The difference `a − b` of two bearings in degrees, in (−180, 180].
 fn diff_deg(a: f64, b: f64) -> f64 {
     let d = (a - b).rem_euclid(360.0);
     if d > 180.0 {
