@@ -15,9 +15,13 @@
 use pdr::engine::pipeline::position_at;
 use pdr::engine::{replay, StepRecord};
 use pdr::eval::{percentile, waypoint_errors};
-use pdr::io::import::{import_all, DirSet, Waypoint};
+use pdr::io::import::Waypoint;
 use pdr::settings::Settings;
-use std::path::Path;
+
+/// The tests' reader of `../shared/data`, which says when a clone has none.
+#[path = "../tests/common/ipin.rs"]
+#[allow(dead_code)]
+mod shared;
 
 /// Segments of 6 m or more: a waypoint a metre off turns them by under 10°.
 const LONG_M: f64 = 6.0;
@@ -107,16 +111,11 @@ fn main() {
             std::process::exit(2);
         }
     };
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/data")
-        .join(&name);
-    let Ok(mut set) = DirSet::new(&root) else {
-        println!("skipped: {} not found", root.display());
+    let Some(logs) = shared::shared_logs(&name) else {
         return;
     };
-    let logs: Vec<_> = import_all(&mut set)
+    let logs: Vec<_> = logs
         .into_iter()
-        .flatten()
         .filter(|l| l.truth.waypoints.len() >= 2 && !l.source.contains("Trial51"))
         .collect();
     let rows = [
