@@ -172,11 +172,40 @@ pub struct TrueStep {
     pub foot: Option<u8>,
 }
 
+/// One sample of a dense trajectory truth (motion capture): where the device was at a time, in a
+/// local metric frame (metres; z up; x and y need not point east and north).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TruePosition {
+    /// Time, s, on the log's clock.
+    pub t: f64,
+    /// x, m.
+    pub x_m: f64,
+    /// y, m.
+    pub y_m: f64,
+    /// z (up), m.
+    pub z_m: f64,
+}
+
+/// One turn of the true path.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TrueTurn {
+    /// When the walker leaves the straight before the turn, s, on the log's clock.
+    pub t_start: f64,
+    /// When the walker is on the straight after it, s.
+    pub t_end: f64,
+    /// The turn's angle, degrees, counter-clockwise (to the left) positive.
+    pub angle_deg: f64,
+}
+
 /// Ground truth a recording carries.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct Truth {
-    /// The true number of steps.
+    /// The true number of steps (inside [`Truth::step_window`] when there is one).
     pub steps: Option<u64>,
+    /// The span the true step count covers, s (start, end) on the log's clock, when the truth
+    /// counts only part of the recording (the phone is handled outside it): only the steps
+    /// found inside it are scored.
+    pub step_window: Option<(f64, f64)>,
     /// The true steps one by one, when the truth device reports them (Oxford: each foot
     /// contact), in time order.
     pub step_events: Vec<TrueStep>,
@@ -184,6 +213,11 @@ pub struct Truth {
     pub waypoints: Vec<Waypoint>,
     /// The walk ends where it started.
     pub loop_closure: bool,
+    /// A dense trajectory (motion capture), in time order; it may have holes where the
+    /// cameras lost the device.
+    pub trajectory: Vec<TruePosition>,
+    /// The turns of the path, in time order.
+    pub turns: Vec<TrueTurn>,
 }
 
 impl Truth {
