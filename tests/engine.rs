@@ -245,9 +245,9 @@ fn bad_input_is_refused_and_changes_nothing() {
     );
 }
 
-/// FNV-1a over the bits of every field of every step.
 /// The OS attitude often arrives on its own, slower stream: samples without one use the last
-/// attitude up to `HOLD_S` old; older than that, they are refused.
+/// attitude up to `HOLD_S` old. Older than that, `auto` carries on with the gyroscope from the
+/// last attitude, and the explicit `os` source refuses them.
 #[wasm_bindgen_test(unsupported = test)]
 fn os_attitude_on_a_slower_stream_is_held() {
     let mut sim = scenarios::straight_walk(1.8, 30.0).generate();
@@ -265,24 +265,78 @@ fn os_attitude_on_a_slower_stream_is_held() {
     let sparse = run(&sim, PipelineConfig::default());
     assert_count("attitude at 33 Hz", sparse.len(), full.len());
     assert!(heading_error_deg(&sparse, 0.0) < 3.0);
-    // A long stretch without any attitude: refused once the last one is too old.
-    let mut k = 0;
+    // A long stretch without any attitude.
     for r in &mut sim.records {
         if let Record::Imu(s) = r {
             if (10.0..20.0).contains(&s.t) {
                 s.orientation = None;
             }
-            k += 1;
         }
     }
+    let stretch = run(&sim, PipelineConfig::default());
+    assert_count("attitude missing for 10 s", stretch.len(), full.len());
+    assert!(heading_error_deg(&stretch, 0.0) < 3.0);
+    assert!(stretch.iter().all(|s| s.heading_rad.is_some()));
     let r = replay(PipelineConfig::default(), &sim.records).unwrap();
+    assert_eq!(r.pipeline.orientation_diagnostics().unwrap().switches, 2);
+    let os = PipelineConfig {
+        orientation: pdr::engine::OrientationSource::Os,
+        ..PipelineConfig::default()
+    };
+    let r = replay(os, &sim.records).unwrap();
     let d = r.pipeline.diagnostics();
-    assert!(k > 0 && d.rejected_missing_field > 900, "{d:?}");
+    assert!(d.rejected_missing_field > 900, "{d:?}");
     assert!(r.errors.iter().all(
         |(_, e)| matches!(e, InputError::MissingField { field: "orientation", t } if *t > 10.15)
     ));
 }
 
+/// Phones start the gyroscope (and the OS attitude) after the accelerometer, by 0.2–0.7 s and
+/// sometimes more: the heading comes as soon as they do, for every step after.
+#[wasm_bindgen_test(unsupported = test)]
+fn a_late_gyroscope_or_attitude_gives_a_heading_from_when_it_begins() {
+    // Walking from the first second, so that a stream 3 s late misses steps.
+    let sim = Scenario::new(vec![
+        Segment::still(1.0),
+        Segment::walk(60.0, 1.8),
+        Segment::still(2.0),
+    ])
+    .generate();
+    let t0 = sim.records.first().map(Record::t).unwrap();
+    for late_s in [0.3, 0.7, 3.0] {
+        for keep_attitude in [false, true] {
+            let records: Vec<Record> = sim
+                .records
+                .iter()
+                .map(|r| match r {
+                    Record::Imu(s) => {
+                        let begun = s.t >= t0 + late_s;
+                        Record::Imu(ImuSample {
+                            gyro: s.gyro.filter(|_| begun),
+                            orientation: s.orientation.filter(|_| begun && keep_attitude),
+                            ..*s
+                        })
+                    }
+                    other => *other,
+                })
+                .collect();
+            let r = replay(PipelineConfig::default(), &records).unwrap();
+            assert!(r.errors.is_empty());
+            let track = r.pipeline.track();
+            let with = track.iter().filter(|s| s.heading_rad.is_some()).count();
+            let label = format!("{late_s} s late, attitude {keep_attitude}");
+            assert_count(&label, track.len(), sim.truth.steps.len());
+            assert!(
+                with * 100 >= 95 * track.len(),
+                "{label}: {with} of {}",
+                track.len()
+            );
+            assert!(heading_error_deg(track, 0.0) < 3.0, "{label}");
+        }
+    }
+}
+
+/// FNV-1a over the bits of every field of every step.
 fn digest(track: &[StepRecord]) -> u64 {
     common::fnv1a(track.iter().flat_map(|s| {
         [

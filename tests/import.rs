@@ -35,13 +35,10 @@ fn sensor_logger_android_folder() {
     // (0.35 sin 0.4, 0, 0), gravity (0.31, 1.27, 9.72).
     let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
     assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
-    // The first gyroscope sample comes 2 ms later and reaches the first record, where the
-    // engine picks its attitude source.
-    assert_eq!(
-        s[0].gyro, s[1].gyro,
-        "the first gyroscope sample is not carried back"
-    );
-    assert!(s.iter().all(|x| x.gyro.is_some()));
+    // The first gyroscope sample comes 2 ms later: it is not carried back to the first record
+    // (the engine moves up to it when it comes), and every later record has it.
+    assert!(s[0].gyro.is_none());
+    assert!(s[1..].iter().all(|x| x.gyro.is_some()));
     assert!(s[5].mag.is_some());
     assert!(s[0].orientation.is_some());
     // Location: one fix of three has a negative accuracy.
@@ -224,11 +221,8 @@ fn sensor_logger_json() {
     assert!(close(s[0].t, 1698745673.473, 1e-6));
     let expect = Vector3::new(0.35 * 0.4f64.sin() + 0.31, 1.27, 9.72);
     assert!((s[0].accel - expect).norm() < 1e-5, "{:?}", s[0].accel);
-    // The gyroscope comes 2 ms later and reaches the first record.
-    assert!(
-        s[0].gyro.is_some() && s[1].gyro.is_some(),
-        "gyro not carried back"
-    );
+    // The gyroscope comes 2 ms later: not carried back to the first record.
+    assert!(s[0].gyro.is_none() && s[1].gyro.is_some());
     assert!(s[0].orientation.unwrap().angle() < 1e-12);
     assert_eq!(fixes(&log.records).len(), 1);
     // The `n/a` element: field `z` named, line of the element.
@@ -376,12 +370,15 @@ fn get_sensor_data() {
         assert!(close(w[1].t - w[0].t, 0.02, 1e-9), "{} {}", w[0].t, w[1].t);
     }
     assert!(close(s[0].t, 0.064, 1e-9), "{}", s[0].t);
-    // The gyroscope and the AHRS begin after the accelerometer: their first samples reach the
-    // first record, so the engine takes the OS attitude (it took gravity alone before).
-    assert!(s[0].gyro.is_some() && s[0].orientation.is_some());
+    // The gyroscope and the AHRS begin after the accelerometer: the first record has neither
+    // (nothing is moved earlier than it was measured); the engine moves up to the OS attitude
+    // when it comes.
+    assert!(s[0].gyro.is_none() && s[0].orientation.is_none());
+    assert!(s[1].gyro.is_some() && s[1].orientation.is_some());
+    let run = pdr::engine::replay(pdr::engine::PipelineConfig::default(), &log.records).unwrap();
     assert_eq!(
-        pdr::engine::OrientationSource::Auto.resolve(&s[0]),
-        pdr::engine::OrientationSource::Os
+        run.pipeline.orientation_diagnostics().map(|o| o.source),
+        Some(pdr::engine::OrientationSource::Os)
     );
     // AHRS rotation vector (0, 0, sin 15°) → 30° about up.
     let q = s[1].orientation.unwrap();

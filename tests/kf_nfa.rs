@@ -6,7 +6,7 @@ use nalgebra::{UnitQuaternion, Vector3};
 use pdr::engine::math::wrap_pi;
 use pdr::engine::orientation::kf_nfa::{KfNfa, KfNfaConfig};
 use pdr::engine::orientation::{Orientation, OrientationSource, G0};
-use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
+use pdr::engine::{replay, InputError, PipelineConfig, Record, StepRecord};
 use pdr::sim::{scenarios, Simulation};
 use wasm_bindgen_test::wasm_bindgen_test;
 
@@ -324,7 +324,22 @@ fn every_real_log_runs_without_nan_refusal_or_restart() {
                     assert!(r.pipeline.track().is_empty());
                     continue;
                 }
-                assert_eq!(r.refused, 0, "{}: {:?}", log.source, r.errors.first());
+                // The samples before the gyroscope's first are refused (an explicit source
+                // does not move; `auto` would start without it), and no other.
+                let first_gyro = log.records.iter().find_map(|r| match r {
+                    Record::Imu(s) if s.gyro.is_some() => Some(s.t),
+                    _ => None,
+                });
+                let before = log
+                    .records
+                    .iter()
+                    .filter(|r| matches!(r, Record::Imu(s) if Some(s.t) < first_gyro))
+                    .count() as u64;
+                assert_eq!(r.refused, before, "{}: {:?}", log.source, r.errors.first());
+                assert!(r.errors.iter().all(|(_, e)| matches!(
+                    e,
+                    InputError::MissingField { field: "gyro", t } if Some(*t) < first_gyro
+                )));
                 let d = r.pipeline.diagnostics();
                 assert_eq!(d.orientation, Some(src));
                 let k = r

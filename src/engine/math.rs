@@ -115,6 +115,11 @@ impl OnePole {
         y
     }
 
+    /// The time constant, s.
+    pub fn tau(&self) -> f64 {
+        self.tau
+    }
+
     /// The current output, if any input was seen.
     pub fn value(&self) -> Option<f64> {
         self.y

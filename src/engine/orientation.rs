@@ -1,7 +1,7 @@
 //! Orientation into the navigation frame (East-North-Up).
 //! May import: the rest of `engine`.
 //!
-//! Four sources (issue "Engine core" item 2; issue 19 for the KF-NFA):
+//! Four sources:
 //! - [`OrientationSource::Os`]: the quaternion the operating system supplies. Basso 2016 §II.A
 //!   relies on the phone's built-in AHRS to cast samples into the navigation frame.
 //! - [`OrientationSource::Madgwick`]: the Madgwick gradient-descent filter on accelerometer and
@@ -15,8 +15,23 @@
 //!   The vertical acceleration is taken as |a| − |g_lp| rather than the projection a·ĝ_lp − |g_lp|:
 //!   the two agree to first order, but the projection also carries the tilt error of the
 //!   low-passed gravity, which in a trouser pocket swings with the thigh at the stride frequency.
-//!   Measured on the 34 Oxford step-counter traces (accelerometer only): mean absolute count
-//!   error 9.76 % with the projection, 8.93 % with the norm (front pocket 15.2 % → 9.0 %).
+//!
+//! # `Auto`: the source follows what the stream holds
+//! Phones start their sensors one after another (a gyroscope 0.2–0.7 s after the accelerometer
+//! is common; a browser may give its first motion events without a rotation rate, or the attitude
+//! event a second late). `Auto` is therefore a state of the estimator, not a choice made once:
+//! every sample runs on the best source its inputs allow, in the order OS quaternion (on the
+//! sample, or the last one at most [`HOLD_S`] old) > Madgwick (a gyroscope on the sample) >
+//! gravity low-pass. When a better input first appears the estimator moves up to it; when a
+//! sample lacks the current source's input (a stream that stopped, or the first sample after a
+//! gap) it moves down to what the sample has, and up again when the input returns. A move hands
+//! the attitude over, so the tilt and, where the new source has no absolute yaw of its own, the
+//! yaw carry on: Madgwick starts from the OS attitude it replaces, or from the low-passed gravity
+//! (and the magnetometer, if any) when it replaces the gravity low-pass; the gravity low-pass
+//! starts from the gravity the attitude it replaces implies. Moving up to the OS quaternion takes
+//! its absolute yaw as it is. The moves are counted ([`OrientationDiagnostics::switches`]). The
+//! explicit sources never move: a sample without the input they need is refused
+//! ([`Orientation::check`]).
 
 use super::math::OnePole;
 use super::types::{positive, ConfigError, DeviceVec, ImuSample, InputError};
@@ -39,8 +54,8 @@ pub const HOLD_S: f64 = 0.2;
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum OrientationSource {
-    /// Pick per input, from its first sample: the OS quaternion if present, else Madgwick if a
-    /// gyroscope is present, else the gravity low-pass.
+    /// Per sample, the best source its inputs allow: the OS quaternion, else Madgwick with a
+    /// gyroscope, else the gravity low-pass (see the module documentation).
     #[default]
     Auto,
     /// The OS-supplied quaternion on every sample.
@@ -89,24 +104,6 @@ impl OrientationSource {
             _ => Ok(()),
         }
     }
-
-    /// The concrete source `Auto` picks for a first sample.
-    pub fn resolve(&self, first: &ImuSample) -> OrientationSource {
-        match self {
-            OrientationSource::Auto if first.orientation.is_some() => OrientationSource::Os,
-            OrientationSource::Auto if first.gyro.is_some() => OrientationSource::MADGWICK,
-            OrientationSource::Auto => OrientationSource::GRAVITY,
-            other => *other,
-        }
-    }
-
-    /// Whether this source needs a gyroscope on every sample.
-    pub fn needs_gyro(&self) -> bool {
-        matches!(
-            self,
-            OrientationSource::Madgwick { .. } | OrientationSource::KfNfa(_)
-        )
-    }
 }
 
 /// A sample cast into the navigation frame.
@@ -122,17 +119,23 @@ pub struct NavAccel {
 
 /// The running orientation estimator.
 pub struct Orientation {
+    /// The configured source (`Auto`, or the one explicit source).
     source: OrientationSource,
-    kind: Kind,
+    /// The estimator running now; `None` before the first sample.
+    kind: Option<Kind>,
+    switches: u64,
+    switched: bool,
 }
 
 /// The estimator's current values; read-only.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct OrientationDiagnostics {
-    /// The source in use.
+    /// The source in use now (with `Auto` configured, the one the last sample ran on).
     pub source: OrientationSource,
     /// Whether it gives horizontal axes (and so a heading).
     pub has_heading: bool,
+    /// How often `Auto` moved from one source to another after the first sample.
+    pub switches: u64,
     /// The KF-NFA's R scale, mismatch and counts, when it is the source.
     pub kf_nfa: Option<KfNfaDiagnostics>,
 }
@@ -149,6 +152,76 @@ enum Kind {
         lp: [OnePole; 3],
     },
     KfNfa(Box<KfNfa>),
+}
+
+/// `Auto`'s order of preference: a higher rank wins when the sample allows it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Rank {
+    Gravity,
+    Madgwick,
+    Os,
+}
+
+impl Kind {
+    fn new(source: OrientationSource) -> Kind {
+        match source {
+            OrientationSource::Madgwick { beta } => Kind::Madgwick { filter: None, beta },
+            OrientationSource::GravityLowPass { tau_s } => Kind::Gravity {
+                lp: [OnePole::new(tau_s); 3],
+            },
+            OrientationSource::KfNfa(c) => Kind::KfNfa(Box::new(KfNfa::new(c))),
+            OrientationSource::Os | OrientationSource::Auto => Kind::Os { last: None },
+        }
+    }
+
+    fn rank(&self) -> Option<Rank> {
+        match self {
+            Kind::Os { .. } => Some(Rank::Os),
+            Kind::Madgwick { .. } => Some(Rank::Madgwick),
+            Kind::Gravity { .. } => Some(Rank::Gravity),
+            Kind::KfNfa(_) => None,
+        }
+    }
+
+    /// Whether a sample at `t` without an attitude of its own can use the last OS attitude.
+    fn holds_at(&self, t: f64) -> bool {
+        matches!(self, Kind::Os { last: Some((tl, _)) } if t - tl <= HOLD_S)
+    }
+
+    /// The source this estimator is.
+    fn source(&self) -> OrientationSource {
+        match self {
+            Kind::Os { .. } => OrientationSource::Os,
+            Kind::Madgwick { beta, .. } => OrientationSource::Madgwick { beta: *beta },
+            Kind::Gravity { lp } => OrientationSource::GravityLowPass { tau_s: lp[0].tau() },
+            Kind::KfNfa(f) => OrientationSource::KfNfa(f.config()),
+        }
+    }
+
+    /// The gravity the estimator sees in device coordinates, m/s² (specific force at rest,
+    /// Android sign), when it has one.
+    fn gravity(&self) -> Option<DeviceVec> {
+        match self {
+            Kind::Gravity { lp } => {
+                Some(Vector3::new(lp[0].value()?, lp[1].value()?, lp[2].value()?))
+            }
+            _ => self
+                .attitude()
+                .map(|q| q.inverse_transform_vector(&Vector3::new(0.0, 0.0, G0))),
+        }
+    }
+
+    /// The current device → ENU attitude, if the estimator has one.
+    fn attitude(&self) -> Option<UnitQuaternion<f64>> {
+        match self {
+            Kind::Os { last } => last.map(|(_, q)| q),
+            Kind::Madgwick {
+                filter: Some(f), ..
+            } => Some(nwu_to_enu() * f.quat),
+            Kind::KfNfa(f) => f.attitude(),
+            _ => None,
+        }
+    }
 }
 
 /// Rotation from Madgwick's earth frame (x magnetic north, y west, z up) to ENU.
@@ -189,67 +262,154 @@ pub fn attitude_from_vectors(
 }
 
 impl Orientation {
-    /// A new estimator for a concrete (already resolved) source.
+    /// A new estimator for a source; `Auto` settles on its first sample and follows the
+    /// stream after that (see the module documentation).
     pub fn new(source: OrientationSource) -> Self {
-        let kind = match source {
-            OrientationSource::Madgwick { beta } => Kind::Madgwick { filter: None, beta },
-            OrientationSource::GravityLowPass { tau_s } => Kind::Gravity {
-                lp: [OnePole::new(tau_s); 3],
+        Orientation {
+            source,
+            kind: match source {
+                OrientationSource::Auto => None,
+                explicit => Some(Kind::new(explicit)),
             },
-            OrientationSource::KfNfa(c) => Kind::KfNfa(Box::new(KfNfa::new(c))),
-            _ => Kind::Os { last: None },
-        };
-        Orientation { source, kind }
+            switches: 0,
+            switched: false,
+        }
     }
 
     /// The current values.
     pub fn diagnostics(&self) -> OrientationDiagnostics {
         OrientationDiagnostics {
-            source: self.source,
+            source: self.source_now(),
             has_heading: self.has_heading(),
+            switches: self.switches,
             kf_nfa: match &self.kind {
-                Kind::KfNfa(f) => Some(f.diagnostics()),
+                Some(Kind::KfNfa(f)) => Some(f.diagnostics()),
                 _ => None,
             },
         }
     }
 
-    /// Whether a sample at time `t` without an attitude of its own can use the last OS
-    /// attitude (at most [`HOLD_S`] old).
-    pub fn holds_attitude_at(&self, t: f64) -> bool {
-        matches!(self.kind, Kind::Os { last: Some((tl, _)) } if t - tl <= HOLD_S)
+    /// The source in use now: the configured one, or with `Auto` the one the last sample ran
+    /// on (`Auto` itself before the first sample).
+    pub fn source_now(&self) -> OrientationSource {
+        self.kind.as_ref().map_or(self.source, Kind::source)
     }
 
-    /// Whether this source provides horizontal axes (and so heading).
+    /// Whether the last sample moved `Auto` to another source (the first sample's choice is
+    /// not a move).
+    pub fn switched(&self) -> bool {
+        self.switched
+    }
+
+    /// Whether the source in use provides horizontal axes (and so heading).
     pub fn has_heading(&self) -> bool {
-        !matches!(self.kind, Kind::Gravity { .. })
-    }
-
-    /// Forgets the state (after a gap in the data).
-    pub fn reset(&mut self) {
-        match &mut self.kind {
-            Kind::Os { last } => *last = None,
-            Kind::Madgwick { filter, .. } => *filter = None,
-            Kind::Gravity { lp } => lp.iter_mut().for_each(OnePole::reset),
-            Kind::KfNfa(f) => f.reset(),
-        }
+        matches!(
+            self.kind,
+            Some(Kind::Os { .. } | Kind::Madgwick { .. } | Kind::KfNfa(_))
+        )
     }
 
     /// The current device→ENU attitude, if the source has one.
     pub fn attitude(&self) -> Option<UnitQuaternion<f64>> {
         match &self.kind {
-            Kind::Madgwick {
-                filter: Some(f), ..
-            } => Some(nwu_to_enu() * f.quat),
-            Kind::KfNfa(f) => f.attitude(),
-            _ => None,
+            Some(Kind::Os { .. }) | None => None,
+            Some(k) => k.attitude(),
         }
     }
 
+    /// Whether the sample has what an explicit source needs: the OS attitude (its own, or the
+    /// last one at most [`HOLD_S`] old) for `Os`, a gyroscope for Madgwick and the KF-NFA.
+    /// `Auto` takes every sample.
+    pub fn check(&self, s: &ImuSample) -> Result<(), InputError> {
+        let missing = |field| Err(InputError::MissingField { t: s.t, field });
+        match (self.source, &self.kind) {
+            (OrientationSource::Auto, _) => Ok(()),
+            (OrientationSource::Os, Some(k)) if s.orientation.is_none() && !k.holds_at(s.t) => {
+                missing("orientation")
+            }
+            (OrientationSource::Madgwick { .. } | OrientationSource::KfNfa(_), _)
+                if s.gyro.is_none() =>
+            {
+                missing("gyro")
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// With `Auto`: the source the sample allows, and the move to it from the one running.
+    fn follow(&mut self, s: &ImuSample) {
+        self.switched = false;
+        if self.source != OrientationSource::Auto {
+            return;
+        }
+        let held = self.kind.as_ref().is_some_and(|k| k.holds_at(s.t));
+        let want = if s.orientation.is_some() || held {
+            Rank::Os
+        } else if s.gyro.is_some() {
+            Rank::Madgwick
+        } else {
+            Rank::Gravity
+        };
+        let Some(from) = &self.kind else {
+            self.kind = Some(Kind::new(match want {
+                Rank::Os => OrientationSource::Os,
+                Rank::Madgwick => OrientationSource::MADGWICK,
+                Rank::Gravity => OrientationSource::GRAVITY,
+            }));
+            return;
+        };
+        if from.rank() == Some(want) {
+            return;
+        }
+        let next = match want {
+            Rank::Os => Kind::Os { last: None },
+            Rank::Madgwick => {
+                // The attitude handed over: the OS's as it was, or TRIAD on the low-passed
+                // gravity rather than on this one sample's acceleration.
+                let q0 = match from {
+                    Kind::Gravity { .. } => from
+                        .gravity()
+                        .and_then(|g| attitude_from_vectors(&g, s.mag.as_ref())),
+                    _ => from.attitude(),
+                };
+                let filter = q0.map(|q| {
+                    ahrs::Madgwick::new_with_quat(1e-2, default_beta(), nwu_to_enu().inverse() * q)
+                });
+                Kind::Madgwick {
+                    filter,
+                    beta: default_beta(),
+                }
+            }
+            Rank::Gravity => {
+                let mut lp = [OnePole::new(default_tau_s()); 3];
+                if let Some(g) = from.gravity() {
+                    for (f, x) in lp.iter_mut().zip(g.iter()) {
+                        f.update(*x, 0.0);
+                    }
+                }
+                Kind::Gravity { lp }
+            }
+        };
+        self.kind = Some(next);
+        self.switches += 1;
+        self.switched = true;
+    }
+
     /// Feeds one sample taken `dt` seconds after the previous one (0 after a gap) and returns
-    /// its acceleration in the navigation frame.
+    /// its acceleration in the navigation frame. A sample [`Self::check`] refuses is an error
+    /// and leaves the state as it was.
     pub fn push(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
-        let q = match &mut self.kind {
+        self.check(s)?;
+        self.follow(s);
+        let none = NavAccel {
+            up: 0.0,
+            horizontal: None,
+            attitude: None,
+        };
+        let Some(kind) = &mut self.kind else {
+            return Ok(none);
+        };
+        let q = match kind {
             Kind::Os { last } => match (s.orientation, *last) {
                 (Some(q), _) => {
                     *last = Some((s.t, q));
@@ -264,10 +424,12 @@ impl Orientation {
                 }
             },
             Kind::Madgwick { filter, beta } => {
-                let gyro = s.gyro.ok_or(InputError::MissingField {
-                    t: s.t,
-                    field: "gyro",
-                })?;
+                let Some(gyro) = s.gyro else {
+                    return Err(InputError::MissingField {
+                        t: s.t,
+                        field: "gyro",
+                    });
+                };
                 match filter {
                     None => {
                         // Start from the attitude the first sample implies, so there is no long
@@ -290,29 +452,19 @@ impl Orientation {
                 }
                 match filter {
                     Some(f) => nwu_to_enu() * f.quat,
-                    None => {
-                        return Ok(NavAccel {
-                            up: 0.0,
-                            horizontal: None,
-                            attitude: None,
-                        })
-                    }
+                    None => return Ok(none),
                 }
             }
             Kind::KfNfa(f) => {
-                let gyro = s.gyro.ok_or(InputError::MissingField {
-                    t: s.t,
-                    field: "gyro",
-                })?;
+                let Some(gyro) = s.gyro else {
+                    return Err(InputError::MissingField {
+                        t: s.t,
+                        field: "gyro",
+                    });
+                };
                 match f.push(&gyro, &s.accel, s.mag.as_ref(), dt) {
                     Some(q) => q,
-                    None => {
-                        return Ok(NavAccel {
-                            up: 0.0,
-                            horizontal: None,
-                            attitude: None,
-                        })
-                    }
+                    None => return Ok(none),
                 }
             }
             Kind::Gravity { lp } => {
@@ -323,11 +475,7 @@ impl Orientation {
                 );
                 let n = g.norm();
                 if n < 1e-6 {
-                    return Ok(NavAccel {
-                        up: 0.0,
-                        horizontal: None,
-                        attitude: None,
-                    });
+                    return Ok(none);
                 }
                 return Ok(NavAccel {
                     up: s.accel.norm() - n,

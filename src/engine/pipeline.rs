@@ -339,7 +339,7 @@ enum Held {
 /// The streaming engine.
 pub struct Pipeline {
     cfg: PipelineConfig,
-    orientation: Option<Orientation>,
+    orientation: Orientation,
     motion: MotionDetector,
     handling: Handling,
     carry: Carry,
@@ -402,8 +402,8 @@ impl Pipeline {
             detector: Detector::new(cfg.detector),
             heading: Heading::new(cfg.heading),
             step_length: StepLength::new(cfg.step_length.clone()),
+            orientation: Orientation::new(cfg.orientation),
             cfg,
-            orientation: None,
             buf: VecDeque::new(),
             last_t: None,
             last_gnss_t: None,
@@ -492,12 +492,12 @@ impl Pipeline {
         self.last_t = Some(s.t);
         self.diag.samples += 1;
         self.diag.time_span = Some((self.diag.time_span.map_or(s.t, |p| p.0), s.t));
-        let orientation = self.orientation.get_or_insert_with(|| {
-            let src = self.cfg.orientation.resolve(s);
-            self.diag.orientation = Some(src);
-            Orientation::new(src)
-        });
-        let nav = orientation.push(s, dt)?;
+        let nav = self.orientation.push(s, dt)?;
+        self.diag.orientation = Some(self.orientation.source_now());
+        if self.orientation.switched() {
+            // The yaw of the new source is not the old one's: the guard's reference restarts.
+            self.magnetic.reset();
+        }
         let nav = self.magnetic.push(s, dt, nav);
         if s.gyro.is_none() && matches!(self.detector, Detector::Pitch(_)) {
             // The leg pitch needs a gyroscope: the PLL counts this log's steps.
@@ -598,29 +598,7 @@ impl Pipeline {
                 return Err(InputError::TimeWentBackwards { t: s.t, last });
             }
         }
-        let src = match &self.diag.orientation {
-            Some(src) => *src,
-            None => self.cfg.orientation.resolve(s),
-        };
-        match src {
-            OrientationSource::Os
-                if s.orientation.is_none()
-                    && !self
-                        .orientation
-                        .as_ref()
-                        .is_some_and(|o| o.holds_attitude_at(s.t)) =>
-            {
-                Err(InputError::MissingField {
-                    t: s.t,
-                    field: "orientation",
-                })
-            }
-            src if src.needs_gyro() && s.gyro.is_none() => Err(InputError::MissingField {
-                t: s.t,
-                field: "gyro",
-            }),
-            _ => Ok(()),
-        }
+        self.orientation.check(s)
     }
 
     fn gap(&mut self, dt: f64) {
@@ -701,7 +679,8 @@ impl Pipeline {
         let mut d = self.diag;
         d.hybrid = self.hybrid_diagnostics();
         let m = self.motion.diagnostics();
-        d.motion = self.orientation.as_ref().map(|_| self.prev_state);
+        let started = self.diag.samples > 0;
+        d.motion = started.then_some(self.prev_state);
         d.sigma_z = m.sigma_z;
         d.cadence_hz = m.cadence_hz;
         d.handling_s = self.handling.total_s();
@@ -718,7 +697,7 @@ impl Pipeline {
             d.pll_freq_hz = Some(p.freq_hz);
             d.pll_locked = Some(p.locked);
         }
-        d.activity = self.orientation.as_ref().map(|_| {
+        d.activity = started.then(|| {
             if self.handling.active() {
                 Activity::Handling
             } else if self.prev_state.is_moving() {
@@ -758,7 +737,7 @@ impl Pipeline {
 
     /// The orientation stage's diagnostics (the KF-NFA's R scale and mismatch), once started.
     pub fn orientation_diagnostics(&self) -> Option<super::orientation::OrientationDiagnostics> {
-        self.orientation.as_ref().map(|o| o.diagnostics())
+        (self.diag.samples > 0).then(|| self.orientation.diagnostics())
     }
 
     /// Mean and σ of the vertical acceleration over the motion detector's window, m/s².

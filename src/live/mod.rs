@@ -36,6 +36,6 @@ pub use events::{
     SensorReading,
 };
 pub use session::{
-    GapMark, LiveError, LiveSession, MapData, Readouts, ScopeData, ScopeSample, ATTITUDE_WAIT_S,
-    NO_MOTION_MS, SCOPE_S,
+    GapMark, LiveError, LiveSession, MapData, Readouts, ScopeData, ScopeSample, NO_MOTION_MS,
+    SCOPE_S,
 };

@@ -47,11 +47,6 @@ impl From<EventError> for LiveError {
     }
 }
 
-/// How long motion waits, from the first event, for an attitude before the session goes on
-/// without one (and the engine on the gyroscope alone): Chromium and Safari start both
-/// streams together, so a wait is short, and the first sample decides the orientation source.
-pub const ATTITUDE_WAIT_S: f64 = 1.0;
-
 /// How long after the start the page says that no motion data has come, ms.
 pub const NO_MOTION_MS: f64 = 3000.0;
 
@@ -195,8 +190,6 @@ pub struct Readouts {
     pub orientation: Option<&'static str>,
     /// Whether headings are referenced to north (an absolute attitude has arrived).
     pub absolute_heading: bool,
-    /// Motion events set aside while waiting for the first attitude.
-    pub waited: u64,
     /// Events refused (with the reason of the last one).
     pub refused: u64,
     /// Lines of a resumed recording that could not be read.
@@ -244,8 +237,6 @@ pub struct LiveSession {
     // A Generic Sensor attitude holds until the next reading: the API reports changes only.
     attitude_sticky: bool,
     absolute: bool,
-    first_event: Option<f64>,
-    waited: u64,
     view: View,
     log: String,
     recent: VecDeque<f64>,
@@ -318,8 +309,6 @@ impl LiveSession {
             attitude_written_at: Some(f64::NEG_INFINITY),
             attitude_sticky: false,
             absolute: false,
-            first_event: None,
-            waited: 0,
             view: View::default(),
             smoothed: (0, Vec::new()),
             fuzzy: FuzzyLengths::new(),
@@ -422,16 +411,8 @@ impl LiveSession {
 
     /// A motion sample on the session's clock, before its attitude is attached.
     fn push_sample(&mut self, m: ImuSample) -> Result<usize, LiveError> {
-        // The first sample decides the engine's orientation source: wait a moment for an
-        // attitude (these samples are not used, and not recorded, so that the recording
-        // replays the same).
-        if self.attitude.is_none() && self.pipeline.diagnostics().samples == 0 {
-            let t0 = *self.first_event.get_or_insert(m.t);
-            if m.t - t0 < ATTITUDE_WAIT_S {
-                self.waited += 1;
-                return Ok(0);
-            }
-        }
+        // No wait for the attitude: the engine's `auto` orientation starts on what the first
+        // samples hold and moves up when the attitude (or a rotation rate) first comes.
         // The attitude rides on the first sample after it arrives (the engine holds it for
         // the samples after that); an absolute attitude wins over a relative one.
         let stale = |at: f64| self.attitude_sticky && m.t - at >= 0.5 * HOLD_S;
@@ -653,7 +634,6 @@ impl LiveSession {
                 OrientationSource::Auto => "auto",
             }),
             absolute_heading: self.absolute,
-            waited: self.waited,
             refused: self.refused,
             skipped_lines: self.skipped_lines,
             last_error: self.last_error.clone(),

@@ -84,7 +84,7 @@ async function sensors(context, page) {
 const round1 = (v) => Math.round(v * 10) / 10;
 const look = (page) => page.evaluate(() => {
   const r = window.__pdrLive.readouts;
-  return { samples: r.samples, waited: r.waited, steps: r.steps, shown: Number(document.getElementById('g-steps').textContent) };
+  return { samples: r.samples, steps: r.steps, shown: Number(document.getElementById('g-steps').textContent) };
 });
 
 /**
@@ -94,7 +94,7 @@ const look = (page) => page.evaluate(() => {
  */
 async function walkUntil(page, xyz, until) {
   const fed = [];
-  let { samples: counted, waited } = await look(page);
+  let { samples: counted } = await look(page);
   let last = null;
   let k = 0;
   while (Date.now() < until) {
@@ -112,7 +112,6 @@ async function walkUntil(page, xyz, until) {
         counted = r.samples;
         break;
       }
-      if (r.waited > waited) { waited = r.waited; break; } // the first second: set aside, not recorded
     }
   }
   return fed;

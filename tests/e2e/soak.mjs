@@ -195,7 +195,7 @@ async function figures(minute, end = false) {
   for (let i = 0; i < 5; i++) many = Math.min(many, await timed(DRAWS));
   const s = end ? await stored(true) : null;
   return {
-    minute, wall_s: Number(wall()), fed: r.fired, recorded: s?.imu ?? '', waited: r.waited, steps: r.steps,
+    minute, wall_s: Number(wall()), fed: r.fired, recorded: s?.imu ?? '', steps: r.steps,
     wasm_MB: +(r.wasm / 2 ** 20).toFixed(2), js_heap_MB: +(heap.usedSize / 2 ** 20).toFixed(2),
     idb_MB: +(r.saved.chars / 2 ** 20).toFixed(2), unsaved_chunks: r.unsaved, draw_ms: +((many - zero) / DRAWS).toFixed(2),
     starved: r.starved, s,
@@ -229,7 +229,7 @@ writeFileSync(log, text);
 const run = execFileSync(BIN, ['run', log], { encoding: 'utf8' });
 const replayed = Number(run.match(/^steps\s+(\d+)/m)[1]);
 const d = end.s.dt;
-console.log(`samples: fed ${end.fed} (the first ${end.waited} set aside waiting for the attitude), recorded ${end.recorded}; `
+console.log(`samples: fed ${end.fed}, recorded ${end.recorded}; `
   + `spacing of the stored samples ${d.min.toFixed(3)}…${d.max.toFixed(3)} ms, ${d.off} outside 10 ± 0.15 ms; timer ticks without a sample ${end.starved}`);
 console.log(`steps: page ${end.steps}, pdr run of the stored log ${replayed}; IndexedDB read back: ${(end.s.chars / 2 ** 20).toFixed(2)} MB of text`);
 console.log(`wasm memory ${first.wasm_MB} → ${end.wasm_MB} MB; JS heap ${first.js_heap_MB} → ${end.js_heap_MB} MB; `

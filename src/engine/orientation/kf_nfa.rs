@@ -257,6 +257,11 @@ impl KfNfa {
         }
     }
 
+    /// The configuration.
+    pub fn config(&self) -> KfNfaConfig {
+        self.cfg
+    }
+
     /// The current values.
     pub fn diagnostics(&self) -> KfNfaDiagnostics {
         self.diag

@@ -7,7 +7,6 @@ use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
 use crate::engine::heading::{self, NavSample, Pose, StepWindow};
 use crate::engine::motion::Motion;
-use crate::engine::orientation::Orientation;
 use crate::engine::step_length::StepLengthInput;
 
 impl Pipeline {
@@ -76,10 +75,7 @@ impl Pipeline {
             t_km1,
             t_k: c.t,
         };
-        let has_heading = self
-            .orientation
-            .as_ref()
-            .is_some_and(Orientation::has_heading);
+        let has_heading = self.orientation.has_heading();
         let attitude = judged_at.map_or(self.attitude, |p| p.attitude);
         let h = self.heading.push(&heading::StepInput {
             buf: &self.buf,

@@ -16,9 +16,9 @@
 //! - Orientation: the unit quaternion taking device vectors to East-North-Up.
 //! - Sensors on separate clocks and rates are merged in time order by [`Streams::into_records`]:
 //!   one IMU record per accelerometer sample, carrying the latest gyroscope, magnetometer and
-//!   orientation samples not older than [`HOLD_S`] (before a stream's first sample, that sample
-//!   when it comes within [`HOLD_S`]: the engine picks its attitude source from the first
-//!   record). Nothing is resampled.
+//!   orientation samples not older than [`HOLD_S`]. Nothing is resampled, and nothing is moved
+//!   earlier than it was measured: a stream that begins late is absent from the records before
+//!   its first sample (the engine's `auto` orientation moves up when it appears).
 //!
 //! # Errors
 //! A log that cannot be read at all gives a [`ParseError`] naming the file, line and column. A bad
@@ -397,14 +397,7 @@ impl<'a, T: Copy> Hold<'a, T> {
         while self.next < self.items.len() && self.items[self.next].0 <= t {
             self.next += 1;
         }
-        // Before the stream's first sample, that sample when it comes within HOLD_S: the
-        // engine picks its attitude source from the first IMU record (the OS orientation, else
-        // the gyroscope, else gravity alone), and a stream that begins a few samples after the
-        // accelerometer would otherwise be ignored for the whole log.
-        let Some(k) = self.next.checked_sub(1) else {
-            let &(t1, v) = self.items.first()?;
-            return (t1 - t <= HOLD_S).then_some(v);
-        };
+        let k = self.next.checked_sub(1)?;
         let (ti, v) = self.items[k];
         (t - ti <= HOLD_S).then_some(v)
     }
