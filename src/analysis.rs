@@ -124,6 +124,9 @@ pub struct Analysis {
     pub vertical: Option<VerticalSource>,
     /// Barometer readings the engine accepted.
     pub pressure_samples: u64,
+    /// Some IMU record of the log has a gyroscope, a magnetometer or an OS attitude: an input
+    /// a heading can come from.
+    pub heading_inputs: bool,
 }
 
 /// Why an analysis cannot cross from the worker to the page.
@@ -260,6 +263,9 @@ pub fn analyse(
         sigma_thresholds: (cfg.motion.still_max, cfg.motion.run_sigma_min),
         vertical: d.vertical,
         pressure_samples: d.pressure_samples,
+        heading_inputs: log.records.iter().any(|r| {
+            matches!(r, Record::Imu(s) if s.gyro.is_some() || s.mag.is_some() || s.orientation.is_some())
+        }),
     })
 }
 
@@ -285,6 +291,18 @@ impl Analysis {
     /// no track to draw.
     pub fn has_steps_without_any_heading(&self) -> bool {
         !self.steps.is_empty() && self.steps.iter().all(|s| s.heading_rad.is_none())
+    }
+
+    /// Why no step has a heading, when none has: the log has no input a heading comes from,
+    /// or (it has one) the engine gave none.
+    pub fn no_heading_why(&self) -> Option<&'static str> {
+        if !self.has_steps_without_any_heading() {
+            None
+        } else if self.heading_inputs {
+            Some("the engine gave no step a heading, although the log has a gyroscope, magnetometer or orientation")
+        } else {
+            Some("the log has no gyroscope, magnetometer or orientation")
+        }
     }
 
     /// Where step `i` is drawn on the map: its fused position when the fusion has the step,

@@ -109,10 +109,9 @@ impl Analysis {
             .count();
         if without > 0 {
             let all: f64 = self.steps.iter().map(|s| s.length_m).sum();
-            let why = if without == n {
-                "the log has no gyroscope, magnetometer or orientation, so the track cannot be drawn"
-            } else {
-                "left out of the track"
+            let why = match self.no_heading_why() {
+                Some(why) => format!("{why}, so the track cannot be drawn"),
+                None => "left out of the track".to_string(),
             };
             row(
                 "No heading",

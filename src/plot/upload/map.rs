@@ -180,13 +180,13 @@ pub fn draw_map<DB: DrawingBackend>(
     legend(area, &chart, &entries, theme, scale)?;
     north_and_scale(area, &mut chart, theme, scale)?;
     let (rx, ry) = chart.plotting_area().get_pixel_range();
-    if a.has_steps_without_any_heading() {
+    if let Some(why) = a.no_heading_why() {
         let font = ("sans-serif", 13.0 * scale)
             .into_font()
             .color(&theme.foreground);
         area.draw(&Text::new(
             format!(
-                "No heading in this log (no gyroscope, magnetometer or orientation): its {} steps cannot be placed.",
+                "No heading ({why}): its {} steps cannot be placed.",
                 a.steps.len()
             ),
             (rx.start + px(12.0) as i32, (ry.start + ry.end) / 2 + px(24.0) as i32),

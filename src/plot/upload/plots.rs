@@ -282,11 +282,10 @@ pub fn draw_plot_area<DB: DrawingBackend>(
             .draw()?;
     }
     let (columns, rows) = chart.plotting_area().get_pixel_range();
+    let no_heading = a.no_heading_why().map(|why| format!("no heading: {why}"));
     let note = match plot {
         Plot::Gnss | Plot::Fusion if a.fixes.is_empty() => Some("no GNSS fixes in this log"),
-        Plot::Heading if a.has_steps_without_any_heading() => {
-            Some("no heading in this log (no gyroscope, magnetometer or orientation)")
-        }
+        Plot::Heading if no_heading.is_some() => no_heading.as_deref(),
         Plot::Height if !a.has_height() => {
             Some("no height in this log (no leg pitch, no barometer): a flat walk is assumed")
         }
