@@ -5,7 +5,8 @@
 //!
 //! Each row changes one choice from the defaults (one option of one of [`COMPARED`]), so a row
 //! measures that method with everything else as shipped. Each data set is scored by the truth it
-//! carries ([`Metric::for_logs`]): step counts (the mean absolute count error), waypoints (the
+//! carries ([`Metric::for_logs`]): step counts (the mean absolute count error), a trajectory
+//! (the median of the walks' median heading errors), waypoints (the
 //! pooled aligned waypoint p75) or loop closure (the mean distance between the end and the start,
 //! as a share of the distance walked). A method that cannot run on a set (every sample refused
 //! for a field it needs: a gyroscope, an OS orientation; or no step found in any log, as foot mode
@@ -34,6 +35,9 @@ pub const COMPARED: &[&str] = &[
 pub enum Metric {
     /// Mean absolute step-count error, %.
     StepMaePct,
+    /// Median over the walks of each walk's median per-step heading error against a trajectory
+    /// truth, after its one offset, degrees ([`crate::eval::trajectory`]).
+    HeadingErrorDeg,
     /// Pooled aligned waypoint error, 75th percentile, m.
     WaypointP75M,
     /// Mean loop-closure error, % of the distance walked.
@@ -46,6 +50,8 @@ impl Metric {
     pub fn for_logs(logs: &[Log]) -> Option<Metric> {
         if logs.iter().any(|l| l.truth.steps.is_some()) {
             Some(Metric::StepMaePct)
+        } else if logs.iter().any(|l| !l.truth.trajectory.is_empty()) {
+            Some(Metric::HeadingErrorDeg)
         } else if logs.iter().any(|l| !l.truth.waypoints.is_empty()) {
             Some(Metric::WaypointP75M)
         } else if logs.iter().any(|l| l.truth.loop_closure) {
@@ -59,6 +65,7 @@ impl Metric {
     pub fn label(self) -> &'static str {
         match self {
             Metric::StepMaePct => "step MAE %",
+            Metric::HeadingErrorDeg => "heading error °",
             Metric::WaypointP75M => "waypoint p75 m",
             Metric::LoopClosurePct => "loop closure % of distance",
         }
@@ -68,6 +75,10 @@ impl Metric {
     fn of(self, results: &[LogResult]) -> Option<f64> {
         match self {
             Metric::StepMaePct => summarise(results).step_mae_pct,
+            Metric::HeadingErrorDeg => summarise(results)
+                .trajectory_by_group
+                .get("all")
+                .and_then(|g| g.heading_error_deg),
             Metric::WaypointP75M => summarise(results).waypoint_p75_m,
             Metric::LoopClosurePct => {
                 let v: Vec<f64> = results

@@ -12,6 +12,12 @@
 //!   percentage divides it by the true path length walked so far (the polyline through the
 //!   waypoints) and counts only waypoints at least [`MIN_PATH_FOR_PCT_M`] along.
 //! - **Loop closure**: the distance between the last and the first position of the track.
+//! - **Steps in a window**: where the truth counts only part of the recording
+//!   ([`crate::io::import::Truth::step_window`]), the steps found inside it are scored.
+//! - **Trajectory** (motion capture): each step's heading, the distance and the position against
+//!   the smoothed truth, free of the truth frame's direction ([`trajectory`]).
+//! - **Turns**: the track's heading change across each true turn against its angle
+//!   ([`turn_angles`]).
 //! - **Floors**: where the truth's landmarks have floors (GetSensorData `POSI`), the share of
 //!   landmarks at which the track's floor relative to the first landmark is the truth's
 //!   ([`floors`]); the height error where the truth has heights.
@@ -30,9 +36,13 @@ use serde::{Deserialize, Serialize};
 pub mod ends;
 pub mod energy;
 pub mod floors;
+pub mod trajectory;
+pub mod turn_angles;
 pub mod turns;
 
 pub use floors::FloorResult;
+pub use trajectory::TrajectoryResult;
+pub use turn_angles::TurnResult;
 
 /// Waypoints nearer the start than this along the true path are left out of the percentages, m.
 pub const MIN_PATH_FOR_PCT_M: f64 = 20.0;
@@ -132,6 +142,10 @@ pub struct LogResult {
     pub distance_m: f64,
     /// True steps, when known.
     pub truth_steps: Option<u64>,
+    /// Steps found inside the truth's window, when the truth counts only part of the log
+    /// ([`crate::io::import::Truth::step_window`]); the step error is then theirs.
+    #[serde(default)]
+    pub steps_in_window: Option<u64>,
     /// Step-count error, %.
     pub step_error_pct: Option<f64>,
     /// True steps without the truth device's contact bounces, when it reports feet
@@ -182,6 +196,12 @@ pub struct LogResult {
     /// crosses to the page as bincode, which cannot skip fields.)
     #[serde(default)]
     pub floors: Option<FloorResult>,
+    /// Heading, distance and position against a trajectory truth (motion capture).
+    #[serde(default)]
+    pub trajectory: Option<TrajectoryResult>,
+    /// The heading change across each true turn.
+    #[serde(default)]
+    pub turns: Option<TurnResult>,
     /// The pitch detector was chosen and the log has no gyroscope: the PLL counted the steps.
     pub detector_fallback: bool,
     /// Share of the steps whose leg pitch showed a thigh's swing (a phone in a trouser
@@ -212,6 +232,7 @@ impl LogResult {
             steps: 0,
             distance_m: 0.0,
             truth_steps: None,
+            steps_in_window: None,
             step_error_pct: None,
             truth_steps_debounced: None,
             step_error_debounced_pct: None,
@@ -232,6 +253,8 @@ impl LogResult {
             refused_records: 0,
             pressure_samples: 0,
             floors: None,
+            trajectory: None,
+            turns: None,
             detector_fallback: false,
             thigh_share: 0.0,
             error: Some(error),
@@ -287,6 +310,44 @@ pub struct Summary {
     pub floor_share: Option<f64>,
     /// 75th percentile of all height errors, pooled, m (only where the truth has heights).
     pub height_p75_m: Option<f64>,
+    /// The logs with a trajectory truth, per group (the carrying mode), and `all` of them.
+    pub trajectory_by_group: std::collections::BTreeMap<String, TrajectoryGroup>,
+    /// True turns scored, over all logs.
+    pub turns_scored: u64,
+    /// Median absolute turn error over every scored turn of every log, pooled, degrees.
+    pub turn_error_median_deg: Option<f64>,
+}
+
+/// The trajectory figures of a group of logs: medians over its walks that have a track.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TrajectoryGroup {
+    /// Logs with a trajectory truth.
+    pub logs: u64,
+    /// Of those, the walks without a track (no step with a heading).
+    pub without_track: u64,
+    /// Median of the walks' median heading errors, degrees.
+    pub heading_error_deg: Option<f64>,
+    /// Median of the walks' distance ratios.
+    pub distance_ratio: Option<f64>,
+    /// Median of the walks' position p75, m.
+    pub position_p75_m: Option<f64>,
+}
+
+impl TrajectoryGroup {
+    fn of(results: &[&TrajectoryResult]) -> TrajectoryGroup {
+        let with: Vec<&&TrajectoryResult> = results.iter().filter(|r| r.has_track).collect();
+        let median = |get: fn(&TrajectoryResult) -> Option<f64>| {
+            let v: Vec<f64> = with.iter().filter_map(|r| get(r)).collect();
+            (!v.is_empty()).then(|| percentile(&v, 50.0))
+        };
+        TrajectoryGroup {
+            logs: results.len() as u64,
+            without_track: (results.len() - with.len()) as u64,
+            heading_error_deg: median(|r| r.heading_error_deg),
+            distance_ratio: median(|r| r.distance_ratio),
+            position_p75_m: median(|r| r.position_p75_m),
+        }
+    }
 }
 
 /// Step-count figures of one group of logs.
@@ -347,8 +408,13 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
         res.error = Some("no IMU sample accepted".into());
         return res;
     }
+    res.steps_in_window = log.truth.step_window.map(|(a, b)| {
+        let all = track.iter().chain(p.held_steps());
+        all.filter(|s| s.t >= a && s.t <= b).count() as u64
+    });
+    let counted = res.steps_in_window.unwrap_or(res.steps);
     let error_pct = |truth: u64| {
-        (truth > 0).then(|| 100.0 * (res.steps as f64 - truth as f64).abs() / truth as f64)
+        (truth > 0).then(|| 100.0 * (counted as f64 - truth as f64).abs() / truth as f64)
     };
     res.truth_steps = log.truth.steps;
     res.step_error_pct = log.truth.steps.and_then(error_pct);
@@ -377,6 +443,8 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
     }
     absolute_errors(p, &log.truth.waypoints, &mut res);
     res.floors = floors::score_floors(track, wps);
+    res.trajectory = trajectory::score_trajectory(track, &log.truth.trajectory);
+    res.turns = turn_angles::score_turns(track, &log.truth.turns);
     res.fusion = p.fusion().and_then(|f| {
         let d = f.diagnostics();
         let last = d.last?;
@@ -608,7 +676,26 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         .iter()
         .filter_map(|l| Some((l.fusion?.gnss_on_s?, l.fusion?.gnss_span_s?)))
         .fold((0.0, 0.0), |(a, b), (on, span)| (a + on, b + span));
+    let mut trajectories = std::collections::BTreeMap::<String, Vec<&TrajectoryResult>>::new();
+    for l in logs {
+        if let Some(t) = &l.trajectory {
+            let group = l.group.clone().unwrap_or_else(|| "other".into());
+            trajectories.entry(group).or_default().push(t);
+            trajectories.entry("all".into()).or_default().push(t);
+        }
+    }
+    let turn_errors: Vec<f64> = logs
+        .iter()
+        .filter_map(|l| l.turns.as_ref())
+        .flat_map(|t| t.scored.iter().map(|s| s[2].abs()))
+        .collect();
     Summary {
+        trajectory_by_group: trajectories
+            .iter()
+            .map(|(g, v)| (g.clone(), TrajectoryGroup::of(v)))
+            .collect(),
+        turns_scored: turn_errors.len() as u64,
+        turn_error_median_deg: (!turn_errors.is_empty()).then(|| percentile(&turn_errors, 50.0)),
         gnss_on_share: (span > 0.0).then(|| on / span),
         logs: logs.len() as u64,
         failed: logs.iter().filter(|l| l.error.is_some()).count() as u64,
@@ -638,11 +725,11 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::engine::motion::Motion;
 
-    pub(super) fn step(t: f64, e: f64, n: f64) -> StepRecord {
+    pub(crate) fn step(t: f64, e: f64, n: f64) -> StepRecord {
         StepRecord {
             t,
             east_m: e,

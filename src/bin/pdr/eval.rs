@@ -170,7 +170,53 @@ fn print_report(report: &pdr::eval::Report) {
             100.0 * f.share
         );
     }
+    for l in &report.logs {
+        let name = l.path.rsplit('/').next().unwrap_or(&l.path);
+        if let (Some(n), Some(t)) = (l.steps_in_window, l.truth_steps) {
+            out!(
+                "window {name:<37} {n} steps found inside the truth's window of {t} ({} %)",
+                opt(l.step_error_pct, 2)
+            );
+        }
+        if let Some(t) = &l.trajectory {
+            out!(
+                "trajectory {name:<33} heading error median {}° (p75 {}°, {} steps), distance {:.1} m of {:.1} m (ratio {}), position p75 {} m{}",
+                opt(t.heading_error_deg, 1),
+                opt(t.heading_error_p75_deg, 1),
+                t.headings_scored,
+                t.track_distance_m,
+                t.truth_distance_m,
+                opt(t.distance_ratio, 2),
+                opt(t.position_p75_m, 2),
+                if t.has_track { "" } else { "; no track" }
+            );
+        }
+        if let Some(t) = &l.turns {
+            out!(
+                "turns {name:<38} {} of {} turns scored, median error {}°",
+                t.scored.len(),
+                t.turns,
+                opt(t.median_error_deg, 1)
+            );
+        }
+    }
     let s = &report.summary;
+    if !s.trajectory_by_group.is_empty() {
+        out!();
+        for (g, v) in &s.trajectory_by_group {
+            out!(
+                "{g:<16} {:>3} logs  heading error {:>5}°  distance ratio {:>5}  position p75 {:>5} m  without a track {}",
+                v.logs,
+                opt(v.heading_error_deg, 1),
+                opt(v.distance_ratio, 2),
+                opt(v.position_p75_m, 2),
+                v.without_track
+            );
+        }
+    }
+    if let Some(e) = s.turn_error_median_deg {
+        out!("turns: median error {e:.1}° over {} turns", s.turns_scored);
+    }
     if !s.step_mae_by_group.is_empty() {
         out!();
         for (g, v) in &s.step_mae_by_group {

@@ -189,7 +189,10 @@ pub fn draw_map<DB: DrawingBackend>(
                 "No heading ({why}): its {} steps cannot be placed.",
                 a.steps.len()
             ),
-            (rx.start + px(12.0) as i32, (ry.start + ry.end) / 2 + px(24.0) as i32),
+            (
+                rx.start + px(12.0) as i32,
+                (ry.start + ry.end) / 2 + px(24.0) as i32,
+            ),
             font,
         ))?;
     }
