@@ -19,7 +19,8 @@
 //! - **Distance ratio**: the track's length (the steps with a heading, which move the track)
 //!   over the smoothed truth's path length over the same span, from the start of the first
 //!   step (one step period before its time) to the last step.
-//! - **Position**: the track pinned on the smoothed truth at the first step's time and turned
+//! - **Position**: the track pinned on the smoothed truth at the first step's time (the first
+//!   that the truth covers) and turned
 //!   by the one rotation (about that point) that best fits the truth at every step's time, in
 //!   the least-squares sense (2-D Procrustes, no scale); the error at each step's time. The
 //!   walk's figure is its 75th percentile.
@@ -222,8 +223,7 @@ fn robust_offset(d: &[f64]) -> Option<f64> {
 /// The 75th percentile of the position error at the steps' times, the track pinned on the
 /// truth at the first step and turned by the best rotation.
 fn position_p75(track: &[StepRecord], truth: &Smoothed) -> Option<f64> {
-    let t0 = track.first()?.t;
-    let origin = truth.at(t0)?;
+    let (t0, origin) = track.iter().find_map(|s| Some((s.t, truth.at(s.t)?)))?;
     let p0 = position_at(track, t0);
     // (track, truth) displacements from the start, at each step's time.
     let pairs: Vec<((f64, f64), (f64, f64))> = track
