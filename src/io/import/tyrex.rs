@@ -86,8 +86,9 @@ const SENSOR_FILES: [&str; 7] = [
 /// `names` (ending with `/`, or empty for the top). Returns the files it consumed and the log, or
 /// `None` when the folder is not a TyrEx recording: it needs `record.properties` (with a
 /// `[Device]` section or a `StartTime`) or `description.txt` (with a `BootTime`), one of the
-/// sensor files, and, when `accelerometer.txt` is there, a first line of at least four numbers
-/// separated by spaces.
+/// sensor files, and, when `accelerometer.txt` has lines, one of its first lines (in the first
+/// [`HEAD_BYTES`](super::fileset::HEAD_BYTES)) made of at least four numbers separated by
+/// spaces: a damaged first line is a warning, not a reason to ignore the recording.
 pub fn read_dir(
     set: &mut dyn FileSet,
     names: &[String],
@@ -102,9 +103,14 @@ pub fn read_dir(
     }
     if let Some(acc) = file_in(names, dir, "accelerometer.txt") {
         let head = set.head(&acc).ok()?;
-        let first = head.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
-        let fields: Vec<&str> = first.split_whitespace().collect();
-        if fields.len() < 4 || fields.iter().any(|f| super::number(f).is_none()) {
+        // The complete lines of the head (the last one may be cut).
+        let complete = head.rfind('\n').map_or("", |i| &head[..i]);
+        let mut lines = complete.lines().filter(|l| !l.trim().is_empty()).peekable();
+        let sample = |l: &str| {
+            let fields: Vec<&str> = l.split_whitespace().collect();
+            fields.len() >= 4 && fields.iter().all(|f| super::number(f).is_some())
+        };
+        if lines.peek().is_some() && !lines.any(sample) {
             return None;
         }
     }
