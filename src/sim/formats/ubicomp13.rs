@@ -59,7 +59,8 @@ impl Walk<'_> {
                 imu.last().map_or(self.start, |s| s.t),
             ),
         };
-        let clock = |t: f64| (self.boot_ns(t) as f64) * 1e-9;
+        // Correctly rounded, so that the JSON shows the 9 decimals of the ns clock.
+        let clock = |t: f64| self.boot_ns(t) as f64 / 1e9;
         let sample = |t: f64| imu.partition_point(|s| s.t < t);
         let truth = serde_json::json!({
             "steps": sim.truth.steps.len(),

@@ -38,7 +38,9 @@ pub struct PathSegment {
 /// headings: a turn is a run of consecutive steps each turning more than
 /// [`TURN_RATE_DEG_PER_STEP`], turning [`MIN_TURN_DEG`] or more in all, from the step before
 /// the run to its last step; the straights fill the time between the start of the first step
-/// (its end less one period) and the last step. Empty for a walk without steps.
+/// (its end less one period) and the last step. Empty for a walk without steps. A turn that
+/// starts and ends gently (a slow turn over many steps) loses its first and last few degrees to
+/// the straights beside it: the demo walk's 60° turn while running is written as 55°.
 pub fn path_segments(sim: &Simulation) -> Vec<PathSegment> {
     let steps: Vec<&crate::sim::TruthStep> = sim
         .truth
@@ -131,7 +133,8 @@ impl Walk<'_> {
     /// `sensors.csv`, the 41 columns of the recording app, 6 decimals, no header, one row per IMU
     /// sample that has a gyroscope value and an orientation (Core Motion gives them together):
     /// time since the start (s); roll, pitch, yaw (rad: R = Rz(yaw)·Rx(pitch)·Ry(roll)); the
-    /// rotation matrix reference → device, by rows; the quaternion x, y, z, w (device →
+    /// rotation matrix reference → device, by rows (both as the data set's rows have them: its
+    /// angles and matrix follow from its quaternion so, to its 6 decimals); the quaternion x, y, z, w (device →
     /// Core Motion's x-north, z-up reference); rotation rate (rad/s); user acceleration and
     /// gravity (g, Core Motion's sign: gravity is the down direction in device axes, the user
     /// acceleration the rest of −acceleration / g); the calibrated field `0,0,0,-1` (as the
