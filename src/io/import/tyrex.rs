@@ -24,23 +24,29 @@
 //!   60 Hz on the phone's clock, the motion-capture position of the phone in the room's frame
 //!   (metres, z up, x and y not north): [`Truth::trajectory`](super::Truth::trajectory). Rows
 //!   with empty position fields are where the cameras lost the phone: holes, skipped without a
-//!   warning (the reader counts them, see [`read_truth`]). The quaternion columns are not read.
+//!   warning (the reader counts them, [`TruthTrack::holes`]). The quaternion columns are not read.
 //!
 //! The sensors do not start together (the gyroscope often 0.2–0.7 s after the accelerometer):
 //! every sample is kept as it is and [`Streams::into_records`] merges them.
 //!
 //! # Checked on the 33 walks of `../shared/data/tyrex-pocket`
 //! - The accelerometer turned into ENU by the orientation stream points up: over the first
-//!   second of every walk (the walker standing) its mean vertical component is +9.3 to
+//!   second of every walk (the walker standing) its mean vertical component is +9.1 to
 //!   +10.3 m/s² on all 22 Android walks (rotation vector as written) and +9.5 to +9.8 m/s² on
 //!   all 11 iOS walks (−G0 × the reading, attitude turned by Rz(+90°)). With the conjugate
-//!   quaternion it is about 0 to 2 m/s² (except when texting, the phone lying flat).
-//! - The calibrated magnetometer turned into ENU the same way points north and down: a mean
-//!   east component within 2 µT of zero (north 16–24 µT, down 27–38 µT, an inclination of
-//!   52–67°) on every walk without placed magnets, on both layouts. So Core Motion's reference
-//!   here is x magnetic north (not an arbitrary x), and the Android rotation vector is also
-//!   referred to magnetic north.
-//!
+//!   quaternion instead, the whole walk's mean is between −0.7 and +2.2 m/s² (except when
+//!   texting: the phone lies nearly flat and both read about +9.5).
+//! - The calibrated magnetometer turned into ENU the same way points north and down: on 17 of
+//!   the 18 walks without placed magnets the mean east component is within 1.1 µT of zero
+//!   (north 20–23 µT, down 27–38 µT, an inclination of 52–61°), on both layouts; the iPhone's
+//!   running walk reads 5.8 µT east (16°). So Core Motion's reference here is x magnetic north
+//!   (not an arbitrary x), and the Android rotation vector is referred to magnetic north too.
+//! - On 6 of the 33 walks both the gyroscope and the orientation start more than
+//!   [`HOLD_S`](super::HOLD_S) after the accelerometer, so the first records carry neither; the
+//!   samples are kept as they are all the same.
+//! - `truth.csv` starts up to 1.1 s before the phone's first sample on 5 walks, and ends 1.5 to
+//!   11 s before its last one on every walk.
+
 //! # Group
 //! [`Log::group`] is the carrying mode, the last part of a folder named
 //! `<Walker>_<Phone>_<Dist|NoDist>_<Mode>` (`FrontPocket`, `BackPocket`, `Swinging`, `Phoning`,
