@@ -53,6 +53,11 @@ SL = ["Accelerometer.csv", "Gyroscope.csv", "Magnetometer.csv", "Orientation.csv
 PHY = ["Accelerometer.csv", "Gyroscope.csv", "Magnetometer.csv", "Location.csv",
        "meta/device.csv", "meta/time.csv", "Raw Data.csv"]
 OX = ["accelerometer.csv", "stepcounter.csv", "stats.csv"]
+TYREX = ["accelerometer.txt", "gyroscope-calibrated.txt", "gyroscope.txt",
+         "magnetometer-calibrated.txt", "magnetometer.txt", "rotation-vector.txt",
+         "attitude.txt", "record.properties", "description.txt", "truth.csv"]
+UBI = ["acc.csv", "gyr.csv", "mag.csv", "truth.json"]
+WAW = ["sensors.csv", "steps.csv", "segments.csv"]
 
 for sc in ["straight", "gnss-city"]:
     s = os.path.join(SIM, sc)
@@ -75,6 +80,10 @@ for sc in ["straight", "gnss-city"]:
         folder("sensor_logger_csv", SL, glob.glob(f"{s}/{f}/*/"))
     folder("phyphox", PHY, glob.glob(f"{s}/phyphox/*/"))
     folder("oxford", OX, glob.glob(f"{s}/oxford/*/"))
+    for f in ["tyrex", "tyrex-ios"]:
+        folder("tyrex", TYREX, glob.glob(f"{s}/{f}/*/"))
+    folder("ubicomp13", UBI, glob.glob(f"{s}/ubicomp13/*/"))
+    folder("weallwalk", WAW, glob.glob(f"{s}/weallwalk/*/"))
     # recipe: the recipe's JSON, then the header-less files it reads.
     plain = glob.glob(f"{s}/plain-csv/*/")
     rec = read(f"{s}/plain-csv/recipe.json")

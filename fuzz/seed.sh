@@ -13,10 +13,11 @@ SIM=$(mktemp -d)
 trap 'rm -rf "$SIM"' EXIT
 for scenario in straight gnss-city; do
   for f in pdr-log sensor-logger sensor-logger-ios sensor-logger-json phyphox gnss-logger \
-           get-sensor-data oxford ms-indoor xio plain-csv; do
+           get-sensor-data oxford ms-indoor xio plain-csv tyrex ubicomp13 weallwalk; do
     mkdir -p "$SIM/$scenario"
     "$PDR" simulate --scenario "$scenario" --format "$f" --out "$SIM/$scenario/$f" >/dev/null
   done
+  "$PDR" simulate --scenario "$scenario" --format tyrex --platform ios --out "$SIM/$scenario/tyrex-ios" >/dev/null
   "$PDR" simulate --scenario "$scenario" --events "$SIM/$scenario/events.json" >/dev/null
   "$PDR" simulate --scenario "$scenario" --platform ios --events "$SIM/$scenario/events-ios.json" >/dev/null
 done

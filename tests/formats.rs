@@ -221,6 +221,41 @@ fn case(name: &str) -> Case {
                 ..F32
             },
         ),
+        "tyrex" => c(Format::Tyrex, android, Os, true, true, false, F32),
+        "tyrex-ios" => c(
+            Format::Tyrex,
+            Platform::Ios,
+            Os,
+            true,
+            true,
+            false,
+            // Four decimals of s, g, rad/s, µT and quaternion components, as the iPhone app.
+            Tol {
+                t: 0.5e-4 + 1e-9,
+                accel: 0.5e-4 * 9.80665 + 1e-9,
+                gyro: 0.5e-4 + 1e-9,
+                mag: 0.5e-4 + 1e-9,
+                q_rad: 3e-4,
+                ..F32
+            },
+        ),
+        "ubicomp13" => c(Format::Ubicomp13, android, Madgwick, true, true, false, F32),
+        "weallwalk" => c(
+            Format::WeAllWalk,
+            Platform::Ios,
+            Os,
+            true,
+            false,
+            false,
+            // Six decimals; the acceleration is the sum of two columns in g.
+            Tol {
+                t: 0.5e-6 + 1e-9,
+                accel: 1e-6 * 9.80665 + 1e-9,
+                gyro: 0.5e-6 + 1e-9,
+                q_rad: 5e-6,
+                ..F32
+            },
+        ),
         _ => panic!("no case {name}"),
     }
 }
@@ -305,7 +340,10 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
         "{name}: warnings {:#?}",
         log.warnings
     );
-    if c.format == Format::SensorLogger || c.format == Format::SensorLoggerJson {
+    if matches!(
+        c.format,
+        Format::SensorLogger | Format::SensorLoggerJson | Format::Tyrex | Format::WeAllWalk
+    ) {
         assert_eq!(log.platform, Some(c.platform), "{name}");
     }
     let tol = c.tol;
@@ -428,6 +466,58 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
                 assert_eq!(g.geo.is_some(), c.format == Format::GetSensorData);
             }
             truth_note = format!("{} waypoints", want.len());
+        }
+        Format::Tyrex => {
+            let path = &sim.truth.path;
+            let (t0, t1) = (path[0].0, path.last().unwrap().0);
+            let rows = ((t1 - t0) * formats::TRUTH_RATE_HZ + 1e-6).floor() as usize + 1;
+            assert_eq!(truth.trajectory.len(), rows, "{name}: 60 Hz over the path");
+            for (k, p) in truth.trajectory.iter().enumerate() {
+                let t = t0 + k as f64 / formats::TRUTH_RATE_HZ;
+                assert!((p.t - (t + off)).abs() <= 0.5e-4 + 1e-9, "{name}: truth t");
+                let (e, n) = sim.truth.position_at(t);
+                let d = (p.x_m - e).hypot(p.y_m - n);
+                assert!(d <= 1e-5, "{name}: truth off by {d} m at {t}");
+                assert!((p.z_m - formats::POCKET_HEIGHT_M).abs() <= 1e-5);
+            }
+            assert_eq!(log.group.as_deref(), Some("FrontPocket"));
+            truth_note = format!("{rows} positions");
+        }
+        Format::Ubicomp13 => {
+            let steps = &sim.truth.steps;
+            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
+            let (a, b) = truth.step_window.expect("a walk window");
+            assert!(
+                steps.iter().all(|s| (a..=b).contains(&(s.t + off))),
+                "{name}: the window covers every true step"
+            );
+            assert_eq!(log.group.as_deref(), Some("FrontPocket"));
+            truth_note = format!("{} steps in {:.1} s", steps.len(), b - a);
+        }
+        Format::WeAllWalk => {
+            let steps = &sim.truth.steps;
+            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
+            assert_eq!(truth.step_events.len(), steps.len());
+            for (k, (e, s)) in truth.step_events.iter().zip(steps).enumerate() {
+                assert!(
+                    (e.t - (s.t + off)).abs() <= 0.5e-4 + 1e-9,
+                    "{name}: step {k}"
+                );
+                assert_eq!(e.foot, Some((k % 2) as u8), "{name}: feet alternate");
+            }
+            let want: Vec<_> = formats::path_segments(sim)
+                .into_iter()
+                .filter(|s| s.turn_deg.is_some())
+                .collect();
+            assert!(!want.is_empty(), "{name}: the walk turns");
+            assert_eq!(truth.turns.len(), want.len(), "{name}: turns");
+            for (g, w) in truth.turns.iter().zip(&want) {
+                assert!((g.t_start - (w.start + off)).abs() <= 0.5e-4 + 1e-9);
+                assert!((g.t_end - (w.end + off)).abs() <= 0.5e-4 + 1e-9);
+                assert!((g.angle_deg - w.turn_deg.unwrap()).abs() <= 0.5 + 1e-9);
+            }
+            assert_eq!(log.group.as_deref(), Some("LeftPocket"));
+            truth_note = format!("{} heel strikes, {} turns", steps.len(), want.len());
         }
         Format::XioFoot => {
             assert!(truth.loop_closure);
@@ -552,6 +642,26 @@ fn xio() {
 }
 
 #[test]
+fn tyrex() {
+    check_demo("tyrex");
+}
+
+#[test]
+fn tyrex_ios() {
+    check_demo("tyrex-ios");
+}
+
+#[test]
+fn ubicomp13() {
+    check_demo("ubicomp13");
+}
+
+#[test]
+fn weallwalk() {
+    check_demo("weallwalk");
+}
+
+#[test]
 fn walks_are_not_trivial() {
     // The point of these recordings: hundreds of steps, not a 3-second snippet.
     assert!(demo_reference() > 300, "{}", demo_reference());
@@ -588,6 +698,33 @@ fn folder_names_follow_the_apps() {
     );
     let rec = formats::write(sim, Format::OxfordSteps, Platform::Android);
     assert_eq!(import_one(&rec).group.as_deref(), Some("FrontPocket"));
+    let tyrex = names(Format::Tyrex, Platform::Android);
+    assert!(
+        tyrex.contains(&"Sim_Nexus5_NoDist_FrontPocket/rotation-vector.txt".to_string()),
+        "{tyrex:?}"
+    );
+    let tyrex_ios = names(Format::Tyrex, Platform::Ios);
+    assert!(
+        tyrex_ios.contains(&"Sim_iPhone5_NoDist_FrontPocket/attitude.txt".to_string()),
+        "{tyrex_ios:?}"
+    );
+    assert_eq!(
+        names(Format::Ubicomp13, Platform::Android),
+        [
+            "p0.1_Female_20-29_170-179cm_Trousers_front_pocket/acc.csv",
+            "p0.1_Female_20-29_170-179cm_Trousers_front_pocket/gyr.csv",
+            "p0.1_Female_20-29_170-179cm_Trousers_front_pocket/mag.csv",
+            "p0.1_Female_20-29_170-179cm_Trousers_front_pocket/truth.json"
+        ]
+    );
+    assert_eq!(
+        names(Format::WeAllWalk, Platform::Ios),
+        [
+            "T1_ID0_1L/segments.csv",
+            "T1_ID0_1L/sensors.csv",
+            "T1_ID0_1L/steps.csv"
+        ]
+    );
     let ph = names(Format::Phyphox, Platform::Android);
     assert!(
         ph.contains(&"Walk 2026-01-01 00-00-00/meta/time.csv".to_string()),
@@ -620,9 +757,14 @@ fn empty_simulation_gives_headers_only() {
         Format::XioFoot,
         Format::Recipe,
         Format::PdrLog,
+        Format::Tyrex,
+        Format::Ubicomp13,
+        Format::WeAllWalk,
     ] {
-        let rec = formats::write(&sim, f, Platform::Android);
-        assert!(!rec.files.is_empty(), "{f:?}");
+        for p in [Platform::Android, Platform::Ios] {
+            let rec = formats::write(&sim, f, p);
+            assert!(!rec.files.is_empty(), "{f:?}");
+        }
     }
 }
 
@@ -735,6 +877,9 @@ fn formats_without_a_barometer_say_so_and_write_none() {
         Format::OxfordSteps,
         Format::MsIndoor,
         Format::XioFoot,
+        Format::Tyrex,
+        Format::Ubicomp13,
+        Format::WeAllWalk,
     ] {
         assert!(!formats::holds_pressure(format), "{format:?}");
         let log = import_one(&formats::write(sim, format, Platform::Android));

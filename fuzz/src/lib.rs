@@ -17,7 +17,7 @@ use pdr::io::ParseError;
 use pdr::live::{LiveSession, MotionEvent, OrientationEvent, Platform, SensorReading};
 
 /// Every target, by name (the names of `fuzz_targets/*.rs`).
-pub const TARGETS: [&str; 14] = [
+pub const TARGETS: [&str; 17] = [
     "pdrlog",
     "sniff",
     "sensor_logger_csv",
@@ -32,6 +32,9 @@ pub const TARGETS: [&str; 14] = [
     "live",
     "zip",
     "recipe",
+    "tyrex",
+    "ubicomp13",
+    "weallwalk",
 ];
 
 /// Runs the target `name` on `data`. Panics (the finding) when a check fails.
@@ -51,6 +54,9 @@ pub fn run(name: &str, data: &[u8]) {
         "live" => live(data),
         "zip" => zip(data),
         "recipe" => recipe(data),
+        "tyrex" => tyrex(data),
+        "ubicomp13" => ubicomp13(data),
+        "weallwalk" => weallwalk(data),
         _ => panic!("no fuzz target `{name}`"),
     }
 }
@@ -137,6 +143,21 @@ pub fn check_log(log: &Log) {
     }
     for s in &log.truth.step_events {
         finite("step_event.t", s.t);
+    }
+    if let Some((a, b)) = log.truth.step_window {
+        finite("step_window.start", a);
+        finite("step_window.end", b);
+    }
+    for p in &log.truth.trajectory {
+        finite("trajectory.t", p.t);
+        finite("trajectory.x", p.x_m);
+        finite("trajectory.y", p.y_m);
+        finite("trajectory.z", p.z_m);
+    }
+    for t in &log.truth.turns {
+        finite("turn.t_start", t.t_start);
+        finite("turn.t_end", t.t_end);
+        finite("turn.angle", t.angle_deg);
     }
     let _ = log.truth.steps_debounced();
     assert!(log.warnings.len() <= import::MAX_WARNINGS);
@@ -285,6 +306,49 @@ pub fn oxford(data: &[u8]) {
         &OXFORD_FILES,
         data,
     ));
+}
+
+/// The files of a TyrEx recording folder, in the order of the input's pieces: both layouts'.
+pub const TYREX_FILES: [&str; 10] = [
+    "accelerometer.txt",
+    "gyroscope-calibrated.txt",
+    "gyroscope.txt",
+    "magnetometer-calibrated.txt",
+    "magnetometer.txt",
+    "rotation-vector.txt",
+    "attitude.txt",
+    "record.properties",
+    "description.txt",
+    "truth.csv",
+];
+
+/// A TyrEx recording folder (Android or iOS, as the marker file among the pieces says).
+pub fn tyrex(data: &[u8]) {
+    import_files(split_files(
+        "Fuzz_Nexus5_NoDist_FrontPocket/",
+        &TYREX_FILES,
+        data,
+    ));
+}
+
+/// The files of a UbiComp 2013 walk folder, in the order of the input's pieces.
+pub const UBICOMP13_FILES: [&str; 4] = ["acc.csv", "gyr.csv", "mag.csv", "truth.json"];
+
+/// A UbiComp 2013 walk folder.
+pub fn ubicomp13(data: &[u8]) {
+    import_files(split_files(
+        "p0.1_Fuzz_20-29_170-179cm_Trousers_front_pocket/",
+        &UBICOMP13_FILES,
+        data,
+    ));
+}
+
+/// The files of a WeAllWalk walk folder, in the order of the input's pieces.
+pub const WEALLWALK_FILES: [&str; 3] = ["sensors.csv", "steps.csv", "segments.csv"];
+
+/// A WeAllWalk walk folder.
+pub fn weallwalk(data: &[u8]) {
+    import_files(split_files("T1_ID0_1L/", &WEALLWALK_FILES, data));
 }
 
 /// Microsoft Indoor Location 2.0 trace.

@@ -1,5 +1,5 @@
 //! The real walks of `../shared/data`, or `None` (with a message saying the test is skipped)
-//! when a clone has no `../shared` (tests/dates.rs, energy.rs, fusion_real.rs, magnetic.rs).
+//! when a clone has no `../shared` (tests/dates.rs, energy.rs, fusion_real.rs, magnetic.rs, import_shared_sets.rs).
 
 use pdr::io::import::{import_all, DirSet, Log};
 use std::path::Path;

@@ -91,6 +91,13 @@ pub enum FormatArg {
     MsIndoor,
     /// x-io Gait-Tracking CSV.
     Xio,
+    /// TyrEx recording folder with its motion-capture `truth.csv`, Android (or iOS with
+    /// `--platform ios`).
+    Tyrex,
+    /// UbiComp 2013 walk folder with its `truth.json` (step count and walk window).
+    Ubicomp13,
+    /// WeAllWalk walk folder (iOS Core Motion CSV) with its heel strikes and turns.
+    Weallwalk,
     /// A folder of header-less CSVs `acc.csv`, `gyr.csv`, `mag.csv`, `bar.csv` (time in ms,
     /// then x y z), with the recipe that reads it (`recipe.json` beside the folder).
     PlainCsv,
@@ -145,7 +152,7 @@ enum Cmd {
         #[arg(long)]
         events: Option<PathBuf>,
         /// The platform whose event conventions `--events` follows, and whose conventions the
-        /// Sensor Logger formats follow.
+        /// Sensor Logger formats and TyrEx follow.
         #[arg(long, value_enum, default_value = "android")]
         platform: PlatformArg,
         /// Calibration walk: step frequency, Hz.

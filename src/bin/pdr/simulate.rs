@@ -137,7 +137,9 @@ fn write_recording(
         .filter(|r| matches!(r, Record::Gnss(_)))
         .count();
     let flavour = match f {
-        pdr::io::import::Format::SensorLogger | pdr::io::import::Format::SensorLoggerJson => {
+        pdr::io::import::Format::SensorLogger
+        | pdr::io::import::Format::SensorLoggerJson
+        | pdr::io::import::Format::Tyrex => {
             format!(" ({})", format!("{platform:?}").to_lowercase())
         }
         _ => String::new(),
@@ -147,6 +149,9 @@ fn write_recording(
         | pdr::io::import::Format::MsIndoor
         | pdr::io::import::Format::XioFoot
         | pdr::io::import::Format::Recipe
+        | pdr::io::import::Format::Tyrex
+        | pdr::io::import::Format::Ubicomp13
+        | pdr::io::import::Format::WeAllWalk
             if fixes > 0 =>
         {
             format!("no fixes (the format has none; the walk has {fixes})")
@@ -175,6 +180,9 @@ impl FormatArg {
             FormatArg::Oxford => Format::OxfordSteps,
             FormatArg::MsIndoor => Format::MsIndoor,
             FormatArg::Xio => Format::XioFoot,
+            FormatArg::Tyrex => Format::Tyrex,
+            FormatArg::Ubicomp13 => Format::Ubicomp13,
+            FormatArg::Weallwalk => Format::WeAllWalk,
             FormatArg::PlainCsv => Format::Recipe,
         }
     }

@@ -6,7 +6,7 @@
 //! keeps the first [`MAX_WARNINGS`] skipped lines and only counts the rest. So a file of any size,
 //! even binary junk without a line end, is read in bounded memory (besides the samples it yields).
 
-use super::{field_error, file_error, number, Log, Streams};
+use super::{field_error, file_error, fileset, number, FileSet, Log, Streams};
 use crate::engine::types::{PressureSample, PRESSURE_RANGE_HPA};
 use crate::io::lines::{each_line, read_line_capped, MAX_WARNINGS};
 use crate::io::ParseError;
@@ -243,6 +243,68 @@ pub(crate) fn numbers<const N: usize>(
         })?;
     }
     Ok(out)
+}
+
+/// Reads a file of samples, one per line: its first `N` fields, split at `sep` (at runs of
+/// whitespace when `None`), as numbers named `names` (fields after them are ignored), handed to
+/// `f(file label, line, values)`. Empty lines are skipped; a bad line, or an `Err` from `f`, is a
+/// warning naming file, line, column and field. A file that cannot be opened is an error naming
+/// it. Lines are streamed ([`each_line`]): memory stays bounded whatever the file's size.
+pub(crate) fn read_samples<const N: usize>(
+    set: &mut dyn FileSet,
+    name: &str,
+    sep: Option<char>,
+    names: [&str; N],
+    warnings: &mut Warnings,
+    mut f: impl FnMut(&str, u64, [f64; N]) -> Result<(), ParseError>,
+) -> Result<(), ParseError> {
+    let label = set.label(name);
+    let reader = set
+        .open(name)
+        .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
+    each_line(reader, &label, |n, line| {
+        let line = match line {
+            Ok(l) => l,
+            Err(e) => return warnings.push(e),
+        };
+        if line.trim().is_empty() {
+            return;
+        }
+        let fields: Vec<&str> = match sep {
+            Some(c) => line.split(c).collect(),
+            None => line.split_whitespace().collect(),
+        };
+        if let Err(e) = numbers(&fields, 0, names, &label, n).and_then(|v| f(&label, n, v)) {
+            warnings.push(e);
+        }
+    })
+}
+
+/// The name of a recording folder `dir` (ending with `/`, or empty for the top of the set) for
+/// reports: the folder's label without its trailing `/`, or `file`'s label when the folder has
+/// none (files given on their own, as in an upload).
+pub(crate) fn folder_label(set: &dyn FileSet, dir: &str, file: &str) -> String {
+    let l = set.label(dir.trim_end_matches('/'));
+    let l = l.trim_end_matches('/');
+    if l.is_empty() {
+        set.label(file)
+    } else {
+        l.to_string()
+    }
+}
+
+/// The folder's own name (the last part of [`folder_label`]), empty when it has none.
+pub(crate) fn folder_name(set: &dyn FileSet, dir: &str) -> String {
+    let l = set.label(dir.trim_end_matches('/'));
+    fileset::base(l.trim_end_matches('/')).to_string()
+}
+
+/// The file of folder `dir` whose base name is `base` (any case), among `names`.
+pub(crate) fn file_in(names: &[String], dir: &str, base: &str) -> Option<String> {
+    names
+        .iter()
+        .find(|n| fileset::parent(n) == dir && fileset::base(n).eq_ignore_ascii_case(base))
+        .cloned()
 }
 
 /// Parses field `col` of a record as a number, naming the column on failure.

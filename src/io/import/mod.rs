@@ -36,6 +36,9 @@ pub mod phyphox;
 pub mod recipe;
 pub mod sensor_logger;
 pub mod stream_zip;
+pub mod tyrex;
+pub mod ubicomp13;
+pub mod weallwalk;
 pub mod xio;
 
 pub use super::lines::{MAX_LINE, MAX_WARNINGS};
@@ -81,6 +84,13 @@ pub enum Format {
     MsIndoor,
     /// x-io Gait-Tracking foot-mounted CSV.
     XioFoot,
+    /// TyrEx recording folder (Android or iOS), with its motion-capture trajectory.
+    Tyrex,
+    /// UbiComp 2013 step-counting walk folder.
+    Ubicomp13,
+    /// WeAllWalk walk folder (iOS Core Motion CSV, heel strikes and turns).
+    #[serde(rename = "weallwalk")]
+    WeAllWalk,
     /// Any recorder's per-sensor files, read by a user's [`recipe`] (column mapping).
     Recipe,
 }
@@ -98,6 +108,9 @@ impl Format {
             Format::OxfordSteps => "oxford-steps",
             Format::MsIndoor => "ms-indoor",
             Format::XioFoot => "xio-foot",
+            Format::Tyrex => "tyrex",
+            Format::Ubicomp13 => "ubicomp13",
+            Format::WeAllWalk => "weallwalk",
             Format::Recipe => "recipe",
         }
     }
@@ -527,8 +540,12 @@ pub fn import_with(
             out.push(r);
             continue;
         }
-        // Sensor Logger and phyphox: each reader names the files it consumed.
-        let folder = sensor_logger::read_dir(set, &names, dir)
+        // The data sets' folders, Sensor Logger and phyphox: each reader names the files it
+        // consumed.
+        let folder = tyrex::read_dir(set, &names, dir)
+            .or_else(|| ubicomp13::read_dir(set, &names, dir))
+            .or_else(|| weallwalk::read_dir(set, &names, dir))
+            .or_else(|| sensor_logger::read_dir(set, &names, dir))
             .or_else(|| phyphox::read_dir(set, &names, dir));
         if let Some((files, r)) = folder {
             for (i, n) in names.iter().enumerate() {

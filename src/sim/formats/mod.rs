@@ -21,13 +21,20 @@
 //! | Oxford Step Counter | folder | accelerometer only | none | none | none | foot contacts |
 //! | Microsoft Indoor 2.0 | file | accel., gyro, mag | rotation vector | none | none | `TYPE_WAYPOINT` |
 //! | x-io Gait-Tracking | file | gyro (deg/s), accel. (g): the foot IMU's when the walk has one | none | none | none | (loop closure, claimed by the reader) |
+//! | TyrEx (Android) | folder | accel., calibrated gyro and mag | rotation vector | none | none | `truth.csv` trajectory, 60 Hz |
+//! | TyrEx (iOS) | folder | accel. in g, iOS sign; gyro, mag (4 decimals) | Core Motion attitude | none | none | `truth.csv` trajectory, 60 Hz |
+//! | UbiComp 2013 | folder | `acc`, `gyr`, `mag` | none | none | none | `truth.json` step count and walk window |
+//! | WeAllWalk | folder | user accel. + gravity in g, iOS sign; rotation rate | Core Motion quaternion | none | none | heel strikes; straights and turns |
 //! | plain CSV (read by a recipe) | folder | `acc`, `gyr`, `mag` (ms, no header) | none | none | `bar` (hPa, 4 decimals; a still one without a barometer) | – |
 //! | pdr-log | file | everything, lossless | | | | |
 //!
-//! Where a format has no place for something the simulation has, it is left out: phyphox, Oxford
-//! and x-io have no OS orientation (the engine then falls back to Madgwick or the gravity
-//! low-pass), Oxford has no gyroscope nor magnetometer, Microsoft Indoor, Oxford and x-io have no
-//! GNSS; GnssLogger, Microsoft Indoor, Oxford and x-io have no barometer ([`holds_pressure`]). The x-io reader always claims a loop closure: only a closed walk (the square) makes that
+//! Where a format has no place for something the simulation has, it is left out: phyphox, Oxford,
+//! x-io and UbiComp 2013 have no OS orientation (the engine then falls back to Madgwick or the
+//! gravity low-pass), Oxford has no gyroscope nor magnetometer, WeAllWalk no usable
+//! magnetometer (it writes one, as the data set's unusable raw columns, and the reader ignores
+//! it); Microsoft Indoor, Oxford, x-io, TyrEx, UbiComp 2013 and WeAllWalk have no GNSS;
+//! GnssLogger, Microsoft Indoor, Oxford, x-io, TyrEx, UbiComp 2013 and WeAllWalk have no
+//! barometer ([`holds_pressure`]). The x-io reader always claims a loop closure: only a closed walk (the square) makes that
 //! claim true. `gap` records and the simulation's per-step truth beyond what the format can hold
 //! (lengths, headings) are not written. An IMU sample with a non-finite value, or a fix that
 //! fails [`GnssFix::check`], is skipped (the simulator never makes one).
@@ -41,16 +48,23 @@
 //!   walk, every [`WAYPOINT_INTERVAL_S`] after it, and at the end. Microsoft waypoints are metres
 //!   east and north of the start; `POSI` landmarks are WGS84, in the simulation's geodetic frame
 //!   when it has GNSS, else around [`GnssSim`](crate::sim::GnssSim)'s default origin.
+//! - TyrEx `truth.csv`: the true position (east, north) every 1/[`TRUTH_RATE_HZ`] s over the
+//!   true path, [`POCKET_HEIGHT_M`] above the ground, without holes.
+//! - UbiComp 2013 `truth.json`: the number of true steps and a walk window from the start of the
+//!   first moving segment to the end of the last one.
+//! - WeAllWalk `steps.csv`: every true step, the feet alternating; `segments.csv`: the
+//!   straights and turns of [`path_segments`] (derived from the true steps' headings).
 //!
 //! # Clocks
 //! Every format keeps the simulation's sample spacing; the origin is the format's own:
 //! - Unix time (Sensor Logger ns, GnssLogger and Microsoft ms): the simulation's times when they
 //!   already are Unix times (a scenario with [`crate::sim::Scenario::clock_offset_s`] set), else
 //!   [`DEFAULT_UNIX_START_S`] plus the simulation time;
-//! - time since the start of the recording (phyphox, x-io, GetSensorData's app clock), the start
-//!   being the first record (or the start of the true path when that is earlier);
+//! - time since the start of the recording (phyphox, x-io, GetSensorData's app clock, TyrEx
+//!   Android, WeAllWalk), the start being the first record (or the start of the true path when
+//!   that is earlier);
 //! - time since boot (Oxford ns; GnssLogger `elapsedRealtimeNanos`, GetSensorData
-//!   `SensorTimestamp`), starting at [`BOOT_NS`].
+//!   `SensorTimestamp`, TyrEx iOS, UbiComp 2013), starting at [`BOOT_NS`].
 //!
 //! [`Recording::clock_offset_s`] says how the reader's clock relates to the simulation's.
 //!
@@ -63,9 +77,14 @@ mod oxford;
 mod phyphox;
 mod plain_csv;
 mod sensor_logger;
+mod tyrex;
+mod ubicomp13;
+mod weallwalk;
 mod xio;
 
 pub use plain_csv::RECIPE_JSON as PLAIN_CSV_RECIPE;
+pub use tyrex::{ios_boot_clock_s, POCKET_HEIGHT_M, TRUTH_RATE_HZ};
+pub use weallwalk::{path_segments, PathSegment, MIN_TURN_DEG, TURN_RATE_DEG_PER_STEP};
 
 use super::Simulation;
 use crate::engine::types::{GnssFix, ImuSample, PressureSample};
@@ -98,12 +117,18 @@ pub struct Recording {
     pub clock_offset_s: f64,
 }
 
-/// Whether a format is a folder of files (Sensor Logger CSVs, phyphox, Oxford) rather than one
-/// file.
+/// Whether a format is a folder of files (Sensor Logger CSVs, phyphox, Oxford, TyrEx, UbiComp
+/// 2013, WeAllWalk) rather than one file.
 pub fn is_folder(format: Format) -> bool {
     matches!(
         format,
-        Format::SensorLogger | Format::Phyphox | Format::OxfordSteps | Format::Recipe
+        Format::SensorLogger
+            | Format::Phyphox
+            | Format::OxfordSteps
+            | Format::Recipe
+            | Format::Tyrex
+            | Format::Ubicomp13
+            | Format::WeAllWalk
     )
 }
 
@@ -123,8 +148,8 @@ pub fn holds_pressure(format: Format) -> bool {
 
 /// Writes a simulated walk as `format` (see the module documentation for what each one
 /// carries). `platform` chooses between Sensor Logger's Android and iOS conventions (its CSV
-/// folder and JSON export); the other formats come from Android apps or fixed devices and ignore
-/// it. Never fails: a walk without records gives files with headers only.
+/// folder and JSON export) and TyrEx's Android and iOS layouts; the other formats come from one
+/// platform (WeAllWalk from iPhones, the rest from Android apps or fixed devices) and ignore it. Never fails: a walk without records gives files with headers only.
 pub fn write(sim: &Simulation, format: Format, platform: Platform) -> Recording {
     let w = Walk::new(sim);
     let unix_offset = if w.unix {
@@ -150,6 +175,15 @@ pub fn write(sim: &Simulation, format: Format, platform: Platform) -> Recording 
         Format::MsIndoor => (w.ms_indoor(sim), unix_offset),
         Format::XioFoot => (w.xio(), relative),
         Format::Recipe => (w.plain_csv(), unix_offset),
+        Format::Tyrex => (
+            w.tyrex(sim, platform),
+            match platform {
+                Platform::Android => relative,
+                Platform::Ios => tyrex::ios_boot_clock_s() - w.start,
+            },
+        ),
+        Format::Ubicomp13 => (w.ubicomp13(sim), BOOT_NS as f64 * 1e-9 - w.start),
+        Format::WeAllWalk => (w.weallwalk(sim), relative),
     };
     Recording {
         files,
