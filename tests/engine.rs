@@ -332,6 +332,21 @@ fn a_late_gyroscope_or_attitude_gives_a_heading_from_when_it_begins() {
                 track.len()
             );
             assert!(heading_error_deg(track, 0.0) < 3.0, "{label}");
+            // The leg pitch's detector, which needs the gyroscope, takes over when it begins.
+            let pitch = PipelineConfig {
+                detector: pdr::engine::StepDetectorConfig::Pitch(Default::default()),
+                ..PipelineConfig::default()
+            };
+            let r = replay(pitch, &records).unwrap();
+            assert!(!r.pipeline.diagnostics().detector_fallback, "{label}");
+            let (n, truth) = (r.pipeline.track().len(), sim.truth.steps.len());
+            if late_s < 1.0 {
+                assert_count(&label, n, truth);
+            } else {
+                // Walking 2 s before it began: the PLL counted those steps, and the pitch
+                // detector starting afresh misses the first of its own.
+                assert!(n + 6 >= truth && n <= truth + 1, "{label}: {n} of {truth}");
+            }
         }
     }
 }

@@ -381,6 +381,8 @@ pub struct Pipeline {
     pending: Vec<Stride>,
     last_stride_t: Option<f64>,
     pocket: pocket::Pocket,
+    // Whether a sample with a gyroscope has come.
+    gyro_seen: bool,
 }
 
 impl Pipeline {
@@ -432,6 +434,7 @@ impl Pipeline {
             pending: Vec::new(),
             last_stride_t: None,
             pocket,
+            gyro_seen: false,
         })
     }
 
@@ -499,11 +502,7 @@ impl Pipeline {
             self.magnetic.reset();
         }
         let nav = self.magnetic.push(s, dt, nav);
-        if s.gyro.is_none() && matches!(self.detector, Detector::Pitch(_)) {
-            // The leg pitch needs a gyroscope: the PLL counts this log's steps.
-            self.detector = Detector::new(StepDetectorConfig::default());
-            self.diag.detector_fallback = true;
-        }
+        self.pitch_detector_fallback(s);
         self.heading.push_attitude(nav.attitude);
         self.push_trunk_attitude(s.t, nav.attitude);
         self.attitude = nav.attitude;
@@ -589,6 +588,26 @@ impl Pipeline {
         // Recognising a foot replaces the steps so far by the strides: all are new then.
         let first = if self.push_foot(s, dt) { 0 } else { first };
         Ok(&self.steps[first..])
+    }
+
+    /// The leg pitch needs a gyroscope: without one the PLL counts the steps. A gyroscope that
+    /// begins after the first samples (as phones' do) gets the pitch detector back when it
+    /// does; one that stops after it began leaves the PLL to count.
+    fn pitch_detector_fallback(&mut self, s: &ImuSample) {
+        match (s.gyro, &self.cfg.detector, &self.detector) {
+            (None, _, Detector::Pitch(_)) => {
+                self.detector = Detector::new(StepDetectorConfig::default());
+                self.diag.detector_fallback = true;
+            }
+            (Some(_), StepDetectorConfig::Pitch(c), _)
+                if self.diag.detector_fallback && !self.gyro_seen =>
+            {
+                self.detector = Detector::new(StepDetectorConfig::Pitch(*c));
+                self.diag.detector_fallback = false;
+            }
+            _ => {}
+        }
+        self.gyro_seen |= s.gyro.is_some();
     }
 
     fn check(&self, s: &ImuSample) -> Result<(), InputError> {
