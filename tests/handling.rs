@@ -81,3 +81,48 @@ fn the_ipin_walks_start_after_their_handling() {
     println!("steps counted before the first landmark: {before} over {} logs (925 before the handling detector)", logs.len());
     assert!(before <= 200, "{before} steps before the walks");
 }
+
+/// Seconds of handling inside the logs' counted windows.
+fn handled_inside(logs: &[pdr::io::import::Log], cfg: &PipelineConfig) -> f64 {
+    let mut inside = 0.0;
+    for log in logs {
+        let (a, b) = log.truth.step_window.expect("a counted window");
+        let mut p = pdr::engine::Pipeline::new(log.dated(cfg)).unwrap();
+        let mut last = None;
+        for r in &log.records {
+            let pdr::engine::types::Record::Imu(s) = r else {
+                continue;
+            };
+            if p.push(r).is_ok() {
+                let handled = p.diagnostics().activity == Some(pdr::engine::Activity::Handling);
+                if handled && s.t > a && s.t < b {
+                    inside += s.t - last.unwrap_or(s.t);
+                }
+                last = Some(s.t);
+            }
+        }
+    }
+    inside
+}
+
+/// A thigh in a trouser pocket at a brisk pace turns the phone fast and about more than one
+/// axis, as handling does, but about an axis that stays put in the device: the real walks of
+/// UbiComp 2013 are walks (skipped when `../shared` is absent).
+#[test]
+fn a_brisk_pocket_is_a_walk() {
+    let Some(pockets) = common::ipin::shared_logs("ubicomp13-pocket") else {
+        return;
+    };
+    let cfg = PipelineConfig::default();
+    let mut without = cfg.clone();
+    without.handling.axis_steady_min = 1.0;
+    let (now, before) = (
+        handled_inside(&pockets, &cfg),
+        handled_inside(&pockets, &without),
+    );
+    println!(
+        "UbiComp 2013: {now:.1} s of handling inside the counted walks ({before:.1} s without \
+         the steadiness test)"
+    );
+    assert!(now < 0.25 * before, "{now} s against {before} s");
+}

@@ -23,7 +23,9 @@
 //!   share tests in 2 s windows (the near leg's rotation about the hip and about the femur),
 //!   but its main axis stays put: |cos| between consecutive 2 s windows ≥ 0.97 on 95 % of
 //!   those windows; a hand swinging at the side (TyrEx) has a median of 0.98; IPIN's handling
-//!   a median of 0.66 and a 90th percentile of 0.96.
+//!   a median of 0.66 and a 90th percentile of 0.96. The windows are whole blocks, the last
+//!   two windows and the two one block earlier: a single window that a gait's wobble takes
+//!   below the threshold does not make handling.
 //!
 //! Until a whole window of complete blocks lies before the last one (the input's first 4 s,
 //! and after a gap), the steadiness is not known and the share alone decides.
@@ -157,8 +159,10 @@ pub struct Handling {
     blocks: VecDeque<(f64, Sums)>,
     total: Sums,
     // The steadiness of the main axis over the complete blocks, judged once per block when
-    // needed: the last window of complete blocks and the one before it.
+    // needed: the last window of complete blocks and the one before it; and the same one
+    // block earlier.
     steady: Steady,
+    steady_before: Steady,
     until: Option<f64>,
     last_t: Option<f64>,
     diag: HandlingDiagnostics,
@@ -191,6 +195,7 @@ impl Handling {
             blocks: VecDeque::new(),
             total: Sums::default(),
             steady: Steady::default(),
+            steady_before: Steady::default(),
             until: None,
             last_t: None,
             diag: HandlingDiagnostics::default(),
@@ -229,7 +234,7 @@ impl Handling {
             && main_axis(&self.total).share < self.cfg.axis_share_max
             // Until a whole window lies before the last one (the input's first seconds), the
             // axis before is not known: the share alone decides.
-            && !(self.steady.known && self.steady.value() >= self.cfg.axis_steady_min)
+            && !self.steady_axis()
         {
             self.until = Some(t + self.cfg.hold_s);
         }
@@ -261,6 +266,7 @@ impl Handling {
         }
         let n = ((w / BLOCK_S).round() as usize).max(1);
         let complete = self.blocks.len() - 1;
+        self.steady_before = self.steady;
         self.steady = Steady {
             known: complete >= 2 * n,
             ..Steady::default()
@@ -274,11 +280,23 @@ impl Handling {
         }
     }
 
+    /// Whether the main axis stayed put: over the last windows of complete blocks, or over
+    /// those one block earlier (a single window that a gait's own wobble takes below the
+    /// threshold is not handling; handling moves the axis window after window). Not known in
+    /// the input's first seconds.
+    fn steady_axis(&mut self) -> bool {
+        let min = self.cfg.axis_steady_min;
+        self.steady.known
+            && (self.steady.value() >= min
+                || (self.steady_before.known && self.steady_before.value() >= min))
+    }
+
     /// Forgets the window (after a gap in the input).
     pub fn clear(&mut self) {
         self.blocks.clear();
         self.total = Sums::default();
         self.steady = Steady::default();
+        self.steady_before = Steady::default();
         self.until = None;
         self.last_t = None;
         self.diag.handling = false;
