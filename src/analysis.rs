@@ -114,7 +114,8 @@ pub struct Analysis {
     pub pdr_offset: (f64, f64),
     /// The local frame's origin (latitude, longitude, height), when there are fixes.
     pub origin: Option<(f64, f64, f64)>,
-    /// Truth waypoints in the PDR track's frame (aligned as the bench scores them).
+    /// The truth's path in the PDR track's frame, aligned as the bench scores it: its waypoints,
+    /// or a motion-capture trajectory every [`TRUTH_EVERY_S`].
     pub truth_path: Vec<(f64, f64)>,
     /// True step times, when the truth has them.
     pub truth_steps: Vec<f64>,
@@ -128,6 +129,10 @@ pub struct Analysis {
     /// a heading can come from.
     pub heading_inputs: bool,
 }
+
+/// Spacing of the points drawn from a motion-capture truth, s: a step's worth, enough for the
+/// map's line, few enough for the trip to the page.
+pub const TRUTH_EVERY_S: f64 = 0.25;
 
 /// Why an analysis cannot cross from the worker to the page.
 #[derive(Debug, Clone, PartialEq)]
@@ -258,7 +263,15 @@ pub fn analyse(
             .collect(),
         pdr_offset,
         origin: frame.map(|f| (f.lat0_deg, f.lon0_deg, f.h0_m)),
-        truth_path: crate::eval::waypoints_in_track_frame(p.track(), &log.truth.waypoints),
+        truth_path: if log.truth.waypoints.is_empty() {
+            crate::eval::trajectory::trajectory_in_track_frame(
+                p.track(),
+                &log.truth.trajectory,
+                TRUTH_EVERY_S,
+            )
+        } else {
+            crate::eval::waypoints_in_track_frame(p.track(), &log.truth.waypoints)
+        },
         truth_steps: log.truth.step_events.iter().map(|s| s.t).collect(),
         sigma_thresholds: (cfg.motion.still_max, cfg.motion.run_sigma_min),
         vertical: d.vertical,

@@ -301,7 +301,10 @@ pub const CHOICES: &[Choice] = &[
         title: "Orientation source",
         flag: "orientation",
         options: &[
-            ("auto", "OS quaternion, else Madgwick, else gravity"),
+            (
+                "auto",
+                "per sample: OS quaternion, else Madgwick, else gravity",
+            ),
             ("os", "OS quaternion"),
             ("madgwick", "Madgwick filter"),
             ("kf_nfa", "KF-NFA (Ibarra 2015)"),

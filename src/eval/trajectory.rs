@@ -220,33 +220,83 @@ fn robust_offset(d: &[f64]) -> Option<f64> {
         .map(|(_, c)| c)
 }
 
+/// The track pinned on the truth: the first step the truth covers (its time, the track's
+/// position and the truth's there), the (track, truth) displacements from there at each step's
+/// time, and the least-squares rotation (sin, cos) of the track onto the truth.
+struct Pinned {
+    p0: (f64, f64),
+    origin: (f64, f64),
+    pairs: Vec<((f64, f64), (f64, f64))>,
+    rotation: (f64, f64),
+}
+
+impl Pinned {
+    fn of(track: &[StepRecord], truth: &Smoothed) -> Option<Pinned> {
+        let (t0, origin) = track.iter().find_map(|s| Some((s.t, truth.at(s.t)?)))?;
+        let p0 = position_at(track, t0);
+        let pairs: Vec<((f64, f64), (f64, f64))> = track
+            .iter()
+            .filter_map(|s| {
+                let r = truth.at(s.t)?;
+                Some((
+                    (s.east_m - p0.0, s.north_m - p0.1),
+                    (r.0 - origin.0, r.1 - origin.1),
+                ))
+            })
+            .collect();
+        let (mut dot, mut cross) = (0.0, 0.0);
+        for ((ex, ey), (rx, ry)) in &pairs {
+            dot += ex * rx + ey * ry;
+            cross += ex * ry - ey * rx;
+        }
+        Some(Pinned {
+            p0,
+            origin,
+            pairs,
+            rotation: libm::sincos(libm::atan2(cross, dot)),
+        })
+    }
+}
+
 /// The 75th percentile of the position error at the steps' times, the track pinned on the
 /// truth at the first step and turned by the best rotation.
 fn position_p75(track: &[StepRecord], truth: &Smoothed) -> Option<f64> {
-    let (t0, origin) = track.iter().find_map(|s| Some((s.t, truth.at(s.t)?)))?;
-    let p0 = position_at(track, t0);
-    // (track, truth) displacements from the start, at each step's time.
-    let pairs: Vec<((f64, f64), (f64, f64))> = track
-        .iter()
-        .filter_map(|s| {
-            let r = truth.at(s.t)?;
-            Some((
-                (s.east_m - p0.0, s.north_m - p0.1),
-                (r.0 - origin.0, r.1 - origin.1),
-            ))
-        })
-        .collect();
-    let (mut dot, mut cross) = (0.0, 0.0);
-    for ((ex, ey), (rx, ry)) in &pairs {
-        dot += ex * rx + ey * ry;
-        cross += ex * ry - ey * rx;
-    }
-    let (s, c) = libm::sincos(libm::atan2(cross, dot));
-    let errors: Vec<f64> = pairs
+    let pinned = Pinned::of(track, truth)?;
+    let (s, c) = pinned.rotation;
+    let errors: Vec<f64> = pinned
+        .pairs
         .iter()
         .map(|((ex, ey), (rx, ry))| libm::hypot(c * ex - s * ey - rx, s * ex + c * ey - ry))
         .collect();
     (!errors.is_empty()).then(|| super::percentile(&errors, 75.0))
+}
+
+/// The smoothed truth drawn in the track's frame, placed as [`score_trajectory`] compares them
+/// (the rotation undone about the track's position at the first step the truth covers), one
+/// point every `every_s` seconds over the track's span; empty when they cannot be placed.
+pub fn trajectory_in_track_frame(
+    track: &[StepRecord],
+    truth: &[TruePosition],
+    every_s: f64,
+) -> Vec<(f64, f64)> {
+    let (Some(first), Some(last)) = (track.first(), track.last()) else {
+        return Vec::new();
+    };
+    let smoothed = Smoothed::of(truth);
+    let Some(pinned) = Pinned::of(track, &smoothed) else {
+        return Vec::new();
+    };
+    let (s, c) = pinned.rotation;
+    let mut out = Vec::new();
+    let mut t = first.t - 1.0 / first.freq_hz.max(0.1);
+    while t <= last.t && every_s > 0.0 {
+        if let Some(r) = smoothed.at(t) {
+            let (rx, ry) = (r.0 - pinned.origin.0, r.1 - pinned.origin.1);
+            out.push((pinned.p0.0 + c * rx + s * ry, pinned.p0.1 - s * rx + c * ry));
+        }
+        t += every_s;
+    }
+    out
 }
 
 #[cfg(test)]
@@ -364,6 +414,37 @@ mod tests {
         assert!((1.1..1.15).contains(&r.distance_ratio.unwrap()), "{r:?}");
         // 10 % long round a 4 × 3 m loop: up to 0.5 m off at the far corner.
         assert!((0.2..0.6).contains(&r.position_p75_m.unwrap()), "{r:?}");
+    }
+
+    #[test]
+    fn the_truth_is_drawn_on_the_track_it_scores() {
+        let (truth, walk) = rectangle(1.0);
+        let track = steps(&walk, 1.0);
+        let drawn = trajectory_in_track_frame(&track, &truth, 0.5);
+        assert!(drawn.len() > 60, "{}", drawn.len());
+        // Each drawn point lies on the (unrotated) track's rectangle: within the smoothing's
+        // corner cut of its sides.
+        let off = |&(x, y): &(f64, f64)| {
+            let side = |a: f64, lo: f64, hi: f64| {
+                if a < lo {
+                    lo - a
+                } else if a > hi {
+                    a - hi
+                } else {
+                    0.0
+                }
+            };
+            let outside = side(x, 0.0, 4.0).max(side(y, 0.0, 3.0));
+            let inside = x
+                .abs()
+                .min((x - 4.0).abs())
+                .min(y.abs())
+                .min((y - 3.0).abs());
+            outside.max(inside)
+        };
+        let worst = drawn.iter().map(off).fold(0.0, f64::max);
+        assert!(worst < 0.3, "{worst}");
+        assert!(trajectory_in_track_frame(&[], &truth, 0.5).is_empty());
     }
 
     #[test]

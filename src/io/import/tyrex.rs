@@ -43,10 +43,11 @@
 //!   (not an arbitrary x), and the Android rotation vector is referred to magnetic north too.
 //! - On 6 of the 33 walks both the gyroscope and the orientation start more than
 //!   [`HOLD_S`](super::HOLD_S) after the accelerometer, so the first records carry neither; the
-//!   samples are kept as they are all the same.
+//!   samples are kept as they are, and the engine's `auto` orientation moves up when the
+//!   streams begin.
 //! - `truth.csv` starts up to 1.1 s before the phone's first sample on 5 walks, and ends 1.5 to
 //!   11 s before its last one on every walk.
-
+//!
 //! # Group
 //! [`Log::group`] is the carrying mode, the last part of a folder named
 //! `<Walker>_<Phone>_<Dist|NoDist>_<Mode>` (`FrontPocket`, `BackPocket`, `Swinging`, `Phoning`,
