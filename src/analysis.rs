@@ -117,6 +117,9 @@ pub struct Analysis {
     /// The truth's path in the PDR track's frame, aligned as the bench scores it: its waypoints,
     /// or a motion-capture trajectory every [`TRUTH_EVERY_S`].
     pub truth_path: Vec<(f64, f64)>,
+    /// Whether [`Analysis::truth_path`] is a motion-capture trajectory (a line) rather than
+    /// waypoints (each a dot).
+    pub truth_is_trajectory: bool,
     /// True step times, when the truth has them.
     pub truth_steps: Vec<f64>,
     /// The motion detector's σ thresholds: still below, running above (m/s²).
@@ -263,6 +266,7 @@ pub fn analyse(
             .collect(),
         pdr_offset,
         origin: frame.map(|f| (f.lat0_deg, f.lon0_deg, f.h0_m)),
+        truth_is_trajectory: log.truth.waypoints.is_empty() && !log.truth.trajectory.is_empty(),
         truth_path: if log.truth.waypoints.is_empty() {
             crate::eval::trajectory::trajectory_in_track_frame(
                 p.track(),

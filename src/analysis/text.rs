@@ -81,7 +81,13 @@ impl Analysis {
                     sc.steps
                 ),
             ),
-            None => row("Steps", format!("{n}{truth}")),
+            None => match sc.steps_in_window {
+                Some(inside) => row(
+                    "Steps",
+                    format!("{n}; {inside} inside the truth's counted walk{truth}"),
+                ),
+                None => row("Steps", format!("{n}{truth}")),
+            },
         }
         row(
             "Distance",
@@ -129,6 +135,33 @@ impl Analysis {
                     fixed(w.p75, 1),
                     fixed(w.max, 1),
                     sc.waypoints
+                ),
+            );
+        }
+        if let Some(t) = &sc.trajectory {
+            row(
+                "Against the motion capture",
+                format!(
+                    "heading error median {}° over {} steps (p75 {}°, one offset of {}° removed); distance {} m of {} m (ratio {}); position p75 {} m, pinned at the start and turned",
+                    opt(t.heading_error_deg, 1),
+                    t.headings_scored,
+                    opt(t.heading_error_p75_deg, 1),
+                    opt(t.heading_offset_deg, 0),
+                    fixed(t.track_distance_m, 1),
+                    fixed(t.truth_distance_m, 1),
+                    opt(t.distance_ratio, 2),
+                    opt(t.position_p75_m, 1)
+                ),
+            );
+        }
+        if let Some(t) = &sc.turns {
+            row(
+                "Turns",
+                format!(
+                    "{} of {} true turns scored, median error {}°",
+                    t.scored.len(),
+                    t.turns,
+                    opt(t.median_error_deg, 1)
                 ),
             );
         }

@@ -501,7 +501,7 @@ test('compare two configurations side by side, and re-run', async () => {
   await context.close();
 });
 
-test('shared data sets: an Oxford, a Microsoft and an x-io foot trace show the errors `pdr eval` gives', { skip: !existsSync(SHARED) && `${SHARED} is absent` }, async () => {
+test('shared data sets: an Oxford, a Microsoft, an x-io foot, a TyrEx and a UbiComp trace show the errors `pdr eval` gives', { skip: !existsSync(SHARED) && `${SHARED} is absent` }, async () => {
   const oxRoot = path.join(SHARED, 'oxford-steps');
   const msRoot = path.join(SHARED, 'ms-indoor');
   const findDir = (root, test) => {
@@ -541,6 +541,29 @@ test('shared data sets: an Oxford, a Microsoft and an x-io foot trace show the e
   assert.equal(s3.loop_closure_m, e3.loop_closure_m);
   assert.match(await page.textContent('.log-result .summary'), /Strides/);
   await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-xio-foot-desktop.png') });
+  // A TyrEx walk, phone in a front pocket, its gyroscope late: a track, scored against the
+  // motion capture as `pdr eval` scores it, the truth drawn on the map.
+  const tyrex = path.join(SHARED, 'tyrex-pocket', 'Guillaume_iPhone5_NoDist_BackPocket');
+  if (existsSync(tyrex)) {
+    const r4 = await upload(page, tyrex, { folder: true });
+    const e4 = evalOf(tyrex);
+    const s4 = r4.logs[0].a.score;
+    console.log(`TyrEx ${path.basename(tyrex)}: heading error ${s4.trajectory?.heading_error_deg?.toFixed(1)}° (pdr eval ${e4.trajectory?.heading_error_deg?.toFixed(1)}°), distance ratio ${s4.trajectory?.distance_ratio?.toFixed(2)}`);
+    assert.ok(s4.trajectory.has_track);
+    assert.deepEqual(s4.trajectory, e4.trajectory);
+    assert.ok(r4.logs[0].a.truth_waypoints > 100, 'the truth is drawn');
+    await page.locator('.log-result').screenshot({ path: path.join(ARTIFACTS, 'upload-tyrex-desktop.png') });
+  }
+  // A UbiComp 2013 walk: the steps inside its counted window, as `pdr eval` counts them.
+  const ubiRoot = path.join(SHARED, 'ubicomp13-pocket');
+  const ubi = existsSync(ubiRoot) && findDir(ubiRoot, (p) => existsSync(path.join(p, 'truth.json')));
+  if (ubi) {
+    const r5 = await upload(page, ubi, { folder: true });
+    const e5 = evalOf(ubi);
+    const s5 = r5.logs[0].a.score;
+    assert.equal(s5.steps_in_window, e5.steps_in_window);
+    assert.equal(s5.step_error_pct, e5.step_error_pct);
+  }
   await context.close();
 });
 

@@ -80,11 +80,13 @@ pub fn draw_map<DB: DrawingBackend>(
             truth.iter().copied(),
             ShapeStyle::from(&theme.reference).stroke_width(px(2.0)),
         ))?;
-        chart.draw_series(
-            truth
-                .iter()
-                .map(|&p| Circle::new(p, px(3.0), theme.reference.filled())),
-        )?;
+        if !a.truth_is_trajectory {
+            chart.draw_series(
+                truth
+                    .iter()
+                    .map(|&p| Circle::new(p, px(3.0), theme.reference.filled())),
+            )?;
+        }
     }
     let pdr_colour = if fused.is_empty() {
         theme.track
