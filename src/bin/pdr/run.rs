@@ -88,7 +88,15 @@ pub fn run(
         parsed.skipped,
         r.refused
     );
-    out!("orientation   {:?}", d.orientation);
+    match p.orientation_diagnostics() {
+        Some(o) if o.switches > 0 => out!(
+            "orientation   {:?} ({} moves of `auto`: a stream began late or stopped)",
+            o.source,
+            o.switches
+        ),
+        Some(o) => out!("orientation   {:?}", o.source),
+        None => out!("orientation   none (no IMU sample)"),
+    }
     out!("duration      {:.1} s", t1 - t0);
     if d.placement == pdr::engine::foot::placement::Placement::Foot {
         out!("mode          foot (zero-velocity updates; a stride counts as two steps)");
