@@ -180,7 +180,12 @@ test('crashes while recording: every sample but the last batch is recovered, and
       assert.ok(imu.length <= fed.length + 2, `${imu.length} recorded of ${fed.length} fed`);
       assert.equal(wrong, 0, 'recorded accelerations differ from those fed');
       assert.equal(replayed, offer.steps, `trial ${n + 1}: pdr run ${replayed} steps, the page had ${offer.steps} at its last chunk`);
-      assert.ok(Math.abs(seen.shown - offer.steps) <= 2, `the guard showed ${seen.shown}, the last chunk ${offer.steps}`);
+      // Within two steps of the last chunk; but the walk's first steps come together, when the
+      // motion detector confirms the gait (the onset look-back releases up to 3 s of them, at
+      // 1.8 Hz 6 steps): a kill just after that, before the next chunk, finds them shown and not
+      // yet saved.
+      const burst = offer.steps === 0 ? 6 : 2;
+      assert.ok(Math.abs(seen.shown - offer.steps) <= burst, `the guard showed ${seen.shown}, the last chunk ${offer.steps}`);
       assert.deepEqual(errors, []);
       await page.waitForFunction(() => document.documentElement.dataset.recovery === 'done');
     }
