@@ -150,6 +150,20 @@ fn core_motion_to_enu() -> UnitQuaternion<f64> {
     UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h))
 }
 
+/// Reads a file of `t x y z` lines (a gyroscope's or a magnetometer's, as written) into `out`.
+fn read_vectors(
+    set: &mut dyn FileSet,
+    name: &str,
+    fields: [&str; 4],
+    warnings: &mut Warnings,
+    out: &mut Vec<(f64, Vector3<f64>)>,
+) -> Result<(), ParseError> {
+    read_samples(set, name, None, fields, warnings, |_, _, [t, x, y, z]| {
+        out.push((t, Vector3::new(x, y, z)));
+        Ok(())
+    })
+}
+
 /// Reads a recognised folder of the given layout.
 fn read(
     set: &mut dyn FileSet,
@@ -191,34 +205,16 @@ fn read(
     let gyro = file_in(names, dir, "gyroscope-calibrated.txt")
         .or_else(|| file_in(names, dir, "gyroscope.txt"));
     if let Some(name) = gyro {
-        read_samples(
-            set,
-            &name,
-            None,
-            ["t_s", "wx", "wy", "wz"],
-            &mut warnings,
-            |_, _, [t, x, y, z]| {
-                s.gyro.push((t, Vector3::new(x, y, z)));
-                Ok(())
-            },
-        )?;
+        let fields = ["t_s", "wx", "wy", "wz"];
+        read_vectors(set, &name, fields, &mut warnings, &mut s.gyro)?;
     }
     let mut mag = file_in(names, dir, "magnetometer-calibrated.txt");
     if mag.is_none() && !ios {
         mag = file_in(names, dir, "magnetometer.txt");
     }
     if let Some(name) = mag {
-        read_samples(
-            set,
-            &name,
-            None,
-            ["t_s", "mx", "my", "mz"],
-            &mut warnings,
-            |_, _, [t, x, y, z]| {
-                s.mag.push((t, Vector3::new(x, y, z)));
-                Ok(())
-            },
-        )?;
+        let fields = ["t_s", "mx", "my", "mz"];
+        read_vectors(set, &name, fields, &mut warnings, &mut s.mag)?;
     }
     if ios {
         if let Some(name) = file_in(names, dir, "attitude.txt") {
