@@ -1,5 +1,5 @@
 //! Heading and track per carrying mode on the simulator ([`pdr::sim::scenarios::carried_walk`],
-//! seeds 1–8; issue 20): each step's heading against the true path heading at its time (mean
+//! seeds 1–8): each step's heading against the true path heading at its time (mean
 //! absolute error, degrees), the step count against the truth, and the track's p75 error and
 //! end error, m.
 //!

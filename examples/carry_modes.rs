@@ -1,4 +1,4 @@
-//! The carrying-mode detector's confusion matrices ([`pdr::engine::carry`], issue 20): on the
+//! The carrying-mode detector's confusion matrices ([`pdr::engine::carry`]): on the
 //! simulator's five modes ([`pdr::sim::scenarios::carried_walk`], seeds 1–8) and on the real
 //! logs whose mode is known: the Oxford placements (accelerometer only), the Microsoft traces
 //! (hand, screen up) and the IPIN 2023 walks (hand). Each step counts once, with the mode the

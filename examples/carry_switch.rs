@@ -1,6 +1,6 @@
 //! The heading across a change of carrying mode mid-walk, on the simulator
-//! ([`pdr::sim::scenarios::switched_walk`], seeds 1–8, every ordered pair of the five modes;
-//! issue 20): each step's heading against
+//! ([`pdr::sim::scenarios::switched_walk`], seeds 1–8, every ordered pair of the five modes):
+//! each step's heading against
 //! the true path heading (mean absolute error, degrees) before the change, over the 5 s from its
 //! start, and after; the count against the truth; and the end error, m. Each pair is run with the
 //! heading carried across the change (the default) and with each source alone.

@@ -1,4 +1,4 @@
-//! A walk's opening ([`pdr::engine::heading::opening`], issue 20): per carrying mode, how many of
+//! A walk's opening ([`pdr::engine::heading::opening`]): per carrying mode, how many of
 //! each walk's first 8 steps walk more than 90° off the true direction, on how many walks, and
 //! the walks' median and worst end error, with the opening held (the default) and without
 //! (`heading.opening_steps = 0`). The short walks ([`scenarios::short_walk`], seeds 1–20) with

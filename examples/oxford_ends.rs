@@ -1,4 +1,4 @@
-//! Issue 20's first and last steps on real walks: the Oxford Step Counter traces (CC BY 4.0)
+//! The first and last steps on real walks: the Oxford Step Counter traces (CC BY 4.0)
 //! carry every true foot contact, so each walk's count splits into its start, its middle and
 //! its end ([`pdr::eval::ends`], the first and the last 4 s; the truth debounced as
 //! `Truth::steps_debounced` does). Prints each trace's split and the totals per placement;

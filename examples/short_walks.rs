@@ -1,4 +1,4 @@
-//! Issue 20's short walks ([`scenarios::short_walk`]): 20 steps between 3 s of standing, in each
+//! The short walks ([`scenarios::short_walk`]): 20 steps between 3 s of standing, in each
 //! carrying mode the simulator has, seeds 1–20 (cadence 1.6–2.0 Hz, the eight pocket poses,
 //! either pocket), with the simulator's historic ends (a bout starts and stops at full stride)
 //! and with real-shaped ones ([`pdr::sim::ends`]: the standing sway, the first and the last

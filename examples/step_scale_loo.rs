@@ -1,4 +1,4 @@
-//! Could a walk's own signals set its step-length scale? Issue 20 asks for a step length that
+//! Could a walk's own signals set its step-length scale? Tried: a step length that
 //! adapts from the log alone (Weinberg's amplitude blended with the frequency line). For the
 //! Microsoft walks and IPIN routes 01–25 this scores, by pooled waypoint p75 (PDR only), each
 //! walk's frequency line scaled by

@@ -1,5 +1,5 @@
 //! The heading in a turn on the simulator ([`pdr::sim::scenarios::carried_walk`], seeds 1–8, two
-//! right-angle turns a walk; issue 20), with and without `heading.turn_lead`
+//! right-angle turns a walk), with and without `heading.turn_lead`
 //! (`engine/heading/turn.rs`): per carrying mode, the mean of how far each turn shifts the track
 //! sideways ([`pdr::eval::turns`]), and each step's heading against the direction of the true
 //! step it ends (mean absolute error).

@@ -41,7 +41,7 @@ pub mod turn_angles;
 pub mod turns;
 
 pub use floors::FloorResult;
-pub use trajectory::TrajectoryResult;
+pub use trajectory::{TrajectoryGroup, TrajectoryResult};
 pub use turn_angles::TurnResult;
 
 /// Waypoints nearer the start than this along the true path are left out of the percentages, m.
@@ -316,38 +316,6 @@ pub struct Summary {
     pub turns_scored: u64,
     /// Median absolute turn error over every scored turn of every log, pooled, degrees.
     pub turn_error_median_deg: Option<f64>,
-}
-
-/// The trajectory figures of a group of logs: medians over its walks that have a track.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct TrajectoryGroup {
-    /// Logs with a trajectory truth.
-    pub logs: u64,
-    /// Of those, the walks without a track (no step with a heading).
-    pub without_track: u64,
-    /// Median of the walks' median heading errors, degrees.
-    pub heading_error_deg: Option<f64>,
-    /// Median of the walks' distance ratios.
-    pub distance_ratio: Option<f64>,
-    /// Median of the walks' position p75, m.
-    pub position_p75_m: Option<f64>,
-}
-
-impl TrajectoryGroup {
-    fn of(results: &[&TrajectoryResult]) -> TrajectoryGroup {
-        let with: Vec<&&TrajectoryResult> = results.iter().filter(|r| r.has_track).collect();
-        let median = |get: fn(&TrajectoryResult) -> Option<f64>| {
-            let v: Vec<f64> = with.iter().filter_map(|r| get(r)).collect();
-            (!v.is_empty()).then(|| percentile(&v, 50.0))
-        };
-        TrajectoryGroup {
-            logs: results.len() as u64,
-            without_track: (results.len() - with.len()) as u64,
-            heading_error_deg: median(|r| r.heading_error_deg),
-            distance_ratio: median(|r| r.distance_ratio),
-            position_p75_m: median(|r| r.position_p75_m),
-        }
-    }
 }
 
 /// Step-count figures of one group of logs.

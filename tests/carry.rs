@@ -1,4 +1,4 @@
-//! The carrying mode (`engine/carry.rs`, issue 20): the simulator's five modes are told apart,
+//! The carrying mode (`engine/carry.rs`): the simulator's five modes are told apart,
 //! a change of mode mid-walk is followed, and on the real logs whose mode is known (the Oxford
 //! placements, the Microsoft and IPIN hand-held walks) the steps get the mode they were walked
 //! in. The real part is skipped when `../shared` is absent. `examples/carry_modes.rs` prints

@@ -1,4 +1,4 @@
-//! The log's own date for the declination (issue 17): every format that carries a date gives it
+//! The log's own date for the declination: every format that carries a date gives it
 //! to [`Log::date_unix_s`], `pdr run`, `pdr eval` and the upload page's analysis hand it to the
 //! World Magnetic Model ([`Log::dated`]), and the IPIN 2023 logs (GetSensorData, whose clock is
 //! time since the app started) no longer say "without a known date".

@@ -1,4 +1,4 @@
-//! Issue 20: the first and the last steps of a walk, on simulated short walks with real-shaped
+//! The first and the last steps of a walk, on simulated short walks with real-shaped
 //! ends (`pdr::sim::ends`) and on the Oxford walks' true contacts (skipped without
 //! `../shared`). The figures asserted are the ones measured when the split was written;
 //! `examples/short_walks.rs` and `examples/oxford_ends.rs` print them.

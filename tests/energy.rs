@@ -1,4 +1,4 @@
-//! `pdr eval --energy` (issue 17): every log in best performance and in energy saving, the
+//! `pdr eval --energy`: every log in best performance and in energy saving, the
 //! receiver's on time per log (`fusion.gnss_on_s`, `gnss_span_s`) and per group
 //! (`gnss_on_share`), and the ratio of the two modes' median p75.
 

@@ -433,99 +433,7 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
         assert!(got_fixes.is_empty(), "{name}: no fixes");
     }
 
-    // Truth.
-    let truth = &log.truth;
-    let mut truth_note = String::from("-");
-    match c.format {
-        Format::OxfordSteps => {
-            let steps = &sim.truth.steps;
-            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
-            assert_eq!(truth.steps_debounced(), truth.steps, "{name}: no bounces");
-            for (k, (e, s)) in truth.step_events.iter().zip(steps).enumerate() {
-                let d = e.t - (s.t + off);
-                assert!(
-                    (-1e-6..=0.0101).contains(&d),
-                    "{name}: contact {k} {d} s after the true step"
-                );
-                assert_eq!(e.foot, Some((k % 2) as u8), "{name}: feet alternate");
-            }
-            truth_note = format!("{} contacts", steps.len());
-        }
-        Format::MsIndoor | Format::GetSensorData => {
-            let want = expected_waypoints(sim);
-            assert_eq!(truth.waypoints.len(), want.len(), "{name}: waypoints");
-            let (t_tol, xy_tol) = if c.format == Format::MsIndoor {
-                (tol.t, 1e-4)
-            } else {
-                (tol.t, 0.015)
-            };
-            for (g, w) in truth.waypoints.iter().zip(&want) {
-                assert!((g.t - (w.0 + off)).abs() <= t_tol, "{name}: waypoint t");
-                let d = (g.x_m - w.1).hypot(g.y_m - w.2);
-                assert!(d <= xy_tol, "{name}: waypoint off by {d} m");
-                assert_eq!(g.geo.is_some(), c.format == Format::GetSensorData);
-            }
-            truth_note = format!("{} waypoints", want.len());
-        }
-        Format::Tyrex => {
-            let path = &sim.truth.path;
-            let (t0, t1) = (path[0].0, path.last().unwrap().0);
-            let rows = ((t1 - t0) * formats::TRUTH_RATE_HZ + 1e-6).floor() as usize + 1;
-            assert_eq!(truth.trajectory.len(), rows, "{name}: 60 Hz over the path");
-            for (k, p) in truth.trajectory.iter().enumerate() {
-                let t = t0 + k as f64 / formats::TRUTH_RATE_HZ;
-                assert!((p.t - (t + off)).abs() <= 0.5e-4 + 1e-9, "{name}: truth t");
-                let (e, n) = sim.truth.position_at(t);
-                let d = (p.x_m - e).hypot(p.y_m - n);
-                assert!(d <= 1e-5, "{name}: truth off by {d} m at {t}");
-                assert!((p.z_m - formats::POCKET_HEIGHT_M).abs() <= 1e-5);
-            }
-            assert_eq!(log.group.as_deref(), Some("FrontPocket"));
-            truth_note = format!("{rows} positions");
-        }
-        Format::Ubicomp13 => {
-            let steps = &sim.truth.steps;
-            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
-            let (a, b) = truth.step_window.expect("a walk window");
-            assert!(
-                steps.iter().all(|s| (a..=b).contains(&(s.t + off))),
-                "{name}: the window covers every true step"
-            );
-            assert_eq!(log.group.as_deref(), Some("FrontPocket"));
-            truth_note = format!("{} steps in {:.1} s", steps.len(), b - a);
-        }
-        Format::WeAllWalk => {
-            let steps = &sim.truth.steps;
-            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
-            assert_eq!(truth.step_events.len(), steps.len());
-            for (k, (e, s)) in truth.step_events.iter().zip(steps).enumerate() {
-                assert!(
-                    (e.t - (s.t + off)).abs() <= 0.5e-4 + 1e-9,
-                    "{name}: step {k}"
-                );
-                assert_eq!(e.foot, Some((k % 2) as u8), "{name}: feet alternate");
-            }
-            let want: Vec<_> = formats::path_segments(sim)
-                .into_iter()
-                .filter(|s| s.turn_deg.is_some())
-                .collect();
-            assert!(!want.is_empty(), "{name}: the walk turns");
-            assert_eq!(truth.turns.len(), want.len(), "{name}: turns");
-            for (g, w) in truth.turns.iter().zip(&want) {
-                assert!((g.t_start - (w.start + off)).abs() <= 0.5e-4 + 1e-9);
-                assert!((g.t_end - (w.end + off)).abs() <= 0.5e-4 + 1e-9);
-                assert!((g.angle_deg - w.turn_deg.unwrap()).abs() <= 0.5 + 1e-9);
-            }
-            assert_eq!(log.group.as_deref(), Some("LeftPocket"));
-            truth_note = format!("{} heel strikes, {} turns", steps.len(), want.len());
-        }
-        Format::XioFoot => {
-            assert!(truth.loop_closure);
-            assert!(truth.waypoints.is_empty() && truth.steps.is_none());
-            truth_note = "loop closure (claimed)".into();
-        }
-        _ => assert_eq!(*truth, Default::default(), "{name}: no truth"),
-    }
+    let truth_note = check_truth(name, &c, sim, &log, off);
 
     // The engine on the imported log against the pdr-log of the same walk.
     let (n, source) = steps(&log.records);
@@ -564,6 +472,106 @@ fn check(name: &str, sim: &Simulation, reference: usize, walk: &str) -> String {
     );
     eprintln!("{line}");
     line
+}
+
+/// The truth the format carries, read back against the simulation's (`off`: the reader's clock
+/// at simulation time 0); a note for the summary line.
+fn check_truth(name: &str, c: &Case, sim: &Simulation, log: &Log, off: f64) -> String {
+    let truth = &log.truth;
+    let tol = c.tol;
+    match c.format {
+        Format::OxfordSteps => {
+            let steps = &sim.truth.steps;
+            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
+            assert_eq!(truth.steps_debounced(), truth.steps, "{name}: no bounces");
+            for (k, (e, s)) in truth.step_events.iter().zip(steps).enumerate() {
+                let d = e.t - (s.t + off);
+                assert!(
+                    (-1e-6..=0.0101).contains(&d),
+                    "{name}: contact {k} {d} s after the true step"
+                );
+                assert_eq!(e.foot, Some((k % 2) as u8), "{name}: feet alternate");
+            }
+            format!("{} contacts", steps.len())
+        }
+        Format::MsIndoor | Format::GetSensorData => {
+            let want = expected_waypoints(sim);
+            assert_eq!(truth.waypoints.len(), want.len(), "{name}: waypoints");
+            let (t_tol, xy_tol) = if c.format == Format::MsIndoor {
+                (tol.t, 1e-4)
+            } else {
+                (tol.t, 0.015)
+            };
+            for (g, w) in truth.waypoints.iter().zip(&want) {
+                assert!((g.t - (w.0 + off)).abs() <= t_tol, "{name}: waypoint t");
+                let d = (g.x_m - w.1).hypot(g.y_m - w.2);
+                assert!(d <= xy_tol, "{name}: waypoint off by {d} m");
+                assert_eq!(g.geo.is_some(), c.format == Format::GetSensorData);
+            }
+            format!("{} waypoints", want.len())
+        }
+        Format::Tyrex => {
+            let path = &sim.truth.path;
+            let (t0, t1) = (path[0].0, path.last().unwrap().0);
+            let rows = ((t1 - t0) * formats::TRUTH_RATE_HZ + 1e-6).floor() as usize + 1;
+            assert_eq!(truth.trajectory.len(), rows, "{name}: 60 Hz over the path");
+            for (k, p) in truth.trajectory.iter().enumerate() {
+                let t = t0 + k as f64 / formats::TRUTH_RATE_HZ;
+                assert!((p.t - (t + off)).abs() <= 0.5e-4 + 1e-9, "{name}: truth t");
+                let (e, n) = sim.truth.position_at(t);
+                let d = (p.x_m - e).hypot(p.y_m - n);
+                assert!(d <= 1e-5, "{name}: truth off by {d} m at {t}");
+                assert!((p.z_m - formats::POCKET_HEIGHT_M).abs() <= 1e-5);
+            }
+            assert_eq!(log.group.as_deref(), Some("FrontPocket"));
+            format!("{rows} positions")
+        }
+        Format::Ubicomp13 => {
+            let steps = &sim.truth.steps;
+            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
+            let (a, b) = truth.step_window.expect("a walk window");
+            assert!(
+                steps.iter().all(|s| (a..=b).contains(&(s.t + off))),
+                "{name}: the window covers every true step"
+            );
+            assert_eq!(log.group.as_deref(), Some("FrontPocket"));
+            format!("{} steps in {:.1} s", steps.len(), b - a)
+        }
+        Format::WeAllWalk => {
+            let steps = &sim.truth.steps;
+            assert_eq!(truth.steps, Some(steps.len() as u64), "{name}: true steps");
+            assert_eq!(truth.step_events.len(), steps.len());
+            for (k, (e, s)) in truth.step_events.iter().zip(steps).enumerate() {
+                assert!(
+                    (e.t - (s.t + off)).abs() <= 0.5e-4 + 1e-9,
+                    "{name}: step {k}"
+                );
+                assert_eq!(e.foot, Some((k % 2) as u8), "{name}: feet alternate");
+            }
+            let want: Vec<_> = formats::path_segments(sim)
+                .into_iter()
+                .filter(|s| s.turn_deg.is_some())
+                .collect();
+            assert!(!want.is_empty(), "{name}: the walk turns");
+            assert_eq!(truth.turns.len(), want.len(), "{name}: turns");
+            for (g, w) in truth.turns.iter().zip(&want) {
+                assert!((g.t_start - (w.start + off)).abs() <= 0.5e-4 + 1e-9);
+                assert!((g.t_end - (w.end + off)).abs() <= 0.5e-4 + 1e-9);
+                assert!((g.angle_deg - w.turn_deg.unwrap()).abs() <= 0.5 + 1e-9);
+            }
+            assert_eq!(log.group.as_deref(), Some("LeftPocket"));
+            format!("{} heel strikes, {} turns", steps.len(), want.len())
+        }
+        Format::XioFoot => {
+            assert!(truth.loop_closure);
+            assert!(truth.waypoints.is_empty() && truth.steps.is_none());
+            "loop closure (claimed)".into()
+        }
+        _ => {
+            assert_eq!(*truth, Default::default(), "{name}: no truth");
+            "-".to_string()
+        }
+    }
 }
 
 fn check_demo(name: &str) {

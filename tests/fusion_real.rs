@@ -1,4 +1,4 @@
-//! Fusion that real phone GNSS cannot fool (issue 17): on the simulator's real-shaped fixes
+//! Fusion that real phone GNSS cannot fool: on the simulator's real-shaped fixes
 //! (`sim::scenarios::gnss_city_walk_real`: multipath with τ = 14 s, optimistic accuracy, an
 //! urban canyon, a stale first fix 3 km away, wandering while standing, a held position at
 //! walk start) and on the IPIN 2023 phone walks (skipped when `../shared` is absent).
@@ -116,8 +116,8 @@ fn ipin_phone_fixes() {
         s.smoothed_p75_m.unwrap(),
     );
     println!("IPIN median of per-log p75: GNSS {g:.2} m, fused {f:.2} m, smoothed {sm:.2} m, fused worse than GNSS on {}", s.fused_worse_than_gnss);
-    // Issue 17's closing note gave GNSS 8.29, fused 7.30, smoothed 5.63 m and 4 logs worse than
-    // GNSS; with the hand's heading at any tilt (issue 20) fused 6.53, smoothed 4.92 m, 2 logs.
+    // Before the fixes' error model, GNSS 8.29, fused 7.30, smoothed 5.63 m and 4 logs worse than
+    // GNSS; with the hand's heading at any tilt fused 6.53, smoothed 4.92 m, 2 logs.
     // They may only get better.
     assert!(
         f < 0.8 * g && f <= 6.6,

@@ -1,4 +1,4 @@
-//! The magnetic guard (`engine::magnetic`, issue 20) on real walks: where the field is bent, the
+//! The magnetic guard (`engine::magnetic`) on real walks: where the field is bent, the
 //! yaw follows the gyroscope. Skips with a message when `../shared/data` is absent.
 #![allow(clippy::disallowed_methods)] // test scoring, not the track path
 
@@ -58,7 +58,7 @@ fn ipin_flat_routes_meet_four_metres_and_the_fusion_keeps_the_magnetometer() {
         with.waypoint_p75_m.unwrap(),
         without.waypoint_p75_m.unwrap(),
     );
-    // Measured: 3.44 m against 4.37 m (issue 20's target: 4.0 m).
+    // Measured: 3.44 m against 4.37 m (the target: 4.0 m).
     assert!(w <= 3.55 && w < 0.85 * wo, "{w:.2} m against {wo:.2} m");
     // The fusion is given the heading the magnetometer's yaw gives: its figures do not move.
     for (a, b) in [

@@ -1,4 +1,4 @@
-//! A walk's opening (`engine/heading/opening.rs`, issue 20): the first steps of a phone on a
+//! A walk's opening (`engine/heading/opening.rs`): the first steps of a phone on a
 //! limb wait for the limb to give their side, so a walk does not start backwards; the steps
 //! held are late, never lost, and the fusion still gets every fix in its order.
 

@@ -1,4 +1,4 @@
-//! The simulated GNSS receiver's real-phone error shapes (`sim::GnssErrors`, issue 17): each
+//! The simulated GNSS receiver's real-phone error shapes (`sim::GnssErrors`): each
 //! shape measured on the fixes it produces against the truth, over several seeds, and shown to
 //! be absent when it is off; the default shapes leave the city walk bit for bit what it was.
 //! Last, a report (run with `--nocapture`) of the default pipeline on the real-GNSS city walk

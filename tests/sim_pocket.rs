@@ -1,4 +1,4 @@
-//! The pocket simulator of issue 18 (Munoz Diaz 2015): the realistic thigh's pitch has the
+//! The pocket simulator (Munoz Diaz 2015): the realistic thigh's pitch has the
 //! paper's shape on level ground and stairs, its amplitude follows the walker's true pitch law,
 //! heights, floors and activities in the truth are right, the barometer follows the height, every
 //! pocket pose swings about the thigh's lateral axis, and the scenarios are deterministic.

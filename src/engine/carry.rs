@@ -37,7 +37,7 @@
 //! 4. Else a **bag** or a jacket.
 //!
 //! The thresholds were set from the Oxford placements' feature medians (accelerometer only,
-//! `examples/carry_features.rs`) and the simulator's modes; the closing note of issue 20 has the
+//! `examples/carry_features.rs`) and the simulator's modes; the README has the
 //! confusion matrices.
 
 use super::types::{positive, ConfigError, DeviceVec};

@@ -1,7 +1,7 @@
 //! The magnetic guard: where the magnetometer is disturbed, the yaw follows the gyroscope.
 //! May import: the rest of `engine`.
 //!
-//! Our addition to the papers (issue 20). Every orientation source that has a heading takes its
+//! Our addition to the papers. Every orientation source that has a heading takes its
 //! yaw from the magnetometer: the OS rotation vector, Madgwick with a magnetometer. Indoors the
 //! field is bent by steel and wiring: on the 24 Microsoft walks its size swings by ±6–9 µT
 //! (1 sd) about ~41 µT, from 17 to 67 µT, and the attitude's yaw is pulled with it. A constant

@@ -397,9 +397,8 @@ impl Orientation {
 
     /// Feeds one sample taken `dt` seconds after the previous one (0 after a gap) and returns
     /// its acceleration in the navigation frame. A sample [`Self::check`] refuses is an error
-    /// and leaves the state as it was.
+    /// and leaves the state as it was (the check is the sources' own, below).
     pub fn push(&mut self, s: &ImuSample, dt: f64) -> Result<NavAccel, InputError> {
-        self.check(s)?;
         self.follow(s);
         let none = NavAccel {
             up: 0.0,

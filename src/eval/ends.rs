@@ -1,4 +1,4 @@
-//! The first and the last steps of a walk (issue 20): a count split into the walk's start, its
+//! The first and the last steps of a walk: a count split into the walk's start, its
 //! middle and its end, against true steps one by one (the Oxford contacts, the simulator's
 //! footfalls), so that a step lost at the start and a phantom at the end do not cancel.
 //!

@@ -1,5 +1,4 @@
-//! Floors and heights scored against the truth's landmarks (issue 18: "`pdr eval` scores floors
-//! where the truth has them").
+//! Floors and heights scored against the truth's landmarks, where the truth has them.
 //! May import: `engine`, `io`.
 //!
 //! # Metrics

@@ -69,6 +69,39 @@ pub struct TrajectoryResult {
     pub position_p75_m: Option<f64>,
 }
 
+/// The trajectory figures of a group of logs: medians over its walks that have a track.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TrajectoryGroup {
+    /// Logs with a trajectory truth.
+    pub logs: u64,
+    /// Of those, the walks without a track (no step with a heading).
+    pub without_track: u64,
+    /// Median of the walks' median heading errors, degrees.
+    pub heading_error_deg: Option<f64>,
+    /// Median of the walks' distance ratios.
+    pub distance_ratio: Option<f64>,
+    /// Median of the walks' position p75, m.
+    pub position_p75_m: Option<f64>,
+}
+
+impl TrajectoryGroup {
+    /// The figures of the trajectory results of a group of logs.
+    pub fn of(results: &[&TrajectoryResult]) -> TrajectoryGroup {
+        let with: Vec<&&TrajectoryResult> = results.iter().filter(|r| r.has_track).collect();
+        let median = |get: fn(&TrajectoryResult) -> Option<f64>| {
+            let v: Vec<f64> = with.iter().filter_map(|r| get(r)).collect();
+            (!v.is_empty()).then(|| super::percentile(&v, 50.0))
+        };
+        TrajectoryGroup {
+            logs: results.len() as u64,
+            without_track: (results.len() - with.len()) as u64,
+            heading_error_deg: median(|r| r.heading_error_deg),
+            distance_ratio: median(|r| r.distance_ratio),
+            position_p75_m: median(|r| r.position_p75_m),
+        }
+    }
+}
+
 /// The smoothed truth: (t, x, y) in time order.
 struct Smoothed(Vec<(f64, f64, f64)>);
 

@@ -1,4 +1,4 @@
-//! How far each turn of a walk shifts the track sideways (issue 20, the heading in a turn): a
+//! How far each turn of a walk shifts the track sideways (the heading in a turn): a
 //! heading that lags or leads the path in a turn cuts or overshoots the corner, and the track
 //! keeps the shift after the turn.
 //!

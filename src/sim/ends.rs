@@ -1,6 +1,6 @@
 //! Real-shaped starts and stops (opt-in, [`super::Scenario::real_ends`]): the standing sway, a
 //! first step from stillness, a deceleration step, the body settling, and the phone taken out
-//! of the pocket. Issue 20 asks for them: the steps at both ends of a short real walk were
+//! of the pocket. The steps at both ends of a short real walk were
 //! off by up to 3 while the simulator, which started and stopped at full stride, counted them
 //! exactly.
 //! May import: `engine` and `io`.

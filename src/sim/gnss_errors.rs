@@ -1,4 +1,4 @@
-//! The real phone's GNSS error shapes for the simulated receiver (issue 17): a multipath bias
+//! The real phone's GNSS error shapes for the simulated receiver: a multipath bias
 //! correlated in time, urban-canyon stretches, an optimistic reported accuracy, a stale first
 //! fix, fixes wandering while the walker stands, and a receiver that lags (a constant latency,
 //! and a hold at walk start). All are off by default, and they draw their random numbers from a

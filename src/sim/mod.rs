@@ -42,11 +42,11 @@
 //! eight pocket poses in either front pocket ([`PocketPose`]), a barometer ([`BaroSim`]), and a
 //! truth with heights, floors, activities and the thigh's pitch ([`Truth`]).
 //!
-//! Opt-in, for the first and the last steps (issue 20): real-shaped ends ([`ends`],
+//! Opt-in, for the first and the last steps: real-shaped ends ([`ends`],
 //! [`Scenario::real_ends`]): the standing sway, the first and the last steps at half strength,
 //! the body settling, and the phone taken out of the pocket ([`Gait::TakeOut`]).
 //!
-//! Opt-in, for the heading across a change of carrying mode (issue 20): the phone moved from one
+//! Opt-in, for the heading across a change of carrying mode: the phone moved from one
 //! mode to another while the walk goes on ([`Scenario::switches`], [`carry::Switch`]).
 //!
 //! Sampling is irregular on request: a nominal rate with uniform jitter, or a fixed interval,

@@ -160,7 +160,7 @@ pub const GNSS_REAL_STALE_M: f64 = 3000.0;
 /// s.
 pub const GNSS_REAL_HOLD_S: f64 = 6.0;
 
-/// [`gnss_city_walk`] with a real phone's GNSS (issue 17): the same route, walker, step length
+/// [`gnss_city_walk`] with a real phone's GNSS: the same route, walker, step length
 /// 10 % off, 8° heading bias, outage and date, but fixes whose errors have the shapes measured
 /// on IPIN 2023's walks instead of white noise and outliers. Reported accuracy 4–15 m,
 /// understating the real error by [`GNSS_REAL_OPTIMISM`]; a multipath bias with
@@ -409,7 +409,7 @@ pub fn pitch_calibration_walk(metres: f64) -> Scenario {
     pocket(segs, PocketPose::UprightOut, 1819)
 }
 
-/// A walk with the phone carried in `carry` (issue 20's detector and heading per mode): 3 s
+/// A walk with the phone carried in `carry` (the carrying-mode detector and heading per mode): 3 s
 /// standing, 40 steps, a 90° turn over 8, 30 steps, 4 s standing, 30 steps turning back by 90°,
 /// 20 steps and 3 s standing. The seed sets the cadence (1.6–2.0 Hz) and, in the pocket, the
 /// pose ([`PocketPose::ALL`]) and the side.
@@ -433,7 +433,7 @@ pub fn carried_walk(carry: super::Carry, seed: u64) -> Scenario {
     }
 }
 
-/// Issue 20's short walk: 20 steps between 3 s of standing, carried as [`carried_walk`] carries
+/// A short walk: 20 steps between 3 s of standing, carried as [`carried_walk`] carries
 /// it (the seed sets the cadence, the pose and the side). With `real_ends`
 /// ([`Scenario::real_ends`]) the steps at both ends are real-shaped, and a phone in the pocket is
 /// taken out half a second after the last step (over 1.5 s, then 2 s standing).
@@ -455,7 +455,7 @@ pub fn short_walk(carry: super::Carry, seed: u64, real_ends: bool) -> Scenario {
     }
 }
 
-/// A change of carrying mode mid-walk (issue 20: the heading carried across it): 3 s standing,
+/// A change of carrying mode mid-walk (the heading carried across it): 3 s standing,
 /// 30 steps, the phone moved from `from` to `to` over 2 s while 16 more steps go on straight,
 /// a 90° turn over 8 steps, 30 steps and 3 s standing. The seed sets the cadence, the pocket's
 /// pose and side, as [`carried_walk`] does. The switch starts 3 s + 32 steps in.

@@ -31,7 +31,7 @@ enum ScenarioArg {
     /// Eleven minutes through city blocks with GNSS (outliers, an outage), a step length 10 %
     /// off and an 8° heading bias: the fusion's test walk.
     GnssCity,
-    /// The same city walk with a real phone's GNSS errors (issue 17): a multipath bias
+    /// The same city walk with a real phone's GNSS errors: a multipath bias
     /// correlated over 14 s, an optimistic accuracy, a 90 s urban canyon, a stale first fix
     /// 3 km away, fixes wandering while standing, the receiver holding at walk start.
     CityRealGnss,

@@ -1,4 +1,4 @@
-//! The swinging hand's way forward (ours, issue 20): the pelvis's sign rule with the arm's
+//! The swinging hand's way forward (ours): the pelvis's sign rule with the arm's
 //! pendulum taken out of the vertical acceleration.
 //! May import: the rest of `engine`.
 //!

@@ -1,4 +1,4 @@
-//! The heading carried across a change of its source (issue 20; ours, none of the papers
+//! The heading carried across a change of its source (ours, none of the papers
 //! changes the carrying mode mid-walk).
 //! May import: the rest of `engine`.
 //!

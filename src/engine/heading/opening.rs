@@ -1,4 +1,4 @@
-//! The side of a walk's first steps, held until something knows it (issue 20; ours, none of the
+//! The side of a walk's first steps, held until something knows it (ours, none of the
 //! papers starts a walk with the phone on a limb).
 //! May import: the rest of `engine`.
 //!

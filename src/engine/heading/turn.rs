@@ -1,4 +1,4 @@
-//! The step's heading in a turn (ours, issue 20): the acceleration heading is the direction of
+//! The step's heading in a turn (ours): the acceleration heading is the direction of
 //! its window, which lies behind the step it is walked along; the gyroscope's turn over that lag
 //! is added.
 //! May import: the rest of `engine`.

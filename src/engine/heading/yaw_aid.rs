@@ -14,7 +14,7 @@
 ///   step's heading is the device's yaw ψ, the twist of the attitude about the vertical,
 ///   2·atan2(q_z, q_w) (swing–twist decomposition; [`device_twist`]). Measured: waypoint p75
 ///   5.9 m against 8.7 m for tip-to-tail alone.
-/// - **The hand, at any tilt** ([`YawAid::hand_mode`], issue 20): when the carrying mode is
+/// - **The hand, at any tilt** ([`YawAid::hand_mode`]): when the carrying mode is
 ///   `hand` ([`crate::engine::carry`]: screen up by up to 66°, held steady), the device's yaw
 ///   too, whatever its tilt. The IPIN 2023 walkers hold the phone 55–62° from level, beyond the
 ///   reading pose: pooled waypoint p75 of routes 01–25, PDR only, 5.48 → 4.4 m (a tilt limit of

@@ -245,18 +245,16 @@ pub(crate) fn numbers<const N: usize>(
     Ok(out)
 }
 
-/// Reads a file of samples, one per line: its first `N` fields, split at `sep` (at runs of
-/// whitespace when `None`), as numbers named `names` (fields after them are ignored), handed to
-/// `f(file label, line, values)`. Empty lines are skipped; a bad line, or an `Err` from `f`, is a
-/// warning naming file, line, column and field. A file that cannot be opened is an error naming
-/// it. Lines are streamed ([`each_line`]): memory stays bounded whatever the file's size.
-pub(crate) fn read_samples<const N: usize>(
+/// Reads a file of records, one per line: its fields, split at `sep` (at runs of whitespace
+/// when `None`), handed to `f(file label, line, fields)`. Empty lines are skipped; an unreadable
+/// line, or an `Err` from `f`, is a warning. A file that cannot be opened is an error naming it.
+/// Lines are streamed ([`each_line`]): memory stays bounded whatever the file's size.
+pub(crate) fn read_lines(
     set: &mut dyn FileSet,
     name: &str,
     sep: Option<char>,
-    names: [&str; N],
     warnings: &mut Warnings,
-    mut f: impl FnMut(&str, u64, [f64; N]) -> Result<(), ParseError>,
+    mut f: impl FnMut(&str, u64, &[&str]) -> Result<(), ParseError>,
 ) -> Result<(), ParseError> {
     let label = set.label(name);
     let reader = set
@@ -274,10 +272,33 @@ pub(crate) fn read_samples<const N: usize>(
             Some(c) => line.split(c).collect(),
             None => line.split_whitespace().collect(),
         };
-        if let Err(e) = numbers(&fields, 0, names, &label, n).and_then(|v| f(&label, n, v)) {
+        if let Err(e) = f(&label, n, &fields) {
             warnings.push(e);
         }
     })
+}
+
+/// [`read_lines`] of samples: each line's first `N` fields as numbers named `names` (fields
+/// after them are ignored), handed to `f(file label, line, values)`; a bad number is a warning
+/// naming file, line, column and field.
+pub(crate) fn read_samples<const N: usize>(
+    set: &mut dyn FileSet,
+    name: &str,
+    sep: Option<char>,
+    names: [&str; N],
+    warnings: &mut Warnings,
+    mut f: impl FnMut(&str, u64, [f64; N]) -> Result<(), ParseError>,
+) -> Result<(), ParseError> {
+    read_lines(set, name, sep, warnings, |label, n, fields| {
+        numbers(fields, 0, names, label, n).and_then(|v| f(label, n, v))
+    })
+}
+
+/// Rz(+90°): Core Motion's attitude reference (x magnetic north, y west, z up) → East-North-Up,
+/// for iOS attitudes (device → reference) read as device → ENU.
+pub(crate) fn core_motion_to_enu() -> UnitQuaternion<f64> {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(h, 0.0, 0.0, h))
 }
 
 /// The name of a recording folder `dir` (ending with `/`, or empty for the top of the set) for

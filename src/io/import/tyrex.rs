@@ -54,16 +54,17 @@
 //! `Texting`, `RunningPocket`); `None` for a folder named otherwise.
 
 use super::common::{
-    add_warnings, cell, file_in, folder_label, folder_name, read_samples, rotation_vector,
-    set_records, unit_quaternion, Table, Warnings,
+    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, read_samples,
+    rotation_vector, set_records, unit_quaternion, Table, Warnings,
 };
 use super::{field_error, file_error, FileSet, Format, Log, Platform, Streams, TruePosition, G0};
 use crate::io::ParseError;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 use std::io::BufRead;
 
 /// The files of a TyrEx recording folder that the reader consumes (read, or known and not
-/// needed: `timeAlignment.txt`, the raw sensor files when the calibrated ones exist).
+/// needed: `timeAlignment.txt`, the raw sensor files when the calibrated ones exist); the
+/// sensor files of either layout first.
 pub const TYREX_FILES: [&str; 11] = [
     "accelerometer.txt",
     "gyroscope-calibrated.txt",
@@ -79,15 +80,7 @@ pub const TYREX_FILES: [&str; 11] = [
 ];
 
 /// The sensor files of either layout: a folder holds at least one of them.
-const SENSOR_FILES: [&str; 7] = [
-    "accelerometer.txt",
-    "gyroscope-calibrated.txt",
-    "gyroscope.txt",
-    "magnetometer-calibrated.txt",
-    "magnetometer.txt",
-    "rotation-vector.txt",
-    "attitude.txt",
-];
+const SENSOR_FILES: &[&str] = TYREX_FILES.split_at(7).0;
 
 /// Recognises a TyrEx recording folder inside a file set and reads it. `dir` is a folder of
 /// `names` (ending with `/`, or empty for the top). Returns the files it consumed and the log, or
@@ -142,12 +135,6 @@ fn layout(set: &mut dyn FileSet, names: &[String], dir: &str) -> Option<Platform
         (false, true) => Some(Platform::Ios),
         (false, false) => None,
     }
-}
-
-/// Rz(+90°): Core Motion's (north, west, up) reference → (east, north, up).
-fn core_motion_to_enu() -> UnitQuaternion<f64> {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h))
 }
 
 /// Reads a file of `t x y z` lines (a gyroscope's or a magnetometer's, as written) into `out`.

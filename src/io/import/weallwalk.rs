@@ -41,15 +41,14 @@
 //! direction, the turns of the path are the same.
 
 use super::common::{
-    add_warnings, cell, file_in, folder_label, folder_name, numbers, set_records, unit_quaternion,
-    Table, Warnings,
+    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, numbers,
+    read_lines, set_records, unit_quaternion, Table, Warnings,
 };
 use super::{
     field_error, file_error, FileSet, Format, Log, Platform, Streams, TrueStep, TrueTurn, G0,
 };
-use crate::io::lines::each_line;
 use crate::io::ParseError;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 
 /// The files of a walk folder that the reader consumes (and every `.xml` beside them).
 pub const WEALLWALK_FILES: [&str; 3] = ["sensors.csv", "steps.csv", "segments.csv"];
@@ -103,12 +102,6 @@ pub fn read_dir(
     Some((consumed, read(set, names, dir)))
 }
 
-/// Rz(+90°): Core Motion's (north, west, up) reference → (east, north, up).
-fn core_motion_to_enu() -> UnitQuaternion<f64> {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h))
-}
-
 /// Reads a recognised folder.
 fn read(set: &mut dyn FileSet, names: &[String], dir: &str) -> Result<Log, ParseError> {
     let sensors_name = format!("{dir}sensors.csv");
@@ -130,54 +123,24 @@ fn read(set: &mut dyn FileSet, names: &[String], dir: &str) -> Result<Log, Parse
         ));
     };
     let label = set.label(&sensors);
-    let reader = set
-        .open(&sensors)
-        .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
     let mut s = Streams::default();
     let mut warnings = Warnings::default();
     let to_enu = core_motion_to_enu();
-    each_line(reader, &label, |n, line| {
-        let line = match line {
-            Ok(l) => l,
-            Err(e) => return warnings.push(e),
-        };
-        if line.trim().is_empty() {
-            return;
-        }
-        let f: Vec<&str> = line.split(',').collect();
-        let row = (|| {
-            let [t] = numbers(&f, 0, ["time_s"], &label, n)?;
-            let [qx, qy, qz, qw] =
-                numbers(&f, 13, ["quat_x", "quat_y", "quat_z", "quat_w"], &label, n)?;
-            let w = numbers(
-                &f,
-                17,
-                ["rotation_rate_x", "rotation_rate_y", "rotation_rate_z"],
-                &label,
-                n,
-            )?;
-            let u = numbers(
-                &f,
-                20,
-                ["user_accel_x", "user_accel_y", "user_accel_z"],
-                &label,
-                n,
-            )?;
-            let g = numbers(&f, 23, ["gravity_x", "gravity_y", "gravity_z"], &label, n)?;
-            let q = unit_quaternion(qw, qx, qy, qz).ok_or_else(|| {
-                field_error(&label, n, 14, "quat_x", "not a unit quaternion, skipped")
-            })?;
-            let total = Vector3::new(u[0] + g[0], u[1] + g[1], u[2] + g[2]);
-            Ok::<_, ParseError>((t, total * -G0, Vector3::from(w), to_enu * q))
-        })();
-        match row {
-            Ok((t, a, w, q)) => {
-                s.accel.push((t, a));
-                s.gyro.push((t, w));
-                s.orientation.push((t, q));
-            }
-            Err(e) => warnings.push(e),
-        }
+    read_lines(set, &sensors, Some(','), &mut warnings, |label, n, f| {
+        let [t] = numbers(f, 0, ["time_s"], label, n)?;
+        let [qx, qy, qz, qw] = numbers(f, 13, ["quat_x", "quat_y", "quat_z", "quat_w"], label, n)?;
+        let rate = ["rotation_rate_x", "rotation_rate_y", "rotation_rate_z"];
+        let w = numbers(f, 17, rate, label, n)?;
+        let user = ["user_accel_x", "user_accel_y", "user_accel_z"];
+        let u = numbers(f, 20, user, label, n)?;
+        let g = numbers(f, 23, ["gravity_x", "gravity_y", "gravity_z"], label, n)?;
+        let q = unit_quaternion(qw, qx, qy, qz)
+            .ok_or_else(|| field_error(label, n, 14, "quat_x", "not a unit quaternion, skipped"))?;
+        let total = Vector3::new(u[0] + g[0], u[1] + g[1], u[2] + g[2]);
+        s.accel.push((t, total * -G0));
+        s.gyro.push((t, Vector3::from(w)));
+        s.orientation.push((t, to_enu * q));
+        Ok(())
     })?;
     if s.accel.is_empty() {
         return Err(file_error(&label, 0, "no sensor samples"));

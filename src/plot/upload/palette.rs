@@ -51,7 +51,7 @@ pub fn activity_key(
         .collect()
 }
 
-/// A carrying mode's colour in the heading plot's band (issue 20): none of the plot's own
+/// A carrying mode's colour in the heading plot's band: none of the plot's own
 /// (single steps `gnss`, the average `track`, the device and the gyroscope band `reference`).
 pub fn carry_colour(m: CarryMode, t: &Theme) -> RGBColor {
     match m {

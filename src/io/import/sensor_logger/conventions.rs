@@ -3,10 +3,12 @@
 
 use super::Raw;
 use crate::engine::orientation::{G0, HOLD_S};
-use crate::io::import::common::{add_warnings, drop_non_finite, pair_nearest, warn_count};
+use crate::io::import::common::{
+    add_warnings, core_motion_to_enu, drop_non_finite, pair_nearest, warn_count,
+};
 use crate::io::import::{file_error, Log, Platform, Streams};
 use crate::io::ParseError;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{UnitQuaternion, Vector3};
 
 impl Raw {
     /// Settles units, signs and frames and builds the log.
@@ -85,9 +87,7 @@ impl Raw {
         s.gyro = std::mem::take(&mut self.gyro);
         s.mag = std::mem::take(&mut self.mag);
         let to_enu = if ios_frames {
-            // Rz(+90°): Core Motion's (north, west, up) reference → (east, north, up).
-            let h = std::f64::consts::FRAC_1_SQRT_2;
-            UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h))
+            core_motion_to_enu()
         } else {
             UnitQuaternion::identity()
         };
@@ -199,6 +199,7 @@ pub fn decide_platform(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Quaternion;
 
     #[test]
     fn ios_attitude_to_enu() {
@@ -211,8 +212,7 @@ mod tests {
             (top - Vector3::x()).norm() < 1e-12,
             "top points to ref x = north"
         );
-        let to_enu = UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, h));
-        let q = to_enu * q_ios;
+        let q = core_motion_to_enu() * q_ios;
         assert!(q.angle() < 1e-12, "device frame = ENU: {q:?}");
     }
 
