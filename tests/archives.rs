@@ -11,31 +11,12 @@ use flate2::{Compression, FlushCompress};
 use pdr::io::import::{import_all, ArchiveLimits, Budget, DirSet, Log, MemSet, ZipSet};
 use pdr::io::ParseError;
 use std::io::{Cursor, Write};
-use std::path::Path;
 use zip::write::SimpleFileOptions;
 use zip::CompressionMethod;
 
-/// The files of a fixture folder under `tests/fixtures/import`, named `prefix` + relative path.
-fn fixture(folder: &str, prefix: &str) -> Vec<(String, Vec<u8>)> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/import")
-        .join(folder);
-    let mut out: Vec<(String, Vec<u8>)> = std::fs::read_dir(&root)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.is_file())
-        .map(|p| {
-            let name = p.file_name().unwrap().to_string_lossy().into_owned();
-            (format!("{prefix}{name}"), std::fs::read(&p).unwrap())
-        })
-        .collect();
-    out.sort();
-    out
-}
-
 /// A small valid log (a pdr-log), to show that the other files of an upload still load.
 fn pdrlog() -> (String, Vec<u8>) {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/import/walk.pdrlog");
+    let p = common::import::fixtures().join("walk.pdrlog");
     ("walk.pdrlog".into(), std::fs::read(p).unwrap())
 }
 
@@ -69,7 +50,7 @@ fn errors(results: &[Result<Log, ParseError>]) -> Vec<&ParseError> {
 
 #[test]
 fn a_zip_in_a_zip_reads_as_the_folder_whatever_the_zipper() {
-    let files = fixture("sensor_logger_android", "Recording/");
+    let files = common::import::load("sensor_logger_android", "Recording/");
     let folder = import_all(&mut MemSet::new(files.clone()));
     let folder = oks(&folder)[0].records.clone();
     for inner_method in [CompressionMethod::Deflated, CompressionMethod::Stored] {
@@ -103,7 +84,7 @@ fn a_zip_in_a_zip_reads_as_the_folder_whatever_the_zipper() {
 
 #[test]
 fn a_zip_in_a_zip_on_disk_too() {
-    let files = fixture("phyphox", "");
+    let files = common::import::load("phyphox", "");
     let inner = zip_of(&files, CompressionMethod::Deflated, false);
     let dir = std::env::temp_dir().join(format!("pdr-archives-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -343,7 +324,7 @@ fn damaged_nested_archives_never_panic() {
         state ^= state << 17;
         state
     };
-    let files = fixture("sensor_logger_android", "Recording/");
+    let files = common::import::load("sensor_logger_android", "Recording/");
     let mut outcomes = [0usize; 2];
     for round in 0..600 {
         let stream = round % 2 == 0;

@@ -4,7 +4,7 @@
 //! `cargo test` and in headless Chromium under wasm-bindgen-test.
 
 use common::fusion::{errors, gnss_errors, p75, run, truth_at};
-use pdr::engine::fusion::{FusedStep, GnssMode};
+use pdr::engine::fusion::GnssMode;
 use pdr::engine::PipelineConfig;
 use pdr::sim::scenarios;
 use wasm_bindgen_test::wasm_bindgen_test;
@@ -123,16 +123,6 @@ fn energy_saving_switches_the_receiver_off_and_keeps_the_corrections() {
     );
 }
 
-/// FNV-1a over the bits of the fused and smoothed positions and corrections.
-fn digest(tracks: [&[FusedStep]; 2]) -> u64 {
-    common::fnv1a(
-        tracks
-            .into_iter()
-            .flatten()
-            .flat_map(|s| [s.t, s.east_m, s.north_m, s.scale, s.bias_rad, s.cov[0]]),
-    )
-}
-
 /// The fused and smoothed tracks, bit for bit: the same constant natively and in Chromium (the
 /// World Magnetic Model included). When an intended change alters them, update the constant
 /// from the native failure message and check that the wasm run agrees.
@@ -142,8 +132,11 @@ fn fusion_is_bit_identical_natively_and_in_wasm() {
     let a = run(&sim, PipelineConfig::default());
     let b = run(&sim, PipelineConfig::default());
     let (sa, sb) = (a.smoothed(), b.smoothed());
-    assert_eq!(digest([a.fused(), &sa]), digest([b.fused(), &sb]));
-    let d = digest([a.fused(), &sa]);
+    assert_eq!(
+        common::fused_digest([a.fused(), &sa]),
+        common::fused_digest([b.fused(), &sb])
+    );
+    let d = common::fused_digest([a.fused(), &sa]);
     assert_eq!(d, FUSION_DIGEST, "fusion digest changed: {d:#x}");
 }
 

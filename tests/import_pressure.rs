@@ -7,26 +7,9 @@ use pdr::engine::{PressureSample, Record};
 use pdr::io::import::recipe::Recipe;
 use pdr::io::import::{import_all, import_with, Log, MemSet};
 use pdr::io::ParseError;
-use std::path::Path;
 
 mod common;
 use common::imu;
-
-fn fixture(dir: &str, prefix: &str) -> Vec<(String, Vec<u8>)> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/import")
-        .join(dir);
-    let mut out = Vec::new();
-    for e in std::fs::read_dir(&root).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_file() {
-            let name = p.file_name().unwrap().to_string_lossy().to_string();
-            out.push((format!("{prefix}{name}"), std::fs::read(&p).unwrap()));
-        }
-    }
-    out.sort();
-    out
-}
 
 fn one(files: Vec<(String, Vec<u8>)>) -> Log {
     let mut logs = import_all(&mut MemSet::new(files));
@@ -96,7 +79,7 @@ fn get_sensor_data_pressure_and_floors() {
 
 #[test]
 fn sensor_logger_barometer_csv() {
-    let mut files = fixture("sensor_logger_android", "rec/");
+    let mut files = common::import::load("sensor_logger_android", "rec/");
     let bar = "time,seconds_elapsed,relativeAltitude,pressure\n\
                1698745673480000000,0.038,0,976.5\n\
                1698745673500000000,0.058,0.1,n/a\n\
@@ -104,7 +87,7 @@ fn sensor_logger_barometer_csv() {
                1698745673540000000,0.098,0.3,5.0\n\
                1698745673560000000,0.118,0.4,976.3\n";
     files.push(("rec/Barometer.csv".into(), bar.as_bytes().to_vec()));
-    let before = one(fixture("sensor_logger_android", "rec/"));
+    let before = one(common::import::load("sensor_logger_android", "rec/"));
     let log = one(files);
     let p = pressures(&log);
     let hpa: Vec<f64> = p.iter().map(|p| p.hpa).collect();
@@ -132,8 +115,7 @@ fn sensor_logger_barometer_csv() {
 
 #[test]
 fn sensor_logger_json_barometer() {
-    let path =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/import/sensor_logger.json");
+    let path = common::import::fixtures().join("sensor_logger.json");
     let log = one(vec![(
         "sensor_logger.json".into(),
         std::fs::read(path).unwrap(),
@@ -149,13 +131,13 @@ fn sensor_logger_json_barometer() {
 #[test]
 fn phyphox_pressure_csv() {
     let dir = "phyphox 2023-10-31 09-47-53/";
-    let mut files = fixture("phyphox", dir);
+    let mut files = common::import::load("phyphox", dir);
     let pres = "\"Time (s)\",\"Pressure (hPa)\"\n\
                 1.000000000E-2,9.765000000E2\n\
                 5.000000000E-2,NaN\n\
                 9.000000000E-2,9.764000000E2\n";
     files.push((format!("{dir}Pressure.csv"), pres.as_bytes().to_vec()));
-    let before = one(fixture("phyphox", dir));
+    let before = one(common::import::load("phyphox", dir));
     let log = one(files);
     let p = pressures(&log);
     assert_eq!(p.len(), 2, "{p:?}");

@@ -368,26 +368,13 @@ fn every_real_log_runs_without_nan_refusal_or_restart() {
     eprintln!("{runs} runs");
 }
 
-/// FNV-1a over the bits of a track's steps.
-fn digest(track: &[StepRecord]) -> u64 {
-    common::fnv1a(track.iter().flat_map(|s| {
-        [
-            s.t,
-            s.east_m,
-            s.north_m,
-            s.heading_rad.unwrap_or(-1.0),
-            s.length_m,
-        ]
-    }))
-}
-
 /// The demo walk through the KF-NFA, bit for bit: the same constant is checked natively and in
 /// Chromium, so this fails if the two builds ever disagree. When an intended change alters the
 /// track, update the constant from the native failure message and check the wasm run agrees.
 #[wasm_bindgen_test(unsupported = test)]
 fn replay_is_bit_identical_natively_and_in_wasm() {
     let sim = scenarios::demo_walk().generate();
-    let d = digest(&run(&sim, kf()));
+    let d = common::digest(&run(&sim, kf()), common::StepFields::Track);
     assert_eq!(d, KF_NFA_DEMO_DIGEST, "KF-NFA demo digest changed: {d:#x}");
 }
 

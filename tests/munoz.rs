@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{assert_count, run};
+use common::{assert_count, run, StepFields};
 use pdr::engine::calibration::pitch_offset;
 use pdr::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG;
 use pdr::engine::step_length::PitchStepLength;
@@ -296,23 +296,7 @@ fn the_track_file_has_the_height_and_floor() {
 #[wasm_bindgen_test(unsupported = test)]
 fn stairs_replay_is_bit_identical_natively_and_in_wasm() {
     let sim = scenarios::stairs_walk(PocketPose::ALL[5]).generate();
-    let digest = |t: &[StepRecord]| {
-        common::fnv1a(t.iter().flat_map(|s| {
-            [
-                s.t,
-                s.east_m,
-                s.north_m,
-                s.length_m,
-                s.up_m,
-                f64::from(s.floor),
-                Activity::ALL
-                    .iter()
-                    .position(|a| *a == s.activity)
-                    .unwrap_or(99) as f64,
-                s.pitch_amplitude_deg.unwrap_or(-1.0),
-            ]
-        }))
-    };
+    let digest = |t: &[StepRecord]| common::digest(t, StepFields::Stairs);
     let a = run(&sim, pitch_length_cfg());
     let b = run(&sim, pitch_length_cfg());
     assert_eq!(digest(&a), digest(&b), "two replays differ");

@@ -1,11 +1,12 @@
 //! The simulated GNSS receiver's real-phone error shapes (`sim::GnssErrors`): each
 //! shape measured on the fixes it produces against the truth, over several seeds, and shown to
 //! be absent when it is off; the default shapes leave the city walk bit for bit what it was.
-//! Last, a report (run with `--nocapture`) of the default pipeline on the real-GNSS city walk
-//! (`sim::scenarios::gnss_city_walk_real`). These tests are about the simulator; the fusion's
-//! targets on that walk live in tests/fusion.rs.
+//! These tests are about the simulator; the fusion's targets on the real-GNSS city walk
+//! (`sim::scenarios::gnss_city_walk_real`) live in tests/fusion.rs, and
+//! `cargo run --release --example city_real_gnss` prints the default pipeline's figures on it.
 
-use common::fusion::{errors, gnss_errors, p75, run};
+use common::fusion::run;
+use common::gnss::{autocorrelation, fixed, Fixed};
 use pdr::engine::types::GnssFix;
 use pdr::engine::{PipelineConfig, Record};
 use pdr::sim::{
@@ -16,27 +17,6 @@ mod common;
 
 /// Seeds over which the statistics are taken.
 const SEEDS: std::ops::RangeInclusive<u64> = 1..=8;
-
-/// A fix and its error against the truth at its time (east, north), m.
-struct Fixed {
-    fix: GnssFix,
-    err: (f64, f64),
-}
-
-fn fixed(sim: &Simulation) -> Vec<Fixed> {
-    let frame = sim.truth.frame.expect("a walk with GNSS has a frame");
-    common::fixes(&sim.records)
-        .into_iter()
-        .map(|fix| {
-            let (e, n) = frame.en_of_fix(&fix);
-            let (te, tn) = sim.truth.position_at(fix.t);
-            Fixed {
-                fix,
-                err: (e - te, n - tn),
-            }
-        })
-        .collect()
-}
 
 /// A 20-minute walk (straight legs, turns, two one-minute stands) with the receiver `g`.
 fn long_walk(g: GnssSim, seed: u64) -> Simulation {
@@ -75,29 +55,6 @@ fn multipath(white_share: f64) -> GnssErrors {
         }),
         ..GnssErrors::default()
     }
-}
-
-/// Autocorrelation of the error per axis, normalised by the reported accuracy (which sets the
-/// error's σ), at `lag` s, pooled over the walks.
-fn autocorrelation(walks: &[Vec<Fixed>], lag: f64) -> f64 {
-    let (mut num, mut den) = (0.0, 0.0);
-    for w in walks {
-        let z: Vec<(f64, f64, f64)> = w
-            .iter()
-            .map(|f| {
-                let a = f.fix.h_accuracy_m;
-                (f.fix.t, f.err.0 / a, f.err.1 / a)
-            })
-            .collect();
-        for (i, a) in z.iter().enumerate() {
-            den += a.1 * a.1 + a.2 * a.2;
-            if let Some(b) = z[i..].iter().find(|b| (b.0 - a.0 - lag).abs() < 1e-6) {
-                num += a.1 * b.1 + a.2 * b.2;
-            }
-        }
-    }
-    // Each pair was counted once; the denominator counts every fix.
-    num / den
 }
 
 /// Share of fixes whose error is within their reported accuracy.
@@ -440,44 +397,15 @@ fn an_urban_canyon_holds_a_large_bias_under_an_optimistic_accuracy() {
     }
 }
 
-/// The autocorrelation of the real-GNSS city walk's error at IPIN 2023's lags, printed beside
-/// IPIN's measurements (≤5 s 0.79, 5–10 s 0.59, 10–20 s 0.32, 20–45 s ~0.2).
+/// The default pipeline on the real-GNSS city walk, seeds 1–4: one fused step per step from
+/// the first fused one on, each at its step's time, and as many smoothed steps. The fusion's
+/// targets on this walk live in tests/fusion.rs; `cargo run --release --example
+/// city_real_gnss` prints its figures.
 #[test]
-fn report_city_real_autocorrelation() {
-    let walks: Vec<Vec<Fixed>> = (1..=4)
-        .map(|s| fixed(&city_real(s)).into_iter().skip(1).collect())
-        .collect();
-    for lag in [3.0, 7.0, 15.0, 30.0] {
-        let rho = autocorrelation(&walks, lag);
-        assert!(rho.is_finite());
-        println!("real-GNSS city walk: autocorrelation {rho:.2} at {lag} s");
-    }
-}
-
-/// The default pipeline on the real-GNSS city walk, seeds 1–4: GNSS alone, fused and smoothed
-/// p75, the final corrections. Only what holds for any sane engine is asserted; the targets are
-/// tests/fusion.rs's.
-#[test]
-fn report_default_pipeline_on_city_real_gnss() {
-    println!("seed  gnss p75  fused p75  smoothed p75  scale   heading corr");
+fn fused_steps_sit_on_the_steps_of_the_city_real_gnss_walk() {
     for seed in 1..=4 {
-        let sim = city_real(seed);
-        let p = run(&sim, PipelineConfig::default());
-        let gnss = p75(&gnss_errors(&sim, &p));
-        let fused = p75(&errors(&sim, &p, p.fused()));
-        let smoothed = p75(&errors(&sim, &p, &p.smoothed()));
-        let last = p.fused().last().expect("fused steps");
-        println!(
-            "{seed:>4}  {gnss:>8.2}  {fused:>9.2}  {smoothed:>12.2}  {:.3}  {:>+8.2}°",
-            last.scale,
-            last.bias_rad.to_degrees()
-        );
-        for v in [gnss, fused, smoothed, last.scale, last.bias_rad] {
-            assert!(v.is_finite());
-        }
-        // One fused step per step, from the first fused one on.
-        let track = p.track();
-        let fused = p.fused();
+        let p = run(&city_real(seed), PipelineConfig::default());
+        let (track, fused) = (p.track(), p.fused());
         assert!(!fused.is_empty() && fused.len() <= track.len());
         let skip = track.len() - fused.len();
         for (s, f) in track[skip..].iter().zip(fused) {
@@ -485,9 +413,4 @@ fn report_default_pipeline_on_city_real_gnss() {
         }
         assert_eq!(p.smoothed().len(), fused.len());
     }
-    println!(
-        "(the scale to learn {:.3}, the heading correction {:+.1}°)",
-        1.0 / scenarios::GNSS_CITY_LENGTH_FACTOR,
-        -scenarios::GNSS_CITY_HEADING_BIAS_DEG
-    );
 }

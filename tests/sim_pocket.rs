@@ -295,14 +295,11 @@ fn every_pose_swings_about_the_thighs_lateral_axis() {
 #[test]
 fn same_seed_same_records() {
     let digest = |sim: &Simulation| {
-        let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-        for r in &sim.records {
-            for b in format!("{r:?}").bytes() {
-                h ^= b as u64;
-                h = h.wrapping_mul(0x0100_0000_01b3);
-            }
-        }
-        h
+        common::fnv1a_bytes(
+            sim.records
+                .iter()
+                .flat_map(|r| format!("{r:?}").into_bytes()),
+        )
     };
     let a = pocket_mixed(PocketPose::UpsideDownOutTurned).generate();
     let b = pocket_mixed(PocketPose::UpsideDownOutTurned).generate();

@@ -3,14 +3,16 @@
 #![allow(dead_code)]
 
 pub mod fusion;
+pub mod gnss;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod import;
 pub mod ipin;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod recipe;
 
+use pdr::engine::fusion::FusedStep;
 use pdr::engine::types::{GnssFix, ImuSample};
-use pdr::engine::{replay, PipelineConfig, Record, StepRecord};
+use pdr::engine::{replay, Activity, PipelineConfig, Record, StepRecord};
 use pdr::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
 use pdr::sim::{Scenario, Segment, Simulation};
 
@@ -39,17 +41,68 @@ pub fn assert_peak_grew_less(before: Option<u64>, limit: u64) {
     }
 }
 
+/// FNV-1a over a sequence of bytes.
+pub fn fnv1a_bytes(bytes: impl IntoIterator<Item = u8>) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in bytes {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0100_0000_01b3);
+    }
+    h
+}
+
 /// FNV-1a over the bits of a sequence of numbers: the digests that the bit-identical replay
 /// tests check natively and in Chromium against one constant.
 pub fn fnv1a(values: impl IntoIterator<Item = f64>) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for v in values {
-        for b in v.to_bits().to_le_bytes() {
-            h ^= b as u64;
-            h = h.wrapping_mul(0x0100_0000_01b3);
+    fnv1a_bytes(values.into_iter().flat_map(|v| v.to_bits().to_le_bytes()))
+}
+
+/// Which fields of each step a track's [`digest`] covers.
+#[derive(Clone, Copy, Debug)]
+pub enum StepFields {
+    /// Time, east, north, heading (−1 when none) and length.
+    Track,
+    /// [`StepFields::Track`] and the step frequency.
+    TrackAndFrequency,
+    /// Time, east, north, length, up, floor, the activity's index in [`Activity::ALL`] and the
+    /// leg pitch's amplitude (−1 when none).
+    Stairs,
+}
+
+/// FNV-1a over the bits of `fields` of every step of a track.
+pub fn digest(track: &[StepRecord], fields: StepFields) -> u64 {
+    fnv1a(track.iter().flat_map(|s| {
+        let heading = s.heading_rad.unwrap_or(-1.0);
+        match fields {
+            StepFields::Track => vec![s.t, s.east_m, s.north_m, heading, s.length_m],
+            StepFields::TrackAndFrequency => {
+                vec![s.t, s.east_m, s.north_m, heading, s.length_m, s.freq_hz]
+            }
+            StepFields::Stairs => vec![
+                s.t,
+                s.east_m,
+                s.north_m,
+                s.length_m,
+                s.up_m,
+                f64::from(s.floor),
+                Activity::ALL
+                    .iter()
+                    .position(|a| *a == s.activity)
+                    .unwrap_or(99) as f64,
+                s.pitch_amplitude_deg.unwrap_or(-1.0),
+            ],
         }
-    }
-    h
+    }))
+}
+
+/// FNV-1a over the bits of the fused and smoothed positions and corrections.
+pub fn fused_digest(tracks: [&[FusedStep]; 2]) -> u64 {
+    fnv1a(
+        tracks
+            .into_iter()
+            .flatten()
+            .flat_map(|s| [s.t, s.east_m, s.north_m, s.scale, s.bias_rad, s.cov[0]]),
+    )
 }
 
 /// The track of a simulated walk replayed with `cfg`, which must refuse none of its records.
