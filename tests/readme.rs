@@ -24,7 +24,9 @@ fn root() -> PathBuf {
 /// A setting's value as `pdr eval --show-config` prints it, on one line.
 fn one_line(text: &str) -> String {
     let value: serde_json::Value = serde_json::from_str(text).expect("a JSON value");
-    serde_json::to_string(&value).expect("serialisable").replace(',', ", ")
+    serde_json::to_string(&value)
+        .expect("serialisable")
+        .replace(',', ", ")
 }
 
 /// The default configuration as `pdr eval --show-config` prints it (the same serialisation, in
@@ -71,7 +73,11 @@ fn settings_by_stage() -> Vec<(String, Vec<(String, String)>)> {
             .iter()
             .skip(1)
             .map(String::as_str)
-            .chain(if path.is_empty() { None } else { Some(key.as_str()) })
+            .chain(if path.is_empty() {
+                None
+            } else {
+                Some(key.as_str())
+            })
             .collect();
         let stage = &mut stages.last_mut().expect("a stage").1;
         stage.push((within.join("."), value));
