@@ -13,7 +13,7 @@
 //!   (3 axes, mean removed) at one and at two step periods. The step period is the lag in
 //!   0.28–0.85 s (a cadence of 1.2–3.6 Hz) where the vertical acceleration in the navigation
 //!   frame correlates best: every mode bounces once a step. (Along u instead, the thigh's swing
-//!   hid the step in real front pockets: 33 % of their steps right against 7x %.) (The motion detector's cadence was tried
+//!   hid the step in real front pockets.) (The motion detector's cadence was tried
 //!   first; it reads twice the cadence on some simulated walks, which turned c₁ negative.)
 //!   On the trunk every step looks alike (c₁ ≈ c₂); on a leg or an arm a step and the next are
 //!   mirror images, and only the stride repeats (c₁ ≪ c₂, or both low for a back pocket).
@@ -25,7 +25,7 @@
 //! # Rule (each [`CarryConfig::every_s`]; a vote of the last [`CarryConfig::votes`] decides)
 //! 1. The **hand**, screen up: u_z ≥ [`CarryConfig::screen_up_min`] and tilt <
 //!    [`CarryConfig::hand_tilt_deg`]. First: a turn while texting turns the phone fast, and
-//!    a hand-held step can look like a limb's (checked second, it took 5–8 % of the real
+//!    a hand-held step can look like a limb's (checked second, it took some of the real
 //!    hand-held steps).
 //! 2. A limb swings it: (c₁ < [`CarryConfig::step_corr_max`] and (c₂ − c₁ ≥
 //!    [`CarryConfig::stride_gain_min`] or tilt ≥ [`CarryConfig::limb_tilt_deg`])), or rate ≥
@@ -37,8 +37,8 @@
 //! 4. Else a **bag** or a jacket.
 //!
 //! The thresholds were set from the Oxford placements' feature medians (accelerometer only,
-//! `examples/carry_features.rs`) and the simulator's modes; the README has the
-//! confusion matrices.
+//! `examples/carry_features.rs`) and the simulator's modes; `docs/methods/carrying-mode.md` has
+//! the confusion matrices.
 
 use super::types::{positive, ConfigError, DeviceVec};
 use nalgebra::{Matrix3, SymmetricEigen, Vector3};
@@ -209,7 +209,7 @@ pub struct CarryDiagnostics {
 
 /// Samples are averaged over slots of this length before they enter the window: the features
 /// live below 5 Hz, and a 400 Hz phone then costs what a 50 Hz one does. (40 ms slots cost
-/// half as much, but real back pockets fell from 82 % of their steps right to 67 %.)
+/// half as much, but blur a back pocket's steps.)
 const SLOT_S: f64 = 0.02;
 
 #[derive(Debug, Clone, Copy, Default)]

@@ -22,11 +22,11 @@
 //!   (frequency i, activity j, third input k) is output set i + j + k (0-based), so that
 //!   (slow, walk, low) is SM, as printed, and (fast, run, high) is VG; the 36 rules then use
 //!   exactly the eight output sets.
-//! - **Height → acceleration variance.** The engine does not know the walker's height; the
-//!   issue asks for the variance of the vertical acceleration over the step as the third input,
+//! - **Height → acceleration variance.** The engine does not know the walker's height; it
+//!   takes the variance of the vertical acceleration over the step as the third input,
 //!   with three sets low, medium, high in place of short, medium, high. Unlike height it depends
 //!   on where the phone is carried (a hand-held phone sees σ ≈ 1 m/s², a trouser pocket 2–5):
-//!   see the README's figures.
+//!   see the figures in `docs/methods/ibarra2015.md`.
 //! - **Activity.** The thesis classifies it with a wavelet + multilayer-perceptron network whose
 //!   trained weights are not published. We use the engine's own view instead, [`activity`]:
 //!   cadence and σ decide walk, fast walk, jog or run, crisp (the network's output is a class).

@@ -4,7 +4,7 @@
 //! May import: the rest of `engine`.
 //!
 //! Every IPIN 2023 log opens with 30–40 s of such handling: σ_z of 2–7 m/s² at a rhythm the
-//! motion detector (Basso 2016 §II.B) takes for walking, so the PLL counted 22–65 steps (12–38 m)
+//! motion detector (Basso 2016 §II.B) takes for walking, so the PLL counted tens of steps
 //! before each walk began, and the GNSS fusion learnt its corrections from them.
 //!
 //! The rule, over a window of [`HandlingConfig::window_s`]: the phone turns fast, mean |ω| ≥
@@ -112,8 +112,7 @@ pub struct HandlingDiagnostics {
 }
 
 /// The window is kept as blocks of this many seconds: a sample costs a few additions, a new block
-/// a sum over the window's nine (a deque of samples cost 11 % of the default pipeline's
-/// instructions, the blocks 9 %).
+/// a sum over the window's nine (cheaper than a deque of samples).
 const BLOCK_S: f64 = 0.25;
 
 /// Sums over some samples: their number, Σ |ω|, and Σ ω ωᵀ's six distinct entries (xx, yy, zz,

@@ -287,9 +287,8 @@ impl LegPitch {
     ///
     /// When the share is then below [`LegPitchConfig::min_axis_share`], up to
     /// [`CATCH_UP_ITERATIONS`] more while it rises. When the dominant rotation moves to another
-    /// axis (standing's sway giving way to the first stride), one iteration a block lags it:
-    /// the pitch was lost for a block on 1 of the simulator's 20 short pocket walks (the share
-    /// 0.569 against the principal axis's 0.650), and its first step with it.
+    /// axis (standing's sway giving way to the first stride), one iteration a block lags it, and
+    /// the pitch could be lost for a block, and a walk's first step with it.
     fn update_axis(&mut self) {
         let c = &self.moment;
         let trace = c.trace();
@@ -429,10 +428,10 @@ impl LegPitch {
         // The first steady stride after a move: a phone moved in the body (from a bag into the
         // pocket) swings about another axis of the device, which the power iteration reached
         // from the old one with either sign, so the votes so far would give it a coin's sign
-        // for the next 30 strides (the simulated bag → pocket walked 100–160° off on 3 seeds of
-        // 8). Only the votes start again: the reference follows the new mount stride by stride
-        // (started afresh from the first stride it turned a swinging hand's sign over after a
-        // move from a bag: 7.3° → 108°), and the thigh's tests look at the last strides anyway.
+        // for the next 30 strides. Only the votes start again: the reference follows the new
+        // mount stride by stride (started afresh from the first stride it turned a swinging
+        // hand's sign over after a move from a bag), and the thigh's tests look at the last
+        // strides anyway. The figures are in `docs/methods/mode-change.md`.
         if steady && self.moved() {
             self.forget_votes();
         }
@@ -473,8 +472,7 @@ impl LegPitch {
     /// Whether the phone sits in the body otherwise than when the votes began: the swing axis
     /// turned in the device by more than 45° from the one they began on. (The stride's mean up
     /// direction more than 45° from the reference was tried as a sign too: it fired on a phone
-    /// moved from the hand into a swinging hand, whose sign then turned over for 4 steps on 2
-    /// of 8 simulated walks.)
+    /// moved from the hand into a swinging hand, `docs/methods/mode-change.md`.)
     fn moved(&self) -> bool {
         matches!((self.axis, self.vote_axis), (Some(a), Some(v)) if a.dot(&v) < REMOUNT_COS)
     }

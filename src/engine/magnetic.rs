@@ -36,15 +36,14 @@
 //! the attitude passes unchanged (so in live mode, where a browser has no magnetometer event).
 //!
 //! The fusion is given the heading without the correction ([`Magnetic::unguarded`]): its heading
-//! correction is one constant, and a yaw held on the gyroscope for minutes wanders. Measured on
-//! IPIN 2023, the guarded heading made the fused track worse at every setting tried.
+//! correction is one constant, and a yaw held on the gyroscope for minutes wanders: fed the
+//! guarded heading, the fused track of the IPIN 2023 walks got worse at every setting tried.
 //!
-//! Measured (README, "Where the field is bent"): pooled waypoint p75, PDR only, Microsoft
-//! 5.87 → 5.61 m, IPIN routes 01–25 4.37 → 3.44 m. The tolerances (15 %, 5°) are twice the
-//! cleanest walks' median departures (IPIN route 05: 5–7 %, 2°); τ = 3 s because a clean field
-//! taking the yaw at once (τ → 0) gave IPIN 3.99 m. A gyroscope bias b leaves a steady offset
-//! b·τ while clean (0.5° on the simulator's 0.17°/s); an integral term that learnt it learnt the
-//! IPIN field's bends instead (3.44 → 3.73–4.19 m), so there is none.
+//! The tolerances (15 %, 5°) are twice the cleanest walks' median departures (IPIN route 05:
+//! 5–7 %, 2°); τ = 3 s because a clean field taking the yaw at once (τ → 0) brings the last
+//! bend's error with it. A gyroscope bias b leaves a steady offset b·τ while clean (0.5° on the
+//! simulator's 0.17°/s); an integral term that learnt it learnt the field's bends instead, so
+//! there is none. The figures are in `docs/methods/magnetic-guard.md`.
 
 use super::math::wrap_pi;
 use super::orientation::NavAccel;

@@ -5,7 +5,7 @@
 //! kept up to date incrementally with a time-regulated buffer: the sums Σa and Σa² are updated with
 //! the samples pushed in and pulled out. Thresholds: 1.5 m/s² between still and moving, 5 m/s²
 //! between walking and running. Basso 2021 §2.2.2 uses the variance over 4 s with a threshold of
-//! 1.5 m²/s⁴ instead; we follow the 2016 paper, which the issue names.
+//! 1.5 m²/s⁴ instead; we follow the 2016 paper.
 
 use super::math::OnePole;
 use super::types::{positive, ConfigError};
@@ -57,7 +57,7 @@ pub struct MotionConfig {
     /// least this autocorrelation at the step period, and σ reaches
     /// [`MotionConfig::periodic_sigma_min`]. Basso's 1.5 m/s² is for a phone in a trouser
     /// pocket; a phone carried gently in the hand gives σ ≈ 0.9–1.3 m/s² while walking (Oxford
-    /// Pixel_Jamie_Carpet_InHand_1/2: the PLL counted 38 of ~200 steps).
+    /// Pixel_Jamie_Carpet_InHand_1/2), below it.
     pub periodic_score_min: f64,
     /// Smallest σ_z for the periodicity rule, m/s²: well above sensor noise (≈0.1 m/s² still).
     pub periodic_sigma_min: f64,
@@ -78,9 +78,8 @@ pub struct MotionConfig {
     /// How long a moving state survives a lapse of periodicity while σ_z stays above
     /// [`MotionConfig::still_max`], s (walk/run then by Basso's σ rule). A gait change blurs the
     /// 3 s autocorrelation for about a second (simulated walk → run: 1 s without a verdict);
-    /// 2 s leaves a margin. Oxford (34 traces): 2.11 % with 2 s, 2.06 % with 1 s (the lapse also
-    /// carries the handling of a purse after a walk), 1.97 % without the lapse, which however
-    /// drops to "still" for a second at every walk ↔ run change.
+    /// 2 s leaves a margin. Without the lapse the state drops to "still" for a second at every
+    /// walk ↔ run change. The Oxford figures are in `docs/methods/basso2016.md`.
     pub periodic_lapse_s: f64,
 }
 

@@ -19,9 +19,9 @@ pub struct PeakConfig {
     pub lpf_hz: f64,
     /// Minimum time between steps, s (0.2 s admits 4.6 Hz running).
     pub min_interval_s: f64,
-    /// Minimum RMS-equivalent amplitude of a cycle, m/s². 0.5 (a rise of 1.4 m/s²): on the
-    /// Oxford traces 1.0 missed gentle hand-held walks whole (12.1 % count error), 0.4 and 0.6
-    /// give 3.8 % and 3.1 %, 0.5 gives 2.7 %, the level of a textbook offline peak counter.
+    /// Minimum RMS-equivalent amplitude of a cycle, m/s². 0.5 (a rise of 1.4 m/s²): a higher
+    /// floor misses gentle hand-held walks whole, a lower one counts more than the steps. The
+    /// figures on the Oxford set are in `docs/evaluation.md`.
     pub cycle_rms_min: f64,
 }
 

@@ -16,12 +16,9 @@
 //! - walking SL = 0.25·f + 0.17 m: 0.545 m at 1.5 Hz, 0.62 m at 1.8 Hz, 0.67 m at 2.0 Hz,
 //!   0.72 m at 2.2 Hz. The slope follows the speed–frequency law of human walking (cadence grows
 //!   about as v^0.58, Bertram & Ruina 2001, so SL ∝ f^0.72 and dSL/df ≈ 0.72·SL/f ≈ 0.25 m/Hz
-//!   near 1.9 Hz). The offset is set on the whole Microsoft indoor set (24 hand-held walks of
-//!   people the engine has never seen, ~2.0 Hz, true mean step 0.65 m between waypoints); the
-//!   earlier 0.375·f + 0.025 (0.70 m at 1.8 Hz) made those walks 18 % too long. Measured with
-//!   `pdr eval`: waypoint p75 5.9 m with this line against 7.0 m with the earlier one. This is
-//!   tuned on the same set it is measured on (in-sample); the walkers of the Oxford set have no
-//!   distance truth, so there is no second set to check it on yet.
+//!   near 1.9 Hz). The offset is set on the whole Microsoft indoor set (24 hand-held walks,
+//!   ~2.0 Hz, true mean step 0.65 m between waypoints), in sample; its leave-one-out check and
+//!   how the IPIN 2023 walks compare are in `docs/evaluation.md`.
 //! - running SL = 0.90·f − 1.50 m: 0.93 m at 2.7 Hz (2.5 m/s), 1.47 m at 3.3 Hz (4.9 m/s);
 //! - clamped to the physiological range 0.2–2.5 m.
 //!

@@ -50,16 +50,14 @@ const THESIS_DT_S: f64 = 0.02;
 pub struct ZeroCrossingConfig {
     /// α of eq. 4.8 at 50 Hz (thesis: 0.3); rescaled to each sample's dt.
     pub alpha: f64,
-    /// S_mean's sliding window, s (not printed in the thesis). Chosen with
-    /// [`ZeroCrossingConfig::ratio_min`] on the whole Oxford set (34 traces, mean absolute count
-    /// error over a grid of 1–4 s × 0.30–0.55): 1 s 2.73 %, 1.5 s 2.63 %, 2 s 2.85 %, 3 s 2.93 %,
-    /// 4 s 2.92 % (each at ratio 0.4); leaving each placement out in turn, 1.5 s is chosen in
-    /// six of the seven folds.
+    /// S_mean's sliding window, s (not printed in the thesis). 1.5 s, chosen with
+    /// [`ZeroCrossingConfig::ratio_min`] on the whole Oxford set by the mean absolute count
+    /// error, each placement left out in turn; 1–2 s are reasonable. The grid and its figures are
+    /// in `docs/methods/ibarra2015.md`.
     pub window_s: f64,
-    /// The smallest S / S_mean of a valid step (not printed in the thesis). Oxford at 1.5 s:
-    /// 0.30 3.10 %, 0.35 2.85 %, 0.40 2.63 %, 0.45 2.76 %, 0.50 2.91 %, 0.55 3.47 %. Lower
-    /// ratios count the second bump of a front-pocket step (FrontPocket 8 % at 0.3), higher ones
-    /// drop the weak steps of a swinging arm (SwingingArm 29 % at 0.5).
+    /// The smallest S / S_mean of a valid step (not printed in the thesis). 0.4, chosen with the
+    /// window: lower ratios count the second bump of a front-pocket step, higher ones drop the
+    /// weak steps of a swinging arm.
     pub ratio_min: f64,
     /// Minimum time between steps, s (0.2 s admits 4.6 Hz running; the peak counter's value).
     pub min_interval_s: f64,

@@ -3,8 +3,8 @@
 //!
 //! # Recognising a foot
 //! A foot-mounted IMU shows what no phone in a pocket, a hand or a bag shows: every stride, a
-//! stance in which the foot is still (|ω| under 1 rad/s and |f| within 1.5 m/s² of g for
-//! T_min) between swings in which the foot turns at several rad/s (6–11 rad/s on the x-io
+//! stance in which the foot is still (|ω| and | |f| − g | under the stance detector's thresholds
+//! for T_min) between swings in which the foot turns at several rad/s (6–11 rad/s on the x-io
 //! walks), and the strapdown integration between two stances gives a plausible stride. The
 //! [`Recogniser`] takes the strides of the foot stage, run alongside the body pipeline while the
 //! placement is undecided, and says "foot" after [`FOOT_STRIDES`] plausible strides in a row:

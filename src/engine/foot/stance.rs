@@ -11,17 +11,17 @@
 //! - **a_Σ.** The sum of the components is not rotation-invariant and needs an attitude before
 //!   the stance is known (the filter that gives it needs the stance). The detector uses the
 //!   orientation-free form `a_Σ = | |f| − g |`, the deviation of the specific force's norm from
-//!   gravity, which is zero whenever the foot is still whatever its attitude (the quantity the
-//!   issue names, and the first test of the standard "GLRT"/magnitude detectors of the field).
+//!   gravity, which is zero whenever the foot is still whatever its attitude (the first test of
+//!   the standard "GLRT"/magnitude detectors of the field).
 //! - **th_ω.** The printed th_ω = 50 rad/s (2 865 °/s) is above the whole range of the x-io
 //!   NGIMU's gyroscope (2 000 °/s): with it, γ is decided by the acceleration alone and every
 //!   moment of mid-swing where |f| crosses g (several per stride) would be a "stance". It is
 //!   surely 50 °/s (0.87 rad/s), a value of the field. On the x-io walks |ω| is under 0.3 rad/s
-//!   for most of each stance and 3–10 rad/s in swing; the default here is 1.0 rad/s (57 °/s):
+//!   for most of each stance and 3–10 rad/s in swing; the default here is 0.6 rad/s (34 °/s):
 //!   see [`StanceConfig::th_w_rad_s`].
 //! - **th_a.** The printed th_a = 9 m/s² concerns a_Σ of the linear acceleration; with the
 //!   norm's deviation, a foot flat on the ground is within 0.5 m/s² of g and the heel strike and
-//!   push-off reach 10–30 m/s². The default is 1.5 m/s² (see [`StanceConfig::th_a_m_s2`]).
+//!   push-off reach 10–30 m/s². The default is 2.5 m/s² (see [`StanceConfig::th_a_m_s2`]).
 //! - **T_min.** 0.3 s as printed would drop the short stances of a brisk walk (0.15–0.3 s on the
 //!   long x-io walk); the default is 0.1 s, which still removes the single-sample crossings of
 //!   mid-swing.
@@ -36,10 +36,10 @@ use std::collections::VecDeque;
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct StanceConfig {
-    /// th_a: largest | |f| − g | of a still foot, m/s². Default 1.5 (x-io walks: a foot flat
+    /// th_a: largest | |f| − g | of a still foot, m/s². Default 2.5 (x-io walks: a foot flat
     /// stays within 0.5 m/s² of g; the swing is far above).
     pub th_a_m_s2: f64,
-    /// th_ω: largest |ω| of a still foot, rad/s. Default 1.0 (57 °/s); Strozzi prints 50 rad/s,
+    /// th_ω: largest |ω| of a still foot, rad/s. Default 0.6 (34 °/s); Strozzi prints 50 rad/s,
     /// surely meaning 50 °/s (see the module documentation).
     pub th_w_rad_s: f64,
     /// T_min: shortest stance, s. Default 0.1 (Strozzi: 0.3, too long for brisk walking).

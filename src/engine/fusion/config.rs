@@ -40,7 +40,7 @@ fn default_window_s() -> f64 {
 }
 
 impl GnssMode {
-    /// Energy saving with the defaults of the issue: 10 s every 60 s.
+    /// Energy saving with the suggested schedule: 10 s every 60 s (Basso 2021 §3.1.2's period).
     pub const ENERGY_SAVING: GnssMode = GnssMode::EnergySaving {
         period_s: DEFAULT_PERIOD_S,
         window_s: DEFAULT_WINDOW_S,
@@ -79,20 +79,20 @@ pub struct FusionConfig {
     pub reset_after: u32,
     /// Random error of each step's length, as a share of it (1σ). 0.15: twice the spread of
     /// step lengths at a steady cadence (Basso 2016 Fig. 4, 0.08), for hand-held phones and
-    /// cadence changes; chosen on IPIN 2023 with the leave-one-route-out check in the README.
+    /// cadence changes; chosen on IPIN 2023 (the leave-one-route-out check is in
+    /// `docs/methods/basso2021.md`).
     pub step_length_sd_rel: f64,
     /// Random error of each step's heading, degrees (1σ). 10°: twice the step-to-step scatter
     /// of the averaged tip-to-tail heading on pocket walks (5°), for hand-held phones; chosen on
-    /// IPIN 2023 with the leave-one-route-out check in the README.
+    /// IPIN 2023 (the leave-one-route-out check is in `docs/methods/basso2021.md`).
     pub heading_sd_deg: f64,
     /// Time constant of the fixes' correlated error, s: a fix's error persists from fix to fix
     /// (multipath, the receiver's own filter) and decays as a first-order Gauss–Markov process
     /// with this time constant, estimated in the state. 0 treats every fix's error as new.
     /// Measured on the IPIN 2023 phone fixes against their landmarks (`examples/gnss_errors`):
     /// the errors' autocorrelation is about e^(−Δt/14 s) up to 20 s apart, 0.79 within 5 s.
-    /// The filter is better on IPIN with 6 s than with 14 s (median of per-log p75 fused
-    /// 7.64 m against 8.15 m, pooled 8.41 m against 8.89 m; leave-one-route-out picks 6 s for
-    /// five of the seven routes, README "Fusion on real phone GNSS"): a Gauss–Markov process
+    /// The filter is better on IPIN with 6 s than with 14 s, and leave-one-route-out picks 6 s
+    /// for most routes (the figures are in `docs/methods/basso2021.md`): a Gauss–Markov process
     /// is a poor fit to the long tail, and a shorter τ lets the filter follow a fix error that
     /// has settled.
     pub fix_error_tau_s: f64,

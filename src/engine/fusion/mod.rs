@@ -42,8 +42,8 @@
 //!   and heading correction estimated so far keep correcting every step, which is the paper's
 //!   compensation of systematic errors. Our addition: the duty cycle starts only once those two
 //!   are known (the receiver stays on until then, at most [`FusionConfig::max_calibration_s`]);
-//!   measured on the simulated city walk, starting it at the first fix left the first minutes
-//!   uncorrected (p75 2.2–6.2 m against 1.0–1.5 m in best-performance mode).
+//!   on the simulated city walk, starting it at the first fix left the first minutes
+//!   uncorrected (figures in `docs/methods/basso2021.md`).
 //!
 //! # Rooms
 //! - [`config`]: the settings and the GNSS modes;

@@ -53,8 +53,7 @@ impl Smoother {
     /// is conditioned on the consider states (the Schur complement, [`condition`]), which keeps
     /// the recursion an exact RTS pass over the other states; the smoothed covariance then gets
     /// back the share the consider states' own uncertainty adds, as the filter had it. (Only
-    /// zeroing their rows of Cₖ would leave Pₖˢ without meaning: it went negative on most steps
-    /// of 15 of the 24 fused IPIN walks.)
+    /// zeroing their rows of Cₖ would leave Pₖˢ without meaning: it can turn negative.)
     pub fn smooth(&self, steps: &[FusedStep], consider: &[usize]) -> Vec<FusedStep> {
         let n = self.stored.len();
         let mut out = steps.to_vec();

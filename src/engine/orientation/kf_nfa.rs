@@ -56,9 +56,9 @@
 //! 7. **Divergence.** A non-finite or runaway state (|b| > [`MAX_BIAS`], a variance beyond
 //!    [`MAX_VARIANCE`]) restarts the filter from the next sample, counted in the diagnostics; a
 //!    sample with no usable accelerometer direction is propagated only, also counted.
-//! 8. **Defaults** were measured on the real sets, not the simulator (README, "KF-NFA
-//!    attitude"): R₀ is the thesis's Table 3.2 (σ_acc = 0.022 m/s²), and the adaptation is what
-//!    makes that usable in a walk (IPIN waypoint p75 11.0 m with R fixed, 4.8 m adapted).
+//! 8. **Defaults** were measured on the real sets, not the simulator
+//!    (`docs/methods/ibarra2015.md`): R₀ is the thesis's Table 3.2 (σ_acc = 0.022 m/s²), and
+//!    the adaptation is what makes that usable in a walk.
 
 use super::{attitude_from_vectors, G0};
 use crate::engine::types::{positive, ConfigError, DeviceVec};
@@ -103,25 +103,22 @@ pub struct KfNfaConfig {
     pub bias_walk: f64,
     /// Initial uncertainty (1σ) of the gyroscope bias, rad/s. Tight by default: a phone's
     /// gyroscope is already calibrated by the OS, and with a loose prior the tilt innovations of a
-    /// walk (linear acceleration, not tilt) steer the bias states and with them the yaw. Measured
-    /// (`pdr eval`, waypoint p75): 0.01 rad/s gives ms-indoor 14.7 m, IPIN 16.3 m; 1e-3 gives
-    /// 5.5 m, 9.9 m; 1e-4 gives 5.5 m, 4.8 m.
+    /// walk (linear acceleration, not tilt) steer the bias states and with them the yaw.
+    /// Suggested 1e-4 rad/s; the figures of looser priors are in `docs/methods/ibarra2015.md`.
     pub bias_init: f64,
     /// Accelerometer noise σ_acc, m/s², giving R₀ = (σ_acc/g)² (eq. 3.12; Table 3.2's
     /// 5.2 mg² is σ = 0.022 m/s²).
     pub accel_noise: f64,
     /// Magnetometer heading noise, rad (R₀ of the yaw row when `magnetometer` is on). With the
-    /// defaults R₀ = (0.1 rad)² is `r_max`, so the yaw row only adapts downwards. Measured with
-    /// the magnetometer (waypoint p75, ms-indoor / IPIN): as is 5.5 / 5.9 m; the yaw row's cap
-    /// at 10 R₀ 5.6 / 5.3 m, at 100 R₀ 5.6 / 5.7 m; `mag_noise` 0.03 or 0.05: within 0.1 m. Mixed,
-    /// so left as is.
+    /// defaults R₀ = (0.1 rad)² is `r_max`, so the yaw row only adapts downwards. A higher cap
+    /// for the yaw row, or a smaller `mag_noise`, gave mixed results (`docs/methods/ibarra2015.md`).
     pub mag_noise: f64,
     /// Window M of eq. 3.15, samples.
     pub window: usize,
     /// Largest R, rad² (0.01: σ = 0.1 rad). The innovations cannot tell a tilt error from
     /// measurement noise, so an unbounded R feeds on the filter's own error (R up, accelerometer
-    /// ignored, tilt drifts, innovations up); 0.25 gave IPIN tilt p95 47° against the OS
-    /// attitude, waypoint p75 12 m.
+    /// ignored, tilt drifts, innovations up); a cap of 0.25 let the tilt drift by tens of degrees
+    /// on the IPIN walks.
     pub r_max: f64,
     /// Adapt R (eqs. 3.13–3.17); `false` is the thesis's "T-KF" with R fixed at R₀.
     pub adapt: bool,
