@@ -38,7 +38,7 @@
 //! scenario's seed on a stream of its own, so that adding a foot IMU leaves the phone's samples
 //! bit-identical.
 
-use super::{Rng, Scenario, Simulation, Timeline, G};
+use super::{ry, rz, Rng, Scenario, Simulation, Timeline, G};
 use crate::engine::math::{heading_of, wrap_2pi, wrap_pi};
 use crate::engine::types::ImuSample;
 use crate::engine::Record;
@@ -268,14 +268,6 @@ impl FootTrack {
     }
 }
 
-fn rz(a: f64) -> Matrix3<f64> {
-    super::rz(a)
-}
-
-fn ry(a: f64) -> Matrix3<f64> {
-    super::ry(a)
-}
-
 /// A point on the walker's path: time, position, heading.
 #[derive(Clone, Copy)]
 struct PathPoint {
@@ -290,10 +282,27 @@ struct PathPoint {
 impl Scenario {
     /// The foot's trajectory for this scenario's walker.
     pub fn foot_track(&self, foot: &FootImu) -> FootTrack {
+        let marks = self.path_marks();
+        let start_yaw = self.start_heading_deg.to_radians();
+        let start = {
+            let (s, c) = libm::sincos(start_yaw);
+            Vector3::new(foot.lateral_m * c, -foot.lateral_m * s, 0.0)
+        };
+        FootTrack {
+            motions: foot_motions(foot, &marks, start, start_yaw),
+            start,
+            start_yaw,
+            clearance: foot.clearance_m,
+            pitch: foot.pitch_deg.to_radians() / pitch_norm(),
+            clock_offset_s: self.clock_offset_s,
+        }
+    }
+
+    /// Walks the path as `truth` does (1 ms midpoint steps), noting the crossings of φ = π
+    /// (mod 2π) and the ends of the walking bouts.
+    fn path_marks(&self) -> PathMarks {
         let tl = Timeline::new(self);
         let dur = self.duration_s();
-        // Walk the path as `truth` does (1 ms midpoint steps), noting the crossings of φ = π
-        // (mod 2π) and the ends of the walking bouts.
         let mut centres = Vec::new(); // φ ≡ 3π (mod 4π): motion centres
         let mut rests = Vec::new(); // φ ≡ π (mod 4π): footprints
         let mut bouts: Vec<(f64, f64, PathPoint)> = Vec::new(); // (start, end, end point)
@@ -345,56 +354,10 @@ impl Scenario {
         if let Some(b) = bout_start {
             bouts.push((b, dur, point(dur, e, n, &prev)));
         }
-        let right = |p: &PathPoint| {
-            let (s, c) = libm::sincos(p.psi);
-            Vector3::new(p.e + foot.lateral_m * c, p.n - foot.lateral_m * s, 0.0)
-        };
-        let start_yaw = self.start_heading_deg.to_radians();
-        let start = {
-            let (s, c) = libm::sincos(start_yaw);
-            Vector3::new(foot.lateral_m * c, -foot.lateral_m * s, 0.0)
-        };
-        let mut motions: Vec<Motion> = Vec::new();
-        let (mut at, mut yaw) = (start, start_yaw);
-        for c in &centres {
-            let Some(&(b0, b1, end)) = bouts.iter().find(|b| c.t >= b.0 && c.t <= b.1) else {
-                continue;
-            };
-            let share = if c.run {
-                foot.rest_share_run
-            } else {
-                foot.rest_share_walk
-            };
-            let d = (1.0 - share) * 2.0 / c.f.max(1e-6);
-            let (t0, t1) = (c.t - 0.5 * d, c.t + 0.5 * d);
-            if t0 < b0 || t1 > b1 || motions.last().is_some_and(|m| m.t0 + m.dur > t0) {
-                continue;
-            }
-            let target = rests
-                .iter()
-                .find(|r| r.t > c.t && r.t <= b1)
-                .copied()
-                .unwrap_or(end);
-            let to = right(&target);
-            motions.push(Motion {
-                t0,
-                dur: d,
-                from: at,
-                to,
-                yaw0: yaw,
-                yaw1: target.psi,
-                path_heading: c.psi,
-            });
-            at = to;
-            yaw = target.psi;
-        }
-        FootTrack {
-            motions,
-            start,
-            start_yaw,
-            clearance: foot.clearance_m,
-            pitch: foot.pitch_deg.to_radians() / pitch_norm(),
-            clock_offset_s: self.clock_offset_s,
+        PathMarks {
+            centres,
+            rests,
+            bouts,
         }
     }
 
@@ -455,6 +418,71 @@ impl Scenario {
             track,
         }
     }
+}
+
+/// The marks on the walker's path from which the foot's motions are built.
+struct PathMarks {
+    /// φ ≡ 3π (mod 4π): the centres of the right foot's motions.
+    centres: Vec<PathPoint>,
+    /// φ ≡ π (mod 4π): the right foot's footprints.
+    rests: Vec<PathPoint>,
+    /// The walking bouts: (start, end, the path's point at the end).
+    bouts: Vec<(f64, f64, PathPoint)>,
+}
+
+/// The right foot's motions, one per stride centred on each motion centre that a bout holds
+/// whole, from the footprint before to the next one (or the bout's end), the foot `lateral_m`
+/// to the right of the path; it starts at `start` with yaw `start_yaw`.
+fn foot_motions(
+    foot: &FootImu,
+    marks: &PathMarks,
+    start: Vector3<f64>,
+    start_yaw: f64,
+) -> Vec<Motion> {
+    let PathMarks {
+        centres,
+        rests,
+        bouts,
+    } = marks;
+    let right = |p: &PathPoint| {
+        let (s, c) = libm::sincos(p.psi);
+        Vector3::new(p.e + foot.lateral_m * c, p.n - foot.lateral_m * s, 0.0)
+    };
+    let mut motions: Vec<Motion> = Vec::new();
+    let (mut at, mut yaw) = (start, start_yaw);
+    for c in centres {
+        let Some(&(b0, b1, end)) = bouts.iter().find(|b| c.t >= b.0 && c.t <= b.1) else {
+            continue;
+        };
+        let share = if c.run {
+            foot.rest_share_run
+        } else {
+            foot.rest_share_walk
+        };
+        let d = (1.0 - share) * 2.0 / c.f.max(1e-6);
+        let (t0, t1) = (c.t - 0.5 * d, c.t + 0.5 * d);
+        if t0 < b0 || t1 > b1 || motions.last().is_some_and(|m| m.t0 + m.dur > t0) {
+            continue;
+        }
+        let target = rests
+            .iter()
+            .find(|r| r.t > c.t && r.t <= b1)
+            .copied()
+            .unwrap_or(end);
+        let to = right(&target);
+        motions.push(Motion {
+            t0,
+            dur: d,
+            from: at,
+            to,
+            yaw0: yaw,
+            yaw1: target.psi,
+            path_heading: c.psi,
+        });
+        at = to;
+        yaw = target.psi;
+    }
+    motions
 }
 
 impl Scenario {

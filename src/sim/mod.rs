@@ -61,6 +61,7 @@ pub mod foot;
 pub mod formats;
 mod gnss;
 mod gnss_errors;
+mod kinematics;
 pub mod pose;
 mod rng;
 pub mod scenarios;
@@ -86,7 +87,7 @@ use crate::engine::Record;
 use gnss::merge_in_time;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use rng::Rng;
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::{PI, TAU};
 
 /// Standard gravity used by the simulator, m/s².
 const G: f64 = crate::engine::orientation::G0;
@@ -458,211 +459,6 @@ impl Scenario {
             theta = e * (level * g.pitch_deg(thigh::Shape::Level, s, dh, 0.0) + stairs);
         }
         theta + body.sit(t).0 * g.sit_deg_at(t)
-    }
-
-    /// World attitude, world angular velocity and world acceleration of the phone. `ext` (the
-    /// timeline, the body's slow motions and the time) turns on the opt-in models: the realistic
-    /// thigh, stairs, sitting and real-shaped ends; without it the historic model runs untouched.
-    fn kinematics(
-        &self,
-        st: &State,
-        mount: &Matrix3<f64>,
-        ext: Option<(&Timeline, &body::Body, f64)>,
-    ) -> (Matrix3<f64>, Vector3<f64>, Vector3<f64>) {
-        let w = &self.walker;
-        let omega = TAU * st.f;
-        let half = 0.5 * st.phi;
-        let (yaw_amp, pitch_amp) = if st.gait.moving() {
-            let k = if st.gait == Gait::Run { 1.4 } else { 1.0 };
-            (
-                w.waist_yaw_deg.to_radians(),
-                k * w.thigh_pitch_deg.to_radians(),
-            )
-        } else {
-            (0.0, 0.0)
-        };
-        // Angles as functions of time near t (first order in the phase).
-        // Pelvis yaw and thigh flexion both peak at the heel strike of the pocket leg.
-        let real = matches!(w.thigh, ThighModel::Gait(_));
-        // Real-shaped ends ([`ends`]): every swing fades in and out with the bout.
-        let ends = ext.filter(|_| self.real_ends).map(|(_, body, t)| (body, t));
-        let env = |dt: f64| ends.map_or(1.0, |(body, t)| body.walk_envelope(t + dt));
-        let waist = |dt: f64| match ext {
-            // With the realistic thigh the pelvis's rotation fades in and out with the bout too.
-            Some((_, body, t)) if real || self.real_ends => {
-                yaw_amp * body.walk_envelope(t + dt) * libm::cos(half + 0.5 * omega * dt)
-            }
-            _ => yaw_amp * libm::cos(half + 0.5 * omega * dt),
-        };
-        let path = |dt: f64| st.psi + st.psi_dot * dt + 0.5 * st.psi_ddot * dt * dt;
-        let pitch = |dt: f64| match ext {
-            // The body frame's y is the walker's left: flexion is a negative rotation about it.
-            Some((tl, body, t)) if real => -self.thigh_deg(tl, body, t + dt).to_radians(),
-            _ => pitch_amp * env(dt) * libm::cos(half + 0.5 * omega * dt),
-        };
-        let handled = st.gait == Gait::Handled;
-        // The mount, part-way out of the pocket while it is taken out.
-        let mount_at = |dt: f64| match ends {
-            Some((body, t)) if self.carry == Carry::Pocket => {
-                ends::taken_out(body, t + dt).map_or(*mount, |w| {
-                    let hand = Carry::Texting.mount().unwrap_or(*mount);
-                    ends::mount_between(mount, &hand, w)
-                })
-            }
-            _ => *mount,
-        };
-        let swaying = ends.is_some() && st.gait == Gait::Still;
-        let k_limb = if !st.gait.moving() {
-            0.0
-        } else if st.gait == Gait::Run {
-            1.4
-        } else {
-            1.0
-        };
-        // Out of the pocket the thigh's pitch is replaced by the carrying mode's limb.
-        let limb_of = |c: Carry, dt: f64| {
-            if c == Carry::Pocket {
-                ry(pitch(dt))
-            } else {
-                c.limb(st.phi + omega * dt, k_limb * env(dt))
-            }
-        };
-        let lever_of = |c: Carry| {
-            if c == Carry::Pocket {
-                w.lever_m
-            } else {
-                c.lever_m()
-            }
-        };
-        let limb = |dt: f64| limb_of(self.carry, dt);
-        let lever_m = lever_of(self.carry);
-        // A change of mode mid-walk ([`carry::Switch`]): each mode's limb, mount and place.
-        let switching = ext.filter(|_| !self.switches.is_empty()).map(|(_, _, t)| t);
-        let phase = |dt: f64| {
-            switching.map_or((self.carry, self.carry, 0.0), |t| {
-                carry::phase(self.carry, &self.switches, t + dt)
-            })
-        };
-        let mount_of = |c: Carry| c.mount().unwrap_or_else(|| self.pocket_mount());
-        let attitude = |dt: f64| {
-            let heading = path(dt) + waist(dt);
-            if switching.is_some() {
-                let (from, to, k) = phase(dt);
-                // Each mode's attitude as a quaternion whose sign is its resting mount's, and
-                // the two signs chosen by the resting mounts alone: the slerp then follows one
-                // path all through the move. (The shortest path, nalgebra's, flipped from sample
-                // to sample between the ear and the swinging hand, whose mounts are about 180°
-                // apart, and the attitude's derivative gave rates of thousands of rad/s.)
-                let q = |c: Carry| {
-                    let rest = UnitQuaternion::from_matrix(&mount_of(c))
-                        .into_inner()
-                        .coords;
-                    let q = UnitQuaternion::from_matrix(&(limb_of(c, dt) * mount_of(c)));
-                    let q = q.into_inner().coords;
-                    (if q.dot(&rest) < 0.0 { -q } else { q }, rest)
-                };
-                let ((a, rest_a), (b, rest_b)) = (q(from), q(to));
-                let b = if rest_a.dot(&rest_b) < 0.0 { -b } else { b };
-                let v =
-                    nalgebra::Unit::new_unchecked(a).slerp(&nalgebra::Unit::new_unchecked(b), k);
-                let r = UnitQuaternion::new_unchecked(nalgebra::Quaternion::from(v.into_inner()));
-                return rz(FRAC_PI_2 - heading) * r.to_rotation_matrix().into_inner();
-            }
-            let mut r = rz(FRAC_PI_2 - heading) * limb(dt);
-            if handled {
-                let tt = st.tau + dt;
-                r *= rx(0.25 * libm::sin(TAU * 0.31 * tt))
-                    * ry(0.2 * libm::sin(TAU * 0.17 * tt + 1.0));
-            }
-            if let (true, Some((_, t))) = (swaying, ends) {
-                r *= ends::sway(t + dt).0;
-            }
-            r * mount_at(dt)
-        };
-        let r = attitude(0.0);
-        // Angular velocity from the attitude's derivative: [ω]× = Ṙ Rᵀ (central difference of an
-        // analytic function of time; error O(h²)).
-        let h = 1e-4;
-        let rdot = (attitude(h) - attitude(-h)) / (2.0 * h);
-        let skew = rdot * r.transpose();
-        let w_world = Vector3::new(
-            0.5 * (skew[(2, 1)] - skew[(1, 2)]),
-            0.5 * (skew[(0, 2)] - skew[(2, 0)]),
-            0.5 * (skew[(1, 0)] - skew[(0, 1)]),
-        );
-        // Accelerations.
-        let mut a = Vector3::zeros();
-        if st.gait.moving() {
-            let (av, af, al) = amplitudes(st.gait, st.f, w.sway);
-            let (from, to, k) = phase(0.0);
-            let b = ((1.0 - k) * from.bounce() + k * to.bounce()) * env(0.0);
-            let (av, af, al) = (b * av, b * af, b * al);
-            let body_heading = st.psi + waist(0.0);
-            let fwd = Vector3::new(libm::sin(body_heading), libm::cos(body_heading), 0.0);
-            let path_fwd = Vector3::new(libm::sin(st.psi), libm::cos(st.psi), 0.0);
-            let right = Vector3::new(libm::cos(st.psi), -libm::sin(st.psi), 0.0);
-            let (sp, cp) = libm::sincos(st.phi);
-            a += Vector3::z() * (av * cp + 0.3 * av * libm::cos(2.0 * st.phi + 0.5));
-            a += fwd * (-af * sp);
-            a += right * (al * libm::sin(half));
-            // Path: dv/dt along, v dψ/dt across.
-            let sl = &w.step_length;
-            let v = sl.length(st.f) * st.f;
-            let dv = (sl.length(st.f + 1e-4) * (st.f + 1e-4) - v) / 1e-4 * st.fdot;
-            let (v, dv) = match ext {
-                Some((_, body, t)) => body.speed(t, v, dv),
-                None => (v, dv),
-            };
-            // Getting under way and braking: the speed follows the envelope.
-            let (v, dv) = match ends {
-                Some((body, t)) => (
-                    v * env(0.0),
-                    dv * env(0.0) + v * ends::envelope_rate(body, t),
-                ),
-                None => (v, dv),
-            };
-            a += path_fwd * dv + right * (v * st.psi_dot);
-        }
-        // Thigh lever: second derivative of the pocket offset, by central differences.
-        let offset = |dt: f64| {
-            let heading = path(dt) + waist(dt);
-            if switching.is_some() {
-                let (from, to, k) = phase(dt);
-                let place = |c: Carry| {
-                    c.anchor(self.left_pocket)
-                        + limb_of(c, dt) * Vector3::new(0.0, 0.0, -lever_of(c))
-                };
-                return rz(FRAC_PI_2 - heading) * ((1.0 - k) * place(from) + k * place(to));
-            }
-            rz(FRAC_PI_2 - heading) * limb(dt) * Vector3::new(0.0, 0.0, -lever_m)
-        };
-        let hh = 1e-3;
-        if let Some((_, body, t)) = ext {
-            // The lever at all times (the thigh moves sitting down), the climb, the hip's drop.
-            a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
-            a += Vector3::z() * (body.stairs_accel(t) - body.sit_drop_m * body.sit(t).2);
-        } else if st.gait.moving() {
-            a += (offset(hh) - 2.0 * offset(0.0) + offset(-hh)) / (hh * hh);
-        }
-        if let Some((body, t)) = ends {
-            let turn = rz(FRAC_PI_2 - st.psi);
-            a += Vector3::z() * ends::settle(body, t);
-            if swaying {
-                a += turn * ends::sway(t).1;
-            }
-            if self.carry == Carry::Pocket {
-                a += turn * ends::take_out_accel(body, t);
-            }
-        }
-        if handled {
-            let tt = st.tau;
-            a += Vector3::new(
-                0.3 * libm::sin(TAU * 0.9 * tt),
-                0.25 * libm::sin(TAU * 0.6 * tt + 2.0),
-                0.35 * libm::sin(TAU * 1.3 * tt + 0.7),
-            );
-        }
-        (r, w_world, a)
     }
 
     /// Generates the samples and the truth.

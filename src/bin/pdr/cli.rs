@@ -6,7 +6,7 @@ use crate::settings_args::SettingsArgs;
 use crate::{bench, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
 use pdr::sim::scenarios;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -244,10 +244,7 @@ pub fn main() -> ExitCode {
             recipe,
             settings,
         } => settings.settings().and_then(|s| {
-            let recipe = recipe
-                .as_deref()
-                .map(pdr::io::import::recipe::load)
-                .transpose()?;
+            let recipe = load_recipe(recipe.as_deref())?;
             run::run(
                 &file,
                 run::Outputs {
@@ -272,32 +269,14 @@ pub fn main() -> ExitCode {
             sl_b,
             minutes,
             foot,
-        } => {
-            let sc = match scenario {
-                ScenarioArg::Demo => scenarios::demo_walk(),
-                ScenarioArg::Square => scenarios::square(25.0),
-                ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
-                ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
-                ScenarioArg::CityRealGnss => scenarios::gnss_city_walk_real(),
-                ScenarioArg::Calibration => {
-                    scenarios::calibration_walk(cadence, metres, sl_a, sl_b)
-                }
-                ScenarioArg::Long => scenarios::long_walk(minutes),
-                ScenarioArg::Track => scenarios::athletic_track(1),
-                ScenarioArg::Stairs => scenarios::stairs_walk(pdr::sim::PocketPose::default()),
-                ScenarioArg::PocketMixed => {
-                    scenarios::pocket_mixed(pdr::sim::PocketPose::default())
-                }
-            };
-            simulate::simulate(
-                sc,
-                out.as_deref(),
-                format,
-                events.as_deref(),
-                platform,
-                foot,
-            )
-        }
+        } => simulate::simulate(
+            scenario.scenario(cadence, metres, sl_a, sl_b, minutes),
+            out.as_deref(),
+            format,
+            events.as_deref(),
+            platform,
+            foot,
+        ),
         Cmd::Simcheck => {
             simcheck::simcheck();
             Ok(())
@@ -321,10 +300,7 @@ pub fn main() -> ExitCode {
             energy,
             ..
         } => settings.settings().and_then(|s| {
-            let recipe = recipe
-                .as_deref()
-                .map(pdr::io::import::recipe::load)
-                .transpose()?;
+            let recipe = load_recipe(recipe.as_deref())?;
             if energy {
                 eval::energy(&paths, json, &s, recipe.as_ref())
             } else {
@@ -348,6 +324,37 @@ pub fn main() -> ExitCode {
         Err(e) => {
             eprintln!("pdr: {e}");
             ExitCode::FAILURE
+        }
+    }
+}
+
+/// The recipe of `--recipe`, read, when given.
+fn load_recipe(path: Option<&Path>) -> Result<Option<pdr::io::import::recipe::Recipe>, String> {
+    path.map(pdr::io::import::recipe::load).transpose()
+}
+
+impl ScenarioArg {
+    /// The walk, with the calibration walk's cadence (Hz), distance (m) and walker's step
+    /// length (m/Hz and m), and the long walk's duration (minutes).
+    fn scenario(
+        self,
+        cadence: f64,
+        metres: f64,
+        sl_a: f64,
+        sl_b: f64,
+        minutes: f64,
+    ) -> pdr::sim::Scenario {
+        match self {
+            ScenarioArg::Demo => scenarios::demo_walk(),
+            ScenarioArg::Square => scenarios::square(25.0),
+            ScenarioArg::Straight => scenarios::straight_walk(1.8, 70.0),
+            ScenarioArg::GnssCity => scenarios::gnss_city_walk(),
+            ScenarioArg::CityRealGnss => scenarios::gnss_city_walk_real(),
+            ScenarioArg::Calibration => scenarios::calibration_walk(cadence, metres, sl_a, sl_b),
+            ScenarioArg::Long => scenarios::long_walk(minutes),
+            ScenarioArg::Track => scenarios::athletic_track(1),
+            ScenarioArg::Stairs => scenarios::stairs_walk(pdr::sim::PocketPose::default()),
+            ScenarioArg::PocketMixed => scenarios::pocket_mixed(pdr::sim::PocketPose::default()),
         }
     }
 }

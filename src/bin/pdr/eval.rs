@@ -69,8 +69,55 @@ pub fn eval(
     Ok(())
 }
 
+/// The text report: the table of logs, each log's lines for its extra truths, the per-group
+/// figures and the totals.
 fn print_report(report: &pdr::eval::Report) {
-    let opt = |v: Option<f64>, prec: usize| v.map_or("-".to_string(), |x| format!("{x:.prec$}"));
+    print_table(&report.logs);
+    for l in &report.logs {
+        print_foot(l);
+    }
+    for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
+        print_fusion(l);
+    }
+    for l in &report.logs {
+        print_floors(l);
+    }
+    for l in &report.logs {
+        print_steps_and_turns(l);
+    }
+    print_summary(&report.summary);
+}
+
+/// `v` with `prec` decimals, or `-` without a value.
+fn opt(v: Option<f64>, prec: usize) -> String {
+    v.map_or("-".to_string(), |x| format!("{x:.prec$}"))
+}
+
+/// The last part of a log's path (its file or folder name).
+fn base_name(path: &str) -> &str {
+    path.rsplit('/').next().unwrap_or(path)
+}
+
+/// A path cut to its last 43 characters after an ellipsis when longer than 44.
+fn shorten(path: &str) -> String {
+    if path.chars().count() <= 44 {
+        return path.to_string();
+    }
+    format!(
+        "…{}",
+        path.chars()
+            .rev()
+            .take(43)
+            .collect::<Vec<_>>()
+            .into_iter()
+            .rev()
+            .collect::<String>()
+    )
+}
+
+/// The table: one row per log (its format, samples, duration, steps against the truth and the
+/// waypoint and loop-closure errors), or the log's error.
+fn print_table(logs: &[pdr::eval::LogResult]) {
     out!(
         "{:<44} {:<15} {:>8} {:>7} {:>6} {:>6} {:>7} {:>4} {:>7} {:>7} {:>7}",
         "log",
@@ -85,20 +132,8 @@ fn print_report(report: &pdr::eval::Report) {
         "final m",
         "loop m"
     );
-    for l in &report.logs {
-        let mut path = l.path.clone();
-        if path.chars().count() > 44 {
-            path = format!(
-                "…{}",
-                path.chars()
-                    .rev()
-                    .take(43)
-                    .collect::<Vec<_>>()
-                    .into_iter()
-                    .rev()
-                    .collect::<String>()
-            );
-        }
+    for l in logs {
+        let path = shorten(&l.path);
         if let Some(e) = &l.error {
             out!("{path:<44} {:<15} error: {e}", l.format);
             continue;
@@ -117,90 +152,102 @@ fn print_report(report: &pdr::eval::Report) {
             opt(l.loop_closure_m, 1),
         );
     }
-    for l in report.logs.iter() {
-        let Some(strides) = l.strides else { continue };
-        out!(
-            "foot mode {:<34} {} strides ({} steps), {:.2} m walked, loop closure {} m ({} % of the distance)",
-            l.path.rsplit('/').next().unwrap_or(&l.path),
-            strides,
-            l.steps,
-            l.distance_m,
-            opt(l.loop_closure_m, 3),
-            opt(
-                l.loop_closure_m
-                    .filter(|_| l.distance_m > 0.0)
-                    .map(|c| 100.0 * c / l.distance_m),
-                2
-            )
-        );
-    }
-    for l in report.logs.iter().filter(|l| l.fused_error_m.is_some()) {
-        let on = l
-            .fusion
-            .and_then(|f| Some((f.gnss_on_s?, f.gnss_span_s?)))
-            .map_or(String::new(), |(on, span)| {
-                format!(", receiver on {on:.0} s of {span:.0} s")
-            });
-        let note = l
-            .declination_note
-            .as_ref()
-            .map_or(String::new(), |n| format!("; {n}"));
-        out!(
-            "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m{on}{note}",
-            l.path.rsplit('/').next().unwrap_or(&l.path),
-            opt(l.gnss_error_m.map(|e| e.p75), 2),
-            opt(l.fused_error_m.map(|e| e.p75), 2),
-            opt(l.smoothed_error_m.map(|e| e.p75), 2)
-        );
-    }
-    for l in &report.logs {
-        let Some(f) = &l.floors else { continue };
-        let barometer = match l.pressure_samples {
-            0 => "no barometer".to_string(),
-            n => format!("barometer {n} readings"),
-        };
-        let height = f.height_error_m.map_or(String::new(), |h| {
-            format!(", height error p75 {:.2} m (max {:.2} m)", h.p75, h.max)
+}
+
+/// A foot-mounted log's strides, distance and loop closure.
+fn print_foot(l: &pdr::eval::LogResult) {
+    let Some(strides) = l.strides else { return };
+    out!(
+        "foot mode {:<34} {} strides ({} steps), {:.2} m walked, loop closure {} m ({} % of the distance)",
+        base_name(&l.path),
+        strides,
+        l.steps,
+        l.distance_m,
+        opt(l.loop_closure_m, 3),
+        opt(
+            l.loop_closure_m
+                .filter(|_| l.distance_m > 0.0)
+                .map(|c| 100.0 * c / l.distance_m),
+            2
+        )
+    );
+}
+
+/// A log's GNSS, fused and smoothed errors, with the receiver's on time and the declination's
+/// note.
+fn print_fusion(l: &pdr::eval::LogResult) {
+    let on = l
+        .fusion
+        .and_then(|f| Some((f.gnss_on_s?, f.gnss_span_s?)))
+        .map_or(String::new(), |(on, span)| {
+            format!(", receiver on {on:.0} s of {span:.0} s")
         });
+    let note = l
+        .declination_note
+        .as_ref()
+        .map_or(String::new(), |n| format!("; {n}"));
+    out!(
+        "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m{on}{note}",
+        base_name(&l.path),
+        opt(l.gnss_error_m.map(|e| e.p75), 2),
+        opt(l.fused_error_m.map(|e| e.p75), 2),
+        opt(l.smoothed_error_m.map(|e| e.p75), 2)
+    );
+}
+
+/// A log's floor landmarks on the right relative floor and its height error.
+fn print_floors(l: &pdr::eval::LogResult) {
+    let Some(f) = &l.floors else { return };
+    let barometer = match l.pressure_samples {
+        0 => "no barometer".to_string(),
+        n => format!("barometer {n} readings"),
+    };
+    let height = f.height_error_m.map_or(String::new(), |h| {
+        format!(", height error p75 {:.2} m (max {:.2} m)", h.p75, h.max)
+    });
+    out!(
+        "floors {:<37} {}/{} landmarks on the right relative floor ({:.1} %){height}; {barometer}",
+        base_name(&l.path),
+        f.right,
+        f.landmarks,
+        100.0 * f.share
+    );
+}
+
+/// A log's steps inside the truth's window, its trajectory's errors and its turns.
+fn print_steps_and_turns(l: &pdr::eval::LogResult) {
+    let name = base_name(&l.path);
+    if let (Some(n), Some(t)) = (l.steps_in_window, l.truth_steps) {
         out!(
-            "floors {:<37} {}/{} landmarks on the right relative floor ({:.1} %){height}; {barometer}",
-            l.path.rsplit('/').next().unwrap_or(&l.path),
-            f.right,
-            f.landmarks,
-            100.0 * f.share
+            "window {name:<37} {n} steps found inside the truth's window of {t} ({} %)",
+            opt(l.step_error_pct, 2)
         );
     }
-    for l in &report.logs {
-        let name = l.path.rsplit('/').next().unwrap_or(&l.path);
-        if let (Some(n), Some(t)) = (l.steps_in_window, l.truth_steps) {
-            out!(
-                "window {name:<37} {n} steps found inside the truth's window of {t} ({} %)",
-                opt(l.step_error_pct, 2)
-            );
-        }
-        if let Some(t) = &l.trajectory {
-            out!(
-                "trajectory {name:<33} heading error median {}° (p75 {}°, {} steps), distance {:.1} m of {:.1} m (ratio {}), position p75 {} m{}",
-                opt(t.heading_error_deg, 1),
-                opt(t.heading_error_p75_deg, 1),
-                t.headings_scored,
-                t.track_distance_m,
-                t.truth_distance_m,
-                opt(t.distance_ratio, 2),
-                opt(t.position_p75_m, 2),
-                if t.has_track { "" } else { "; no track" }
-            );
-        }
-        if let Some(t) = &l.turns {
-            out!(
-                "turns {name:<38} {} of {} turns scored, median error {}°",
-                t.scored.len(),
-                t.turns,
-                opt(t.median_error_deg, 1)
-            );
-        }
+    if let Some(t) = &l.trajectory {
+        out!(
+            "trajectory {name:<33} heading error median {}° (p75 {}°, {} steps), distance {:.1} m of {:.1} m (ratio {}), position p75 {} m{}",
+            opt(t.heading_error_deg, 1),
+            opt(t.heading_error_p75_deg, 1),
+            t.headings_scored,
+            t.track_distance_m,
+            t.truth_distance_m,
+            opt(t.distance_ratio, 2),
+            opt(t.position_p75_m, 2),
+            if t.has_track { "" } else { "; no track" }
+        );
     }
-    let s = &report.summary;
+    if let Some(t) = &l.turns {
+        out!(
+            "turns {name:<38} {} of {} turns scored, median error {}°",
+            t.scored.len(),
+            t.turns,
+            opt(t.median_error_deg, 1)
+        );
+    }
+}
+
+/// The figures per group of logs (trajectory, steps), the turns' and floors' and the totals.
+fn print_summary(s: &pdr::eval::Summary) {
     if !s.trajectory_by_group.is_empty() {
         out!();
         for (g, v) in &s.trajectory_by_group {

@@ -1,9 +1,11 @@
 //! `pdr run`: replays one log of any format, prints a summary and writes the track files.
 //! May import: the `pdr` library; nothing of the other subcommands.
 
-use pdr::engine::replay;
+use pdr::engine::foot::placement::Placement;
+use pdr::engine::{replay, Diagnostics, Pipeline, Replay, StepRecord};
 use pdr::io::export;
 use pdr::io::import::recipe::Recipe;
+use pdr::io::import::Log;
 use pdr::settings::Settings;
 use std::path::Path;
 
@@ -15,6 +17,35 @@ pub fn run(
 ) -> Result<(), String> {
     let cfg = settings.config().map_err(|e| e.to_string())?;
     let name = file.display().to_string();
+    let parsed = read_one(file, &name, recipe)?;
+    let shown = parsed.warnings.len().min(10);
+    for e in &parsed.warnings[..shown] {
+        eprintln!("warning: {e} (line skipped)");
+    }
+    if parsed.skipped > shown as u64 {
+        eprintln!(
+            "warning: {} more lines skipped",
+            parsed.skipped - shown as u64
+        );
+    }
+    let r = replay(parsed.dated(&cfg), &parsed.records).map_err(|e| e.to_string())?;
+    for (i, e) in r.errors.iter().take(10) {
+        eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
+    }
+    if r.refused > 10 {
+        eprintln!("warning: {name}: {} more records refused", r.refused - 10);
+    }
+    let p = &r.pipeline;
+    let d = p.diagnostics();
+    print_walk(&name, &parsed, &r, &d);
+    print_sensors(p, &d);
+    print_fusion(p, &d);
+    write_outputs(&outputs, &name, p)
+}
+
+/// The one log that `file` holds, read as usual or, with `recipe`, by the recipe (whose checks'
+/// warnings and notes go to standard error). An error when it holds none or several.
+fn read_one(file: &Path, name: &str, recipe: Option<&Recipe>) -> Result<Log, String> {
     let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
     let mut logs = match recipe {
         Some(r) => {
@@ -42,39 +73,22 @@ pub fn run(
         }
         None => pdr::io::import::import_all(&mut set),
     };
-    let parsed = match logs.len() {
-        0 => {
-            return Err(format!(
-                "{name}: no recognisable log (see README, Import; for another recorder's files, \
-                 describe them with `--recipe FILE`, see \"Logs from any recorder\")"
-            ))
-        }
-        1 => logs.pop().expect("one log").map_err(|e| e.to_string())?,
-        n => {
-            return Err(format!(
-                "{name} holds {n} logs; give one of them, or use `pdr eval`"
-            ))
-        }
-    };
-    let shown = parsed.warnings.len().min(10);
-    for e in &parsed.warnings[..shown] {
-        eprintln!("warning: {e} (line skipped)");
+    match logs.len() {
+        0 => Err(format!(
+            "{name}: no recognisable log (see README, Import; for another recorder's files, \
+             describe them with `--recipe FILE`, see \"Logs from any recorder\")"
+        )),
+        1 => logs.pop().expect("one log").map_err(|e| e.to_string()),
+        n => Err(format!(
+            "{name} holds {n} logs; give one of them, or use `pdr eval`"
+        )),
     }
-    if parsed.skipped > shown as u64 {
-        eprintln!(
-            "warning: {} more lines skipped",
-            parsed.skipped - shown as u64
-        );
-    }
-    let r = replay(parsed.dated(&cfg), &parsed.records).map_err(|e| e.to_string())?;
-    for (i, e) in r.errors.iter().take(10) {
-        eprintln!("warning: {name}: record {}: {e} (record skipped)", i + 1);
-    }
-    if r.refused > 10 {
-        eprintln!("warning: {name}: {} more records refused", r.refused - 10);
-    }
+}
+
+/// The summary's first part: the log, the orientation source, the steps and their activities,
+/// the distance, where the walk ended and how the phone was carried.
+fn print_walk(name: &str, parsed: &Log, r: &Replay, d: &Diagnostics) {
     let p = &r.pipeline;
-    let d = p.diagnostics();
     let track = p.track();
     let (t0, t1) = d.time_span.unwrap_or((0.0, 0.0));
     out!("file          {name}");
@@ -98,7 +112,7 @@ pub fn run(
         None => out!("orientation   none (no IMU sample)"),
     }
     out!("duration      {:.1} s", t1 - t0);
-    if d.placement == pdr::engine::foot::placement::Placement::Foot {
+    if d.placement == Placement::Foot {
         out!("mode          foot (zero-velocity updates; a stride counts as two steps)");
         out!("strides       {} ({} steps)", d.strides, d.steps);
     } else {
@@ -107,28 +121,7 @@ pub fn run(
     if d.detector_fallback {
         out!("detector      PLL: the pitch detector needs a gyroscope, which this log has not");
     }
-    // The activities of the steps (Munoz Diaz 2015 §4.3 where the leg pitch shows a thigh).
-    let mut acts: Vec<(pdr::engine::Activity, usize)> = Vec::new();
-    for s in track {
-        match acts.iter_mut().find(|a| a.0 == s.activity) {
-            Some(a) => a.1 += 1,
-            None => acts.push((s.activity, 1)),
-        }
-    }
-    if !acts.is_empty() {
-        let on_thigh = track
-            .iter()
-            .filter(|s| s.pitch_amplitude_deg.is_some())
-            .count();
-        let words: Vec<String> = acts
-            .iter()
-            .map(|(a, n)| format!("{n} {}", a.as_str()))
-            .collect();
-        out!(
-            "activities    {} ({on_thigh} steps with a thigh's leg pitch)",
-            words.join(", ")
-        );
-    }
+    print_activities(track);
     out!("distance      {:.1} m", d.distance_m);
     if let Some(last) = track.last() {
         out!("final east    {:.1} m", last.east_m);
@@ -143,11 +136,44 @@ pub fn run(
             );
         }
     }
-    if d.placement != pdr::engine::foot::placement::Placement::Foot {
+    if d.placement != Placement::Foot {
         if let Some(c) = pdr::analysis::carry_text(track) {
             out!("carried       {c}");
         }
     }
+}
+
+/// The activities of the steps (Munoz Diaz 2015 §4.3 where the leg pitch shows a thigh), in
+/// the order they first occur, with how many steps showed a thigh's leg pitch.
+fn print_activities(track: &[StepRecord]) {
+    let mut acts: Vec<(pdr::engine::Activity, usize)> = Vec::new();
+    for s in track {
+        match acts.iter_mut().find(|a| a.0 == s.activity) {
+            Some(a) => a.1 += 1,
+            None => acts.push((s.activity, 1)),
+        }
+    }
+    if acts.is_empty() {
+        return;
+    }
+    let on_thigh = track
+        .iter()
+        .filter(|s| s.pitch_amplitude_deg.is_some())
+        .count();
+    let words: Vec<String> = acts
+        .iter()
+        .map(|(a, n)| format!("{n} {}", a.as_str()))
+        .collect();
+    out!(
+        "activities    {} ({on_thigh} steps with a thigh's leg pitch)",
+        words.join(", ")
+    );
+}
+
+/// The summary's sensor lines: the magnetometer's disturbances, the gaps, the handling, the
+/// steps without a heading and the GNSS origin.
+fn print_sensors(p: &Pipeline, d: &Diagnostics) {
+    let track = p.track();
     let m = p.magnetic_diagnostics();
     if let Some((size, dip)) = m.reference {
         let held = track.iter().filter(|s| s.gyro_heading).count();
@@ -177,31 +203,44 @@ pub fn run(
             fr.lon0_deg
         );
     }
+}
+
+/// The summary's fusion lines, for a log with GNSS fixes: the fixes' fates, the learnt
+/// corrections and the receiver's on time.
+fn print_fusion(p: &Pipeline, d: &Diagnostics) {
+    let fused = p.fused();
+    let (Some(c), Some(last)) = (d.fix_counts, fused.last()) else {
+        return;
+    };
+    out!(
+        "fused         {} steps; fixes used {}, gated {}, too inaccurate {}, stale {}, receiver off {}, resets {}",
+        fused.len(),
+        c.used,
+        c.gated,
+        c.too_inaccurate,
+        c.stale,
+        c.receiver_off,
+        c.resets
+    );
+    out!(
+        "corrections   step length × {:.3}, heading {:+.1}° (declination {:+.2}°{})",
+        last.scale,
+        last.bias_rad.to_degrees(),
+        d.declination_deg.unwrap_or(0.0),
+        d.declination_note
+            .map_or(String::new(), |n| format!("; {n}"))
+    );
+    if let Some((on, span)) = d.gnss_on_s {
+        out!("gnss on       {on:.0} s of {span:.0} s");
+    }
+}
+
+/// Writes the files asked for: the track (CSV), the track with the fusion's features (GeoJSON)
+/// and the fused track (CSV, which needs a GNSS fix).
+fn write_outputs(outputs: &Outputs, name: &str, p: &Pipeline) -> Result<(), String> {
+    let track = p.track();
     let fused = p.fused();
     let smoothed = p.smoothed();
-    if let (Some(c), Some(last)) = (d.fix_counts, fused.last()) {
-        out!(
-            "fused         {} steps; fixes used {}, gated {}, too inaccurate {}, stale {}, receiver off {}, resets {}",
-            fused.len(),
-            c.used,
-            c.gated,
-            c.too_inaccurate,
-            c.stale,
-            c.receiver_off,
-            c.resets
-        );
-        out!(
-            "corrections   step length × {:.3}, heading {:+.1}° (declination {:+.2}°{})",
-            last.scale,
-            last.bias_rad.to_degrees(),
-            d.declination_deg.unwrap_or(0.0),
-            d.declination_note
-                .map_or(String::new(), |n| format!("; {n}"))
-        );
-        if let Some((on, span)) = d.gnss_on_s {
-            out!("gnss on       {on:.0} s of {span:.0} s");
-        }
-    }
     if let Some(out) = outputs.track {
         std::fs::write(out, export::track_csv(track, p.frame()))
             .map_err(|e| format!("{}: {e}", out.display()))?;

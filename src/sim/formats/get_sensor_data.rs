@@ -17,6 +17,25 @@ impl Walk<'_> {
     /// is seconds since boot. The reader's least-delay offset therefore puts each sample back at
     /// its time since the start.
     pub(super) fn get_sensor_data(&self, sim: &Simulation) -> Vec<(String, Vec<u8>)> {
+        let mut lines = self.gsd_record_lines();
+        lines.extend(self.gsd_pressure_lines());
+        lines.extend(self.gsd_landmark_lines(sim));
+        // Stable: lines of the same `AppTimestamp` keep the order above.
+        lines.sort_by_key(|l| l.0);
+        let mut out = self.gsd_header();
+        for (_, l) in lines {
+            out.push_str(&l);
+            out.push('\n');
+        }
+        vec![(
+            format!("logfile_{}.txt", self.name('_', '_', '_')),
+            out.into_bytes(),
+        )]
+    }
+
+    /// The `ACCE`, `GYRO`, `MAGN` and `AHRS` lines of the IMU samples and the `GNSS` lines of
+    /// the fixes, each with its `AppTimestamp` in ms, in record order.
+    fn gsd_record_lines(&self) -> Vec<(i64, String)> {
         let mut lines: Vec<(i64, String)> = Vec::new();
         let boot_ms = BOOT_NS.div_euclid(1_000_000);
         let mut k = 0i64;
@@ -77,6 +96,13 @@ impl Walk<'_> {
                 }
             }
         }
+        lines
+    }
+
+    /// The `PRES` lines of the barometer, each with its `AppTimestamp` in ms.
+    fn gsd_pressure_lines(&self) -> Vec<(i64, String)> {
+        let boot_ms = BOOT_NS.div_euclid(1_000_000);
+        let mut lines = Vec::new();
         for (k, p) in self.pressure.iter().enumerate() {
             let rel = self.rel_ms(p.t);
             let app = rel + (k as i64 * 7) % 11;
@@ -90,7 +116,13 @@ impl Walk<'_> {
                 ),
             ));
         }
+        lines
+    }
+
+    /// The `POSI` landmarks at the walk's [`waypoints`], each with its `AppTimestamp` in ms.
+    fn gsd_landmark_lines(&self, sim: &Simulation) -> Vec<(i64, String)> {
         let frame = geodetic_frame(sim);
+        let mut lines = Vec::new();
         for (i, (t, e, n)) in waypoints(sim).into_iter().enumerate() {
             let (lat, lon, _) = frame.to_geodetic([e, n, 0.0]);
             let app = self.rel_ms(t);
@@ -106,7 +138,12 @@ impl Walk<'_> {
                 ),
             ));
         }
-        lines.sort_by_key(|l| l.0);
+        lines
+    }
+
+    /// The `%` header: the app, the date of creation (the start, UTC), the phone and the line
+    /// formats.
+    fn gsd_header(&self) -> String {
         let (y, mo, d, h, mi, s, wd) = civil(self.unix_start_ns.div_euclid(1_000_000_000));
         const DAYS: [&str; 7] = ["Sun", "Mon", "Tue", "Wed", "Thu", "Fri", "Sat"];
         const MONTHS: [&str; 12] = [
@@ -122,20 +159,11 @@ impl Walk<'_> {
             MONTHS[(mo as usize + 11) % 12]
         );
         out.push_str(GET_SENSOR_DATA_HEADER);
-        for (_, l) in lines {
-            out.push_str(&l);
-            out.push('\n');
-        }
-        vec![(
-            format!("logfile_{}.txt", self.name('_', '_', '_')),
-            out.into_bytes(),
-        )]
+        out
     }
 }
 
 /// The floor ID written in a `POSI` landmark at simulation time `t`: the true floor there.
-///
-/// The true floor at a landmark's time `t` (the simulator's clock).
 fn landmark_floor(sim: &Simulation, t: f64) -> i32 {
     sim.truth.floor_at(t)
 }

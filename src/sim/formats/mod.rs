@@ -202,6 +202,16 @@ enum Item<'a> {
     Fix(&'a GnssFix),
 }
 
+impl Item<'_> {
+    /// The record's time (the simulation's clock), s.
+    fn t(&self) -> f64 {
+        match self {
+            Item::Imu(s) => s.t,
+            Item::Fix(f) => f.t,
+        }
+    }
+}
+
 /// The records of a simulation with the clocks of the formats.
 struct Walk<'a> {
     items: Vec<Item<'a>>,
@@ -355,6 +365,12 @@ fn get_orientation(q: &UnitQuaternion<f64>) -> (f64, f64, f64) {
     )
 }
 
+/// Rz(−90°): ENU → Core Motion's (north, west, up) reference (the iOS writers' attitudes).
+fn enu_to_core_motion() -> UnitQuaternion<f64> {
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, -h))
+}
+
 /// The quaternion with w ≥ 0 (the same rotation; Android's rotation vector has w = cos(θ/2)).
 fn canonical(q: &UnitQuaternion<f64>) -> Quaternion<f64> {
     let q = *q.quaternion();
@@ -384,10 +400,7 @@ impl<'a> Walk<'a> {
                 _ => None,
             })
             .collect();
-        let first_item = items.first().map(|i| match i {
-            Item::Imu(s) => s.t,
-            Item::Fix(f) => f.t,
-        });
+        let first_item = items.first().map(Item::t);
         let first = match (first_item, pressure.first().map(|p| p.t)) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),

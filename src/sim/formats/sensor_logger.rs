@@ -2,13 +2,14 @@
 //! [`crate::io::import::sensor_logger`] reads them. May import: `engine` and `io`.
 
 use super::{
-    canonical, fixed, get_orientation, js, js_float, round_i64, standard_height_m, Item, Walk,
+    canonical, enu_to_core_motion, fixed, get_orientation, js, js_float, round_i64,
+    standard_height_m, Item, Walk,
 };
 use crate::engine::math::OnePole;
 use crate::engine::orientation::G0;
 use crate::engine::types::{GnssFix, ImuSample, PressureSample};
 use crate::io::import::Platform;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{UnitQuaternion, Vector3};
 use std::fmt::Write as _;
 
 /// Yaw, pitch and roll as apps that show angles write them (rad): yaw counter-clockwise about
@@ -21,8 +22,7 @@ fn yaw_pitch_roll(q: &UnitQuaternion<f64>) -> (f64, f64, f64) {
 /// Core Motion's attitude (device → reference frame x magnetic north, y west, z up) of a
 /// device → ENU rotation: `Rz(−90°)·q`, the inverse of the iOS reader's `Rz(+90°)`.
 fn ios_attitude(q: &UnitQuaternion<f64>) -> UnitQuaternion<f64> {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, -h)) * q
+    enu_to_core_motion() * q
 }
 
 /// Gravity as a device-frame specific force (Android sign, m/s²) for each IMU sample: from the
@@ -296,10 +296,7 @@ impl Walk<'_> {
         let mut k = 0;
         let mut pressure = self.pressure.iter().peekable();
         for item in &self.items {
-            let t = match item {
-                Item::Imu(s) => s.t,
-                Item::Fix(f) => f.t,
-            };
+            let t = item.t();
             while let Some(p) = pressure.next_if(|p| p.t <= t) {
                 out.push_str(",\n");
                 out.push_str(&element(

@@ -1,12 +1,12 @@
 //! A TyrEx recording folder of a simulated walk, Android or iOS layout, with the motion-capture
 //! truth, as [`crate::io::import::tyrex`] reads it. May import: `engine` and `io`.
 
-use super::{canonical, fixed, java_float, Walk, BOOT_NS};
+use super::{canonical, enu_to_core_motion, fixed, java_float, Walk, BOOT_NS};
 use crate::engine::orientation::G0;
 use crate::engine::types::ImuSample;
 use crate::io::import::Platform;
 use crate::sim::Simulation;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, Vector3};
 use std::fmt::Write as _;
 
 /// Motion-capture rate of `truth.csv`, Hz.
@@ -22,12 +22,6 @@ const HEADING_ACCURACY_RAD: f64 = 0.174_532_92;
 /// The phone's clock on iOS at the start of the recording, s since boot.
 pub fn ios_boot_clock_s() -> f64 {
     BOOT_NS as f64 * 1e-9
-}
-
-/// Rz(−90°): ENU → Core Motion's (north, west, up) reference.
-fn enu_to_core_motion() -> UnitQuaternion<f64> {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, -h))
 }
 
 impl Walk<'_> {
@@ -165,7 +159,7 @@ impl Walk<'_> {
                 break;
             }
             let (e, n) = sim.truth.position_at(t);
-            let z = POCKET_HEIGHT_M + ground_at(&sim.truth.up_path, t);
+            let z = POCKET_HEIGHT_M + sim.truth.height_at(t);
             while next < imu.len() && imu[next].t <= t {
                 next += 1;
             }
@@ -187,17 +181,5 @@ impl Walk<'_> {
             );
         }
         out
-    }
-}
-
-/// Height of the ground under the walker at `t`, m (linear between the samples of `up`; 0
-/// without any).
-fn ground_at(up: &[(f64, f64)], t: f64) -> f64 {
-    let i = up.partition_point(|p| p.0 <= t);
-    match (i.checked_sub(1).map(|k| up[k]), up.get(i)) {
-        (Some(a), Some(b)) if b.0 > a.0 => a.1 + (t - a.0) / (b.0 - a.0) * (b.1 - a.1),
-        (Some(a), _) => a.1,
-        (None, Some(b)) => b.1,
-        (None, None) => 0.0,
     }
 }

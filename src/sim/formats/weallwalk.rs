@@ -2,11 +2,11 @@
 //! the path's straights and turns), as [`crate::io::import::weallwalk`] reads it.
 //! May import: `engine` and `io`.
 
-use super::{canonical, fixed, Walk};
+use super::{canonical, enu_to_core_motion, fixed, Walk};
 use crate::engine::math::wrap_pi;
 use crate::engine::orientation::G0;
 use crate::sim::Simulation;
-use nalgebra::{Quaternion, UnitQuaternion, Vector3};
+use nalgebra::Vector3;
 use std::fmt::Write as _;
 
 /// A step whose path heading differs from the previous step's by more than this, degrees, is
@@ -119,12 +119,6 @@ fn compass(h: f64) -> &'static str {
     const POINTS: [&str; 8] = ["N", "NE", "E", "SE", "S", "SW", "W", "NW"];
     let k = libm::round(h.to_degrees() / 45.0).rem_euclid(8.0);
     POINTS.get(k as usize).copied().unwrap_or("N")
-}
-
-/// Rz(−90°): ENU → Core Motion's (north, west, up) reference.
-fn enu_to_core_motion() -> UnitQuaternion<f64> {
-    let h = std::f64::consts::FRAC_1_SQRT_2;
-    UnitQuaternion::new_unchecked(Quaternion::new(h, 0.0, 0.0, -h))
 }
 
 impl Walk<'_> {
