@@ -42,9 +42,9 @@
 //! sensor falls back to `AppTs`, with a warning.
 
 use super::common::{
-    add_warnings, drop_non_finite, not_a_number, pressure, rotation_vector, warn_count, Warnings,
+    add_warnings, drop_non_finite, pressure, rotation_vector, warn_count, Fields, Warnings,
 };
-use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
+use super::{file_error, number, Format, Log, Platform, Streams, Waypoint};
 use crate::engine::fusion::declination::is_unix_time_s;
 use crate::engine::geo::LocalFrame;
 use crate::engine::types::GnssFix;
@@ -157,34 +157,9 @@ struct Lines {
     fix_date: Option<f64>,
 }
 
-/// The fields of one line, for reading numbers with errors naming file, line and field.
-struct Fields<'a> {
-    f: Vec<&'a str>,
-    label: &'a str,
-    n: u64,
-}
-
-impl Fields<'_> {
-    /// Field `i` (0-based) as a number, named `name` in the error.
-    fn num(&self, i: usize, name: &str) -> Result<f64, ParseError> {
-        let s = self
-            .f
-            .get(i)
-            .ok_or_else(|| field_error(self.label, self.n, i + 1, name, "missing"))?;
-        number(s).ok_or_else(|| field_error(self.label, self.n, i + 1, name, not_a_number(s)))
-    }
-
-    /// The (AppTimestamp, SensorTimestamp) of a sensor record.
-    fn clocks(&self) -> Result<(f64, f64), ParseError> {
-        Ok((
-            self.num(1, "AppTimestamp")?,
-            self.num(2, "SensorTimestamp")?,
-        ))
-    }
-
-    fn error(&self, col: usize, name: &str, msg: impl Into<String>) -> ParseError {
-        field_error(self.label, self.n, col, name, msg)
-    }
+/// The (AppTimestamp, SensorTimestamp) of a sensor record.
+fn clocks(f: &Fields) -> Result<(f64, f64), ParseError> {
+    Ok((f.num(1, "AppTimestamp")?, f.num(2, "SensorTimestamp")?))
 }
 
 impl Lines {
@@ -201,8 +176,12 @@ impl Lines {
         while f.len() > 1 && f.last() == Some(&"") {
             f.pop();
         }
-        let f = Fields { f, label, n };
-        let res = match f.f[0] {
+        let f = Fields {
+            fields: f,
+            file: label,
+            line: n,
+        };
+        let res = match f.fields[0] {
             "POSI" => self.posi(&f),
             "PRES" => self.pres(&f),
             "GNSS" => self.gnss(&f),
@@ -222,7 +201,7 @@ impl Lines {
             return Err(f.error(4, "Latitude", "out of range"));
         }
         // The floor ID is an integer (0, −1, 2, …); written `1.0` by some tools.
-        let floor = match f.f.get(5).filter(|s| !s.is_empty()) {
+        let floor = match f.fields.get(5).filter(|s| !s.is_empty()) {
             None => None,
             Some(s) => match number(s).filter(|v| v.fract() == 0.0 && v.abs() < 1e6) {
                 Some(v) => Some(v as i32),
@@ -241,7 +220,7 @@ impl Lines {
     }
 
     fn pres(&mut self, f: &Fields) -> Result<(), ParseError> {
-        let (app, sensor) = f.clocks()?;
+        let (app, sensor) = clocks(f)?;
         let hpa = f.num(3, "Pres")?;
         // Checked here (range) and again on the app clock (time).
         pressure(app, hpa).map_err(|m| f.error(4, "Pres", m))?;
@@ -250,7 +229,7 @@ impl Lines {
     }
 
     fn gnss(&mut self, f: &Fields) -> Result<(), ParseError> {
-        let (app, sensor) = f.clocks()?;
+        let (app, sensor) = clocks(f)?;
         let fix = GnssFix {
             t: app,
             lat_deg: f.num(3, "Latit")?,
@@ -278,16 +257,16 @@ impl Lines {
     }
 
     fn ahrs(&mut self, f: &Fields) -> Result<(), ParseError> {
-        let (app, sensor) = f.clocks()?;
-        let len = f.f.len();
+        let (app, sensor) = clocks(f)?;
+        let len = f.fields.len();
         let (from, w) = if len >= 10 {
             (6, None)
         } else if (7..=9).contains(&len) {
             (3, Some(f.num(6, "w")?))
         } else {
             return Err(file_error(
-                f.label,
-                f.n,
+                f.file,
+                f.line,
                 format!("an AHRS record has 10 fields, found {len}"),
             ));
         };
@@ -304,8 +283,8 @@ impl Lines {
 
     /// An `ACCE`, `GYRO` or `MAGN` record.
     fn vector(&mut self, f: &Fields) -> Result<(), ParseError> {
-        let (app, sensor) = f.clocks()?;
-        let (names, samples) = match f.f[0] {
+        let (app, sensor) = clocks(f)?;
+        let (names, samples) = match f.fields[0] {
             "ACCE" => (["Acc_X", "Acc_Y", "Acc_Z"], &mut self.accel),
             "GYRO" => (["Gyr_X", "Gyr_Y", "Gyr_Z"], &mut self.gyro),
             _ => (["Mag_X", "Mag_Y", "Mag_Z"], &mut self.mag),
