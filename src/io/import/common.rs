@@ -284,12 +284,20 @@ pub(crate) fn read_lines(
     mut f: impl FnMut(&str, u64, &[&str]) -> Result<(), ParseError>,
 ) -> Result<(), ParseError> {
     let label = set.label(name);
-    let reader = set
-        .open(name)
-        .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
+    let reader = open(set, name, &label)?;
     each_record(reader, &label, sep, warnings, |n, fields| {
         f(&label, n, fields)
     })
+}
+
+/// Opens file `name` of a set, labelled `label`; when it cannot be, an error naming it.
+pub(crate) fn open<'a>(
+    set: &'a mut dyn FileSet,
+    name: &str,
+    label: &str,
+) -> Result<Box<dyn BufRead + 'a>, ParseError> {
+    set.open(name)
+        .map_err(|e| file_error(label, 0, format!("cannot open: {e}")))
 }
 
 /// [`read_lines`] of an open file labelled `label`: each non-empty line's fields handed to

@@ -24,8 +24,8 @@
 //! sign flipped), so no platform conversion is applied and the platform is left unknown.
 
 use super::common::{
-    add_warnings, cell, folder_label, not_a_number, set_records, split_line, warn_count, Table,
-    Warnings,
+    add_warnings, cell, folder_label, not_a_number, open, set_records, split_line, warn_count,
+    Table, Warnings,
 };
 use super::{field_error, file_error, fileset, number, FileSet, Format, Log, Streams};
 use crate::engine::types::GnssFix;
@@ -261,9 +261,7 @@ impl Reading {
     /// Reads file `name`. A damaged file is a warning: the others may still make a log.
     fn file(&mut self, set: &mut dyn FileSet, name: &str) -> Result<(), ParseError> {
         let label = set.label(name);
-        let r = set
-            .open(name)
-            .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
+        let r = open(set, name, &label)?;
         let mut table = match Table::open(r, &label, None) {
             Ok(Some(t)) => t,
             Ok(None) => return Ok(()),

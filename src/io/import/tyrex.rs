@@ -54,7 +54,7 @@
 //! `Texting`, `RunningPocket`); `None` for a folder named otherwise.
 
 use super::common::{
-    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, read_samples,
+    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, open, read_samples,
     rotation_vector, set_records, unit_quaternion, Table, Warnings,
 };
 use super::{field_error, file_error, FileSet, Format, Log, Platform, Streams, TruePosition, G0};
@@ -274,9 +274,7 @@ fn read_truth_file(
     warnings: &mut Warnings,
 ) -> Result<Vec<TruePosition>, ParseError> {
     let label = set.label(name);
-    let reader = set
-        .open(name)
-        .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
+    let reader = open(set, name, &label)?;
     Ok(read_truth(reader, &label, warnings)?.trajectory)
 }
 
