@@ -244,7 +244,7 @@ pub fn sniff(data: &[u8]) {
     }
     let name = SNIFF_NAMES[k as usize % SNIFF_NAMES.len()];
     let head = String::from_utf8_lossy(&body[..body.len().min(import::fileset::HEAD_BYTES)]);
-    let _ = import::sniff(name, &head);
+    let _ = import::sniff(&head);
     import_files(vec![(name.to_string(), body.to_vec())]);
 }
 

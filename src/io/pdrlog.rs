@@ -181,24 +181,11 @@ pub fn read(input: impl BufRead, file: &str) -> Result<Parsed, ParseError> {
 /// [`read`], with room made for `records` records at once: a large upload then needs no
 /// reallocation of its records, whose doubling would otherwise hold them twice for a moment.
 pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Parsed, ParseError> {
-    let err = |line: u64, column: Option<usize>, field: Option<&str>, message: String| ParseError {
-        file: file.to_string(),
-        line,
-        column,
-        field: field.map(str::to_string),
-        message,
-    };
     let mut out = Parsed::default();
     // An estimate too large to allocate is ignored: the records then grow as they are read.
     let _ = out.records.try_reserve(records);
     let mut fatal = None;
     let mut saw_header = false;
-    let skip = |out: &mut Parsed, e: ParseError| {
-        out.skipped += 1;
-        if out.errors.len() < MAX_WARNINGS {
-            out.errors.push(e);
-        }
-    };
     try_each_line(input, file, |n, line| {
         let line = match line {
             Ok(l) => l,
@@ -214,6 +201,7 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
         if n == 1 {
             if line != HEADER {
                 fatal = Some(err(
+                    file,
                     1,
                     None,
                     None,
@@ -227,80 +215,117 @@ pub fn read_sized(input: impl BufRead, file: &str, records: usize) -> Result<Par
             saw_header = true;
             return ControlFlow::Continue(());
         }
-        if let Some(d) = line.strip_prefix(DATE_TAG) {
-            match d.trim().parse::<f64>() {
-                Ok(v) if v.is_finite() => {
-                    out.date_unix_s.get_or_insert(v);
-                }
-                _ => skip(
-                    &mut out,
-                    err(
-                        n,
-                        Some(2),
-                        Some("date_unix_s"),
-                        format!("`{}` is not a number of seconds", d.trim()),
-                    ),
-                ),
-            }
-            return ControlFlow::Continue(());
-        }
-        if line.trim().is_empty() || line.starts_with('#') {
-            return ControlFlow::Continue(());
-        }
-        // At most 15 fields are meaningful (imu); more is an error that names the count.
-        let mut fields = [""; 16];
-        let mut len = 0;
-        for (i, x) in line.split(',').enumerate() {
-            if let Some(slot) = fields.get_mut(i) {
-                *slot = x;
-            }
-            len = i + 1;
-        }
-        let parsed = if len > fields.len() {
-            Err((
-                None,
-                None,
-                format!("{len} fields: no record has more than 15"),
-            ))
-        } else {
-            parse_record(&fields[..len])
-        };
-        match parsed {
-            Ok(r) => out.records.push(r),
-            Err((col, field, msg)) => skip(&mut out, err(n, col, field, msg)),
-        }
+        read_line(&mut out, file, n, line);
         ControlFlow::Continue(())
     })?;
-    // Records are put in time order (a damaged or hand-edited file); the engine needs it.
-    let time = Record::t;
-    let mut latest = f64::NEG_INFINITY;
-    let mut late = 0u64;
-    for r in &out.records {
-        let t = time(r);
-        if t < latest {
-            late += 1;
-        }
-        latest = latest.max(t);
-    }
-    if late > 0 {
-        out.records.sort_by(|a, b| time(a).total_cmp(&time(b)));
-        // A notice, not a skipped line: nothing is lost.
-        out.errors.push(err(
-            0,
-            None,
-            Some("t_s"),
-            format!("{late} record(s) earlier than a record before them, put back in time order"),
-        ));
-    }
+    put_in_time_order(&mut out, file);
     match fatal {
         Some(e) => Err(e),
         None if !saw_header => Err(err(
+            file,
             1,
             None,
             None,
             format!("empty file: a pdr-log starts with `{HEADER}`"),
         )),
         None => Ok(out),
+    }
+}
+
+/// An error of `file`.
+fn err(
+    file: &str,
+    line: u64,
+    column: Option<usize>,
+    field: Option<&str>,
+    message: String,
+) -> ParseError {
+    ParseError {
+        file: file.to_string(),
+        line,
+        column,
+        field: field.map(str::to_string),
+        message,
+    }
+}
+
+/// Records a skipped line (the first [`MAX_WARNINGS`] are kept).
+fn skip(out: &mut Parsed, e: ParseError) {
+    out.skipped += 1;
+    if out.errors.len() < MAX_WARNINGS {
+        out.errors.push(e);
+    }
+}
+
+/// Reads line `n` after the version tag: the date comment, another comment, or a record.
+fn read_line(out: &mut Parsed, file: &str, n: u64, line: &str) {
+    if let Some(d) = line.strip_prefix(DATE_TAG) {
+        match d.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => {
+                out.date_unix_s.get_or_insert(v);
+            }
+            _ => skip(
+                out,
+                err(
+                    file,
+                    n,
+                    Some(2),
+                    Some("date_unix_s"),
+                    format!("`{}` is not a number of seconds", d.trim()),
+                ),
+            ),
+        }
+        return;
+    }
+    if line.trim().is_empty() || line.starts_with('#') {
+        return;
+    }
+    // At most 15 fields are meaningful (imu); more is an error that names the count.
+    let mut fields = [""; 16];
+    let mut len = 0;
+    for (i, x) in line.split(',').enumerate() {
+        if let Some(slot) = fields.get_mut(i) {
+            *slot = x;
+        }
+        len = i + 1;
+    }
+    let parsed = if len > fields.len() {
+        Err((
+            None,
+            None,
+            format!("{len} fields: no record has more than 15"),
+        ))
+    } else {
+        parse_record(&fields[..len])
+    };
+    match parsed {
+        Ok(r) => out.records.push(r),
+        Err((col, field, msg)) => skip(out, err(file, n, col, field, msg)),
+    }
+}
+
+/// Puts the records in time order (a damaged or hand-edited file; the engine needs it), with a
+/// notice saying how many were out of it.
+fn put_in_time_order(out: &mut Parsed, file: &str) {
+    let mut latest = f64::NEG_INFINITY;
+    let mut late = 0u64;
+    for r in &out.records {
+        let t = r.t();
+        if t < latest {
+            late += 1;
+        }
+        latest = latest.max(t);
+    }
+    if late > 0 {
+        out.records.sort_by(|a, b| a.t().total_cmp(&b.t()));
+        // A notice, not a skipped line: nothing is lost.
+        out.errors.push(err(
+            file,
+            0,
+            None,
+            Some("t_s"),
+            format!("{late} record(s) earlier than a record before them, put back in time order"),
+        ));
     }
 }
 
@@ -335,12 +360,6 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
         whole: true,
         ..Recovered::default()
     };
-    fn note(out: &mut Recovered, s: String) {
-        out.whole = false;
-        if out.notes.len() < MAX_WARNINGS {
-            out.notes.push(s);
-        }
-    }
     let mut order: Vec<usize> = (0..pieces.len()).collect();
     order.sort_by_key(|&i| pieces[i].0);
     if order.iter().enumerate().any(|(k, &i)| k != i) {
@@ -351,106 +370,34 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
     for &i in &order {
         let (seq, text) = pieces[i];
         if seq < expected {
-            note(
-                &mut out,
-                format!("piece {seq} is stored twice: the second copy is ignored"),
-            );
+            out.note(format!(
+                "piece {seq} is stored twice: the second copy is ignored"
+            ));
             continue;
         }
         if seq > expected {
             let n = seq - expected;
             out.missing_pieces += n;
             gap_before = true;
-            note(
-                &mut out,
-                if n == 1 {
-                    format!("piece {expected} is missing: the walk has a gap there")
-                } else {
-                    format!(
-                        "pieces {expected} to {} are missing: the walk has a gap there",
-                        seq - 1
-                    )
-                },
-            );
+            out.note(if n == 1 {
+                format!("piece {expected} is missing: the walk has a gap there")
+            } else {
+                format!(
+                    "pieces {expected} to {} are missing: the walk has a gap there",
+                    seq - 1
+                )
+            });
         }
         expected = seq + 1;
         let Some(text) = text else {
             out.skipped_lines += 1;
             gap_before = true;
-            note(&mut out, format!("piece {seq} is not text: skipped"));
+            out.note(format!("piece {seq} is not text: skipped"));
             continue;
         };
-        let body = if text.is_empty() || text.ends_with('\n') {
-            text
-        } else {
-            out.skipped_lines += 1;
-            note(
-                &mut out,
-                format!("piece {seq} ends in the middle of a line: that line was dropped"),
-            );
-            &text[..text.rfind('\n').map_or(0, |k| k + 1)]
-        };
-        let tagged = body.lines().next() == Some(HEADER);
-        if seq == 0 && !tagged {
-            note(
-                &mut out,
-                format!("the recording does not start with `{HEADER}`: read as a pdr-log 1"),
-            );
-        }
-        // Each piece is read on its own, so that line numbers are the piece's.
-        let prefix = if tagged { "" } else { "# pdr-log 1\n" };
-        let shift = u64::from(!tagged);
-        let parsed = match read(prefix.as_bytes().chain(body.as_bytes()), "") {
-            Ok(p) => p,
-            Err(e) => {
-                out.skipped_lines += 1;
-                note(&mut out, format!("piece {seq}: {}", e.message));
-                continue;
-            }
-        };
-        out.skipped_lines += parsed.skipped;
-        for e in &parsed.errors {
-            let mut s = format!("piece {seq}");
-            if e.line > 0 {
-                let _ = write!(s, ", line {}", e.line - shift);
-            }
-            if let Some(c) = e.column {
-                let _ = write!(s, ", column {c}");
-            }
-            if let Some(f) = &e.field {
-                let _ = write!(s, ", field `{f}`");
-            }
-            let _ = write!(s, ": {}", e.message);
-            note(&mut out, s);
-        }
-        if gap_before {
-            let t0 = out.records.last().map(|r| match *r {
-                Record::Gap(_, t1) => t1,
-                r => r.t(),
-            });
-            let t1 = parsed.records.first().map(record_time);
-            if let (Some(t0), Some(t1)) = (t0, t1) {
-                if t1 > t0 {
-                    out.records.push(Record::Gap(t0, t1));
-                }
-            }
-            gap_before = parsed.records.is_empty();
-        }
-        out.records.extend(parsed.records);
+        gap_before = out.piece(seq, text, gap_before);
     }
-    let late = out
-        .records
-        .windows(2)
-        .filter(|w| record_time(&w[1]) < record_time(&w[0]))
-        .count();
-    if late > 0 {
-        out.records
-            .sort_by(|a, b| record_time(a).total_cmp(&record_time(b)));
-        note(
-            &mut out,
-            format!("{late} record(s) earlier than a record before them, put back in time order"),
-        );
-    }
+    out.put_in_time_order();
     out.samples = out
         .records
         .iter()
@@ -459,13 +406,102 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
     out
 }
 
-/// The time a record is ordered by: its own, a gap's start.
-fn record_time(r: &Record) -> f64 {
-    r.t()
+impl Recovered {
+    /// Notes a problem: the log is then not whole.
+    fn note(&mut self, s: String) {
+        self.whole = false;
+        if self.notes.len() < MAX_WARNINGS {
+            self.notes.push(s);
+        }
+    }
+
+    /// Reads piece `seq`'s text and adds its records, after a `gap` record when `gap_before`
+    /// (pieces or records are missing before it). Returns whether a gap is still open after it.
+    fn piece(&mut self, seq: u64, text: &str, gap_before: bool) -> bool {
+        let body = if text.is_empty() || text.ends_with('\n') {
+            text
+        } else {
+            self.skipped_lines += 1;
+            self.note(format!(
+                "piece {seq} ends in the middle of a line: that line was dropped"
+            ));
+            &text[..text.rfind('\n').map_or(0, |k| k + 1)]
+        };
+        let tagged = body.lines().next() == Some(HEADER);
+        if seq == 0 && !tagged {
+            self.note(format!(
+                "the recording does not start with `{HEADER}`: read as a pdr-log 1"
+            ));
+        }
+        // Each piece is read on its own, so that line numbers are the piece's.
+        let prefix = if tagged { "" } else { "# pdr-log 1\n" };
+        let shift = u64::from(!tagged);
+        let parsed = match read(prefix.as_bytes().chain(body.as_bytes()), "") {
+            Ok(p) => p,
+            Err(e) => {
+                self.skipped_lines += 1;
+                self.note(format!("piece {seq}: {}", e.message));
+                return gap_before;
+            }
+        };
+        self.skipped_lines += parsed.skipped;
+        for e in &parsed.errors {
+            self.note(piece_note(seq, e, shift));
+        }
+        let mut gap_open = gap_before;
+        if gap_before {
+            let t0 = self.records.last().map(|r| match *r {
+                Record::Gap(_, t1) => t1,
+                r => r.t(),
+            });
+            let t1 = parsed.records.first().map(Record::t);
+            if let (Some(t0), Some(t1)) = (t0, t1) {
+                if t1 > t0 {
+                    self.records.push(Record::Gap(t0, t1));
+                }
+            }
+            gap_open = parsed.records.is_empty();
+        }
+        self.records.extend(parsed.records);
+        gap_open
+    }
+
+    /// Puts the records in time order, with a note saying how many were out of it.
+    fn put_in_time_order(&mut self) {
+        let late = self
+            .records
+            .windows(2)
+            .filter(|w| w[1].t() < w[0].t())
+            .count();
+        if late > 0 {
+            self.records.sort_by(|a, b| a.t().total_cmp(&b.t()));
+            self.note(format!(
+                "{late} record(s) earlier than a record before them, put back in time order"
+            ));
+        }
+    }
+}
+
+/// A problem of piece `seq` as a note: `piece 12, line 3, column 4, field `ay`: …`, the line
+/// counted in the piece (`shift` lines were added before it to read it).
+fn piece_note(seq: u64, e: &ParseError, shift: u64) -> String {
+    let mut s = format!("piece {seq}");
+    if e.line > 0 {
+        let _ = write!(s, ", line {}", e.line - shift);
+    }
+    if let Some(c) = e.column {
+        let _ = write!(s, ", column {c}");
+    }
+    if let Some(f) = &e.field {
+        let _ = write!(s, ", field `{f}`");
+    }
+    let _ = write!(s, ": {}", e.message);
+    s
 }
 
 type FieldErr = (Option<usize>, Option<&'static str>, String);
 
+/// One record's fields (split at commas), checked against its kind's field names.
 fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
     let kind = rec.first().copied().unwrap_or("").trim();
     let names: &[&'static str] = match kind {
@@ -494,83 +530,10 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
             ),
         ));
     }
-    let num = |i: usize| -> Result<Option<f64>, FieldErr> {
-        let s = rec[i].trim();
-        if s.is_empty() {
-            return Ok(None);
-        }
-        match s.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(Some(v)),
-            Ok(_) => Err((
-                Some(i + 1),
-                Some(names[i]),
-                format!("`{s}` is not a finite number"),
-            )),
-            Err(_) => Err((
-                Some(i + 1),
-                Some(names[i]),
-                format!("`{s}` is not a number"),
-            )),
-        }
-    };
-    let req = |i: usize| {
-        num(i)?.ok_or((
-            Some(i + 1),
-            Some(names[i]),
-            "required value is empty".to_string(),
-        ))
-    };
-    let group = |i: usize| -> Result<Option<[f64; 3]>, FieldErr> {
-        match (num(i)?, num(i + 1)?, num(i + 2)?) {
-            (Some(a), Some(b), Some(c)) => Ok(Some([a, b, c])),
-            (None, None, None) => Ok(None),
-            _ => Err((
-                Some(i + 1),
-                Some(names[i]),
-                format!(
-                    "the group {}..{} must be all present or all empty",
-                    names[i],
-                    names[i + 2]
-                ),
-            )),
-        }
-    };
+    let v = Values { rec, names };
     Ok(match kind {
         "imu" | "foot" => {
-            let q = match (num(11)?, group(12)?) {
-                (Some(w), Some([x, y, z])) => {
-                    let q = Quaternion::new(w, x, y, z);
-                    let n = q.norm();
-                    if (n - 1.0).abs() > 0.01 {
-                        return Err((
-                            Some(12),
-                            Some("qw"),
-                            format!("quaternion norm is {n:.4}, not 1"),
-                        ));
-                    }
-                    // Keep a quaternion written by us bit for bit; renormalise anything else.
-                    Some(if (n - 1.0).abs() < 1e-12 {
-                        UnitQuaternion::new_unchecked(q)
-                    } else {
-                        UnitQuaternion::from_quaternion(q)
-                    })
-                }
-                (None, None) => None,
-                _ => {
-                    return Err((
-                        Some(12),
-                        Some("qw"),
-                        "the group qw..qz must be all present or all empty".into(),
-                    ))
-                }
-            };
-            let s = ImuSample {
-                t: req(1)?,
-                accel: Vector3::new(req(2)?, req(3)?, req(4)?),
-                gyro: group(5)?.map(Vector3::from),
-                mag: group(8)?.map(Vector3::from),
-                orientation: q,
-            };
+            let s = imu_sample(&v)?;
             if kind == "foot" {
                 Record::Foot(s)
             } else {
@@ -578,19 +541,112 @@ fn parse_record(rec: &[&str]) -> Result<Record, FieldErr> {
             }
         }
         "gnss" => Record::Gnss(GnssFix {
-            t: req(1)?,
-            lat_deg: req(2)?,
-            lon_deg: req(3)?,
-            h_accuracy_m: req(4)?,
-            altitude_m: num(5)?,
-            speed_mps: num(6)?,
-            bearing_deg: num(7)?,
+            t: v.req(1)?,
+            lat_deg: v.req(2)?,
+            lon_deg: v.req(3)?,
+            h_accuracy_m: v.req(4)?,
+            altitude_m: v.num(5)?,
+            speed_mps: v.num(6)?,
+            bearing_deg: v.num(7)?,
         }),
         "pressure" => Record::Pressure(crate::engine::PressureSample {
-            t: req(1)?,
-            hpa: req(2)?,
+            t: v.req(1)?,
+            hpa: v.req(2)?,
         }),
-        _ => Record::Gap(req(1)?, req(2)?),
+        _ => Record::Gap(v.req(1)?, v.req(2)?),
+    })
+}
+
+/// The fields of a record and their names, as many of each.
+struct Values<'a> {
+    rec: &'a [&'a str],
+    names: &'a [&'static str],
+}
+
+impl Values<'_> {
+    /// Field `i`: `None` when empty, an error naming it when not a finite number.
+    fn num(&self, i: usize) -> Result<Option<f64>, FieldErr> {
+        let s = self.rec[i].trim();
+        if s.is_empty() {
+            return Ok(None);
+        }
+        match s.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Some(v)),
+            Ok(_) => Err((
+                Some(i + 1),
+                Some(self.names[i]),
+                format!("`{s}` is not a finite number"),
+            )),
+            Err(_) => Err((
+                Some(i + 1),
+                Some(self.names[i]),
+                format!("`{s}` is not a number"),
+            )),
+        }
+    }
+
+    /// Field `i`, which must not be empty.
+    fn req(&self, i: usize) -> Result<f64, FieldErr> {
+        self.num(i)?.ok_or((
+            Some(i + 1),
+            Some(self.names[i]),
+            "required value is empty".to_string(),
+        ))
+    }
+
+    /// Fields `i..i + 3`, all present or all empty.
+    fn group(&self, i: usize) -> Result<Option<[f64; 3]>, FieldErr> {
+        match (self.num(i)?, self.num(i + 1)?, self.num(i + 2)?) {
+            (Some(a), Some(b), Some(c)) => Ok(Some([a, b, c])),
+            (None, None, None) => Ok(None),
+            _ => Err((
+                Some(i + 1),
+                Some(self.names[i]),
+                format!(
+                    "the group {}..{} must be all present or all empty",
+                    self.names[i],
+                    self.names[i + 2]
+                ),
+            )),
+        }
+    }
+}
+
+/// The sample of an `imu` or `foot` record.
+fn imu_sample(v: &Values) -> Result<ImuSample, FieldErr> {
+    let q = match (v.num(11)?, v.group(12)?) {
+        (Some(w), Some([x, y, z])) => {
+            let q = Quaternion::new(w, x, y, z);
+            let n = q.norm();
+            if (n - 1.0).abs() > 0.01 {
+                return Err((
+                    Some(12),
+                    Some("qw"),
+                    format!("quaternion norm is {n:.4}, not 1"),
+                ));
+            }
+            // Keep a quaternion written by us bit for bit; renormalise anything else.
+            Some(if (n - 1.0).abs() < 1e-12 {
+                UnitQuaternion::new_unchecked(q)
+            } else {
+                UnitQuaternion::from_quaternion(q)
+            })
+        }
+        (None, None) => None,
+        _ => {
+            return Err((
+                Some(12),
+                Some("qw"),
+                "the group qw..qz must be all present or all empty".into(),
+            ))
+        }
+    };
+    Ok(ImuSample {
+        t: v.req(1)?,
+        accel: Vector3::new(v.req(2)?, v.req(3)?, v.req(4)?),
+        gyro: v.group(5)?.map(Vector3::from),
+        mag: v.group(8)?.map(Vector3::from),
+        orientation: q,
     })
 }
 

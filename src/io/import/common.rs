@@ -224,6 +224,33 @@ impl<R: BufRead> Table<R> {
     }
 }
 
+/// The fields of one line of a log with one record a line, with what errors name: its file and
+/// line.
+pub(crate) struct Fields<'a> {
+    /// The fields, trimmed.
+    pub fields: Vec<&'a str>,
+    /// The file's label.
+    pub file: &'a str,
+    /// 1-based line number.
+    pub line: u64,
+}
+
+impl Fields<'_> {
+    /// Field `i` (0-based) as a number, named `name` in the error.
+    pub fn num(&self, i: usize, name: &str) -> Result<f64, ParseError> {
+        let s = self
+            .fields
+            .get(i)
+            .ok_or_else(|| self.error(i + 1, name, "missing"))?;
+        number(s).ok_or_else(|| self.error(i + 1, name, not_a_number(s)))
+    }
+
+    /// An error on column `col` (1-based) named `name` of this line.
+    pub fn error(&self, col: usize, name: &str, message: impl Into<String>) -> ParseError {
+        field_error(self.file, self.line, col, name, message)
+    }
+}
+
 /// Parses fields `[from, from + N)` of a split line as numbers, naming the first bad one.
 pub(crate) fn numbers<const N: usize>(
     fields: &[&str],
@@ -257,10 +284,32 @@ pub(crate) fn read_lines(
     mut f: impl FnMut(&str, u64, &[&str]) -> Result<(), ParseError>,
 ) -> Result<(), ParseError> {
     let label = set.label(name);
-    let reader = set
-        .open(name)
-        .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
-    each_line(reader, &label, |n, line| {
+    let reader = open(set, name, &label)?;
+    each_record(reader, &label, sep, warnings, |n, fields| {
+        f(&label, n, fields)
+    })
+}
+
+/// Opens file `name` of a set, labelled `label`; when it cannot be, an error naming it.
+pub(crate) fn open<'a>(
+    set: &'a mut dyn FileSet,
+    name: &str,
+    label: &str,
+) -> Result<Box<dyn BufRead + 'a>, ParseError> {
+    set.open(name)
+        .map_err(|e| file_error(label, 0, format!("cannot open: {e}")))
+}
+
+/// [`read_lines`] of an open file labelled `label`: each non-empty line's fields handed to
+/// `f(line, fields)`; an unreadable line, or an `Err` from `f`, is a warning.
+pub(crate) fn each_record(
+    reader: impl BufRead,
+    label: &str,
+    sep: Option<char>,
+    warnings: &mut Warnings,
+    mut f: impl FnMut(u64, &[&str]) -> Result<(), ParseError>,
+) -> Result<(), ParseError> {
+    each_line(reader, label, |n, line| {
         let line = match line {
             Ok(l) => l,
             Err(e) => return warnings.push(e),
@@ -272,7 +321,7 @@ pub(crate) fn read_lines(
             Some(c) => line.split(c).collect(),
             None => line.split_whitespace().collect(),
         };
-        if let Err(e) = f(&label, n, &fields) {
+        if let Err(e) = f(n, &fields) {
             warnings.push(e);
         }
     })

@@ -42,9 +42,9 @@
 //! sensor falls back to `AppTs`, with a warning.
 
 use super::common::{
-    add_warnings, drop_non_finite, not_a_number, pressure, rotation_vector, warn_count, Warnings,
+    add_warnings, drop_non_finite, pressure, rotation_vector, warn_count, Fields, Warnings,
 };
-use super::{field_error, file_error, number, Format, Log, Platform, Streams, Waypoint};
+use super::{file_error, number, Format, Log, Platform, Streams, Waypoint};
 use crate::engine::fusion::declination::is_unix_time_s;
 use crate::engine::geo::LocalFrame;
 use crate::engine::types::GnssFix;
@@ -122,27 +122,53 @@ fn to_app_clock<T: Copy>(samples: &Dual<T>) -> (Vec<(f64, T)>, Mapping) {
 
 /// Reads a GetSensorData log (see the module documentation).
 pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
-    let mut log = Log::new(label, Format::GetSensorData);
-    log.platform = Some(Platform::Android);
-    let mut accel: Dual<Vector3<f64>> = Vec::new();
-    let mut gyro: Dual<Vector3<f64>> = Vec::new();
-    let mut mag: Dual<Vector3<f64>> = Vec::new();
-    let mut ahrs: Dual<UnitQuaternion<f64>> = Vec::new();
-    let mut pres: Dual<f64> = Vec::new();
-    let mut fixes = Vec::new();
-    let mut seen_fixes: HashSet<[u64; 3]> = HashSet::new();
-    let mut posi: Vec<(f64, f64, f64, Option<i32>)> = Vec::new();
-    let mut warnings = Warnings::default();
-    let mut created: Option<f64> = None;
-    let mut fix_date: Option<f64> = None;
-    each_line(r, label, |n, line| {
-        let line = match line {
-            Ok(l) => l,
-            Err(e) => return warnings.push(e),
-        };
+    let mut lines = Lines::default();
+    each_line(r, label, |n, line| match line {
+        Ok(line) => lines.line(label, n, line),
+        Err(e) => lines.warnings.push(e),
+    })?;
+    if lines.accel.is_empty() {
+        return Err(file_error(
+            label,
+            0,
+            "no readable ACCE records: nothing to track",
+        ));
+    }
+    lines.into_log(label)
+}
+
+/// The records of a log as read, each sensor still on its two clocks.
+#[derive(Default)]
+struct Lines {
+    accel: Dual<Vector3<f64>>,
+    gyro: Dual<Vector3<f64>>,
+    mag: Dual<Vector3<f64>>,
+    ahrs: Dual<UnitQuaternion<f64>>,
+    pres: Dual<f64>,
+    fixes: Vec<GnssFix>,
+    /// (SensorTs, latitude, longitude) of the fixes kept, to drop repeats.
+    seen_fixes: HashSet<[u64; 3]>,
+    /// Landmarks: (Timestamp, latitude °, longitude °, floor).
+    posi: Vec<(f64, f64, f64, Option<i32>)>,
+    warnings: Warnings,
+    /// The header's date of creation, Unix s.
+    created: Option<f64>,
+    /// The date given by the first fix on Unix time, Unix s.
+    fix_date: Option<f64>,
+}
+
+/// The (AppTimestamp, SensorTimestamp) of a sensor record.
+fn clocks(f: &Fields) -> Result<(f64, f64), ParseError> {
+    Ok((f.num(1, "AppTimestamp")?, f.num(2, "SensorTimestamp")?))
+}
+
+impl Lines {
+    /// Reads line `n`: a comment (which may hold the date), or a record; a bad record is a
+    /// warning.
+    fn line(&mut self, label: &str, n: u64, line: &str) {
         if line.starts_with('%') || line.trim().is_empty() {
             if let Some(d) = line.split_once("Date of creation:") {
-                created = created.or_else(|| super::date::java_date(d.1));
+                self.created = self.created.or_else(|| super::date::java_date(d.1));
             }
             return;
         }
@@ -150,140 +176,177 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
         while f.len() > 1 && f.last() == Some(&"") {
             f.pop();
         }
-        let kind = f[0];
-        if !matches!(
-            kind,
-            "ACCE" | "GYRO" | "MAGN" | "AHRS" | "GNSS" | "POSI" | "PRES"
-        ) {
-            return;
-        }
-        let num = |i: usize, name: &str| -> Result<f64, ParseError> {
-            let s = f
-                .get(i)
-                .ok_or_else(|| field_error(label, n, i + 1, name, "missing"))?;
-            number(s).ok_or_else(|| field_error(label, n, i + 1, name, not_a_number(s)))
+        let f = Fields {
+            fields: f,
+            file: label,
+            line: n,
         };
-        let res = (|| -> Result<(), ParseError> {
-            match kind {
-                "POSI" => {
-                    let t = num(1, "Timestamp")?;
-                    let (lat, lon) = (num(3, "Latitude")?, num(4, "Longitude")?);
-                    if lat.abs() > 90.0 || lon.abs() > 180.0 {
-                        return Err(field_error(label, n, 4, "Latitude", "out of range"));
-                    }
-                    // The floor ID is an integer (0, −1, 2, …); written `1.0` by some tools.
-                    let floor = match f.get(5).filter(|s| !s.is_empty()) {
-                        None => None,
-                        Some(s) => match number(s).filter(|v| v.fract() == 0.0 && v.abs() < 1e6) {
-                            Some(v) => Some(v as i32),
-                            None => {
-                                warnings.push(field_error(
-                                    label,
-                                    n,
-                                    6,
-                                    "floorID",
-                                    format!("{}: landmark kept without a floor", not_an_integer(s)),
-                                ));
-                                None
-                            }
-                        },
-                    };
-                    posi.push((t, lat, lon, floor));
-                }
-                "PRES" => {
-                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
-                    let hpa = num(3, "Pres")?;
-                    // Checked here (range) and again on the app clock (time).
-                    pressure(app, hpa).map_err(|m| field_error(label, n, 4, "Pres", m))?;
-                    pres.push((app, sensor, hpa));
-                }
-                "GNSS" => {
-                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
-                    let fix = GnssFix {
-                        t: app,
-                        lat_deg: num(3, "Latit")?,
-                        lon_deg: num(4, "Long")?,
-                        altitude_m: Some(num(5, "Altitude")?),
-                        bearing_deg: Some(num(6, "Bearing")?).filter(|b| *b >= 0.0),
-                        h_accuracy_m: num(7, "Accuracy")?,
-                        speed_mps: Some(num(8, "Speed")?).filter(|v| *v >= 0.0),
-                    };
-                    fix.check().map_err(|e| {
-                        field_error(label, n, 4, "Latit", format!("invalid fix: {e}"))
-                    })?;
-                    let key = [
-                        sensor.to_bits(),
-                        fix.lat_deg.to_bits(),
-                        fix.lon_deg.to_bits(),
-                    ];
-                    if fix_date.is_none() && is_unix_time_s(sensor) {
-                        fix_date = Some(sensor - app);
-                    }
-                    // The app writes most fixes twice; a repeat is expected, not a problem.
-                    if seen_fixes.insert(key) {
-                        fixes.push(fix);
-                    }
-                }
-                "AHRS" => {
-                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
-                    let (from, w) = if f.len() >= 10 {
-                        (6, None)
-                    } else if (7..=9).contains(&f.len()) {
-                        (3, Some(num(6, "w")?))
-                    } else {
-                        return Err(file_error(
-                            label,
-                            n,
-                            format!("an AHRS record has 10 fields, found {}", f.len()),
-                        ));
-                    };
-                    let (x, y, z) = (
-                        num(from, "Quat(2)")?,
-                        num(from + 1, "Quat(3)")?,
-                        num(from + 2, "Quat(4)")?,
-                    );
-                    let q = rotation_vector(x, y, z, w).ok_or_else(|| {
-                        field_error(
-                            label,
-                            n,
-                            from + 1,
-                            "Quat(2)",
-                            "not a rotation vector (norm > 1)",
-                        )
-                    })?;
-                    ahrs.push((app, sensor, q));
-                }
-                _ => {
-                    let (app, sensor) = (num(1, "AppTimestamp")?, num(2, "SensorTimestamp")?);
-                    let names = match kind {
-                        "ACCE" => ["Acc_X", "Acc_Y", "Acc_Z"],
-                        "GYRO" => ["Gyr_X", "Gyr_Y", "Gyr_Z"],
-                        _ => ["Mag_X", "Mag_Y", "Mag_Z"],
-                    };
-                    let v = Vector3::new(num(3, names[0])?, num(4, names[1])?, num(5, names[2])?);
-                    match kind {
-                        "ACCE" => accel.push((app, sensor, v)),
-                        "GYRO" => gyro.push((app, sensor, v)),
-                        _ => mag.push((app, sensor, v)),
-                    }
-                }
-            }
-            Ok(())
-        })();
+        let res = match f.fields[0] {
+            "POSI" => self.posi(&f),
+            "PRES" => self.pres(&f),
+            "GNSS" => self.gnss(&f),
+            "AHRS" => self.ahrs(&f),
+            "ACCE" | "GYRO" | "MAGN" => self.vector(&f),
+            _ => Ok(()),
+        };
         if let Err(e) = res {
-            warnings.push(e);
+            self.warnings.push(e);
         }
-    })?;
-    if accel.is_empty() {
-        return Err(file_error(
-            label,
-            0,
-            "no readable ACCE records: nothing to track",
-        ));
     }
-    let mut s = Streams::default();
-    let mapped = |name: &str, m: Mapping, log_warnings: &mut Warnings| match m {
-        Mapping::AppClock => log_warnings.push(file_error(
+
+    fn posi(&mut self, f: &Fields) -> Result<(), ParseError> {
+        let t = f.num(1, "Timestamp")?;
+        let (lat, lon) = (f.num(3, "Latitude")?, f.num(4, "Longitude")?);
+        if lat.abs() > 90.0 || lon.abs() > 180.0 {
+            return Err(f.error(4, "Latitude", "out of range"));
+        }
+        // The floor ID is an integer (0, −1, 2, …); written `1.0` by some tools.
+        let floor = match f.fields.get(5).filter(|s| !s.is_empty()) {
+            None => None,
+            Some(s) => match number(s).filter(|v| v.fract() == 0.0 && v.abs() < 1e6) {
+                Some(v) => Some(v as i32),
+                None => {
+                    self.warnings.push(f.error(
+                        6,
+                        "floorID",
+                        format!("{}: landmark kept without a floor", not_an_integer(s)),
+                    ));
+                    None
+                }
+            },
+        };
+        self.posi.push((t, lat, lon, floor));
+        Ok(())
+    }
+
+    fn pres(&mut self, f: &Fields) -> Result<(), ParseError> {
+        let (app, sensor) = clocks(f)?;
+        let hpa = f.num(3, "Pres")?;
+        // Checked here (range) and again on the app clock (time).
+        pressure(app, hpa).map_err(|m| f.error(4, "Pres", m))?;
+        self.pres.push((app, sensor, hpa));
+        Ok(())
+    }
+
+    fn gnss(&mut self, f: &Fields) -> Result<(), ParseError> {
+        let (app, sensor) = clocks(f)?;
+        let fix = GnssFix {
+            t: app,
+            lat_deg: f.num(3, "Latit")?,
+            lon_deg: f.num(4, "Long")?,
+            altitude_m: Some(f.num(5, "Altitude")?),
+            bearing_deg: Some(f.num(6, "Bearing")?).filter(|b| *b >= 0.0),
+            h_accuracy_m: f.num(7, "Accuracy")?,
+            speed_mps: Some(f.num(8, "Speed")?).filter(|v| *v >= 0.0),
+        };
+        fix.check()
+            .map_err(|e| f.error(4, "Latit", format!("invalid fix: {e}")))?;
+        let key = [
+            sensor.to_bits(),
+            fix.lat_deg.to_bits(),
+            fix.lon_deg.to_bits(),
+        ];
+        if self.fix_date.is_none() && is_unix_time_s(sensor) {
+            self.fix_date = Some(sensor - app);
+        }
+        // The app writes most fixes twice; a repeat is expected, not a problem.
+        if self.seen_fixes.insert(key) {
+            self.fixes.push(fix);
+        }
+        Ok(())
+    }
+
+    fn ahrs(&mut self, f: &Fields) -> Result<(), ParseError> {
+        let (app, sensor) = clocks(f)?;
+        let len = f.fields.len();
+        let (from, w) = if len >= 10 {
+            (6, None)
+        } else if (7..=9).contains(&len) {
+            (3, Some(f.num(6, "w")?))
+        } else {
+            return Err(file_error(
+                f.file,
+                f.line,
+                format!("an AHRS record has 10 fields, found {len}"),
+            ));
+        };
+        let (x, y, z) = (
+            f.num(from, "Quat(2)")?,
+            f.num(from + 1, "Quat(3)")?,
+            f.num(from + 2, "Quat(4)")?,
+        );
+        let q = rotation_vector(x, y, z, w)
+            .ok_or_else(|| f.error(from + 1, "Quat(2)", "not a rotation vector (norm > 1)"))?;
+        self.ahrs.push((app, sensor, q));
+        Ok(())
+    }
+
+    /// An `ACCE`, `GYRO` or `MAGN` record.
+    fn vector(&mut self, f: &Fields) -> Result<(), ParseError> {
+        let (app, sensor) = clocks(f)?;
+        let (names, samples) = match f.fields[0] {
+            "ACCE" => (["Acc_X", "Acc_Y", "Acc_Z"], &mut self.accel),
+            "GYRO" => (["Gyr_X", "Gyr_Y", "Gyr_Z"], &mut self.gyro),
+            _ => (["Mag_X", "Mag_Y", "Mag_Z"], &mut self.mag),
+        };
+        let v = Vector3::new(
+            f.num(3, names[0])?,
+            f.num(4, names[1])?,
+            f.num(5, names[2])?,
+        );
+        samples.push((app, sensor, v));
+        Ok(())
+    }
+
+    /// The log: every sensor on the app clock, the landmarks as waypoints.
+    fn into_log(mut self, label: &str) -> Result<Log, ParseError> {
+        let mut log = Log::new(label, Format::GetSensorData);
+        log.platform = Some(Platform::Android);
+        let mut s = Streams::default();
+        let warnings = &mut self.warnings;
+        s.accel = on_app_clock(&self.accel, "ACCE", label, warnings);
+        s.gyro = on_app_clock(&self.gyro, "GYRO", label, warnings);
+        s.mag = on_app_clock(&self.mag, "MAGN", label, warnings);
+        s.orientation = on_app_clock(&self.ahrs, "AHRS", label, warnings);
+        // A reading the app clock put out of range is dropped and counted with the non-finite
+        // ones.
+        s.pressure = on_app_clock(&self.pres, "PRES", label, warnings)
+            .into_iter()
+            .map(|(t, hpa)| crate::engine::PressureSample { t, hpa })
+            .collect();
+        s.fixes = self.fixes;
+        log.truth.waypoints = waypoints(&self.posi);
+        let dropped = drop_non_finite(&mut s);
+        if s.accel.is_empty() {
+            return Err(file_error(label, 0, "no usable ACCE samples"));
+        }
+        log.records = s.into_records();
+        log.date_unix_s = self.created.or(self.fix_date);
+        add_warnings(&mut log, self.warnings);
+        warn_count(
+            &mut log,
+            dropped,
+            file_error(
+                label,
+                0,
+                format!("{dropped} sample(s) with a non-finite value, skipped"),
+            ),
+        );
+        Ok(log)
+    }
+}
+
+/// One sensor's samples on the app clock ([`to_app_clock`]), with a warning when its
+/// SensorTimestamp was unusable or some samples were skipped.
+fn on_app_clock<T: Copy>(
+    samples: &Dual<T>,
+    name: &str,
+    label: &str,
+    warnings: &mut Warnings,
+) -> Vec<(f64, T)> {
+    let (v, m) = to_app_clock(samples);
+    match m {
+        Mapping::AppClock => warnings.push(file_error(
             label,
             0,
             format!(
@@ -291,71 +354,40 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             ),
         )),
         Mapping::Offset(_, 0) => {}
-        Mapping::Offset(_, k) => log_warnings.push(file_error(
+        Mapping::Offset(_, k) => warnings.push(file_error(
             label,
             0,
             format!(
                 "{name}: {k} sample(s) with a SensorTimestamp more than {OUTLIER_S} s off, skipped"
             ),
         )),
+    }
+    v
+}
+
+/// The landmarks as waypoints in metres east/north of the first, sorted by time.
+fn waypoints(posi: &[(f64, f64, f64, Option<i32>)]) -> Vec<Waypoint> {
+    let Some(&(_, lat0, lon0, _)) = posi.first() else {
+        return Vec::new();
     };
-    let (v, m) = to_app_clock(&accel);
-    s.accel = v;
-    mapped("ACCE", m, &mut warnings);
-    let (v, m) = to_app_clock(&gyro);
-    s.gyro = v;
-    mapped("GYRO", m, &mut warnings);
-    let (v, m) = to_app_clock(&mag);
-    s.mag = v;
-    mapped("MAGN", m, &mut warnings);
-    let (v, m) = to_app_clock(&ahrs);
-    s.orientation = v;
-    mapped("AHRS", m, &mut warnings);
-    let (v, m) = to_app_clock(&pres);
-    // A reading the app clock put out of range is dropped and counted with the non-finite ones.
-    s.pressure = v
-        .into_iter()
-        .map(|(t, hpa)| crate::engine::PressureSample { t, hpa })
+    let frame = LocalFrame::new(lat0, lon0, 0.0);
+    let mut w: Vec<Waypoint> = posi
+        .iter()
+        .map(|&(t, lat, lon, floor)| {
+            let e = frame.to_enu(lat, lon, 0.0);
+            Waypoint {
+                t,
+                x_m: e[0],
+                y_m: e[1],
+                geo: Some((lat, lon)),
+                floor,
+                height_m: None,
+            }
+        })
+        .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())
         .collect();
-    mapped("PRES", m, &mut warnings);
-    s.fixes = fixes;
-    if let Some(&(_, lat0, lon0, _)) = posi.first() {
-        let frame = LocalFrame::new(lat0, lon0, 0.0);
-        let mut w: Vec<Waypoint> = posi
-            .iter()
-            .map(|&(t, lat, lon, floor)| {
-                let e = frame.to_enu(lat, lon, 0.0);
-                Waypoint {
-                    t,
-                    x_m: e[0],
-                    y_m: e[1],
-                    geo: Some((lat, lon)),
-                    floor,
-                    height_m: None,
-                }
-            })
-            .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())
-            .collect();
-        w.sort_by(|a, b| a.t.total_cmp(&b.t));
-        log.truth.waypoints = w;
-    }
-    let dropped = drop_non_finite(&mut s);
-    if s.accel.is_empty() {
-        return Err(file_error(label, 0, "no usable ACCE samples"));
-    }
-    log.records = s.into_records();
-    log.date_unix_s = created.or(fix_date);
-    add_warnings(&mut log, warnings);
-    warn_count(
-        &mut log,
-        dropped,
-        file_error(
-            label,
-            0,
-            format!("{dropped} sample(s) with a non-finite value, skipped"),
-        ),
-    );
-    Ok(log)
+    w.sort_by(|a, b| a.t.total_cmp(&b.t));
+    w
 }
 
 /// "not an integer: …" with the text cut to a readable length.

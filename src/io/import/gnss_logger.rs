@@ -19,8 +19,8 @@
 //! `OrientationDeg` holds `SensorManager.getOrientation` angles in degrees: yaw (azimuth,
 //! clockwise from magnetic north), pitch and roll. See [`orientation_quaternion`].
 
-use super::common::{add_warnings, not_a_number, set_records, warn_count, Warnings};
-use super::{field_error, file_error, number, Format, Log, Platform, Streams};
+use super::common::{add_warnings, not_a_number, set_records, warn_count, Fields, Warnings};
+use super::{file_error, number, Format, Log, Platform, Streams};
 use crate::engine::types::GnssFix;
 use crate::io::lines::each_line;
 use crate::io::ParseError;
@@ -164,16 +164,20 @@ enum Layout {
         pitch: usize,
         roll: usize,
     },
-    Fix {
-        t: usize,
-        provider: Option<usize>,
-        lat: usize,
-        lon: usize,
-        acc: usize,
-        alt: Option<usize>,
-        speed: Option<usize>,
-        bearing: Option<usize>,
-    },
+    Fix(FixColumns),
+}
+
+/// Where the values of a `Fix` are on a data line.
+#[derive(Debug, Clone, Copy)]
+struct FixColumns {
+    t: usize,
+    provider: Option<usize>,
+    lat: usize,
+    lon: usize,
+    acc: usize,
+    alt: Option<usize>,
+    speed: Option<usize>,
+    bearing: Option<usize>,
 }
 
 /// The layout of a kind from its column names (after the kind); names the first missing one.
@@ -230,7 +234,7 @@ fn layout(kind: &str, columns: &[String]) -> Result<Layout, String> {
             pitch: need(&["pitchDeg"])?,
             roll: need(&["rollDeg"])?,
         }),
-        _ => Ok(Layout::Fix {
+        _ => Ok(Layout::Fix(FixColumns {
             t: need(&[
                 "UnixTimeMillis",
                 "(UTC)TimeInMs",
@@ -244,7 +248,7 @@ fn layout(kind: &str, columns: &[String]) -> Result<Layout, String> {
             alt: find(&["AltitudeMeters", "Altitude"]),
             speed: find(&["SpeedMps", "Speed"]),
             bearing: find(&["BearingDegrees", "Bearing"]),
-        }),
+        })),
     }
 }
 
@@ -285,46 +289,36 @@ fn provider_rank(p: &str) -> u8 {
     }
 }
 
+/// What the records of a log hold, as they are read.
 #[derive(Default)]
 struct Collected {
     vectors: HashMap<&'static str, Vec<(f64, Vector3<f64>)>>,
     orientation: Vec<(f64, UnitQuaternion<f64>)>,
+    /// Fixes with their provider's rank ([`provider_rank`]).
     fixes: Vec<(u8, GnssFix)>,
+    warnings: Warnings,
+    /// Fixes without a positive accuracy.
+    invalid_fixes: u64,
 }
 
 /// Reads a GnssLogger log (see the module documentation).
 pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
-    let mut log = Log::new(label, Format::GnssLogger);
-    log.platform = Some(Platform::Android);
     let mut layouts: HashMap<&'static str, Result<Layout, String>> = HashMap::new();
     let mut c = Collected::default();
-    let mut warnings = Warnings::default();
-    let mut invalid_fixes = 0u64;
     each_line(r, label, |n, line| {
         let line = match line {
             Ok(l) => l,
-            Err(e) => return warnings.push(e),
+            Err(e) => return c.warnings.push(e),
         };
         if let Some(decl) = line.strip_prefix('#') {
-            let fields: Vec<String> = decl.split(',').map(|s| s.trim().to_string()).collect();
-            if fields.len() < 2 {
-                return;
-            }
-            if let Some(&kind) = KINDS.iter().find(|k| **k == fields[0]) {
-                let l = layout(kind, &fields[1..]);
-                if let Err(m) = &l {
-                    warnings.push(file_error(
-                        label,
-                        n,
-                        format!("`{kind}` declaration unusable: {m}; its records are skipped"),
-                    ));
-                }
-                layouts.insert(kind, l);
-            }
-            return;
+            return declare(&mut layouts, decl, label, n, &mut c.warnings);
         }
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        let Some(&kind) = KINDS.iter().find(|k| **k == fields[0]) else {
+        let f = Fields {
+            fields: line.split(',').map(str::trim).collect(),
+            file: label,
+            line: n,
+        };
+        let Some(&kind) = KINDS.iter().find(|k| **k == f.fields[0]) else {
             return;
         };
         let l = layouts.entry(kind).or_insert_with(|| {
@@ -335,137 +329,203 @@ pub fn read(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             layout(kind, &cols)
         });
         let Ok(l) = &*l else { return };
-        let num = |i: usize, name: &str| -> Result<f64, ParseError> {
-            let s = fields
-                .get(i)
-                .ok_or_else(|| field_error(label, n, i + 1, name, "missing"))?;
-            number(s).ok_or_else(|| field_error(label, n, i + 1, name, not_a_number(s)))
-        };
-        let opt = |i: Option<usize>| -> Option<f64> {
-            i.and_then(|i| fields.get(i)).and_then(|s| number(s))
-        };
-        let time = |i: usize| -> Result<f64, ParseError> {
-            let s = fields
-                .get(i)
-                .ok_or_else(|| field_error(label, n, i + 1, "time", "missing"))?;
-            ms_to_s(s).ok_or_else(|| field_error(label, n, i + 1, "time", not_a_number(s)))
-        };
-        let res = match l {
-            Layout::Vector { t, v, bias } => (|| {
-                let t = time(*t)?;
-                let mut x = Vector3::new(num(v[0], "x")?, num(v[1], "y")?, num(v[2], "z")?);
+        if let Err(e) = c.record(kind, l, &f) {
+            c.warnings.push(e);
+        }
+    })?;
+    c.into_log(label)
+}
+
+/// Reads a `# Kind,column,…` declaration line (`decl` after the `#`) into `layouts`; one of a
+/// kind we read whose columns are unusable is a warning.
+fn declare(
+    layouts: &mut HashMap<&'static str, Result<Layout, String>>,
+    decl: &str,
+    label: &str,
+    n: u64,
+    warnings: &mut Warnings,
+) {
+    let fields: Vec<String> = decl.split(',').map(|s| s.trim().to_string()).collect();
+    if fields.len() < 2 {
+        return;
+    }
+    if let Some(&kind) = KINDS.iter().find(|k| **k == fields[0]) {
+        let l = layout(kind, &fields[1..]);
+        if let Err(m) = &l {
+            warnings.push(file_error(
+                label,
+                n,
+                format!("`{kind}` declaration unusable: {m}; its records are skipped"),
+            ));
+        }
+        layouts.insert(kind, l);
+    }
+}
+
+/// Field `i` of a line as a number, `None` when absent, empty or not a number.
+fn optional(f: &Fields, i: Option<usize>) -> Option<f64> {
+    i.and_then(|i| f.fields.get(i)).and_then(|s| number(s))
+}
+
+/// Field `i` of a line as a time: Unix milliseconds → s.
+fn time(f: &Fields, i: usize) -> Result<f64, ParseError> {
+    let s = f
+        .fields
+        .get(i)
+        .ok_or_else(|| f.error(i + 1, "time", "missing"))?;
+    ms_to_s(s).ok_or_else(|| f.error(i + 1, "time", not_a_number(s)))
+}
+
+impl Collected {
+    /// Reads one data line of `kind`, whose values are placed as `layout` says.
+    fn record(
+        &mut self,
+        kind: &'static str,
+        layout: &Layout,
+        f: &Fields,
+    ) -> Result<(), ParseError> {
+        match layout {
+            Layout::Vector { t, v, bias } => {
+                let t = time(f, *t)?;
+                let mut x = Vector3::new(f.num(v[0], "x")?, f.num(v[1], "y")?, f.num(v[2], "z")?);
                 if let Some(b) = bias {
                     // A bias left empty means none was estimated.
                     x -= Vector3::new(
-                        opt(Some(b[0])).unwrap_or(0.0),
-                        opt(Some(b[1])).unwrap_or(0.0),
-                        opt(Some(b[2])).unwrap_or(0.0),
+                        optional(f, Some(b[0])).unwrap_or(0.0),
+                        optional(f, Some(b[1])).unwrap_or(0.0),
+                        optional(f, Some(b[2])).unwrap_or(0.0),
                     );
                 }
-                c.vectors.entry(kind).or_default().push((t, x));
-                Ok(())
-            })(),
+                self.vectors.entry(kind).or_default().push((t, x));
+            }
             Layout::Orientation {
                 t,
                 yaw,
                 pitch,
                 roll,
-            } => (|| {
-                let t = time(*t)?;
+            } => {
+                let t = time(f, *t)?;
                 let d = std::f64::consts::PI / 180.0;
                 let q = orientation_quaternion(
-                    num(*yaw, "yawDeg")? * d,
-                    num(*pitch, "pitchDeg")? * d,
-                    num(*roll, "rollDeg")? * d,
+                    f.num(*yaw, "yawDeg")? * d,
+                    f.num(*pitch, "pitchDeg")? * d,
+                    f.num(*roll, "rollDeg")? * d,
                 );
-                c.orientation.push((t, q));
-                Ok(())
-            })(),
-            Layout::Fix {
-                t,
-                provider,
-                lat,
-                lon,
-                acc,
-                alt,
-                speed,
-                bearing,
-            } => (|| {
-                let t = time(*t)?;
-                let acc_m = match fields.get(*acc).map(|s| s.trim()) {
-                    None | Some("") => None,
-                    Some(_) => Some(num(*acc, "Accuracy")?),
-                };
-                let Some(acc_m) = acc_m.filter(|a| *a > 0.0) else {
-                    invalid_fixes += 1;
-                    return Ok(());
-                };
-                let fix = GnssFix {
-                    t,
-                    lat_deg: num(*lat, "Latitude")?,
-                    lon_deg: num(*lon, "Longitude")?,
-                    h_accuracy_m: acc_m,
-                    altitude_m: opt(*alt),
-                    speed_mps: opt(*speed).filter(|v| *v >= 0.0),
-                    bearing_deg: opt(*bearing).filter(|v| *v >= 0.0),
-                };
-                fix.check().map_err(|e| {
-                    field_error(label, n, lat + 1, "Latitude", format!("invalid fix: {e}"))
-                })?;
-                let rank = provider
-                    .and_then(|p| fields.get(p))
-                    .map_or(3, |p| provider_rank(p));
-                c.fixes.push((rank, fix));
-                Ok(())
-            })(),
-        };
-        if let Err(e) = res {
-            warnings.push(e);
+                self.orientation.push((t, q));
+            }
+            Layout::Fix(c) => self.fix(c, f)?,
         }
-    })?;
-    let mut take = |calibrated: &str, uncal: &str| -> Vec<(f64, Vector3<f64>)> {
-        match c.vectors.remove(calibrated) {
-            Some(v) if !v.is_empty() => v,
-            _ => c.vectors.remove(uncal).unwrap_or_default(),
-        }
-    };
-    let mut s = Streams {
-        accel: take("Accel", "UncalAccel"),
-        gyro: take("Gyro", "UncalGyro"),
-        mag: take("Mag", "UncalMag"),
-        orientation: c.orientation,
-        fixes: Vec::new(),
-        pressure: Vec::new(),
-    };
-    if let Some(best) = c.fixes.iter().map(|(r, _)| *r).min() {
-        s.fixes = c
-            .fixes
-            .into_iter()
-            .filter(|(r, _)| *r == best)
-            .map(|(_, f)| f)
-            .collect();
+        Ok(())
     }
-    if s.accel.is_empty() {
-        return Err(warnings.find(|e| e.line > 0 && e.column.is_some()).cloned().map_or_else(
-            || file_error(label, 0, "no Accel or UncalAccel records: nothing to track (was the accelerometer logged?)"),
+
+    /// Reads a `Fix` line; one without a positive accuracy is counted.
+    fn fix(&mut self, c: &FixColumns, f: &Fields) -> Result<(), ParseError> {
+        let FixColumns {
+            t,
+            provider,
+            lat,
+            lon,
+            acc,
+            alt,
+            speed,
+            bearing,
+        } = *c;
+        let t = time(f, t)?;
+        let acc_m = match f.fields.get(acc).map(|s| s.trim()) {
+            None | Some("") => None,
+            Some(_) => Some(f.num(acc, "Accuracy")?),
+        };
+        let Some(acc_m) = acc_m.filter(|a| *a > 0.0) else {
+            self.invalid_fixes += 1;
+            return Ok(());
+        };
+        let fix = GnssFix {
+            t,
+            lat_deg: f.num(lat, "Latitude")?,
+            lon_deg: f.num(lon, "Longitude")?,
+            h_accuracy_m: acc_m,
+            altitude_m: optional(f, alt),
+            speed_mps: optional(f, speed).filter(|v| *v >= 0.0),
+            bearing_deg: optional(f, bearing).filter(|v| *v >= 0.0),
+        };
+        fix.check()
+            .map_err(|e| f.error(lat + 1, "Latitude", format!("invalid fix: {e}")))?;
+        let rank = provider
+            .and_then(|p| f.fields.get(p))
+            .map_or(3, |p| provider_rank(p));
+        self.fixes.push((rank, fix));
+        Ok(())
+    }
+
+    /// The log: calibrated sensors (uncalibrated ones in their absence) and the fixes of the
+    /// best provider.
+    fn into_log(mut self, label: &str) -> Result<Log, ParseError> {
+        let mut take = |calibrated: &str, uncal: &str| -> Vec<(f64, Vector3<f64>)> {
+            match self.vectors.remove(calibrated) {
+                Some(v) if !v.is_empty() => v,
+                _ => self.vectors.remove(uncal).unwrap_or_default(),
+            }
+        };
+        let mut s = Streams {
+            accel: take("Accel", "UncalAccel"),
+            gyro: take("Gyro", "UncalGyro"),
+            mag: take("Mag", "UncalMag"),
+            orientation: self.orientation,
+            fixes: Vec::new(),
+            pressure: Vec::new(),
+        };
+        if let Some(best) = self.fixes.iter().map(|(r, _)| *r).min() {
+            s.fixes = self
+                .fixes
+                .into_iter()
+                .filter(|(r, _)| *r == best)
+                .map(|(_, f)| f)
+                .collect();
+        }
+        if s.accel.is_empty() {
+            return Err(no_accel(&self.warnings, label));
+        }
+        let mut log = Log::new(label, Format::GnssLogger);
+        log.platform = Some(Platform::Android);
+        add_warnings(&mut log, self.warnings);
+        let invalid = self.invalid_fixes;
+        warn_count(
+            &mut log,
+            invalid,
+            file_error(
+                label,
+                0,
+                format!("{invalid} fix(es) without a positive accuracy, skipped"),
+            ),
+        );
+        set_records(&mut log, s, label);
+        Ok(log)
+    }
+}
+
+/// The error of a log without accelerometer samples: the first problem with a record, when
+/// there was one.
+fn no_accel(warnings: &Warnings, label: &str) -> ParseError {
+    warnings
+        .find(|e| e.line > 0 && e.column.is_some())
+        .cloned()
+        .map_or_else(
+            || {
+                file_error(
+                    label,
+                    0,
+                    "no Accel or UncalAccel records: nothing to track (was the accelerometer \
+                     logged?)",
+                )
+            },
             |e| ParseError {
-                message: format!("no readable accelerometer record; first problem: {}", e.message),
+                message: format!(
+                    "no readable accelerometer record; first problem: {}",
+                    e.message
+                ),
                 ..e
             },
-        ));
-    }
-    add_warnings(&mut log, warnings);
-    warn_count(
-        &mut log,
-        invalid_fixes,
-        file_error(
-            label,
-            0,
-            format!("{invalid_fixes} fix(es) without a positive accuracy, skipped"),
-        ),
-    );
-    set_records(&mut log, s, label);
-    Ok(log)
+        )
 }
 
 #[cfg(test)]

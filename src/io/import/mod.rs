@@ -512,95 +512,19 @@ pub fn import_with(
     let mut dirs: Vec<&str> = names.iter().map(|n| fileset::parent(n)).collect();
     dirs.sort_unstable();
     dirs.dedup();
-    'dirs: for dir in dirs {
-        for r in recipes {
-            if let Some((files, read)) = recipe::read_dir(set, &names, dir, r, None) {
-                for (i, n) in names.iter().enumerate() {
-                    used[i] |= files.contains(n);
-                }
-                out.push(read.map(|(mut log, report)| {
-                    log.checks = report.warnings;
-                    log
-                }));
-                continue 'dirs;
-            }
-        }
-        let in_dir = |f: &str| names.iter().any(|n| n.as_str() == format!("{dir}{f}"));
-        let read = if in_dir("accelerometer.csv") && in_dir("stepcounter.csv") {
-            Some(oxford::read_oxford(set, dir))
-        } else {
-            None
-        };
-        if let Some(r) = read {
-            for (i, n) in names.iter().enumerate() {
-                if fileset::parent(n) == dir && oxford::OXFORD_FILES.contains(&fileset::base(n)) {
-                    used[i] = true;
-                }
-            }
-            out.push(r);
-            continue;
-        }
-        // The data sets' folders, Sensor Logger and phyphox: each reader names the files it
-        // consumed.
-        let folder = tyrex::read_dir(set, &names, dir)
-            .or_else(|| ubicomp13::read_dir(set, &names, dir))
-            .or_else(|| weallwalk::read_dir(set, &names, dir))
-            .or_else(|| sensor_logger::read_dir(set, &names, dir))
-            .or_else(|| phyphox::read_dir(set, &names, dir));
-        if let Some((files, r)) = folder {
+    for dir in dirs {
+        if let Some((files, read)) = read_folder(set, &names, dir, recipes) {
             for (i, n) in names.iter().enumerate() {
                 used[i] |= files.contains(n);
             }
-            out.push(r);
+            out.push(read);
         }
     }
     // Then every remaining file on its own.
     for (i, name) in names.iter().enumerate() {
-        if used[i] {
-            continue;
+        if !used[i] {
+            read_file(set, name, recipes, &mut out);
         }
-        let head = match set.head(name) {
-            Ok(h) => h,
-            Err(e) => {
-                out.push(Err(file_error(&set.label(name), 0, e.to_string())));
-                continue;
-            }
-        };
-        if fileset::is_zip(head.as_bytes()) {
-            out.extend(import_zip(set, name, recipes));
-            continue;
-        }
-        let Some(format) = sniff(name, &head) else {
-            continue;
-        };
-        let label = set.label(name);
-        let records = match (format, set.size(name)) {
-            (Format::PdrLog, Some(size)) => crate::io::lines::estimate_records(&head, size),
-            _ => 0,
-        };
-        let r = match set.open(name) {
-            Err(e) => Err(file_error(&label, 0, e.to_string())),
-            Ok(reader) => match format {
-                Format::PdrLog => crate::io::pdrlog::read_sized(reader, &label, records).map(|p| {
-                    let mut log = Log::new(&label, Format::PdrLog);
-                    log.records = p.records;
-                    log.date_unix_s = p.date_unix_s;
-                    let extra = p.skipped.saturating_sub(p.errors.len() as u64);
-                    for e in p.errors {
-                        log.warn(e);
-                    }
-                    log.skipped += extra;
-                    log
-                }),
-                Format::MsIndoor => ms_indoor::read_ms_indoor(reader, &label),
-                Format::XioFoot => xio::read_xio(reader, &label),
-                Format::SensorLoggerJson => sensor_logger::read_json(reader, &label),
-                Format::GnssLogger => gnss_logger::read(reader, &label),
-                Format::GetSensorData => get_sensor_data::read(reader, &label),
-                _ => Err(file_error(&label, 0, "format not supported yet")),
-            },
-        };
-        out.push(r);
     }
     for log in out.iter_mut().flatten() {
         if log.date_unix_s.is_none() {
@@ -608,6 +532,101 @@ pub fn import_with(
         }
     }
     out
+}
+
+/// Reads folder `dir` of `names` as one log when a recipe or a folder format recognises it:
+/// the files it consumed and the log. `None` when none does.
+fn read_folder(
+    set: &mut dyn FileSet,
+    names: &[String],
+    dir: &str,
+    recipes: &[recipe::Recipe],
+) -> Option<(Vec<String>, Result<Log, ParseError>)> {
+    for r in recipes {
+        if let Some((files, read)) = recipe::read_dir(set, names, dir, r, None) {
+            let read = read.map(|(mut log, report)| {
+                log.checks = report.warnings;
+                log
+            });
+            return Some((files, read));
+        }
+    }
+    let in_dir = |f: &str| names.iter().any(|n| n.as_str() == format!("{dir}{f}"));
+    if in_dir("accelerometer.csv") && in_dir("stepcounter.csv") {
+        let read = oxford::read_oxford(set, dir);
+        let files = names
+            .iter()
+            .filter(|n| {
+                fileset::parent(n) == dir && oxford::OXFORD_FILES.contains(&fileset::base(n))
+            })
+            .cloned()
+            .collect();
+        return Some((files, read));
+    }
+    // The data sets' folders, Sensor Logger and phyphox: each reader names the files it
+    // consumed.
+    tyrex::read_dir(set, names, dir)
+        .or_else(|| ubicomp13::read_dir(set, names, dir))
+        .or_else(|| weallwalk::read_dir(set, names, dir))
+        .or_else(|| sensor_logger::read_dir(set, names, dir))
+        .or_else(|| phyphox::read_dir(set, names, dir))
+}
+
+/// Reads file `name` on its own into `out`: the logs of a zip archive, the log of a
+/// single-file format, an error when it cannot be read, nothing when it is not recognised.
+fn read_file(
+    set: &mut dyn FileSet,
+    name: &str,
+    recipes: &[recipe::Recipe],
+    out: &mut Vec<Result<Log, ParseError>>,
+) {
+    let head = match set.head(name) {
+        Ok(h) => h,
+        Err(e) => {
+            out.push(Err(file_error(&set.label(name), 0, e.to_string())));
+            return;
+        }
+    };
+    if fileset::is_zip(head.as_bytes()) {
+        out.extend(import_zip(set, name, recipes));
+        return;
+    }
+    let Some(format) = sniff(&head) else {
+        return;
+    };
+    let label = set.label(name);
+    let records = match (format, set.size(name)) {
+        (Format::PdrLog, Some(size)) => crate::io::lines::estimate_records(&head, size),
+        _ => 0,
+    };
+    let r = match set.open(name) {
+        Err(e) => Err(file_error(&label, 0, e.to_string())),
+        Ok(reader) => match format {
+            Format::PdrLog => {
+                crate::io::pdrlog::read_sized(reader, &label, records).map(|p| pdr_log(p, &label))
+            }
+            Format::MsIndoor => ms_indoor::read_ms_indoor(reader, &label),
+            Format::XioFoot => xio::read_xio(reader, &label),
+            Format::SensorLoggerJson => sensor_logger::read_json(reader, &label),
+            Format::GnssLogger => gnss_logger::read(reader, &label),
+            Format::GetSensorData => get_sensor_data::read(reader, &label),
+            _ => Err(file_error(&label, 0, "format not supported yet")),
+        },
+    };
+    out.push(r);
+}
+
+/// A pdr-log read by [`crate::io::pdrlog`] as a log named `label`.
+fn pdr_log(p: crate::io::pdrlog::Parsed, label: &str) -> Log {
+    let mut log = Log::new(label, Format::PdrLog);
+    log.records = p.records;
+    log.date_unix_s = p.date_unix_s;
+    let extra = p.skipped.saturating_sub(p.errors.len() as u64);
+    for e in p.errors {
+        log.warn(e);
+    }
+    log.skipped += extra;
+    log
 }
 
 /// Reads the logs of a zip archive found inside a file set, within the [`ArchiveLimits`]. An
@@ -644,8 +663,8 @@ fn import_zip(
     }
 }
 
-/// Recognises a single-file format from the file name and its first bytes.
-pub fn sniff(name: &str, head: &str) -> Option<Format> {
+/// Recognises a single-file format from its first bytes.
+pub fn sniff(head: &str) -> Option<Format> {
     let first = head
         .lines()
         .next()
@@ -669,6 +688,5 @@ pub fn sniff(name: &str, head: &str) -> Option<Format> {
     if get_sensor_data::looks_like(head) {
         return Some(Format::GetSensorData);
     }
-    let _ = name;
     None
 }

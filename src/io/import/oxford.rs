@@ -1,9 +1,8 @@
 //! Oxford Step Counter trace folders, one of the evaluation data sets of `../shared/data`, read
 //! directly. May import: `engine` and `io`.
 
-use super::common::{add_warnings, numbers, set_records, Warnings};
+use super::common::{add_warnings, each_record, numbers, set_records, Warnings};
 use super::{file_error, fileset, FileSet, Format, Log, Platform, Streams, TrueStep};
-use crate::io::lines::each_line;
 use crate::io::ParseError;
 use nalgebra::Vector3;
 
@@ -29,23 +28,13 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
         .open(&name)
         .map_err(|e| file_error(&label, 0, e.to_string()))?;
     let mut warnings = Warnings::default();
-    each_line(reader, &label, |n, line| {
-        let line = match line {
-            Ok(l) => l,
-            Err(e) => return warnings.push(e),
-        };
-        if line.trim().is_empty() {
-            return;
-        }
-        let f: Vec<&str> = line.split(',').collect();
-        match numbers(&f, 0, ["time_ns"], &label, n)
-            .and_then(|[t]| Ok((t, numbers(&f, 2, ["ax", "ay", "az"], &label, n)?)))
-        {
-            Ok((t, a)) => streams
-                .accel
-                .push((t * 1e-9, Vector3::new(a[0], a[1], a[2]))),
-            Err(e) => warnings.push(e),
-        }
+    each_record(reader, &label, Some(','), &mut warnings, |n, f| {
+        let [t] = numbers(f, 0, ["time_ns"], &label, n)?;
+        let a = numbers(f, 2, ["ax", "ay", "az"], &label, n)?;
+        streams
+            .accel
+            .push((t * 1e-9, Vector3::new(a[0], a[1], a[2])));
+        Ok(())
     })?;
     if streams.accel.is_empty() {
         return Err(file_error(&label, 0, "no accelerometer samples"));
@@ -57,33 +46,22 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
         .map_err(|e| file_error(&label, 0, e.to_string()))?;
     let mut prev: Option<[f64; 2]> = None;
     let mut events = Vec::new();
-    each_line(reader, &label, |n, line| {
-        let line = match line {
-            Ok(l) => l,
-            Err(e) => return warnings.push(e),
-        };
-        if line.trim().is_empty() {
-            return;
-        }
-        let f: Vec<&str> = line.split(',').collect();
-        match numbers(&f, 0, ["time_ns", "left", "right"], &label, n) {
-            Ok([t, l, r]) => {
-                let c = [l, r];
-                if let Some(p) = prev {
-                    for foot in 0..2u8 {
-                        let k = usize::from(foot);
-                        if p[k] < 0.5 && c[k] >= 0.5 {
-                            events.push(TrueStep {
-                                t: t * 1e-9,
-                                foot: Some(foot),
-                            });
-                        }
-                    }
+    each_record(reader, &label, Some(','), &mut warnings, |n, f| {
+        let [t, l, r] = numbers(f, 0, ["time_ns", "left", "right"], &label, n)?;
+        let c = [l, r];
+        if let Some(p) = prev {
+            for foot in 0..2u8 {
+                let k = usize::from(foot);
+                if p[k] < 0.5 && c[k] >= 0.5 {
+                    events.push(TrueStep {
+                        t: t * 1e-9,
+                        foot: Some(foot),
+                    });
                 }
-                prev = Some(c);
             }
-            Err(e) => warnings.push(e),
         }
+        prev = Some(c);
+        Ok(())
     })?;
     events.sort_by(|a, b| a.t.total_cmp(&b.t));
     log.truth.steps = Some(events.len() as u64);

@@ -24,7 +24,8 @@
 //! sign flipped), so no platform conversion is applied and the platform is left unknown.
 
 use super::common::{
-    add_warnings, cell, not_a_number, set_records, split_line, warn_count, Table, Warnings,
+    add_warnings, cell, folder_label, not_a_number, open, set_records, split_line, warn_count,
+    Table, Warnings,
 };
 use super::{field_error, file_error, fileset, number, FileSet, Format, Log, Streams};
 use crate::engine::types::GnssFix;
@@ -100,15 +101,7 @@ pub fn read_dir(
     let meta = format!("{dir}meta/");
     let mut consumed = files.clone();
     consumed.extend(names.iter().filter(|n| n.starts_with(&meta)).cloned());
-    let source = {
-        let l = set.label(dir.trim_end_matches('/'));
-        let l = l.trim_end_matches('/').to_string();
-        if l.is_empty() {
-            set.label(&files[0])
-        } else {
-            l
-        }
-    };
+    let source = folder_label(set, dir, &files[0]);
     let time_csv = format!("{meta}time.csv");
     let date = names
         .contains(&time_csv)
@@ -177,77 +170,161 @@ fn empty(rec: &csv::StringRecord, cols: &[usize]) -> bool {
 
 /// Reads the given phyphox CSVs as one log.
 fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<Log, ParseError> {
-    let mut log = Log::new(source, Format::Phyphox);
-    let mut s = Streams::default();
-    let mut warnings = Warnings::default();
-    let (mut have_gyro, mut have_mag, mut have_loc, mut have_pres) = (false, false, false, false);
-    let mut linear_only: Option<ParseError> = None;
-    let mut rejected: Option<ParseError> = None;
-    let mut unreadable: Option<ParseError> = None;
-    let mut invalid_fixes = 0u64;
-    let mut invalid_file = String::new();
+    let mut reading = Reading::default();
     for name in files {
+        reading.file(set, name)?;
+    }
+    reading.into_log(source)
+}
+
+/// The columns of one file to read: its time and each quantity not yet taken from another file.
+struct Columns {
+    t: usize,
+    accel: Option<[usize; 3]>,
+    gyro: Option<[usize; 3]>,
+    mag: Option<[usize; 3]>,
+    loc: Option<Location>,
+    /// The pressure column and its factor to hPa.
+    pres: Option<(usize, f64)>,
+}
+
+/// One record of a file, with what errors name: file label, line and column names.
+struct Row<'a> {
+    rec: &'a csv::StringRecord,
+    header: &'a [String],
+    label: &'a str,
+    line: u64,
+}
+
+impl Row<'_> {
+    /// Column `c` as a number.
+    fn cell(&self, c: usize) -> Result<f64, ParseError> {
+        cell(self.rec, c, &self.header[c], self.label, self.line)
+    }
+
+    /// Columns `cols` as a vector.
+    fn vector(&self, cols: [usize; 3]) -> Result<Vector3<f64>, ParseError> {
+        let mut v = Vector3::zeros();
+        for (k, &c) in cols.iter().enumerate() {
+            v[k] = self.cell(c)?;
+        }
+        Ok(v)
+    }
+
+    /// An optional column as a number: `None` when the file has no such column or the cell is
+    /// empty or `NaN` (phyphox writes NaN for a value the platform did not give).
+    fn optional(&self, c: Option<usize>) -> Result<Option<f64>, ParseError> {
+        let Some(c) = c else { return Ok(None) };
+        let v = self
+            .rec
+            .get(c)
+            .unwrap_or("")
+            .trim()
+            .trim_matches('"')
+            .trim();
+        if v.is_empty() || v.eq_ignore_ascii_case("nan") {
+            return Ok(None);
+        }
+        number(v).map(Some).ok_or_else(|| {
+            field_error(
+                self.label,
+                self.line,
+                c + 1,
+                &self.header[c],
+                not_a_number(v),
+            )
+        })
+    }
+}
+
+/// The log being read from the files of an export, one after the other.
+#[derive(Default)]
+struct Reading {
+    s: Streams,
+    warnings: Warnings,
+    have_gyro: bool,
+    have_mag: bool,
+    have_loc: bool,
+    have_pres: bool,
+    /// Why there may be no acceleration: only linear acceleration was exported.
+    linear_only: Option<ParseError>,
+    /// Why there may be no acceleration: its norm was not that of gravity.
+    rejected: Option<ParseError>,
+    /// Why there may be no acceleration: the first file that could not be read.
+    unreadable: Option<ParseError>,
+    /// Fixes with a negative accuracy, and the file of the last one.
+    invalid_fixes: u64,
+    invalid_file: String,
+}
+
+impl Reading {
+    /// Reads file `name`. A damaged file is a warning: the others may still make a log.
+    fn file(&mut self, set: &mut dyn FileSet, name: &str) -> Result<(), ParseError> {
         let label = set.label(name);
-        let r = set
-            .open(name)
-            .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
-        // A damaged file is a warning: the others may still make a log.
+        let r = open(set, name, &label)?;
         let mut table = match Table::open(r, &label, None) {
             Ok(Some(t)) => t,
-            Ok(None) => continue,
+            Ok(None) => return Ok(()),
             Err(e) => {
-                unreadable.get_or_insert_with(|| e.clone());
-                warnings.push(e);
-                continue;
+                self.unreadable.get_or_insert_with(|| e.clone());
+                self.warnings.push(e);
+                return Ok(());
             }
         };
-        let Some(t_col) = table.col(is_time) else {
-            continue;
+        let Some(cols) = self.columns(&table, &label) else {
+            return Ok(());
         };
-        let accel = if s.accel.is_empty() {
-            xyz(&table, "acceleration")
+        let header = table.header.clone();
+        let mut file_accel = Vec::new();
+        let mut csv_warnings = Warnings::default();
+        table.rows(&label, &mut csv_warnings, |line, rec| {
+            let row = Row {
+                rec,
+                header: &header,
+                label: &label,
+                line,
+            };
+            self.row(&row, &cols, &mut file_accel);
+        })?;
+        self.warnings.extend(csv_warnings);
+        if cols.accel.is_some() {
+            self.accel(file_accel, &label, table.header_line);
+        }
+        self.have_gyro |= cols.gyro.is_some();
+        self.have_mag |= cols.mag.is_some();
+        self.have_loc |= cols.loc.is_some();
+        self.have_pres |= cols.pres.is_some();
+        Ok(())
+    }
+
+    /// The columns of a file to read; `None` when it has no time column or nothing new.
+    fn columns<R: BufRead>(&mut self, table: &Table<R>, label: &str) -> Option<Columns> {
+        let t = table.col(is_time)?;
+        let accel = if self.s.accel.is_empty() {
+            xyz(table, "acceleration")
         } else {
             None
         };
-        if let (None, Some(_)) = (accel, xyz(&table, "linear acceleration")) {
-            if linear_only.is_none() {
-                linear_only = Some(file_error(
-                    &label,
+        if let (None, Some(_)) = (accel, xyz(table, "linear acceleration")) {
+            if self.linear_only.is_none() {
+                self.linear_only = Some(file_error(
+                    label,
                     table.header_line,
                     "only linear acceleration (gravity removed) was exported; record phyphox's \
                      \"Acceleration (with g)\" sensor instead",
                 ));
             }
         }
-        let gyro = (!have_gyro).then(|| xyz(&table, "gyroscope")).flatten();
-        let mag = (!have_mag).then(|| xyz(&table, "magnetic field")).flatten();
-        let loc = if have_loc {
+        let gyro = (!self.have_gyro).then(|| xyz(table, "gyroscope")).flatten();
+        let mag = (!self.have_mag)
+            .then(|| xyz(table, "magnetic field"))
+            .flatten();
+        let loc = if self.have_loc {
             None
         } else {
-            let lat = table.col(|h| h.starts_with("latitude"));
-            let lon = table.col(|h| h.starts_with("longitude"));
-            let acc = table.col(|h| h.starts_with("horizontal accuracy"));
-            match (lat, lon, acc) {
-                (Some(lat), Some(lon), Some(acc)) => Some(Location {
-                    lat,
-                    lon,
-                    acc,
-                    alt: table.col(|h| h.starts_with("height") || h.starts_with("altitude")),
-                    speed: table.col(|h| h.starts_with("velocity") || h.starts_with("speed")),
-                    bearing: table.col(|h| h.starts_with("direction") || h.starts_with("bearing")),
-                }),
-                (Some(_), Some(_), None) => {
-                    warnings.push(file_error(
-                        &label,
-                        table.header_line,
-                        "location without a horizontal accuracy column: fixes not used",
-                    ));
-                    None
-                }
-                _ => None,
-            }
+            self.location(table, label)
         };
-        let pres = if have_pres {
+        let pres = if self.have_pres {
             None
         } else {
             table
@@ -257,154 +334,175 @@ fn read_files(set: &mut dyn FileSet, files: &[String], source: &str) -> Result<L
                 .find_map(|(i, h)| pressure_factor(h).map(|f| (i, f)))
         };
         if accel.is_none() && gyro.is_none() && mag.is_none() && loc.is_none() && pres.is_none() {
-            continue;
+            return None;
         }
-        let header = table.header.clone();
-        let mut file_accel = Vec::new();
-        let mut csv_warnings = Warnings::default();
-        table.rows(&label, &mut csv_warnings, |line, rec| {
-            let t = match cell(rec, t_col, &header[t_col], &label, line) {
-                Ok(t) => t,
+        Some(Columns {
+            t,
+            accel,
+            gyro,
+            mag,
+            loc,
+            pres,
+        })
+    }
+
+    /// The location columns of a file, when it has latitude, longitude and accuracy (a warning
+    /// when only the accuracy is missing).
+    fn location<R: BufRead>(&mut self, table: &Table<R>, label: &str) -> Option<Location> {
+        let lat = table.col(|h| h.starts_with("latitude"));
+        let lon = table.col(|h| h.starts_with("longitude"));
+        let acc = table.col(|h| h.starts_with("horizontal accuracy"));
+        match (lat, lon, acc) {
+            (Some(lat), Some(lon), Some(acc)) => Some(Location {
+                lat,
+                lon,
+                acc,
+                alt: table.col(|h| h.starts_with("height") || h.starts_with("altitude")),
+                speed: table.col(|h| h.starts_with("velocity") || h.starts_with("speed")),
+                bearing: table.col(|h| h.starts_with("direction") || h.starts_with("bearing")),
+            }),
+            (Some(_), Some(_), None) => {
+                self.warnings.push(file_error(
+                    label,
+                    table.header_line,
+                    "location without a horizontal accuracy column: fixes not used",
+                ));
+                None
+            }
+            _ => None,
+        }
+    }
+
+    /// Reads one record; its first bad value is a warning.
+    fn row(&mut self, row: &Row, c: &Columns, file_accel: &mut Vec<(f64, Vector3<f64>)>) {
+        let t = match row.cell(c.t) {
+            Ok(t) => t,
+            Err(e) => return self.warnings.push(e),
+        };
+        let mut first_error = None;
+        for (cols, out) in [
+            (c.accel, file_accel),
+            (c.gyro, &mut self.s.gyro),
+            (c.mag, &mut self.s.mag),
+        ] {
+            let Some(cols) = cols else { continue };
+            if empty(row.rec, &cols) {
+                continue;
+            }
+            match row.vector(cols) {
+                Ok(v) => out.push((t, v)),
                 Err(e) => {
-                    warnings.push(e);
-                    return;
+                    first_error.get_or_insert(e);
                 }
-            };
-            let v3 = |cols: [usize; 3]| -> Result<Vector3<f64>, ParseError> {
-                let mut v = Vector3::zeros();
-                for (k, &c) in cols.iter().enumerate() {
-                    v[k] = cell(rec, c, &header[c], &label, line)?;
+            }
+        }
+        if let Some(l) = c.loc {
+            if !empty(row.rec, &[l.lat, l.lon]) {
+                if let Err(e) = self.fix(row, &l, t) {
+                    first_error.get_or_insert(e);
                 }
-                Ok(v)
-            };
-            let mut first_error = None;
-            for (cols, out) in [
-                (accel, &mut file_accel),
-                (gyro, &mut s.gyro),
-                (mag, &mut s.mag),
-            ] {
-                let Some(cols) = cols else { continue };
-                if empty(rec, &cols) {
-                    continue;
-                }
-                match v3(cols) {
-                    Ok(v) => out.push((t, v)),
+            }
+        }
+        if let Some((col, factor)) = c.pres {
+            if !empty(row.rec, &[col]) {
+                let p = row.cell(col).and_then(|v| {
+                    super::common::pressure(t, v * factor)
+                        .map_err(|m| field_error(row.label, row.line, col + 1, &row.header[col], m))
+                });
+                match p {
+                    Ok(p) => self.s.pressure.push(p),
                     Err(e) => {
                         first_error.get_or_insert(e);
                     }
                 }
             }
-            if let Some(l) = loc {
-                if !empty(rec, &[l.lat, l.lon]) {
-                    let opt = |c: Option<usize>| -> Result<Option<f64>, ParseError> {
-                        let Some(c) = c else { return Ok(None) };
-                        let v = rec.get(c).unwrap_or("").trim().trim_matches('"').trim();
-                        // phyphox writes NaN for a value the platform did not give.
-                        if v.is_empty() || v.eq_ignore_ascii_case("nan") {
-                            return Ok(None);
-                        }
-                        number(v).map(Some).ok_or_else(|| {
-                            field_error(&label, line, c + 1, &header[c], not_a_number(v))
-                        })
-                    };
-                    let fix = (|| -> Result<Option<GnssFix>, ParseError> {
-                        let lat = cell(rec, l.lat, &header[l.lat], &label, line)?;
-                        let lon = cell(rec, l.lon, &header[l.lon], &label, line)?;
-                        let acc = cell(rec, l.acc, &header[l.acc], &label, line)?;
-                        if acc < 0.0 {
-                            return Ok(None);
-                        }
-                        Ok(Some(GnssFix {
-                            t,
-                            lat_deg: lat,
-                            lon_deg: lon,
-                            h_accuracy_m: acc,
-                            altitude_m: opt(l.alt)?,
-                            speed_mps: opt(l.speed)?.filter(|v| *v >= 0.0),
-                            bearing_deg: opt(l.bearing)?.filter(|v| *v >= 0.0),
-                        }))
-                    })();
-                    match fix {
-                        Ok(Some(f)) if f.check().is_ok() => s.fixes.push(f),
-                        Ok(Some(_)) => {
-                            first_error.get_or_insert(file_error(
-                                &label,
-                                line,
-                                "latitude or longitude out of range",
-                            ));
-                        }
-                        Ok(None) => {
-                            invalid_fixes += 1;
-                            invalid_file.clone_from(&label);
-                        }
-                        Err(e) => {
-                            first_error.get_or_insert(e);
-                        }
-                    }
-                }
-            }
-            if let Some((c, factor)) = pres {
-                if !empty(rec, &[c]) {
-                    let p = cell(rec, c, &header[c], &label, line).and_then(|v| {
-                        super::common::pressure(t, v * factor)
-                            .map_err(|m| field_error(&label, line, c + 1, &header[c], m))
-                    });
-                    match p {
-                        Ok(p) => s.pressure.push(p),
-                        Err(e) => {
-                            first_error.get_or_insert(e);
-                        }
-                    }
-                }
-            }
-            if let Some(e) = first_error {
-                warnings.push(e);
-            }
-        })?;
-        warnings.extend(csv_warnings);
-        if accel.is_some() {
-            let n = file_accel.len().max(1) as f64;
-            let mean = file_accel.iter().map(|(_, v)| v.norm()).sum::<f64>() / n;
-            if (5.0..=20.0).contains(&mean) {
-                s.accel = file_accel;
-            } else if !file_accel.is_empty() && rejected.is_none() {
-                rejected = Some(file_error(
-                    &label,
-                    table.header_line,
-                    format!(
-                        "\"Acceleration\" averages {mean:.2} m/s² in norm, not about 9.8: it is \
-                         not acceleration with gravity"
-                    ),
-                ));
-            }
         }
-        have_gyro |= gyro.is_some();
-        have_mag |= mag.is_some();
-        have_loc |= loc.is_some();
-        have_pres |= pres.is_some();
+        if let Some(e) = first_error {
+            self.warnings.push(e);
+        }
     }
-    if s.accel.is_empty() {
-        return Err(rejected.or(linear_only).or(unreadable).unwrap_or_else(|| {
+
+    /// Reads the location fix at time `t` of a record; one with a negative accuracy is counted.
+    fn fix(&mut self, row: &Row, l: &Location, t: f64) -> Result<(), ParseError> {
+        let lat = row.cell(l.lat)?;
+        let lon = row.cell(l.lon)?;
+        let acc = row.cell(l.acc)?;
+        if acc < 0.0 {
+            self.invalid_fixes += 1;
+            self.invalid_file = row.label.to_string();
+            return Ok(());
+        }
+        let fix = GnssFix {
+            t,
+            lat_deg: lat,
+            lon_deg: lon,
+            h_accuracy_m: acc,
+            altitude_m: row.optional(l.alt)?,
+            speed_mps: row.optional(l.speed)?.filter(|v| *v >= 0.0),
+            bearing_deg: row.optional(l.bearing)?.filter(|v| *v >= 0.0),
+        };
+        if fix.check().is_err() {
+            return Err(file_error(
+                row.label,
+                row.line,
+                "latitude or longitude out of range",
+            ));
+        }
+        self.s.fixes.push(fix);
+        Ok(())
+    }
+
+    /// Takes a file's "Acceleration" when its mean norm is that of gravity.
+    fn accel(&mut self, file_accel: Vec<(f64, Vector3<f64>)>, label: &str, header_line: u64) {
+        let n = file_accel.len().max(1) as f64;
+        let mean = file_accel.iter().map(|(_, v)| v.norm()).sum::<f64>() / n;
+        if (5.0..=20.0).contains(&mean) {
+            self.s.accel = file_accel;
+        } else if !file_accel.is_empty() && self.rejected.is_none() {
+            self.rejected = Some(file_error(
+                label,
+                header_line,
+                format!(
+                    "\"Acceleration\" averages {mean:.2} m/s² in norm, not about 9.8: it is \
+                     not acceleration with gravity"
+                ),
+            ));
+        }
+    }
+
+    /// The log, or why there is none (no usable acceleration).
+    fn into_log(self, source: &str) -> Result<Log, ParseError> {
+        if self.s.accel.is_empty() {
+            return Err(self
+                .rejected
+                .or(self.linear_only)
+                .or(self.unreadable)
+                .unwrap_or_else(|| {
+                    file_error(
+                        source,
+                        0,
+                        "no acceleration: none of the phyphox CSVs has \"Acceleration x/y/z\" \
+                         columns with readable values",
+                    )
+                }));
+        }
+        let mut log = Log::new(source, Format::Phyphox);
+        add_warnings(&mut log, self.warnings);
+        warn_count(
+            &mut log,
+            self.invalid_fixes,
             file_error(
-                source,
+                &self.invalid_file,
                 0,
-                "no acceleration: none of the phyphox CSVs has \"Acceleration x/y/z\" columns \
-                 with readable values",
-            )
-        }));
+                format!(
+                    "{} location fix(es) with a negative accuracy, skipped",
+                    self.invalid_fixes
+                ),
+            ),
+        );
+        set_records(&mut log, self.s, source);
+        Ok(log)
     }
-    add_warnings(&mut log, warnings);
-    warn_count(
-        &mut log,
-        invalid_fixes,
-        file_error(
-            &invalid_file,
-            0,
-            format!("{invalid_fixes} location fix(es) with a negative accuracy, skipped"),
-        ),
-    );
-    set_records(&mut log, s, source);
-    Ok(log)
 }
 
 #[cfg(test)]

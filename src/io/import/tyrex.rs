@@ -54,12 +54,12 @@
 //! `Texting`, `RunningPocket`); `None` for a folder named otherwise.
 
 use super::common::{
-    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, read_samples,
+    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, open, read_samples,
     rotation_vector, set_records, unit_quaternion, Table, Warnings,
 };
 use super::{field_error, file_error, FileSet, Format, Log, Platform, Streams, TruePosition, G0};
 use crate::io::ParseError;
-use nalgebra::Vector3;
+use nalgebra::{UnitQuaternion, Vector3};
 use std::io::BufRead;
 
 /// The files of a TyrEx recording folder that the reader consumes (read, or known and not
@@ -203,55 +203,79 @@ fn read(
         let fields = ["t_s", "mx", "my", "mz"];
         read_vectors(set, &name, fields, &mut warnings, &mut s.mag)?;
     }
-    if ios {
-        if let Some(name) = file_in(names, dir, "attitude.txt") {
-            let to_enu = core_motion_to_enu();
-            read_samples(
-                set,
-                &name,
-                None,
-                ["t_s", "qw", "qx", "qy", "qz"],
-                &mut warnings,
-                |label, n, [t, w, x, y, z]| {
-                    let q = unit_quaternion(w, x, y, z).ok_or_else(|| {
-                        field_error(label, n, 2, "qw", "not a unit quaternion, skipped")
-                    })?;
-                    s.orientation.push((t, to_enu * q));
-                    Ok(())
-                },
-            )?;
-        }
-    } else if let Some(name) = file_in(names, dir, "rotation-vector.txt") {
-        read_samples(
-            set,
-            &name,
-            None,
-            ["t_s", "x", "y", "z", "w"],
-            &mut warnings,
-            |label, n, [t, x, y, z, w]| {
-                let q = rotation_vector(x, y, z, Some(w)).ok_or_else(|| {
-                    field_error(label, n, 2, "x", "not a unit rotation vector, skipped")
-                })?;
-                s.orientation.push((t, q));
-                Ok(())
-            },
-        )?;
-    }
+    read_orientation(set, names, dir, ios, &mut warnings, &mut s.orientation)?;
     if !ios {
         if let Some(name) = file_in(names, dir, "record.properties") {
             log.date_unix_s = set.head(&name).ok().and_then(|h| start_time(&h));
         }
     }
     if let Some(name) = file_in(names, dir, "truth.csv") {
-        let label = set.label(&name);
-        let reader = set
-            .open(&name)
-            .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
-        log.truth.trajectory = read_truth(reader, &label, &mut warnings)?.trajectory;
+        log.truth.trajectory = read_truth_file(set, &name, &mut warnings)?;
     }
     set_records(&mut log, s, &acc_label);
     add_warnings(&mut log, warnings);
     Ok(log)
+}
+
+/// Reads the orientation of a folder into `out`: Core Motion's attitude (`attitude.txt`,
+/// turned to ENU) on iOS, Android's rotation vector (`rotation-vector.txt`) otherwise.
+fn read_orientation(
+    set: &mut dyn FileSet,
+    names: &[String],
+    dir: &str,
+    ios: bool,
+    warnings: &mut Warnings,
+    out: &mut Vec<(f64, UnitQuaternion<f64>)>,
+) -> Result<(), ParseError> {
+    if ios {
+        let Some(name) = file_in(names, dir, "attitude.txt") else {
+            return Ok(());
+        };
+        let to_enu = core_motion_to_enu();
+        read_samples(
+            set,
+            &name,
+            None,
+            ["t_s", "qw", "qx", "qy", "qz"],
+            warnings,
+            |label, n, [t, w, x, y, z]| {
+                let q = unit_quaternion(w, x, y, z).ok_or_else(|| {
+                    field_error(label, n, 2, "qw", "not a unit quaternion, skipped")
+                })?;
+                out.push((t, to_enu * q));
+                Ok(())
+            },
+        )
+    } else {
+        let Some(name) = file_in(names, dir, "rotation-vector.txt") else {
+            return Ok(());
+        };
+        read_samples(
+            set,
+            &name,
+            None,
+            ["t_s", "x", "y", "z", "w"],
+            warnings,
+            |label, n, [t, x, y, z, w]| {
+                let q = rotation_vector(x, y, z, Some(w)).ok_or_else(|| {
+                    field_error(label, n, 2, "x", "not a unit rotation vector, skipped")
+                })?;
+                out.push((t, q));
+                Ok(())
+            },
+        )
+    }
+}
+
+/// Reads the folder's `truth.csv` (file `name`) with [`read_truth`].
+fn read_truth_file(
+    set: &mut dyn FileSet,
+    name: &str,
+    warnings: &mut Warnings,
+) -> Result<Vec<TruePosition>, ParseError> {
+    let label = set.label(name);
+    let reader = open(set, name, &label)?;
+    Ok(read_truth(reader, &label, warnings)?.trajectory)
 }
 
 /// The carrying mode of a folder named `<Walker>_<Phone>_<Dist|NoDist>_<Mode>`.

@@ -41,7 +41,7 @@
 //! direction, the turns of the path are the same.
 
 use super::common::{
-    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, numbers,
+    add_warnings, cell, core_motion_to_enu, file_in, folder_label, folder_name, numbers, open,
     read_lines, set_records, unit_quaternion, Table, Warnings,
 };
 use super::{
@@ -164,9 +164,7 @@ fn open_table<'a>(
     name: &str,
     label: &str,
 ) -> Result<Option<Table<Box<dyn std::io::BufRead + 'a>>>, ParseError> {
-    let reader = set
-        .open(name)
-        .map_err(|e| file_error(label, 0, format!("cannot open: {e}")))?;
+    let reader = open(set, name, label)?;
     Table::open(reader, label, Some(b','))
 }
 

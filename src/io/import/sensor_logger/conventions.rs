@@ -17,87 +17,19 @@ impl Raw {
         mut log: Log,
         source_for_errors: &str,
     ) -> Result<Log, ParseError> {
-        for v in [
-            &mut self.accel,
-            &mut self.gravity,
-            &mut self.total,
-            &mut self.gyro,
-            &mut self.mag,
-        ] {
-            v.sort_by(|a, b| a.0.total_cmp(&b.0));
-        }
-        self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
+        self.sort_by_time();
         let accel_file = if self.accel_file.is_empty() {
             source_for_errors.to_string()
         } else {
             self.accel_file.clone()
         };
-        if self.total.is_empty() && self.accel.is_empty() {
-            return Err(file_error(
-                &accel_file,
-                0,
-                "no accelerometer samples (Accelerometer or TotalAcceleration)",
-            ));
-        }
-        if self.total.is_empty() && self.gravity.is_empty() {
-            let gravity_problem = self
-                .warnings
-                .find(|w| w.column.is_none() && w.file.to_lowercase().ends_with("gravity.csv"));
-            if let Some(e) = gravity_problem {
-                return Err(e.clone());
-            }
-            return Err(file_error(
-                &accel_file,
-                0,
-                "Accelerometer has gravity removed, and there is no Gravity or TotalAcceleration \
-                 to restore it",
-            ));
-        }
-        // Units: g or m/s², from the size of gravity.
-        let reference = if self.gravity.is_empty() {
-            &self.total
-        } else {
-            &self.gravity
-        };
-        let mean_norm =
-            reference.iter().map(|(_, v)| v.norm()).sum::<f64>() / reference.len().max(1) as f64;
-        let scale = if mean_norm < 3.0 { G0 } else { 1.0 };
-        let platform = decide_platform(
-            self.platform,
-            !self.total.is_empty(),
-            scale != 1.0,
-            &self.gravity,
-            &self.orientation,
-            reference,
-        );
+        self.check_acceleration(&accel_file)?;
+        let (scale, platform) = self.units_and_platform();
         log.platform = platform;
         // Conventions of the values as written.
         let ios_frames = platform == Some(Platform::Ios) && !self.standardised;
         let sign = if ios_frames { -scale } else { scale };
-        let mut s = Streams::default();
-        let mut unpaired = 0u64;
-        if !self.total.is_empty() {
-            s.accel = self.total.iter().map(|&(t, v)| (t, v * sign)).collect();
-        } else {
-            let (paired, n) =
-                pair_nearest(&self.accel, &self.gravity, HOLD_S, |a, g| (a + g) * sign);
-            s.accel = paired;
-            unpaired = n;
-        }
-        s.gyro = std::mem::take(&mut self.gyro);
-        s.mag = std::mem::take(&mut self.mag);
-        let to_enu = if ios_frames {
-            core_motion_to_enu()
-        } else {
-            UnitQuaternion::identity()
-        };
-        s.orientation = self
-            .orientation
-            .iter()
-            .map(|&(t, q)| (t, to_enu * q))
-            .collect();
-        s.fixes = std::mem::take(&mut self.fixes);
-        s.pressure = std::mem::take(&mut self.pressure);
+        let (mut s, unpaired) = self.streams(sign, ios_frames);
         let dropped = drop_non_finite(&mut s);
         if s.accel.is_empty() {
             return Err(file_error(
@@ -130,6 +62,100 @@ impl Raw {
             ),
         );
         Ok(log)
+    }
+
+    /// Puts every sensor's samples in time order.
+    fn sort_by_time(&mut self) {
+        for v in [
+            &mut self.accel,
+            &mut self.gravity,
+            &mut self.total,
+            &mut self.gyro,
+            &mut self.mag,
+        ] {
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        }
+        self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+
+    /// Whether the recording has acceleration with gravity, or the parts to make it; if not,
+    /// why not (naming `accel_file`, or the gravity file's own problem).
+    fn check_acceleration(&self, accel_file: &str) -> Result<(), ParseError> {
+        if self.total.is_empty() && self.accel.is_empty() {
+            return Err(file_error(
+                accel_file,
+                0,
+                "no accelerometer samples (Accelerometer or TotalAcceleration)",
+            ));
+        }
+        if self.total.is_empty() && self.gravity.is_empty() {
+            let gravity_problem = self
+                .warnings
+                .find(|w| w.column.is_none() && w.file.to_lowercase().ends_with("gravity.csv"));
+            if let Some(e) = gravity_problem {
+                return Err(e.clone());
+            }
+            return Err(file_error(
+                accel_file,
+                0,
+                "Accelerometer has gravity removed, and there is no Gravity or TotalAcceleration \
+                 to restore it",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The factor of acceleration to m/s² (g or m/s², from the size of gravity) and the
+    /// platform ([`decide_platform`]).
+    fn units_and_platform(&self) -> (f64, Option<Platform>) {
+        let reference = if self.gravity.is_empty() {
+            &self.total
+        } else {
+            &self.gravity
+        };
+        let mean_norm =
+            reference.iter().map(|(_, v)| v.norm()).sum::<f64>() / reference.len().max(1) as f64;
+        let scale = if mean_norm < 3.0 { G0 } else { 1.0 };
+        let platform = decide_platform(
+            self.platform,
+            !self.total.is_empty(),
+            scale != 1.0,
+            &self.gravity,
+            &self.orientation,
+            reference,
+        );
+        (scale, platform)
+    }
+
+    /// The streams in the import's convention: acceleration with gravity times `sign` (total
+    /// acceleration, or acceleration paired with the nearest gravity), attitudes turned to ENU
+    /// when `ios_frames`. Also how many acceleration samples had no gravity to pair with.
+    fn streams(&mut self, sign: f64, ios_frames: bool) -> (Streams, u64) {
+        let mut s = Streams::default();
+        let mut unpaired = 0u64;
+        if !self.total.is_empty() {
+            s.accel = self.total.iter().map(|&(t, v)| (t, v * sign)).collect();
+        } else {
+            let (paired, n) =
+                pair_nearest(&self.accel, &self.gravity, HOLD_S, |a, g| (a + g) * sign);
+            s.accel = paired;
+            unpaired = n;
+        }
+        s.gyro = std::mem::take(&mut self.gyro);
+        s.mag = std::mem::take(&mut self.mag);
+        let to_enu = if ios_frames {
+            core_motion_to_enu()
+        } else {
+            UnitQuaternion::identity()
+        };
+        s.orientation = self
+            .orientation
+            .iter()
+            .map(|&(t, q)| (t, to_enu * q))
+            .collect();
+        s.fixes = std::mem::take(&mut self.fixes);
+        s.pressure = std::mem::take(&mut self.pressure);
+        (s, unpaired)
     }
 }
 

@@ -2,7 +2,7 @@
 //! column names. May import: `engine` and `io`.
 
 use super::{Clock, Fields, Kind, Raw, FILES};
-use crate::io::import::common::{split_line, Table, Warnings};
+use crate::io::import::common::{open, split_line, Table, Warnings};
 use crate::io::import::{field_error, file_error, fileset, FileSet, Format, Log};
 use crate::io::ParseError;
 use std::io::BufRead;
@@ -170,9 +170,7 @@ pub fn read_dir(
             if let (Some(size), Ok(head)) = (set.size(name), set.head(name)) {
                 raw.reserve(kind, crate::io::lines::estimate_records(&head, size));
             }
-            let r = set
-                .open(name)
-                .map_err(|e| file_error(&label, 0, format!("cannot open: {e}")))?;
+            let r = open(set, name, &label)?;
             raw.csv_file(r, &label, kind, clock)?;
         }
         raw.finish(log, &source)
