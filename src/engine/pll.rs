@@ -442,35 +442,11 @@ impl Pll {
 
     /// Feeds one vertical-acceleration sample with the motion detector's view of it.
     pub fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
-        let DetectorInput {
-            t,
-            dt,
-            up: a,
-            mean: mu,
-            sigma,
-            motion,
-            cadence_hz: cadence,
-            pitch_deg,
-            axis_tilt_deg,
-        } = *x;
-        let tilt = axis_tilt_deg.unwrap_or(0.0);
-        if self.s.band_key != Some((motion, cadence)) {
-            self.s.band_key = Some((motion, cadence));
-            self.s.band_val = self.band(motion, cadence);
-        }
-        let (lo, hi, free) = self.s.band_val;
-        // A change of band (walking ↔ running) clamps the estimate into the new band, so the
-        // loop keeps its lock across the transition.
-        self.s.integ = self.s.integ.clamp(lo, hi);
-        if motion == Motion::Still && sigma < 0.5 * self.cfg.cycle_rms_min {
-            // Nothing to follow: relax towards the free-running frequency (time constant 2 s).
-            self.s.integ += dt / (2.0 + dt) * (free - self.s.integ);
-        }
+        let (lo, hi) = self.follow_band(x);
         // Controlled oscillator.
         let prev = self.s.phase;
-        self.s.phase += TAU * self.s.freq * dt;
-        let mut out = None;
-        let d = a - mu;
+        self.s.phase += TAU * self.s.freq * x.dt;
+        let d = x.up - x.mean;
         // A peak of the oscillator (φ crossing 2π) is a step candidate at the time interpolated
         // inside the sample interval.
         let wrapped = self.s.phase >= TAU;
@@ -480,109 +456,162 @@ impl Pll {
             } else {
                 1.0
             };
-            self.s.pending = Some((t - dt + frac * dt, 1.0 / self.s.integ));
+            self.s.pending = Some((x.t - x.dt + frac * x.dt, 1.0 / self.s.integ));
             self.s.phase -= TAU * (self.s.phase / TAU).floor();
         }
         // The step's cycle runs from the trough before its peak to the trough after it (φ from
         // −π to π), so it is judged half a period after the peak, when φ crosses π.
         let from = if wrapped { prev - TAU } else { prev };
-        if from < PI && self.s.phase >= PI {
-            let frac = (PI - from) / (self.s.phase - from);
-            let sq = self.s.cycle_sq + d * d * dt * frac;
-            let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
-            let tilted = self.s.cycle_tilt.max(tilt) > self.cfg.axis_tilt_max_deg;
-            let left_thigh = tilted && !self.tilted;
-            self.tilted = tilted;
-            if let Some((t_peak, period_s)) = self.s.pending.take() {
-                let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
-                let moving = rms >= self.cfg.cycle_rms_min
-                    && self.s.peak_max >= self.cfg.peak_share_min * rms
-                    && !left_thigh;
-                let counts = moving
-                    && (rms >= self.cfg.cycle_rms_rel * sigma
-                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
-                // The step held on the cycle before counts unless this one moved without a
-                // step's peak.
-                if let Some(h) = self.s.held.take() {
-                    if moving || rms < self.cfg.cycle_rms_min {
-                        self.s.late = Some(h);
-                    } else {
-                        self.s.prev_cycles[0].1 = false;
-                    }
-                }
-                let after_still = self.s.prev_cycles[0].0 < self.cfg.cycle_rms_min;
-                self.s.prev_cycles = [(rms, counts), self.s.prev_cycles[0]];
-                let den = self.s.cycle_cc * sq;
-                let c = Candidate {
-                    t: t_peak,
-                    period_s,
-                    coherence: if den > 0.0 {
-                        self.s.cycle_xc / libm::sqrt(den)
-                    } else {
-                        0.0
-                    },
-                };
-                let swing = self
-                    .s
-                    .cycle_pitch
-                    .map(|(lo, hi)| hi - lo)
-                    .filter(|s| *s >= 0.0);
-                if counts {
-                    if !self.s.counted {
-                        // The first step counted since the restart: the quiet one before it, if
-                        // the limb swung over it nearly as much.
-                        self.s.late = self
-                            .s
-                            .quiet
-                            .zip(swing)
-                            .filter(|&((_, q), s)| {
-                                self.cfg.first_swing_rel > 0.0
-                                    && s >= FIRST_SWING_MIN_DEG
-                                    && q >= self.cfg.first_swing_rel * s
-                            })
-                            .map(|(q, _)| q.0);
-                    }
-                    // Held only while a gait is seen: the pipeline drops a step judged
-                    // without one, and takes a held step whenever it is given back.
-                    if self.s.counted
-                        && after_still
-                        && motion.is_moving()
-                        && axis_tilt_deg.is_some()
-                        && self.cfg.lone_step_confirm
-                    {
-                        self.s.held = Some(c);
-                    } else {
-                        out = Some(c);
-                    }
-                    self.s.counted = true;
-                }
-                self.s.quiet = swing
-                    .filter(|_| moving && !counts && !self.s.counted)
-                    .map(|s| (c, s));
-            }
-            self.s.cycle_xc = 0.0;
-            self.s.cycle_cc = 0.0;
-            self.s.peak_max = f64::NEG_INFINITY;
-            self.s.cycle_sq = d * d * dt * (1.0 - frac);
-            self.s.cycle_dt = dt * (1.0 - frac);
-            self.s.cycle_pitch = pitch_deg.map(|p| (p, p));
-            self.s.cycle_tilt = tilt;
+        let out = if from < PI && self.s.phase >= PI {
+            self.end_cycle(x, d, from)
         } else {
-            self.s.cycle_tilt = self.s.cycle_tilt.max(tilt);
-            self.s.cycle_sq += d * d * dt;
-            self.s.cycle_dt += dt;
+            self.s.cycle_tilt = self.s.cycle_tilt.max(x.axis_tilt_deg.unwrap_or(0.0));
+            self.s.cycle_sq += d * d * x.dt;
+            self.s.cycle_dt += x.dt;
             self.s.cycle_pitch = self
                 .s
                 .cycle_pitch
-                .zip(pitch_deg)
+                .zip(x.pitch_deg)
                 .map(|((lo, hi), p)| (lo.min(p), hi.max(p)));
+            None
+        };
+        self.track(x, d, prev, wrapped, (lo, hi));
+        out
+    }
+
+    /// The frequency band of the motion state and cadence of `x`, low and high, Hz, with the
+    /// integrator clamped into it and, with nothing to follow, relaxed towards the free-running
+    /// frequency.
+    fn follow_band(&mut self, x: &DetectorInput) -> (f64, f64) {
+        if self.s.band_key != Some((x.motion, x.cadence_hz)) {
+            self.s.band_key = Some((x.motion, x.cadence_hz));
+            self.s.band_val = self.band(x.motion, x.cadence_hz);
         }
+        let (lo, hi, free) = self.s.band_val;
+        // A change of band (walking ↔ running) clamps the estimate into the new band, so the
+        // loop keeps its lock across the transition.
+        self.s.integ = self.s.integ.clamp(lo, hi);
+        if x.motion == Motion::Still && x.sigma < 0.5 * self.cfg.cycle_rms_min {
+            // Nothing to follow: relax towards the free-running frequency (time constant 2 s).
+            self.s.integ += x.dt / (2.0 + x.dt) * (free - self.s.integ);
+        }
+        (lo, hi)
+    }
+
+    /// The cycle ends at this sample (φ crossed π after `from`): the step of its peak is judged
+    /// ([`Self::judge`]) and the next cycle starts with the rest of the sample. `d` is the
+    /// sample's deviation from the mean, m/s².
+    fn end_cycle(&mut self, x: &DetectorInput, d: f64, from: f64) -> Option<Candidate> {
+        let (dt, tilt) = (x.dt, x.axis_tilt_deg.unwrap_or(0.0));
+        let frac = (PI - from) / (self.s.phase - from);
+        let sq = self.s.cycle_sq + d * d * dt * frac;
+        let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
+        let tilted = self.s.cycle_tilt.max(tilt) > self.cfg.axis_tilt_max_deg;
+        let left_thigh = tilted && !self.tilted;
+        self.tilted = tilted;
+        let out = self.judge(x, sq, rms, left_thigh);
+        self.s.cycle_xc = 0.0;
+        self.s.cycle_cc = 0.0;
+        self.s.peak_max = f64::NEG_INFINITY;
+        self.s.cycle_sq = d * d * dt * (1.0 - frac);
+        self.s.cycle_dt = dt * (1.0 - frac);
+        self.s.cycle_pitch = x.pitch_deg.map(|p| (p, p));
+        self.s.cycle_tilt = tilt;
+        out
+    }
+
+    /// Whether the step of the cycle just ended counts, from the cycle's sum of squares `sq`
+    /// and RMS `rms` (m/s²) and whether the phone just left the thigh; returns the step given
+    /// now (a step held for the next cycle, or handed back late, goes by the state).
+    fn judge(
+        &mut self,
+        x: &DetectorInput,
+        sq: f64,
+        rms: f64,
+        left_thigh: bool,
+    ) -> Option<Candidate> {
+        let (t_peak, period_s) = self.s.pending.take()?;
+        let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
+        let moving = rms >= self.cfg.cycle_rms_min
+            && self.s.peak_max >= self.cfg.peak_share_min * rms
+            && !left_thigh;
+        let counts = moving
+            && (rms >= self.cfg.cycle_rms_rel * x.sigma
+                || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
+        // The step held on the cycle before counts unless this one moved without a step's peak.
+        if let Some(h) = self.s.held.take() {
+            if moving || rms < self.cfg.cycle_rms_min {
+                self.s.late = Some(h);
+            } else {
+                self.s.prev_cycles[0].1 = false;
+            }
+        }
+        let after_still = self.s.prev_cycles[0].0 < self.cfg.cycle_rms_min;
+        self.s.prev_cycles = [(rms, counts), self.s.prev_cycles[0]];
+        let den = self.s.cycle_cc * sq;
+        let c = Candidate {
+            t: t_peak,
+            period_s,
+            coherence: if den > 0.0 {
+                self.s.cycle_xc / libm::sqrt(den)
+            } else {
+                0.0
+            },
+        };
+        let swing = self
+            .s
+            .cycle_pitch
+            .map(|(lo, hi)| hi - lo)
+            .filter(|s| *s >= 0.0);
+        let mut out = None;
+        if counts {
+            if !self.s.counted {
+                // The first step counted since the restart: the quiet one before it, if the
+                // limb swung over it nearly as much.
+                self.s.late = self
+                    .s
+                    .quiet
+                    .zip(swing)
+                    .filter(|&((_, q), s)| {
+                        self.cfg.first_swing_rel > 0.0
+                            && s >= FIRST_SWING_MIN_DEG
+                            && q >= self.cfg.first_swing_rel * s
+                    })
+                    .map(|(q, _)| q.0);
+            }
+            // Held only while a gait is seen: the pipeline drops a step judged without one, and
+            // takes a held step whenever it is given back.
+            if self.s.counted
+                && after_still
+                && x.motion.is_moving()
+                && x.axis_tilt_deg.is_some()
+                && self.cfg.lone_step_confirm
+            {
+                self.s.held = Some(c);
+            } else {
+                out = Some(c);
+            }
+            self.s.counted = true;
+        }
+        self.s.quiet = swing
+            .filter(|_| moving && !counts && !self.s.counted)
+            .map(|s| (c, s));
+        out
+    }
+
+    /// The loop's update at every sample: the phase detector on the normalised input, the
+    /// acquisition aid, the oscillator's phasor, the lock indicator and the PI stage, whose
+    /// frequency stays in the band `(lo, hi)`, Hz. `prev` is the phase before this sample's
+    /// advance, `wrapped` whether it crossed 2π.
+    fn track(&mut self, x: &DetectorInput, d: f64, prev: f64, wrapped: bool, band: (f64, f64)) {
+        let (lo, hi) = band;
+        let dt = x.dt;
         // Phase detector on the normalised input. The floor keeps noise small while still.
-        let x = (d / sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
+        let xn = (d / x.sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
         // Acquisition aid: a type-2 loop this narrow pulls in slowly from far away (seconds for
         // walking → running from a standstill). When the loop is not locked and three regular
         // input cycles disagree with it by more than its lock-in range, re-seed the integrator.
-        if let Some(fz) = self.crossing_frequency(t, x) {
+        if let Some(fz) = self.crossing_frequency(x.t, xn) {
             let lock_in = 2.0 * self.cfg.damping * self.cfg.natural_hz;
             if !self.locked() && (fz - self.s.integ).abs() > lock_in && fz >= lo && fz <= hi {
                 self.s.integ = fz;
@@ -604,11 +633,10 @@ impl Pll {
             // Within a quarter period of the oscillator's peak.
             self.s.peak_max = self.s.peak_max.max(d);
         }
-        let e = self.s.loop_lpf.update(-x * s, dt);
-        self.s.lock.update(x * c, dt);
+        let e = self.s.loop_lpf.update(-xn * s, dt);
+        self.s.lock.update(xn * c, dt);
         self.s.integ = (self.s.integ + self.ki * e * dt).clamp(lo, hi);
         self.s.freq = (self.s.integ + self.kp * e).clamp(lo, hi);
-        out
     }
 
     /// A step decided only with a later cycle, earlier than any step [`Pll::push`] gives with
