@@ -2,18 +2,14 @@
 //! stride; and with a second, foot-mounted IMU, that sensor's strides ([`super::two_sensor`]).
 //! May import: the rest of `engine`.
 
-use super::two_sensor::TwoSensor;
+use super::track::stride_record;
+use super::two_sensor::{check, TwoSensor};
 use super::{Pipeline, PipelineConfig, StepRecord};
-use crate::engine::activity::Activity;
 use crate::engine::foot::placement::{Placement, Recogniser, Verdict, DECIDE_WITHIN_S};
 use crate::engine::foot::{Foot, FootDiagnostics, Stride};
 use crate::engine::hybrid::HybridDiagnostics;
-use crate::engine::motion::Motion;
-use crate::engine::types::{ConfigError, ImuSample};
-
-/// The share of a gait cycle spent in swing (about 40 %, Perry's gait analysis), giving the
-/// stride frequency of the first stride of a walk from its swing alone.
-const SWING_SHARE: f64 = 0.4;
+use crate::engine::types::{ConfigError, ImuSample, InputError};
+use nalgebra::UnitQuaternion;
 
 /// What foot mode made of one body sample ([`FootMode::push`]).
 #[derive(Debug, Clone)]
@@ -149,34 +145,41 @@ impl FootMode {
     }
 }
 
-/// The step record of a stride that ends at foot flat, placed at `(east_m, north_m)` with
-/// `heading_rad` (foot mode's own, or the hybrid's); `prev_t` is the previous stride's foot
-/// flat.
-pub(super) fn stride_record(
-    st: &Stride,
-    prev_t: Option<f64>,
-    (east_m, north_m): (f64, f64),
-    heading_rad: f64,
-) -> StepRecord {
-    let period = prev_t
-        .map(|l| st.t_end - l)
-        .filter(|&p| p > 0.0 && p <= 3.0)
-        .unwrap_or((st.t_end - st.t_start) / SWING_SHARE);
-    StepRecord {
-        t: st.t_end,
-        east_m,
-        north_m,
-        heading_rad: Some(heading_rad),
-        step_heading_rad: Some(st.heading_rad),
-        length_m: st.length_m,
-        freq_hz: if period > 0.0 { 1.0 / period } else { 0.0 },
-        motion: Motion::Walking,
-        activity: Activity::Walking,
-        up_m: 0.0,
-        floor: 0,
-        pitch_amplitude_deg: None,
-        carry: None,
-        gyro_heading: false,
+impl FootMode {
+    /// Feeds one sample of the foot-mounted IMU; returns the strides it completed, and whether
+    /// it was the first (the body's steps so far give way to the strides then). Refused (state
+    /// untouched) when not finite, without a gyroscope or earlier than the previous one.
+    pub(super) fn push_foot_sensor(
+        &mut self,
+        s: &ImuSample,
+        cfg: &PipelineConfig,
+    ) -> Result<(Vec<StepRecord>, bool), InputError> {
+        check(s, self.two.as_ref().and_then(TwoSensor::last_t))?;
+        let first = self.two.is_none();
+        if first {
+            let Some(two) = TwoSensor::new(cfg) else {
+                // Validated with the configuration, so this cannot happen.
+                return Ok((Vec::new(), false));
+            };
+            // The first IMU is the trunk's: it is never taken for a foot (`placement`).
+            self.to_body();
+            self.two = Some(two);
+        }
+        let Some(two) = &mut self.two else {
+            return Ok((Vec::new(), first));
+        };
+        two.push(s);
+        Ok((two.drain(), first))
+    }
+
+    /// The trunk sensor's attitude at `t` (every trunk sample), while there is a foot sensor;
+    /// returns the strides the hybrid stage finished.
+    pub(super) fn push_trunk(&mut self, t: f64, q: Option<UnitQuaternion<f64>>) -> Vec<StepRecord> {
+        let Some(two) = &mut self.two else {
+            return Vec::new();
+        };
+        two.push_trunk(t, q);
+        two.drain()
     }
 }
 

@@ -2,6 +2,13 @@
 //! May import: the rest of `engine`.
 
 use super::StepRecord;
+use crate::engine::activity::Activity;
+use crate::engine::foot::Stride;
+use crate::engine::motion::Motion;
+
+/// The share of a gait cycle spent in swing (about 40 %, Perry's gait analysis), giving the
+/// stride frequency of the first stride of a walk from its swing alone.
+const SWING_SHARE: f64 = 0.4;
 
 /// What the track has counted.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -88,5 +95,36 @@ impl Track {
             ..TrackCounts::default()
         };
         self.pos = (0.0, 0.0);
+    }
+}
+
+/// The step record of a stride that ends at foot flat, placed at `(east_m, north_m)` with
+/// `heading_rad` (foot mode's own, or the hybrid's); `prev_t` is the previous stride's foot
+/// flat.
+pub(super) fn stride_record(
+    st: &Stride,
+    prev_t: Option<f64>,
+    (east_m, north_m): (f64, f64),
+    heading_rad: f64,
+) -> StepRecord {
+    let period = prev_t
+        .map(|l| st.t_end - l)
+        .filter(|&p| p > 0.0 && p <= 3.0)
+        .unwrap_or((st.t_end - st.t_start) / SWING_SHARE);
+    StepRecord {
+        t: st.t_end,
+        east_m,
+        north_m,
+        heading_rad: Some(heading_rad),
+        step_heading_rad: Some(st.heading_rad),
+        length_m: st.length_m,
+        freq_hz: if period > 0.0 { 1.0 / period } else { 0.0 },
+        motion: Motion::Walking,
+        activity: Activity::Walking,
+        up_m: 0.0,
+        floor: 0,
+        pitch_amplitude_deg: None,
+        carry: None,
+        gyro_heading: false,
     }
 }

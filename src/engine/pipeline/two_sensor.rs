@@ -8,7 +8,7 @@
 //! (the twist about the vertical) at every trunk sample. The body pipeline keeps running (its
 //! orientation gives the trunk attitude; its motion state is shown) but emits no steps.
 
-use super::foot::{stride_record, FootMode};
+use super::track::stride_record;
 use super::{Pipeline, PipelineConfig, StepRecord};
 use crate::engine::foot::Foot;
 use crate::engine::heading::yaw_aid::device_twist;
@@ -27,7 +27,7 @@ pub(super) struct TwoSensor {
 
 impl TwoSensor {
     /// The stages, with the pipeline's (validated) settings; `None` if they fail anyway.
-    fn new(cfg: &PipelineConfig) -> Option<Self> {
+    pub(super) fn new(cfg: &PipelineConfig) -> Option<Self> {
         Some(TwoSensor {
             foot: Foot::new(cfg.foot).ok()?,
             hybrid: Hybrid::new(cfg.hybrid).ok()?,
@@ -38,7 +38,7 @@ impl TwoSensor {
     }
 
     /// Feeds one sample of the foot-mounted IMU: its strides go to the hybrid stage.
-    fn push(&mut self, s: &ImuSample) {
+    pub(super) fn push(&mut self, s: &ImuSample) {
         let mut dt = self.last_t.map_or(0.0, |l| s.t - l);
         if dt > self.gap_s {
             self.foot.gap();
@@ -51,7 +51,7 @@ impl TwoSensor {
     }
 
     /// The trunk sensor's attitude at `t` (every trunk sample).
-    fn push_trunk(&mut self, t: f64, q: Option<UnitQuaternion<f64>>) {
+    pub(super) fn push_trunk(&mut self, t: f64, q: Option<UnitQuaternion<f64>>) {
         if let Some(yaw) = q.as_ref().and_then(device_twist) {
             self.hybrid.push_heading(t, yaw);
         }
@@ -59,7 +59,7 @@ impl TwoSensor {
 
     /// The strides the hybrid stage has finished, one step record each, at foot flat, with the
     /// hybrid's heading and position.
-    fn drain(&mut self) -> Vec<StepRecord> {
+    pub(super) fn drain(&mut self) -> Vec<StepRecord> {
         let mut out = Vec::new();
         while let Some(h) = self.hybrid.pop() {
             let prev = self.last_stride_t.replace(h.stride.t_end);
@@ -73,6 +73,11 @@ impl TwoSensor {
         out
     }
 
+    /// The last sample's time, s.
+    pub(super) fn last_t(&self) -> Option<f64> {
+        self.last_t
+    }
+
     /// The hybrid stage's counters.
     pub(super) fn diagnostics(&self) -> HybridDiagnostics {
         self.hybrid.diagnostics()
@@ -80,7 +85,7 @@ impl TwoSensor {
 }
 
 /// Refuses a foot sample that is not finite, has no gyroscope or comes before `last`, s.
-fn check(s: &ImuSample, last: Option<f64>) -> Result<(), InputError> {
+pub(super) fn check(s: &ImuSample, last: Option<f64>) -> Result<(), InputError> {
     s.check()?;
     if s.gyro.is_none() {
         return Err(InputError::MissingField {
@@ -91,44 +96,6 @@ fn check(s: &ImuSample, last: Option<f64>) -> Result<(), InputError> {
     match last {
         Some(last) if s.t < last => Err(InputError::TimeWentBackwards { t: s.t, last }),
         _ => Ok(()),
-    }
-}
-
-impl FootMode {
-    /// Feeds one sample of the foot-mounted IMU; returns the strides it completed, and whether
-    /// it was the first (the body's steps so far give way to the strides then). Refused (state
-    /// untouched) when not finite, without a gyroscope or earlier than the previous one.
-    pub(super) fn push_foot_sensor(
-        &mut self,
-        s: &ImuSample,
-        cfg: &PipelineConfig,
-    ) -> Result<(Vec<StepRecord>, bool), InputError> {
-        check(s, self.two.as_ref().and_then(|w| w.last_t))?;
-        let first = self.two.is_none();
-        if first {
-            let Some(two) = TwoSensor::new(cfg) else {
-                // Validated with the configuration, so this cannot happen.
-                return Ok((Vec::new(), false));
-            };
-            // The first IMU is the trunk's: it is never taken for a foot (`placement`).
-            self.to_body();
-            self.two = Some(two);
-        }
-        let Some(two) = &mut self.two else {
-            return Ok((Vec::new(), first));
-        };
-        two.push(s);
-        Ok((two.drain(), first))
-    }
-
-    /// The trunk sensor's attitude at `t` (every trunk sample), while there is a foot sensor;
-    /// returns the strides the hybrid stage finished.
-    pub(super) fn push_trunk(&mut self, t: f64, q: Option<UnitQuaternion<f64>>) -> Vec<StepRecord> {
-        let Some(two) = &mut self.two else {
-            return Vec::new();
-        };
-        two.push_trunk(t, q);
-        two.drain()
     }
 }
 
