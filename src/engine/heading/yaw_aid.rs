@@ -132,6 +132,88 @@ impl YawOffset {
     }
 }
 
+/// The yaw aid's stage: the device's yaw at the last step and the learnt offset.
+#[derive(Debug, Clone, Default)]
+pub struct Steer {
+    // The device's yaw at the previous step of the bout, compass radians, unwrapped.
+    last_yaw: Option<f64>,
+    offset: YawOffset,
+}
+
+/// What the yaw aid is given at a step.
+#[derive(Debug, Clone, Copy)]
+pub struct SteerInput {
+    /// The device → ENU attitude at the step.
+    pub attitude: nalgebra::UnitQuaternion<f64>,
+    /// The device's integrated yaw at the step, compass radians, unwrapped.
+    pub yaw: f64,
+    /// Up in the device frame at this step, when known.
+    pub up: Option<nalgebra::Vector3<f64>>,
+    /// Up in the device frame at the last step, when known.
+    pub previous_up: Option<nalgebra::Vector3<f64>>,
+    /// Where the phone is carried, once decided.
+    pub carry: Option<crate::engine::carry::CarryMode>,
+    /// The step continues the previous one.
+    pub continued: bool,
+    /// The acceleration heading of the step (averaged, turn-led), rad from north.
+    pub averaged: Option<f64>,
+}
+
+impl Steer {
+    /// The step's heading from the device's yaw, rad from north: in the hand, screen up, at any
+    /// tilt the carrying mode allows, or (else, and before the mode is known) held nearly flat,
+    /// the top of the phone; elsewhere, with [`YawAid::learn_offset`], the yaw plus the offset
+    /// learnt on straight steps; else none.
+    pub fn push(&mut self, aid: &YawAid, x: &SteerInput) -> Option<f64> {
+        let SteerInput {
+            attitude,
+            yaw,
+            up,
+            previous_up,
+            carry,
+            continued,
+            averaged,
+        } = *x;
+        let prev = self.last_yaw.replace(yaw).filter(|_| continued);
+        let steady = match (up, previous_up) {
+            (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
+            _ => true,
+        };
+        let reading = (aid.hand_mode
+            && carry == Some(crate::engine::carry::CarryMode::Hand)
+            && steady
+            && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
+            || reading_pose(&attitude, aid);
+        if reading {
+            // Held in front, screen up: the top of the phone is the way forward.
+            device_twist(&attitude)
+        } else if !aid.learn_offset {
+            None
+        } else {
+            // Two-step mean, as A-HE, so the sway of a pocket cancels.
+            let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
+            // Only straight steps teach the offset: in a turn θ̄ (a stride average of the
+            // acceleration) lags the yaw.
+            let straight = prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
+            if let (Some(th), true) = (averaged, straight) {
+                self.offset
+                    .update(aid, crate::engine::math::wrap_pi(th - psi));
+            }
+            self.offset.get().map(|d| crate::engine::math::wrap_2pi(psi + d))
+        }
+    }
+
+    /// The learnt offset δ from the device's yaw to the direction of walking, rad.
+    pub fn offset(&self) -> Option<f64> {
+        self.offset.get()
+    }
+
+    /// The end of a bout: the next step's yaw is not compared with the last.
+    pub fn end_bout(&mut self) {
+        self.last_yaw = None;
+    }
+}
+
 #[cfg(test)]
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
