@@ -78,17 +78,15 @@ pub struct PipelineConfig {
     pub heading: HeadingConfig,
     /// Step-length model.
     pub step_length: StepLengthModel,
-    /// How far back the step detector looks when a gait is confirmed, s (see
-    /// [`Pipeline::push_imu`]). Default 3 s, the span of the autocorrelation that confirms a
-    /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it. Oxford
-    /// (34 traces, with `onset_coherence_min` 0, when chosen): 1.48 % mean count error with
-    /// 2.5 s, 1.37 % with 3 s, 1.47 % with 3.5 s.
+    /// How far back the step detector looks when a gait is confirmed, s (the onset look-back,
+    /// see the module notes). Default 3 s, the span of the autocorrelation that confirms a
+    /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it.
     pub onset_lookback_s: f64,
     /// In the onset look-back, the gait began after the last step whose cycle is
-    /// anti-correlated with the oscillator ([`Candidate::coherence`] below this): handling the
+    /// anti-correlated with the oscillator ([`crate::engine::detector::Candidate::coherence`] below this): handling the
     /// phone or a bag before walking is not in phase with the walk. Default 0, the sign of the
-    /// correlation. Oxford, when chosen: 1.63 % without this test, 1.37 % with 0, 1.48 % with
-    /// 0.1, 2.27 % with 0.5 (the first cycles of a walk follow the oscillator loosely).
+    /// correlation; the first cycles of a walk follow the oscillator loosely, so a higher
+    /// threshold refuses them.
     pub onset_coherence_min: f64,
     /// GNSS/PDR fusion ([`crate::engine::fusion`]); its mode `off` keeps the fixes for display
     /// only.
