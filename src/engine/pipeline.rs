@@ -513,9 +513,9 @@ impl Pipeline {
         // held for the next cycle, if it was.
         let late = self.detector.take_late_step();
         let heading = &self.heading;
-        let late_pose =
-            self.bout
-                .follow_detector(late.is_some(), self.detector.holding(), || heading.pose());
+        let late_pose = self
+            .bout
+            .follow_detector(late.is_some(), self.detector.holding(), || heading.pose());
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh

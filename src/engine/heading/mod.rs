@@ -465,9 +465,8 @@ impl Heading {
         }
         // A swinging arm's first vote is one stride's, which can point back: it settles a
         // bout's opening from its second.
-        let young_arm = signed.by_limb
-            && step.carry == Some(CarryMode::Swinging)
-            && self.sign.arm_steps() < 2;
+        let young_arm =
+            signed.by_limb && step.carry == Some(CarryMode::Swinging) && self.sign.arm_steps() < 2;
         let waiting = self.cfg.limb_sign
             && self.cfg.opening_steps > 0
             && step.has_heading
@@ -511,9 +510,9 @@ impl Heading {
         match averaged {
             Some(a) if self.cfg.turn_lead => {
                 let w = step.window;
-                let lead = self
-                    .turn
-                    .push(step.buf, w, turn::window(&self.cfg, w), step.continued, two);
+                let lead =
+                    self.turn
+                        .push(step.buf, w, turn::window(&self.cfg, w), step.continued, two);
                 Some(wrap_2pi(a + lead))
             }
             a => {

@@ -199,7 +199,9 @@ impl Steer {
                 self.offset
                     .update(aid, crate::engine::math::wrap_pi(th - psi));
             }
-            self.offset.get().map(|d| crate::engine::math::wrap_2pi(psi + d))
+            self.offset
+                .get()
+                .map(|d| crate::engine::math::wrap_2pi(psi + d))
         }
     }
 

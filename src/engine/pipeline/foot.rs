@@ -86,7 +86,10 @@ impl FootMode {
                     self.placement = Placement::Foot;
                     let pending = std::mem::take(&mut self.pending);
                     return FootOutcome::Recognised(
-                        pending.into_iter().map(|st| self.stride_record(st)).collect(),
+                        pending
+                            .into_iter()
+                            .map(|st| self.stride_record(st))
+                            .collect(),
                     );
                 }
                 if verdict == Verdict::Body || s.t - start > DECIDE_WITHIN_S {

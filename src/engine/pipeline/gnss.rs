@@ -82,7 +82,10 @@ impl Gnss {
             self.declination = Some((d.to_degrees(), note));
             self.fusion = Some(Fusion::new(self.cfg, d));
             self.frame = Some(frame);
-            return Ok(group.iter().filter_map(|g| self.fix_input(g, still)).collect());
+            return Ok(group
+                .iter()
+                .filter_map(|g| self.fix_input(g, still))
+                .collect());
         }
         if self.frame.is_none() {
             self.frame = Some(at(f));
