@@ -413,15 +413,7 @@ impl Heading {
             None
         };
         let keep = self.last_used.filter(|_| self.carried.carrying());
-        let signed = self.sign.push(
-            self.cfg.limb_sign,
-            step.buf,
-            step.window,
-            theta,
-            step.carry,
-            step.limb_forward,
-            keep,
-        );
+        let signed = self.sign.push(self.cfg.limb_sign, step, theta, keep);
         let opened = self.open(step, signed, pose.yaw);
         // A mode whose sign comes from its limb has not settled until the limb gave it.
         let limb_mode = self.cfg.limb_sign
@@ -694,6 +686,7 @@ pub fn single_step(cfg: &HeadingConfig, buf: &VecDeque<NavSample>, w: StepWindow
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
+    use crate::engine::math::wrap_pi;
 
     #[test]
     fn a_limb_that_turns_its_way_forward_is_not_averaged_across_the_turn() {

@@ -2,10 +2,9 @@
 //! [`super::HeadingConfig::limb_sign`]): the first stage of the heading's chain.
 //! May import: the rest of `engine`.
 
-use super::{arm, NavSample, StepWindow};
+use super::{arm, StepInput};
 use crate::engine::carry::CarryMode;
 use crate::engine::math::wrap_2pi;
-use std::collections::VecDeque;
 
 /// The weight a swinging hand's forward vote keeps per step (the last 2–3 steps count).
 const ARM_KEEP: f64 = 0.5;
@@ -33,9 +32,9 @@ pub struct LimbSign {
 }
 
 impl LimbSign {
-    /// `theta` (rad from north) with its 180° from the limb the phone rides when `enabled`, and
-    /// whether the limb gave it:
-    /// - the thigh's swing (`limb_forward`) while the mode is the pocket or not yet known (a
+    /// The step's `theta` (rad from north) with its 180° from the limb the phone rides when
+    /// `enabled`, and whether the limb gave it:
+    /// - the thigh's swing ([`StepInput::limb_forward`]) while the mode is the pocket or not yet known (a
     ///   swinging arm passes for a thigh, one axis and a leg's amplitude, but its swing says
     ///   nothing of the way forward);
     /// - in a swinging hand, the pelvis with the arm's pendulum taken out ([`arm`]), voted over
@@ -44,21 +43,17 @@ impl LimbSign {
     ///
     /// `keep`: while a heading is carried across a change ([`super::continuity`]), the heading
     /// last walked, whose side a limb's mode keeps until the limb says.
-    #[allow(clippy::too_many_arguments)]
     pub fn push(
         &mut self,
         enabled: bool,
-        buf: &VecDeque<NavSample>,
-        window: StepWindow,
+        step: &StepInput,
         theta: Option<f64>,
-        carry: Option<CarryMode>,
-        limb_forward: Option<(f64, f64)>,
         keep: Option<f64>,
     ) -> Signed {
         self.flipped = false;
         match theta {
             Some(th) if enabled => {
-                let (theta, by_limb) = self.sign(buf, window, th, carry, limb_forward, keep);
+                let (theta, by_limb) = self.sign(step, th, keep);
                 Signed { theta, by_limb }
             }
             theta => Signed {
@@ -68,15 +63,8 @@ impl LimbSign {
         }
     }
 
-    fn sign(
-        &mut self,
-        buf: &VecDeque<NavSample>,
-        window: StepWindow,
-        theta: f64,
-        carry: Option<CarryMode>,
-        limb_forward: Option<(f64, f64)>,
-        keep: Option<f64>,
-    ) -> (Option<f64>, bool) {
+    fn sign(&mut self, step: &StepInput, theta: f64, keep: Option<f64>) -> (Option<f64>, bool) {
+        let (carry, limb_forward) = (step.carry, step.limb_forward);
         let (s, c) = libm::sincos(theta);
         let turned = |back: bool| {
             Some(if back {
@@ -107,7 +95,8 @@ impl LimbSign {
                 (turned(s * e + c * n < 0.0), true)
             }
             (Some(CarryMode::Pocket), None) => kept(),
-            (Some(CarryMode::Swinging), _) => match arm::forwardness(buf, window, (s, c)) {
+            (Some(CarryMode::Swinging), _) => match arm::forwardness(step.buf, step.window, (s, c))
+            {
                 Some(f) => {
                     self.arm_steps = self.arm_steps.saturating_add(1);
                     let v = &mut self.arm_vote;

@@ -93,7 +93,7 @@ impl FootMode {
                     );
                 }
                 if verdict == Verdict::Body || s.t - start > DECIDE_WITHIN_S {
-                    self.to_body();
+                    self.become_body();
                 }
                 FootOutcome::None
             }
@@ -102,7 +102,7 @@ impl FootMode {
     }
 
     /// The IMU is the body's: foot mode stops.
-    pub(super) fn to_body(&mut self) {
+    pub(super) fn become_body(&mut self) {
         self.placement = Placement::Body;
         self.foot = None;
         self.pending = Vec::new();
@@ -165,7 +165,7 @@ impl FootMode {
                 return Ok((Vec::new(), false));
             };
             // The first IMU is the trunk's: it is never taken for a foot (`placement`).
-            self.to_body();
+            self.become_body();
             self.two = Some(two);
         }
         let Some(two) = &mut self.two else {
