@@ -36,7 +36,7 @@ fn main() {
     let mut next = 0.0;
     for r in &log.records {
         if let Record::Imu(s) = r {
-            let _ = p.push_imu(s);
+            let _ = p.push(r);
             if s.t >= next {
                 next = s.t + 0.1;
                 states.push((s.t, p.diagnostics()));

@@ -1,6 +1,6 @@
 //! Diagnostic trace of one Oxford recording: per 5 s window, true steps vs counted, σ, PLL frequency.
 use pdr::engine::PipelineConfig;
-use pdr::engine::{ImuSample, Pipeline};
+use pdr::engine::{ImuSample, Pipeline, Record};
 use std::path::Path;
 
 fn main() {
@@ -39,7 +39,7 @@ fn main() {
             continue;
         }
         let s = ImuSample::accel_only(v[0] * 1e-9, nalgebra::Vector3::new(v[2], v[3], v[4]));
-        let _ = p.push_imu(&s);
+        let _ = p.push(&Record::Imu(s));
         let t0 = *next.get_or_insert(s.t);
         if s.t >= t0 + 5.0 {
             let d = p.diagnostics();

@@ -127,7 +127,7 @@ fn sigma_thresholds_switch_states_at_the_right_times() {
     let mut at = Vec::new();
     for r in &sim.records {
         if let Record::Imu(s) = r {
-            p.push_imu(s).unwrap();
+            p.push(r).unwrap();
             at.push((s.t, p.diagnostics().motion.unwrap()));
         }
     }

@@ -52,14 +52,6 @@ impl Activity {
         Activity::Running,
         Activity::Handling,
     ];
-
-    /// Whether the walker takes steps.
-    pub fn is_stepping(self) -> bool {
-        matches!(
-            self,
-            Activity::Walking | Activity::Upstairs | Activity::Downstairs | Activity::Running
-        )
-    }
 }
 
 /// Settings of the activity classifier. The paper's rule (§4.3) compares each stride with the

@@ -30,11 +30,9 @@
 use super::activity::{Activity, ActivityConfig};
 use super::carry::{Carry, CarryConfig, CarryMode};
 use super::detector::DetectorInput;
-use super::foot::placement::{Placement, Recogniser};
-use super::foot::{Foot, FootConfig, FootDiagnostics, Stride};
-use super::fusion::{DeclinationNote, FixCounts, FusedStep, OriginVote};
-use super::fusion::{Fusion, FusionConfig};
-use super::geo::LocalFrame;
+use super::foot::placement::Placement;
+use super::foot::{FootConfig, FootDiagnostics};
+use super::fusion::{DeclinationNote, FixCounts, FusedStep, FusionConfig};
 use super::handling::{Handling, HandlingConfig};
 use super::heading::{self, Heading, HeadingConfig, NavSample};
 use super::hybrid::{HybridConfig, HybridDiagnostics};
@@ -43,16 +41,18 @@ use super::magnetic::{Magnetic, MagneticConfig};
 use super::motion::{Motion, MotionConfig, MotionDetector};
 use super::orientation::{Orientation, OrientationSource};
 use super::step_length::{StepLength, StepLengthModel};
-use super::types::{positive, time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
+use super::types::{positive, time_in_range, ConfigError, ImuSample, InputError, Record};
 use super::vertical::VerticalConfig;
-use std::collections::VecDeque;
 
+mod bout;
 mod foot;
 mod gnss;
 mod pocket;
 mod step_detector;
 mod steps;
+mod track;
 mod two_sensor;
+mod window;
 
 use step_detector::Detector;
 pub use step_detector::StepDetectorConfig;
@@ -78,17 +78,15 @@ pub struct PipelineConfig {
     pub heading: HeadingConfig,
     /// Step-length model.
     pub step_length: StepLengthModel,
-    /// How far back the step detector looks when a gait is confirmed, s (see
-    /// [`Pipeline::push_imu`]). Default 3 s, the span of the autocorrelation that confirms a
-    /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it. Oxford
-    /// (34 traces, with `onset_coherence_min` 0, when chosen): 1.48 % mean count error with
-    /// 2.5 s, 1.37 % with 3 s, 1.47 % with 3.5 s.
+    /// How far back the step detector looks when a gait is confirmed, s (the onset look-back,
+    /// see the module notes). Default 3 s, the span of the autocorrelation that confirms a
+    /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it.
     pub onset_lookback_s: f64,
     /// In the onset look-back, the gait began after the last step whose cycle is
-    /// anti-correlated with the oscillator ([`Candidate::coherence`] below this): handling the
+    /// anti-correlated with the oscillator ([`crate::engine::detector::Candidate::coherence`] below this): handling the
     /// phone or a bag before walking is not in phase with the walk. Default 0, the sign of the
-    /// correlation. Oxford, when chosen: 1.63 % without this test, 1.37 % with 0, 1.48 % with
-    /// 0.1, 2.27 % with 0.5 (the first cycles of a walk follow the oscillator loosely).
+    /// correlation; the first cycles of a walk follow the oscillator loosely, so a higher
+    /// threshold refuses them.
     pub onset_coherence_min: f64,
     /// GNSS/PDR fusion ([`crate::engine::fusion`]); its mode `off` keeps the fixes for display
     /// only.
@@ -327,16 +325,7 @@ pub struct Diagnostics {
     pub vertical: Option<super::vertical::VerticalSource>,
 }
 
-/// What waits while a bout's opening is held ([`heading::opening`]).
-#[derive(Debug, Clone, Copy)]
-enum Held {
-    /// A step, with its heading in the magnetometer's yaw for the fusion.
-    Step(StepRecord, Option<f64>),
-    /// A fix for the fusion: it gets steps and fixes in the order they came.
-    Fix(crate::engine::fusion::FixInput),
-}
-
-/// The streaming engine.
+/// The streaming engine: it routes each record through its stages.
 pub struct Pipeline {
     cfg: PipelineConfig,
     orientation: Orientation,
@@ -345,96 +334,56 @@ pub struct Pipeline {
     carry: Carry,
     magnetic: Magnetic,
     detector: Detector,
-    buf: VecDeque<NavSample>,
-    history_s: f64,
+    window: window::Window,
+    heading: Heading,
+    step_length: StepLength,
+    bout: bout::Bout,
+    track: track::Track,
+    gnss: gnss::Gnss,
+    foot: foot::FootMode,
+    pocket: pocket::Pocket,
     last_t: Option<f64>,
-    last_gnss_t: Option<f64>,
-    last_pressure_t: Option<f64>,
+    // The motion state of the latest sample, still while the phone is being handled.
     prev_state: Motion,
     // The last gait the motion detector saw (walking or running).
     last_gait: Motion,
-    // The heading stage's pose when the step detector began to hold a step for the next cycle.
-    held_pose: Option<heading::Pose>,
-    // Step history of the current bout.
-    t_km1: Option<f64>,
-    t_km2: Option<f64>,
-    heading: Heading,
-    step_length: StepLength,
     attitude: Option<nalgebra::UnitQuaternion<f64>>,
-    pos: (f64, f64),
-    steps: Vec<StepRecord>,
-    // Steps the heading stage holds at a bout's opening (at most `heading.opening_steps`),
-    // and the fixes for the fusion that came meanwhile, in their order.
-    held: Vec<Held>,
-    fixes: Vec<GnssFix>,
-    frame: Option<LocalFrame>,
-    fusion: Option<Fusion>,
-    origin: OriginVote,
-    diag: Diagnostics,
-    /// Foot mode and the hybrid heading, once a foot sample arrived.
-    two: Option<two_sensor::TwoSensor>,
-    // Foot mode: the stage (while foot mode runs or the placement is undecided), the resolved
-    // placement, the strides held while undecided and the last stride's time.
-    foot: Option<Foot>,
-    placement: Placement,
-    recogniser: Recogniser,
-    pending: Vec<Stride>,
-    last_stride_t: Option<f64>,
-    pocket: pocket::Pocket,
     // Whether a sample with a gyroscope has come.
     gyro_seen: bool,
+    diag: Diagnostics,
 }
 
 impl Pipeline {
     /// A pipeline with a validated configuration.
     pub fn new(cfg: PipelineConfig) -> Result<Self, ConfigError> {
         cfg.validate()?;
-        let (cfg_placement, cfg_foot) = (cfg.placement, cfg.foot);
-        let pocket = pocket::Pocket::new(&cfg);
         Ok(Pipeline {
             motion: MotionDetector::new(cfg.motion),
             handling: Handling::new(cfg.handling),
             carry: Carry::new(cfg.carry),
             magnetic: Magnetic::new(cfg.magnetic),
-            history_s: cfg
-                .heading
-                .history_s()
-                .max(cfg.motion.window_s + 2.0)
-                .max(cfg.onset_lookback_s + 0.5),
+            window: window::Window::new(
+                cfg.heading
+                    .history_s()
+                    .max(cfg.motion.window_s + 2.0)
+                    .max(cfg.onset_lookback_s + 0.5),
+            ),
             detector: Detector::new(cfg.detector),
             heading: Heading::new(cfg.heading),
             step_length: StepLength::new(cfg.step_length.clone()),
             orientation: Orientation::new(cfg.orientation),
+            bout: bout::Bout::default(),
+            track: track::Track::default(),
+            gnss: gnss::Gnss::new(cfg.fusion),
+            foot: foot::FootMode::new(&cfg)?,
+            pocket: pocket::Pocket::new(&cfg),
             cfg,
-            buf: VecDeque::new(),
             last_t: None,
-            last_gnss_t: None,
-            origin: OriginVote::default(),
-            last_pressure_t: None,
             prev_state: Motion::Still,
             last_gait: Motion::Walking,
-            held_pose: None,
-            t_km1: None,
-            t_km2: None,
             attitude: None,
-            pos: (0.0, 0.0),
-            steps: Vec::new(),
-            held: Vec::new(),
-            fixes: Vec::new(),
-            frame: None,
-            fusion: None,
-            diag: Diagnostics::default(),
-            two: None,
-            foot: match cfg_placement {
-                Placement::Body => None,
-                _ => Some(Foot::new(cfg_foot)?),
-            },
-            placement: cfg_placement,
-            recogniser: Recogniser::default(),
-            pending: Vec::new(),
-            last_stride_t: None,
-            pocket,
             gyro_seen: false,
+            diag: Diagnostics::default(),
         })
     }
 
@@ -450,51 +399,45 @@ impl Pipeline {
     pub fn push(&mut self, r: &Record) -> Result<&[StepRecord], InputError> {
         match r {
             Record::Imu(s) => self.push_imu(s),
-            Record::Gnss(f) => self.push_gnss(f).map(|()| &[][..]),
+            Record::Gnss(f) => match self.push_gnss(f) {
+                Ok(()) => Ok(&[][..]),
+                Err(e) => Err(self.refused(e)),
+            },
             Record::Gap(t0, t1) => {
                 // A gap ends the bout: the steps its opening held are placed.
-                let first = self.steps.len();
+                let first = self.track.len();
                 self.mark_gap(*t0, *t1);
-                Ok(&self.steps[first..])
+                Ok(&self.track.steps()[first..])
             }
             Record::Foot(s) => self.push_foot_imu(s),
-            Record::Pressure(p) => self.push_pressure(p).map(|()| &[][..]),
+            Record::Pressure(p) => match self.pocket.push_pressure(p) {
+                Ok(()) => Ok(&[][..]),
+                Err(e) => Err(self.refused(e)),
+            },
         }
     }
 
-    /// Feeds one IMU sample. Returns the steps it placed on the track (see [`Self::push`]).
-    pub fn push_imu(&mut self, s: &ImuSample) -> Result<&[StepRecord], InputError> {
-        if let Err(e) = self.check(s) {
-            match e {
-                InputError::NonFinite { .. } => self.diag.rejected_non_finite += 1,
-                InputError::TimeWentBackwards { .. } => self.diag.rejected_backwards += 1,
-                InputError::MissingField { .. } => self.diag.rejected_missing_field += 1,
-            }
-            return Err(e);
+    /// Counts a refused record by its reason, and returns the reason.
+    pub(super) fn refused(&mut self, e: InputError) -> InputError {
+        match e {
+            InputError::NonFinite { .. } => self.diag.rejected_non_finite += 1,
+            InputError::TimeWentBackwards { .. } => self.diag.rejected_backwards += 1,
+            InputError::MissingField { .. } => self.diag.rejected_missing_field += 1,
         }
-        let first = self.steps.len();
-        // A bout whose opening is held and has had no step for two strides has ended (the step
-        // detector gives a step up to two periods after its time).
-        if self
-            .held
-            .iter()
-            .rev()
-            .find_map(|h| match h {
-                Held::Step(k, _) => Some(k),
-                Held::Fix(_) => None,
-            })
-            .is_some_and(|k| s.t - k.t > 4.0 / k.freq_hz)
-        {
+        e
+    }
+
+    /// Feeds one IMU sample. Returns the steps it placed on the track (see [`Self::push`]).
+    fn push_imu(&mut self, s: &ImuSample) -> Result<&[StepRecord], InputError> {
+        if let Err(e) = self.check(s) {
+            return Err(self.refused(e));
+        }
+        let first = self.track.len();
+        if self.bout.stalled(s.t) {
+            // A bout whose opening is held and has had no step for two strides has ended.
             self.release_opening();
         }
-        let mut dt = self.last_t.map_or(0.0, |l| s.t - l);
-        if dt > self.cfg.gap_s {
-            self.gap(dt);
-            dt = 0.0;
-        }
-        self.last_t = Some(s.t);
-        self.diag.samples += 1;
-        self.diag.time_span = Some((self.diag.time_span.map_or(s.t, |p| p.0), s.t));
+        let dt = self.advance(s.t);
         let nav = self.orientation.push(s, dt)?;
         self.diag.orientation = Some(self.orientation.source_now());
         if self.orientation.switched() {
@@ -528,7 +471,7 @@ impl Pipeline {
         x.pitch_deg = self.pocket.pitch;
         x.axis_tilt_deg = self.pocket.leg.axis_tilt_deg();
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
-        self.buf.push_back(NavSample {
+        self.window.push(NavSample {
             t: s.t,
             e,
             n,
@@ -540,38 +483,53 @@ impl Pipeline {
                 q.inverse_transform_vector(&nalgebra::Vector3::z()).into()
             }),
         });
-        while self.buf.front().is_some_and(|f| f.t < s.t - self.history_s) {
-            self.buf.pop_front();
+        self.detect_steps(&x);
+        // Recognising a foot replaces the steps so far by the strides: all are new then.
+        let first = if self.push_foot(s, dt) { 0 } else { first };
+        Ok(&self.track.steps()[first..])
+    }
+
+    /// The time of the next accepted sample, `t`, s: a gap before it is counted and ends the
+    /// bout. Returns the interval since the previous sample, s (0 after a gap).
+    fn advance(&mut self, t: f64) -> f64 {
+        let mut dt = self.last_t.map_or(0.0, |l| t - l);
+        if dt > self.cfg.gap_s {
+            self.gap(dt);
+            dt = 0.0;
         }
-        let cand = self.detector.push(&x);
+        self.last_t = Some(t);
+        self.diag.samples += 1;
+        self.diag.time_span = Some((self.diag.time_span.map_or(t, |p| p.0), t));
+        dt
+    }
+
+    /// Runs the step detector on sample `x` and emits its steps: at the onset of a gait the
+    /// look-back's, else the step decided now and the one it held a cycle, if any. Foot mode
+    /// emits strides instead.
+    fn detect_steps(&mut self, x: &DetectorInput) {
+        let state = x.motion;
+        let cand = self.detector.push(x);
         // A step the PLL decided only now, earlier than `cand`, with the pose at which it was
         // held for the next cycle, if it was.
         let late = self.detector.take_late_step();
-        let late_pose = if late.is_some() {
-            self.held_pose.take()
-        } else {
-            None
-        };
-        let holding = self.detector.holding();
-        if holding != self.held_pose.is_some() {
-            self.held_pose = holding.then(|| self.heading.pose());
-        }
+        let heading = &self.heading;
+        let late_pose = self
+            .bout
+            .follow_detector(late.is_some(), self.detector.holding(), || heading.pose());
         if state.is_moving() && !self.prev_state.is_moving() {
             // Onset: σ_z and the periodicity confirm a gait only a second or two after it
             // starts. The detector looks back over the samples of that delay, started afresh
-            // on the cadence now found, and its steps are emitted. (Releasing the steps the
-            // loop found while still instead gave 8 steps at 4.4 Hz at the start of a 2 Hz walk
-            // on Oxford Pixel_Jamie_Hard_InHand_1: still, the loop follows whatever moves.)
-            for c in self.look_back(s.t, state) {
-                if self.placement == Placement::Foot {
+            // on the cadence now found, and its steps are emitted.
+            for c in self.look_back(x.t, state) {
+                if self.foot.on_foot() {
                     continue;
                 }
-                if self.t_km1.map_or(true, |l| c.t > l + 0.5 * c.period_s) {
-                    self.diag.onset_steps += 1;
+                if self.bout.is_new(&c) {
+                    self.track.count_onset();
                     self.emit(c, state, None);
                 }
             }
-        } else if self.placement != Placement::Foot {
+        } else if !self.foot.on_foot() {
             // A step held while a gait was seen counts even when the motion detector has
             // stopped seeing it since.
             if let Some(c) = late {
@@ -585,9 +543,6 @@ impl Pipeline {
             self.last_gait = state;
         }
         self.prev_state = state;
-        // Recognising a foot replaces the steps so far by the strides: all are new then.
-        let first = if self.push_foot(s, dt) { 0 } else { first };
-        Ok(&self.steps[first..])
     }
 
     /// The leg pitch needs a gyroscope: without one the PLL counts the steps. A gyroscope that
@@ -627,21 +582,16 @@ impl Pipeline {
         self.handling.clear();
         self.carry.clear();
         self.magnetic.reset();
-        self.buf.clear();
+        self.window.clear();
         self.detector.gap();
-        if let Some(f) = &mut self.foot {
-            f.gap();
-        }
+        self.foot.gap();
         self.end_bout();
     }
 
     fn end_bout(&mut self) {
         self.release_opening();
-        if let Some(f) = &mut self.fusion {
-            f.end_bout();
-        }
-        self.t_km1 = None;
-        self.t_km2 = None;
+        self.gnss.end_bout();
+        self.bout.end();
         self.heading.end_bout();
     }
 
@@ -659,28 +609,20 @@ impl Pipeline {
     /// The input has ended: places the steps still held at a bout's opening
     /// ([`heading::opening`]) and returns them.
     pub fn finish(&mut self) -> &[StepRecord] {
-        let first = self.steps.len();
+        let first = self.track.len();
         self.release_opening();
-        &self.steps[first..]
+        &self.track.steps()[first..]
     }
 
     /// Every step so far (without the few a bout's opening may still hold, [`Self::finish`]).
     pub fn track(&self) -> &[StepRecord] {
-        &self.steps
+        self.track.steps()
     }
 
     /// The steps a bout's opening holds off the track, in order: they follow [`Self::track`]
     /// when released ([`heading::opening`]); their positions are not yet known (0).
     pub fn held_steps(&self) -> impl Iterator<Item = &StepRecord> {
-        self.held.iter().filter_map(|h| match h {
-            Held::Step(s, _) => Some(s),
-            Held::Fix(_) => None,
-        })
-    }
-
-    /// Accepted GNSS fixes.
-    pub fn fixes(&self) -> &[GnssFix] {
-        &self.fixes
+        self.bout.held_steps()
     }
 
     /// The carrying-mode detector's features and votes.
@@ -696,7 +638,19 @@ impl Pipeline {
     /// Counters and current values.
     pub fn diagnostics(&self) -> Diagnostics {
         let mut d = self.diag;
-        d.hybrid = self.hybrid_diagnostics();
+        let t = self.track.counts();
+        d.steps = t.steps;
+        d.onset_steps = t.onset_steps;
+        d.steps_without_heading = t.steps_without_heading;
+        d.distance_m = t.distance_m;
+        d.strides = t.strides;
+        let g = self.gnss.diagnostics();
+        d.gnss_fixes = g.fixes;
+        d.declination_deg = g.declination_deg;
+        d.declination_note = g.declination_note;
+        d.fix_counts = g.fix_counts;
+        d.gnss_on_s = g.gnss_on_s;
+        d.hybrid = self.foot.hybrid_diagnostics();
         let m = self.motion.diagnostics();
         let started = self.diag.samples > 0;
         d.motion = started.then_some(self.prev_state);
@@ -704,44 +658,49 @@ impl Pipeline {
         d.cadence_hz = m.cadence_hz;
         d.handling_s = self.handling.total_s();
         d.carry = self.carry.mode();
-        if let Some(f) = &self.fusion {
-            let f = f.diagnostics();
-            d.fix_counts = Some(f.counts);
-            d.gnss_on_s = f.gnss_on_s;
-        }
-        d.placement = self.placement;
-        d.foot = self.foot.as_ref().map(Foot::diagnostics);
+        d.placement = self.foot.placement();
+        d.foot = self.foot.diagnostics();
         if let Detector::Pll(p) = &self.detector {
             let p = p.diagnostics();
             d.pll_freq_hz = Some(p.freq_hz);
             d.pll_locked = Some(p.locked);
         }
+        self.pocket_diagnostics(&mut d);
+        d
+    }
+
+    /// The activity, the leg pitch and the height in `d`.
+    fn pocket_diagnostics(&self, d: &mut Diagnostics) {
+        let started = self.diag.samples > 0;
         d.activity = started.then(|| {
             if self.handling.active() {
                 Activity::Handling
             } else if self.prev_state.is_moving() {
-                self.steps.last().map_or(Activity::Walking, |s| s.activity)
+                self.track
+                    .steps()
+                    .last()
+                    .map_or(Activity::Walking, |s| s.activity)
             } else {
                 self.pocket.activity.diagnostics().activity
             }
         });
         d.pitch_deg = self.pocket.pitch.map(|r| self.pocket.leg.signed(r));
         d.leg_pitch = Some(self.pocket.leg.diagnostics());
+        d.pressure_samples = self.pocket.pressure_samples;
         let v = self.pocket.vertical.diagnostics();
         d.up_m = v.up_m;
         d.floor = v.floor;
         d.vertical = v.source;
-        d
     }
 
     /// Vertical linear acceleration of the latest sample, m/s², up positive.
     pub fn vertical_accel(&self) -> Option<f64> {
-        self.buf.back().map(|x| x.up)
+        self.window.last().map(|x| x.up)
     }
 
     /// The latest sample in the navigation frame: vertical, east and north acceleration, m/s².
     pub fn last_nav(&self) -> Option<(f64, f64, f64)> {
-        self.buf.back().map(|x| (x.up, x.e, x.n))
+        self.window.last().map(|x| (x.up, x.e, x.n))
     }
 
     /// The motion state now: the motion detector's, still while the phone is being handled.

@@ -16,7 +16,7 @@
 //! A step is counted at each peak of the oscillator output cos φ (φ crossing a multiple of 2π),
 //! at a time interpolated inside the sample interval, and f_k = 1/T_k (Basso 2016 §II.C).
 //!
-//! # Which peaks count (our additions, measured on the Oxford set)
+//! # Which peaks count (our additions)
 //! A peak counts only if its cycle carries motion, judged over the cycle centred on it (φ from
 //! −π to π, so the verdict comes half a period after the peak): its RMS must reach
 //! [`PllConfig::cycle_rms_min`], and either [`PllConfig::cycle_rms_rel`]·σ_z or
@@ -81,8 +81,8 @@ pub struct PllConfig {
     pub loop_lpf_hz: f64,
     /// Minimum RMS of the vertical acceleration over one oscillator cycle for its peak to count
     /// as a step, m/s². Default: 0.35, about 2/3 of the motion detector's
-    /// [`crate::engine::MotionConfig::periodic_sigma_min`] (it was 1.0, 2/3 of Basso's still
-    /// threshold, which gentle hand-held walks with σ ≈ 1 m/s² do not pass).
+    /// [`crate::engine::MotionConfig::periodic_sigma_min`], low enough for gentle hand-held
+    /// walks (σ ≈ 1 m/s²).
     pub cycle_rms_min: f64,
     /// Minimum RMS of a cycle relative to the σ_z of the motion window. After a stop σ_z (2 s)
     /// stays high while the new cycles are quiet; this gate, not the absolute one, is what keeps
@@ -90,11 +90,10 @@ pub struct PllConfig {
     pub cycle_rms_rel: f64,
     /// A cycle that fails [`PllConfig::cycle_rms_rel`] still counts when its RMS reaches this
     /// share of the cycle two before it, if that one counted: the same leg's previous step.
-    /// Departure from the paper (measured): with the phone in a front pocket the near leg's
-    /// steps are two to three times louder than the far leg's (Oxford
-    /// Samsung_Carmelo_Hard_FrontPocket_2: cycle RMS / σ_z alternating ≈ 1.2 and ≈ 0.5, so the
-    /// σ-relative gate dropped 28 of 335 steps). A stop still ends the count: the first quiet
-    /// cycle is compared with a real step of the same leg and fails.
+    /// Departure from the paper: with the phone in a front pocket the near leg's steps are two
+    /// to three times louder than the far leg's, so the σ-relative gate alone drops the far
+    /// leg's. A stop still ends the count: the first quiet cycle is compared with a real step of
+    /// the same leg and fails.
     pub same_leg_rel: f64,
     /// The input must rise to at least this share of the cycle's RMS within a quarter period
     /// of the oscillator's peak for the peak to count: a step has a peak where the oscillator
@@ -104,13 +103,13 @@ pub struct PllConfig {
     /// When the motion detector has a cadence estimate f_c (autocorrelation, see
     /// [`crate::engine::motion::Periodicity`]), the band is narrowed to [f_c/k, k·f_c] with this
     /// k. Departure from the paper, whose bands follow the σ_z state only: a band as wide as
-    /// 1.2–2.7 Hz holds both the step frequency and its second harmonic for slow walks (Oxford
-    /// Pixel_Jamie_Carpet_InHand_1/2 at 1.3 Hz: +50 % counted at 2.6 Hz). k = 1.4, just under
+    /// 1.2–2.7 Hz holds both the step frequency and its second harmonic for slow walks. k = 1.4,
+    /// just under
     /// √2, the geometric midpoint between f and 2f (and f/2), so the loop can never hold either.
     pub cadence_band_ratio: f64,
     /// The first step of a walk, from standing, lifts the pelvis weakly: with the phone in a
-    /// pocket its cycle's RMS is 0.4–0.5 σ_z of the walk (the simulator's real-shaped starts)
-    /// and fails [`PllConfig::cycle_rms_rel`], while the thigh already swings much of a step.
+    /// pocket its cycle's RMS is about half the σ_z of the walk and fails
+    /// [`PllConfig::cycle_rms_rel`], while the thigh already swings much of a step.
     /// So with the leg pitch known ([`DetectorInput::pitch_deg`]) all through both cycles, a
     /// cycle that fails only the σ-relative gate just before the first step counted since a
     /// restart is counted too ([`Pll::take_late_step`]) when the limb swung over it by at least
@@ -119,36 +118,28 @@ pub struct PllConfig {
     ///
     /// Default 0.4. The first step starts from standing, the thigh upright: the leading thigh
     /// flexes (to about 0.68 of a stride's Δθ, Munoz Diaz's θ_Hmax ≫ |θ_Hmin|), the trailing one
-    /// only extends (to about 0.32 Δθ), against a walking cycle's swing of about 0.6 Δθ (the
-    /// simulator's pocket: 19–25° for Δθ ≈ 38°). So a trailing thigh's first cycle swings about
-    /// half of the next at full strength, less for a short first step, and the share sits
-    /// below that. The first value, 0.6, was the same leg's share ([`PllConfig::same_leg_rel`]),
-    /// and refused 3 of the simulator's 20 first steps (0.57–0.59 of the next). Any share from
-    /// 0.2 to 0.5 counts those 3 and changes no other simulated walk, and every real log here
-    /// gives the same output for any share from 0.3 to 0.6, so 0.4 is not fitted to a count.
+    /// only extends (to about 0.32 Δθ), against a walking cycle's swing of about 0.6 Δθ. So a
+    /// trailing thigh's first cycle swings about half of the next at full strength, less for a
+    /// short first step, and the share sits below that.
     pub first_swing_rel: f64,
     /// With the phone on a thigh, the first cycle over which the thigh's swing axis tilts
     /// further than this from the horizontal ([`DetectorInput::axis_tilt_deg`]) is no step: the
     /// phone is leaving the thigh. The cycles after it count as any phone's until one is level
     /// again, so a phone moved to the hand mid-walk loses one step, not the rest of the walk.
     /// Departure from the paper: taking the phone out of the pocket after a walk jerks it at a
-    /// walking rhythm, and was counted as a step after every simulated pocket walk (its cycle
-    /// tilts the axis by 14–39°; the walk's cycles by less than 0.5° on the simulator, and by
-    /// about the hip's ab- and adduction and the pelvis's roll on a real thigh, ±5° each).
-    /// 15°: between the two, set by the real thigh.
+    /// walking rhythm, which would count as a step; a walk's cycles tilt the axis by about the
+    /// hip's ab- and adduction and the pelvis's roll, ±5° each on a real thigh. Default 15°,
+    /// above that.
     pub axis_tilt_max_deg: f64,
     /// With the phone on a limb ([`DetectorInput::axis_tilt_deg`] given), a step after a
     /// standing cycle (one below [`PllConfig::cycle_rms_min`]) in a walk under way is held until
     /// the next cycle is judged, and is no step when that cycle moves without a step's peak
     /// (it fails [`PllConfig::peak_share_min`] or the tilt, not the RMS): a lone jolt between
-    /// standing and handling. Departure from the paper: after the simulated pocket walks the
-    /// phone, taken out half a second after the last step, was jerked free at a walking rhythm
-    /// over one cycle, and 3 of 20 such cycles tilted the thigh's axis by less than
-    /// [`PllConfig::axis_tilt_max_deg`] (14.1–14.7°). A step followed by a step, or by standing
-    /// (a single step taken on the spot), counts, a cycle late. Off a limb the rule does
-    /// nothing: applied to any phone it dropped 1 step of the hand-held IPIN 2023 logs
-    /// (waypoint p75 3.47 → 3.50 m) and 3 of Microsoft's (5.61 m either way), and no Oxford
-    /// step. `false`: as the paper.
+    /// standing and handling. Departure from the paper: a phone taken out of the pocket just
+    /// after the last step is jerked free at a walking rhythm over one cycle, which may tilt
+    /// the thigh's axis by less than [`PllConfig::axis_tilt_max_deg`]. A step followed by a
+    /// step, or by standing (a single step taken on the spot), counts, a cycle late. Off a limb
+    /// the rule does nothing. `false`: as the paper.
     pub lone_step_confirm: bool,
 }
 
@@ -158,9 +149,8 @@ const NO_PITCH_YET: (f64, f64) = (f64::INFINITY, f64::NEG_INFINITY);
 /// The least swing of the limb over the first counted cycle, degrees, for the cycle before it
 /// to be weighed by [`PllConfig::first_swing_rel`]: a thigh's or an arm's step swings it by
 /// 20–40° over a cycle; a hand-held phone rocks about its dominant axis by a few degrees while
-/// it is carried, but more while it is handled (IPIN `TrainingTrial01_repetition01`, 0.8 s in:
-/// 15.7° over the first counted cycle). That phone's quiet cycle before is kept out by the
-/// other condition, a pitch known all through both cycles (13.1° over 31 of its 39 samples).
+/// it is carried, but more while it is handled, when the other condition, a pitch known all
+/// through both cycles, keeps its quiet cycle out.
 pub const FIRST_SWING_MIN_DEG: f64 = 15.0;
 
 impl Default for PllConfig {
@@ -442,35 +432,11 @@ impl Pll {
 
     /// Feeds one vertical-acceleration sample with the motion detector's view of it.
     pub fn push(&mut self, x: &DetectorInput) -> Option<Candidate> {
-        let DetectorInput {
-            t,
-            dt,
-            up: a,
-            mean: mu,
-            sigma,
-            motion,
-            cadence_hz: cadence,
-            pitch_deg,
-            axis_tilt_deg,
-        } = *x;
-        let tilt = axis_tilt_deg.unwrap_or(0.0);
-        if self.s.band_key != Some((motion, cadence)) {
-            self.s.band_key = Some((motion, cadence));
-            self.s.band_val = self.band(motion, cadence);
-        }
-        let (lo, hi, free) = self.s.band_val;
-        // A change of band (walking ↔ running) clamps the estimate into the new band, so the
-        // loop keeps its lock across the transition.
-        self.s.integ = self.s.integ.clamp(lo, hi);
-        if motion == Motion::Still && sigma < 0.5 * self.cfg.cycle_rms_min {
-            // Nothing to follow: relax towards the free-running frequency (time constant 2 s).
-            self.s.integ += dt / (2.0 + dt) * (free - self.s.integ);
-        }
+        let (lo, hi) = self.follow_band(x);
         // Controlled oscillator.
         let prev = self.s.phase;
-        self.s.phase += TAU * self.s.freq * dt;
-        let mut out = None;
-        let d = a - mu;
+        self.s.phase += TAU * self.s.freq * x.dt;
+        let d = x.up - x.mean;
         // A peak of the oscillator (φ crossing 2π) is a step candidate at the time interpolated
         // inside the sample interval.
         let wrapped = self.s.phase >= TAU;
@@ -480,109 +446,162 @@ impl Pll {
             } else {
                 1.0
             };
-            self.s.pending = Some((t - dt + frac * dt, 1.0 / self.s.integ));
+            self.s.pending = Some((x.t - x.dt + frac * x.dt, 1.0 / self.s.integ));
             self.s.phase -= TAU * (self.s.phase / TAU).floor();
         }
         // The step's cycle runs from the trough before its peak to the trough after it (φ from
         // −π to π), so it is judged half a period after the peak, when φ crosses π.
         let from = if wrapped { prev - TAU } else { prev };
-        if from < PI && self.s.phase >= PI {
-            let frac = (PI - from) / (self.s.phase - from);
-            let sq = self.s.cycle_sq + d * d * dt * frac;
-            let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
-            let tilted = self.s.cycle_tilt.max(tilt) > self.cfg.axis_tilt_max_deg;
-            let left_thigh = tilted && !self.tilted;
-            self.tilted = tilted;
-            if let Some((t_peak, period_s)) = self.s.pending.take() {
-                let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
-                let moving = rms >= self.cfg.cycle_rms_min
-                    && self.s.peak_max >= self.cfg.peak_share_min * rms
-                    && !left_thigh;
-                let counts = moving
-                    && (rms >= self.cfg.cycle_rms_rel * sigma
-                        || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
-                // The step held on the cycle before counts unless this one moved without a
-                // step's peak.
-                if let Some(h) = self.s.held.take() {
-                    if moving || rms < self.cfg.cycle_rms_min {
-                        self.s.late = Some(h);
-                    } else {
-                        self.s.prev_cycles[0].1 = false;
-                    }
-                }
-                let after_still = self.s.prev_cycles[0].0 < self.cfg.cycle_rms_min;
-                self.s.prev_cycles = [(rms, counts), self.s.prev_cycles[0]];
-                let den = self.s.cycle_cc * sq;
-                let c = Candidate {
-                    t: t_peak,
-                    period_s,
-                    coherence: if den > 0.0 {
-                        self.s.cycle_xc / libm::sqrt(den)
-                    } else {
-                        0.0
-                    },
-                };
-                let swing = self
-                    .s
-                    .cycle_pitch
-                    .map(|(lo, hi)| hi - lo)
-                    .filter(|s| *s >= 0.0);
-                if counts {
-                    if !self.s.counted {
-                        // The first step counted since the restart: the quiet one before it, if
-                        // the limb swung over it nearly as much.
-                        self.s.late = self
-                            .s
-                            .quiet
-                            .zip(swing)
-                            .filter(|&((_, q), s)| {
-                                self.cfg.first_swing_rel > 0.0
-                                    && s >= FIRST_SWING_MIN_DEG
-                                    && q >= self.cfg.first_swing_rel * s
-                            })
-                            .map(|(q, _)| q.0);
-                    }
-                    // Held only while a gait is seen: the pipeline drops a step judged
-                    // without one, and takes a held step whenever it is given back.
-                    if self.s.counted
-                        && after_still
-                        && motion.is_moving()
-                        && axis_tilt_deg.is_some()
-                        && self.cfg.lone_step_confirm
-                    {
-                        self.s.held = Some(c);
-                    } else {
-                        out = Some(c);
-                    }
-                    self.s.counted = true;
-                }
-                self.s.quiet = swing
-                    .filter(|_| moving && !counts && !self.s.counted)
-                    .map(|s| (c, s));
-            }
-            self.s.cycle_xc = 0.0;
-            self.s.cycle_cc = 0.0;
-            self.s.peak_max = f64::NEG_INFINITY;
-            self.s.cycle_sq = d * d * dt * (1.0 - frac);
-            self.s.cycle_dt = dt * (1.0 - frac);
-            self.s.cycle_pitch = pitch_deg.map(|p| (p, p));
-            self.s.cycle_tilt = tilt;
+        let out = if from < PI && self.s.phase >= PI {
+            self.end_cycle(x, d, from)
         } else {
-            self.s.cycle_tilt = self.s.cycle_tilt.max(tilt);
-            self.s.cycle_sq += d * d * dt;
-            self.s.cycle_dt += dt;
+            self.s.cycle_tilt = self.s.cycle_tilt.max(x.axis_tilt_deg.unwrap_or(0.0));
+            self.s.cycle_sq += d * d * x.dt;
+            self.s.cycle_dt += x.dt;
             self.s.cycle_pitch = self
                 .s
                 .cycle_pitch
-                .zip(pitch_deg)
+                .zip(x.pitch_deg)
                 .map(|((lo, hi), p)| (lo.min(p), hi.max(p)));
+            None
+        };
+        self.track(x, d, prev, wrapped, (lo, hi));
+        out
+    }
+
+    /// The frequency band of the motion state and cadence of `x`, low and high, Hz, with the
+    /// integrator clamped into it and, with nothing to follow, relaxed towards the free-running
+    /// frequency.
+    fn follow_band(&mut self, x: &DetectorInput) -> (f64, f64) {
+        if self.s.band_key != Some((x.motion, x.cadence_hz)) {
+            self.s.band_key = Some((x.motion, x.cadence_hz));
+            self.s.band_val = self.band(x.motion, x.cadence_hz);
         }
+        let (lo, hi, free) = self.s.band_val;
+        // A change of band (walking ↔ running) clamps the estimate into the new band, so the
+        // loop keeps its lock across the transition.
+        self.s.integ = self.s.integ.clamp(lo, hi);
+        if x.motion == Motion::Still && x.sigma < 0.5 * self.cfg.cycle_rms_min {
+            // Nothing to follow: relax towards the free-running frequency (time constant 2 s).
+            self.s.integ += x.dt / (2.0 + x.dt) * (free - self.s.integ);
+        }
+        (lo, hi)
+    }
+
+    /// The cycle ends at this sample (φ crossed π after `from`): the step of its peak is judged
+    /// ([`Self::judge`]) and the next cycle starts with the rest of the sample. `d` is the
+    /// sample's deviation from the mean, m/s².
+    fn end_cycle(&mut self, x: &DetectorInput, d: f64, from: f64) -> Option<Candidate> {
+        let (dt, tilt) = (x.dt, x.axis_tilt_deg.unwrap_or(0.0));
+        let frac = (PI - from) / (self.s.phase - from);
+        let sq = self.s.cycle_sq + d * d * dt * frac;
+        let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
+        let tilted = self.s.cycle_tilt.max(tilt) > self.cfg.axis_tilt_max_deg;
+        let left_thigh = tilted && !self.tilted;
+        self.tilted = tilted;
+        let out = self.judge(x, sq, rms, left_thigh);
+        self.s.cycle_xc = 0.0;
+        self.s.cycle_cc = 0.0;
+        self.s.peak_max = f64::NEG_INFINITY;
+        self.s.cycle_sq = d * d * dt * (1.0 - frac);
+        self.s.cycle_dt = dt * (1.0 - frac);
+        self.s.cycle_pitch = x.pitch_deg.map(|p| (p, p));
+        self.s.cycle_tilt = tilt;
+        out
+    }
+
+    /// Whether the step of the cycle just ended counts, from the cycle's sum of squares `sq`
+    /// and RMS `rms` (m/s²) and whether the phone just left the thigh; returns the step given
+    /// now (a step held for the next cycle, or handed back late, goes by the state).
+    fn judge(
+        &mut self,
+        x: &DetectorInput,
+        sq: f64,
+        rms: f64,
+        left_thigh: bool,
+    ) -> Option<Candidate> {
+        let (t_peak, period_s) = self.s.pending.take()?;
+        let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
+        let moving = rms >= self.cfg.cycle_rms_min
+            && self.s.peak_max >= self.cfg.peak_share_min * rms
+            && !left_thigh;
+        let counts = moving
+            && (rms >= self.cfg.cycle_rms_rel * x.sigma
+                || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
+        // The step held on the cycle before counts unless this one moved without a step's peak.
+        if let Some(h) = self.s.held.take() {
+            if moving || rms < self.cfg.cycle_rms_min {
+                self.s.late = Some(h);
+            } else {
+                self.s.prev_cycles[0].1 = false;
+            }
+        }
+        let after_still = self.s.prev_cycles[0].0 < self.cfg.cycle_rms_min;
+        self.s.prev_cycles = [(rms, counts), self.s.prev_cycles[0]];
+        let den = self.s.cycle_cc * sq;
+        let c = Candidate {
+            t: t_peak,
+            period_s,
+            coherence: if den > 0.0 {
+                self.s.cycle_xc / libm::sqrt(den)
+            } else {
+                0.0
+            },
+        };
+        let swing = self
+            .s
+            .cycle_pitch
+            .map(|(lo, hi)| hi - lo)
+            .filter(|s| *s >= 0.0);
+        let mut out = None;
+        if counts {
+            if !self.s.counted {
+                // The first step counted since the restart: the quiet one before it, if the
+                // limb swung over it nearly as much.
+                self.s.late = self
+                    .s
+                    .quiet
+                    .zip(swing)
+                    .filter(|&((_, q), s)| {
+                        self.cfg.first_swing_rel > 0.0
+                            && s >= FIRST_SWING_MIN_DEG
+                            && q >= self.cfg.first_swing_rel * s
+                    })
+                    .map(|(q, _)| q.0);
+            }
+            // Held only while a gait is seen: the pipeline drops a step judged without one, and
+            // takes a held step whenever it is given back.
+            if self.s.counted
+                && after_still
+                && x.motion.is_moving()
+                && x.axis_tilt_deg.is_some()
+                && self.cfg.lone_step_confirm
+            {
+                self.s.held = Some(c);
+            } else {
+                out = Some(c);
+            }
+            self.s.counted = true;
+        }
+        self.s.quiet = swing
+            .filter(|_| moving && !counts && !self.s.counted)
+            .map(|s| (c, s));
+        out
+    }
+
+    /// The loop's update at every sample: the phase detector on the normalised input, the
+    /// acquisition aid, the oscillator's phasor, the lock indicator and the PI stage, whose
+    /// frequency stays in the band `(lo, hi)`, Hz. `prev` is the phase before this sample's
+    /// advance, `wrapped` whether it crossed 2π.
+    fn track(&mut self, x: &DetectorInput, d: f64, prev: f64, wrapped: bool, band: (f64, f64)) {
+        let (lo, hi) = band;
+        let dt = x.dt;
         // Phase detector on the normalised input. The floor keeps noise small while still.
-        let x = (d / sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
+        let xn = (d / x.sigma.max(0.5 * self.cfg.cycle_rms_min)).clamp(-3.0, 3.0);
         // Acquisition aid: a type-2 loop this narrow pulls in slowly from far away (seconds for
         // walking → running from a standstill). When the loop is not locked and three regular
         // input cycles disagree with it by more than its lock-in range, re-seed the integrator.
-        if let Some(fz) = self.crossing_frequency(t, x) {
+        if let Some(fz) = self.crossing_frequency(x.t, xn) {
             let lock_in = 2.0 * self.cfg.damping * self.cfg.natural_hz;
             if !self.locked() && (fz - self.s.integ).abs() > lock_in && fz >= lo && fz <= hi {
                 self.s.integ = fz;
@@ -604,11 +623,10 @@ impl Pll {
             // Within a quarter period of the oscillator's peak.
             self.s.peak_max = self.s.peak_max.max(d);
         }
-        let e = self.s.loop_lpf.update(-x * s, dt);
-        self.s.lock.update(x * c, dt);
+        let e = self.s.loop_lpf.update(-xn * s, dt);
+        self.s.lock.update(xn * c, dt);
         self.s.integ = (self.s.integ + self.ki * e * dt).clamp(lo, hi);
         self.s.freq = (self.s.integ + self.kp * e).clamp(lo, hi);
-        out
     }
 
     /// A step decided only with a later cycle, earlier than any step [`Pll::push`] gives with

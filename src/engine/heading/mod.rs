@@ -37,11 +37,13 @@
 //! hand from the pelvis's rule with the arm's term taken out ([`arm`]).
 
 pub mod arm;
+pub mod average;
 pub mod closed_form;
 pub mod continuity;
 pub mod harmonics;
 pub mod opening;
 pub mod pca;
+pub mod sign;
 pub mod tip_to_tail;
 pub mod turn;
 pub mod yaw_aid;
@@ -50,7 +52,7 @@ pub use harmonics::{forward_sign, forwardness, fourier, fourier_of, Harmonic};
 pub use yaw_aid::{device_twist, reading_pose, YawAid, YawOffset};
 
 use super::carry::CarryMode;
-use super::math::{circular_mean2, wrap_2pi, wrap_pi};
+use super::math::wrap_2pi;
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
 
@@ -246,9 +248,6 @@ impl HeadingConfig {
     }
 }
 
-/// The weight a swinging hand's forward vote keeps per step (the last 2–3 steps count).
-const ARM_KEEP: f64 = 0.5;
-
 /// Step boundaries handed to a heading method.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct StepWindow {
@@ -317,36 +316,43 @@ pub struct HeadingDiagnostics {
     pub continuity_offset_rad: f64,
 }
 
-/// The heading stage: the configured method at each step, the two-step average (A-HE) and the
-/// yaw aid ([`YawAid`]), with what they remember from step to step.
+/// The heading stage: the configured method at each step, then a chain of stages, each with
+/// what it remembers from step to step: the limb's sign ([`sign`]), a bout's opening
+/// ([`opening`]), the two-step average (A-HE, [`average`]), the turn lead ([`turn`]), the yaw
+/// aid ([`YawAid`]) and the continuity across a change of source or mode ([`continuity`]).
 #[derive(Debug, Clone)]
 pub struct Heading {
     cfg: HeadingConfig,
-    last_single: Option<f64>,
-    // Whether the limb gave that direction's sign ([`Self::limb_signed`]).
-    last_limb_signed: bool,
-    // The swinging arm's forward vote, east and north ([`Self::limb_signed`]).
-    arm_vote: (f64, f64),
-    // Steps in that vote.
-    arm_steps: u32,
-    // The way forward the limb last gave (east, north), and whether the last step's turned
-    // against it.
-    limb_forward: Option<(f64, f64)>,
-    limb_flipped: bool,
+    sign: sign::LimbSign,
+    opening: opening::Opening,
+    average: average::Average,
+    turn: turn::TurnLead,
+    steer: yaw_aid::Steer,
+    carried: continuity::Carried,
     last_used: Option<f64>,
     attitude: Option<nalgebra::UnitQuaternion<f64>>,
     // Device yaw integrated from the attitude increments about the vertical, compass radians,
-    // unwrapped; and its value at the previous step.
+    // unwrapped.
     yaw: f64,
-    last_yaw: Option<f64>,
-    yaw_offset: YawOffset,
     // The last steps walked, the latest last.
     recent: VecDeque<continuity::Walked>,
     // Where gravity sat in the device at the last steps, the latest last.
     ups: VecDeque<nalgebra::Vector3<f64>>,
-    carried: continuity::Carried,
-    turn: turn::TurnLead,
-    opening: opening::Opening,
+}
+
+/// A step's direction as the opening left it ([`Heading::open`]).
+#[derive(Debug, Clone, Copy)]
+struct Opened {
+    /// The single-step direction, rad from north.
+    theta: Option<f64>,
+    /// The limb gave its sign, and the step is not held for it.
+    by_limb: bool,
+    /// The step's side waits for a limb or the yaw.
+    waiting: bool,
+    /// The steps held were turned by the limb's side.
+    turned: bool,
+    /// The steps held before are released, turned by 180° when `true`.
+    release: Option<bool>,
 }
 
 impl Heading {
@@ -354,28 +360,18 @@ impl Heading {
     pub fn new(cfg: HeadingConfig) -> Self {
         Heading {
             cfg,
-            last_single: None,
-            last_limb_signed: false,
-            arm_vote: (0.0, 0.0),
-            arm_steps: 0,
-            limb_forward: None,
-            limb_flipped: false,
+            sign: sign::LimbSign::default(),
+            opening: opening::Opening::default(),
+            average: average::Average::default(),
+            turn: turn::TurnLead::default(),
+            steer: yaw_aid::Steer::default(),
+            carried: continuity::Carried::default(),
             last_used: None,
             attitude: None,
             yaw: 0.0,
-            last_yaw: None,
-            yaw_offset: YawOffset::default(),
             recent: VecDeque::with_capacity(continuity::KEPT),
             ups: VecDeque::with_capacity(continuity::UPS),
-            carried: continuity::Carried::default(),
-            turn: turn::TurnLead::default(),
-            opening: opening::Opening::default(),
         }
-    }
-
-    /// The settings.
-    pub fn config(&self) -> &HeadingConfig {
-        &self.cfg
     }
 
     /// The latest sample's attitude and integrated yaw.
@@ -384,11 +380,6 @@ impl Heading {
             attitude: self.attitude,
             yaw: self.yaw,
         }
-    }
-
-    /// The latest sample's device → ENU attitude, when the orientation source has one.
-    pub fn attitude(&self) -> Option<nalgebra::UnitQuaternion<f64>> {
-        self.attitude
     }
 
     /// Each sample's device → ENU attitude, when the orientation source has one; the device's
@@ -404,19 +395,11 @@ impl Heading {
         self.attitude = q;
     }
 
-    /// The heading of one step.
+    /// The heading of one step: the method's direction, then the chain sign → opening →
+    /// average → turn lead → yaw aid → continuity, and the opening's verdict on the steps held.
     pub fn push(&mut self, step: &StepInput) -> StepHeading {
-        let StepInput {
-            buf,
-            window,
-            continued,
-            has_heading,
-            carry,
-            limb_forward,
-            judged_at,
-        } = *step;
-        let Pose { attitude, yaw } = judged_at.unwrap_or_else(|| self.pose());
-        let up = attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
+        let pose = step.judged_at.unwrap_or_else(|| self.pose());
+        let up = pose.attitude.map(|q| q.inverse() * nalgebra::Vector3::z());
         let previous_up = self.ups.back().copied();
         if let Some(u) = up {
             if self.ups.len() == continuity::UPS {
@@ -424,35 +407,66 @@ impl Heading {
             }
             self.ups.push_back(u);
         }
-        let theta = if has_heading {
-            single_step(&self.cfg, buf, window)
+        let theta = if step.has_heading {
+            single_step(&self.cfg, step.buf, step.window)
         } else {
             None
         };
-        self.limb_flipped = false;
-        let (theta, limb_signed) = match theta {
-            Some(th) if self.cfg.limb_sign => {
-                self.limb_signed(buf, window, th, carry, limb_forward)
-            }
-            th => (th, false),
+        let keep = self.last_used.filter(|_| self.carried.carrying());
+        let signed = self.sign.push(self.cfg.limb_sign, step, theta, keep);
+        let opened = self.open(step, signed, pose.yaw);
+        // A mode whose sign comes from its limb has not settled until the limb gave it.
+        let limb_mode = self.cfg.limb_sign
+            && matches!(step.carry, Some(CarryMode::Pocket | CarryMode::Swinging));
+        let (averaged, two) = self.average.push(
+            self.cfg.average_two,
+            opened.theta,
+            step.continued,
+            (limb_mode, opened.by_limb, self.sign.flipped()),
+        );
+        let averaged = self.lead(step, averaged, two);
+        let aided = match &self.cfg.yaw_aid {
+            Some(aid) if step.has_heading => pose.attitude.and_then(|attitude| {
+                let x = yaw_aid::SteerInput {
+                    attitude,
+                    yaw: pose.yaw,
+                    up,
+                    previous_up,
+                    carry: step.carry,
+                    continued: step.continued,
+                    averaged,
+                };
+                self.steer.push(aid, &x)
+            }),
+            _ => None,
         };
+        let walked = self.carry_on(step, aided, aided.or(averaged), opened.by_limb, limb_mode);
+        self.close(step, opened, aided, walked)
+    }
+
+    /// The opening's first part: a new bout releases the last one's held steps; a step whose
+    /// side only the pelvis gives waits, chained to the step before; a limb's side turns the
+    /// steps held to it.
+    fn open(&mut self, step: &StepInput, signed: sign::Signed, yaw: f64) -> Opened {
+        let (buf, window) = (step.buf, step.window);
         // A new bout: the last one's held steps go as the pelvis voted.
         let mut release = None;
-        if !continued {
+        if !step.continued {
             release = self.release_held();
             self.opening = opening::Opening::default();
         }
         // A swinging arm's first vote is one stride's, which can point back: it settles a
         // bout's opening from its second.
-        let young_arm = limb_signed && carry == Some(CarryMode::Swinging) && self.arm_steps < 2;
+        let young_arm =
+            signed.by_limb && step.carry == Some(CarryMode::Swinging) && self.sign.arm_steps() < 2;
         let waiting = self.cfg.limb_sign
             && self.cfg.opening_steps > 0
-            && has_heading
-            && (!limb_signed || young_arm)
+            && step.has_heading
+            && (!signed.by_limb || young_arm)
             && !self.opening.settled();
         // Held, it is chained as the pelvis's steps are, and not averaged as a limb's.
-        let limb_signed = limb_signed && !waiting;
-        let theta = match theta {
+        let by_limb = signed.by_limb && !waiting;
+        let theta = match signed.theta {
             Some(th) if waiting => {
                 // The yaw at the step's own time: the onset look-back's steps come together.
                 let at = buf.partition_point(|x| x.t < window.t_k);
@@ -461,36 +475,36 @@ impl Heading {
                     opening::step_tilt_deg(buf, window.t_km1, window.t_k),
                     self.cfg.opening_limb_tilt_deg,
                 );
-                Some(self.opening.chain(th, self.last_single, yaw_k))
+                Some(self.opening.chain(th, self.average.last, yaw_k))
             }
             th => th,
         };
         // A limb's side settles the bout: the steps held turn to it before it is averaged.
         let mut turned = false;
-        if let (Some(th), Some(l), true) = (theta, self.last_single, limb_signed) {
+        if let (Some(th), Some(l), true) = (theta, self.average.last, by_limb) {
             if self.opening.held() > 0 && libm::cos(th - l) < 0.0 {
                 self.turn_held(self.opening.held(), true);
                 turned = true;
             }
         }
-        // A mode whose sign comes from its limb has not settled until the limb gave it.
-        let limb_mode =
-            self.cfg.limb_sign && matches!(carry, Some(CarryMode::Pocket | CarryMode::Swinging));
-        // A direction the limb signed is not averaged with one it did not sign: they may
-        // point opposite ways.
-        // Nor one the limb turned against the last.
-        let comparable = !limb_mode || (limb_signed == self.last_limb_signed && !self.limb_flipped);
-        let (averaged, two) = match (theta, self.last_single) {
-            (Some(th), Some(prev)) if self.cfg.average_two && continued && comparable => {
-                (Some(circular_mean2(prev, th)), true)
-            }
-            (th, _) => (th, false),
-        };
-        let averaged = match averaged {
+        Opened {
+            theta,
+            by_limb,
+            waiting,
+            turned,
+            release,
+        }
+    }
+
+    /// The averaged heading with the device's turn from the middle of its windows to the middle
+    /// of the step ([`turn`]), when configured.
+    fn lead(&mut self, step: &StepInput, averaged: Option<f64>, two: bool) -> Option<f64> {
+        match averaged {
             Some(a) if self.cfg.turn_lead => {
+                let w = step.window;
                 let lead =
                     self.turn
-                        .push(buf, window, turn::window(&self.cfg, window), continued, two);
+                        .push(step.buf, w, turn::window(&self.cfg, w), step.continued, two);
                 Some(wrap_2pi(a + lead))
             }
             a => {
@@ -498,71 +512,66 @@ impl Heading {
                 self.turn.clear();
                 a
             }
+        }
+    }
+
+    /// The heading `h` carried across a change of its source or of the carrying mode
+    /// ([`continuity`]), when configured.
+    fn carry_on(
+        &mut self,
+        step: &StepInput,
+        aided: Option<f64>,
+        h: Option<f64>,
+        by_limb: bool,
+        limb_mode: bool,
+    ) -> Option<f64> {
+        let c = match &self.cfg.continuity {
+            Some(c) if step.has_heading => c,
+            _ => return h,
         };
-        let aided = match &self.cfg.yaw_aid {
-            Some(aid) if has_heading && attitude.is_some() => {
-                let prev = self.last_yaw.replace(yaw).filter(|_| continued);
-                // In the hand, screen up, at any tilt the carrying mode allows; else (and before
-                // the mode is known) held nearly flat.
-                let steady = match (up, previous_up) {
-                    (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
-                    _ => true,
-                };
-                let reading = (aid.hand_mode
-                    && carry == Some(crate::engine::carry::CarryMode::Hand)
-                    && steady
-                    && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
-                    || attitude.as_ref().is_some_and(|q| reading_pose(q, aid));
-                if reading {
-                    // Held in front, screen up: the top of the phone is the way forward.
-                    attitude.as_ref().and_then(device_twist)
-                } else if !aid.learn_offset {
-                    None
-                } else {
-                    // Two-step mean, as A-HE, so the sway of a pocket cancels.
-                    let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
-                    // Only straight steps teach the offset: in a turn θ̄ (a stride average of
-                    // the acceleration) lags the yaw.
-                    let straight =
-                        prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
-                    if let (Some(th), true) = (averaged, straight) {
-                        self.yaw_offset.update(aid, wrap_pi(th - psi));
-                    }
-                    self.yaw_offset.get().map(|d| wrap_2pi(psi + d))
-                }
-            }
-            _ => None,
+        let source = if aided.is_some() {
+            continuity::Source::Yaw
+        } else {
+            continuity::Source::Acceleration
         };
-        let h = aided.or(averaged);
-        let walked = match &self.cfg.continuity {
-            Some(c) if has_heading => {
-                let source = if aided.is_some() {
-                    continuity::Source::Yaw
-                } else {
-                    continuity::Source::Acceleration
-                };
-                let settled = source == continuity::Source::Yaw
-                    || ((carry != Some(CarryMode::Hand)
-                        || !self.cfg.yaw_aid.is_some_and(|a| a.hand_mode))
-                        && (limb_signed || !limb_mode));
-                let moved = continuity::moved(&self.ups, c);
-                self.carried.push(
-                    c,
-                    &continuity::Step {
-                        source,
-                        mode: carry,
-                        settled,
-                        moved,
-                        t: window.t_k,
-                        heading: h,
-                    },
-                    &self.recent,
-                )
-            }
-            _ => h,
-        };
+        let settled = source == continuity::Source::Yaw
+            || ((step.carry != Some(CarryMode::Hand)
+                || !self.cfg.yaw_aid.is_some_and(|a| a.hand_mode))
+                && (by_limb || !limb_mode));
+        let moved = continuity::moved(&self.ups, c);
+        self.carried.push(
+            c,
+            &continuity::Step {
+                source,
+                mode: step.carry,
+                settled,
+                moved,
+                t: step.window.t_k,
+                heading: h,
+            },
+            &self.recent,
+        )
+    }
+
+    /// The opening's second part: a step still waiting is held, or released with those before
+    /// as the pelvis voted once held long enough; the first step whose side is known settles
+    /// the bout. Then the step is remembered.
+    fn close(
+        &mut self,
+        step: &StepInput,
+        opened: Opened,
+        aided: Option<f64>,
+        walked: Option<f64>,
+    ) -> StepHeading {
+        let Opened {
+            mut theta,
+            by_limb,
+            waiting,
+            turned,
+            mut release,
+        } = opened;
+        let back = |h: Option<f64>| h.map(|h| wrap_2pi(h + std::f64::consts::PI));
         let mut used = walked.or(self.last_used);
-        let mut theta = theta;
         let mut held = false;
         if waiting && aided.is_none() {
             if self.opening.held() + 1 >= self.cfg.opening_steps || self.opening.no_limb() {
@@ -575,7 +584,6 @@ impl Heading {
                     release = Some(turn);
                 }
                 if turn {
-                    let back = |h: Option<f64>| h.map(|h| wrap_2pi(h + std::f64::consts::PI));
                     used = back(used);
                     theta = back(theta);
                 }
@@ -594,25 +602,22 @@ impl Heading {
                 self.turn_held(self.opening.held(), turn);
                 if turn && waiting {
                     // This step's own direction was chained to theirs.
-                    theta = theta.map(|h| wrap_2pi(h + std::f64::consts::PI));
+                    theta = back(theta);
                 }
                 release = Some(turn != turned);
             }
             self.opening.settle();
         }
-        if theta.is_some() {
-            self.last_single = theta;
-            self.last_limb_signed = limb_signed;
-        }
+        self.average.remember(theta, by_limb);
         if let Some(u) = used {
             self.last_used = used;
             if self.recent.len() == continuity::KEPT {
                 self.recent.pop_front();
             }
             self.recent.push_back(continuity::Walked {
-                t: window.t_k,
+                t: step.window.t_k,
                 heading: u,
-                flipped: self.limb_flipped,
+                flipped: self.sign.flipped(),
             });
         }
         StepHeading {
@@ -648,74 +653,13 @@ impl Heading {
             w.heading = back(w.heading);
         }
         self.last_used = self.last_used.map(back);
-        self.last_single = self.last_single.map(back);
-    }
-
-    /// `theta` (rad from north) with its 180° from the limb the phone rides
-    /// ([`HeadingConfig::limb_sign`]), and whether the limb gave it:
-    /// - the thigh's swing (`limb_forward`) while the mode is the pocket or not yet known (a
-    ///   swinging arm passes for a thigh, one axis and a leg's amplitude, but its swing says
-    ///   nothing of the way forward);
-    /// - in a swinging hand, the pelvis with the arm's pendulum taken out ([`arm`]), voted over
-    ///   the last steps ([`ARM_KEEP`]): the phone is moved into the hand over seconds, and one
-    ///   stride of it can point back.
-    fn limb_signed(
-        &mut self,
-        buf: &VecDeque<NavSample>,
-        window: StepWindow,
-        theta: f64,
-        carry: Option<CarryMode>,
-        limb_forward: Option<(f64, f64)>,
-    ) -> (Option<f64>, bool) {
-        let (s, c) = libm::sincos(theta);
-        let turned = |back: bool| {
-            Some(if back {
-                wrap_2pi(theta + std::f64::consts::PI)
-            } else {
-                theta
-            })
-        };
-        if carry != Some(CarryMode::Swinging) {
-            self.arm_vote = (0.0, 0.0);
-            self.arm_steps = 0;
-        }
-        // While a heading is carried across a change (and only then: on stairs the limb can
-        // stay silent for long, through turns), a limb's mode keeps the side of the heading
-        // last walked until the limb says.
-        let kept = |last: Option<f64>| match last {
-            Some(l) if self.carried.carrying() => (turned(libm::cos(theta - l) < 0.0), true),
-            _ => (Some(theta), false),
-        };
-        let mut gave = |f: (f64, f64)| {
-            if let Some(l) = self.limb_forward.replace(f) {
-                self.limb_flipped = l.0 * f.0 + l.1 * f.1 < 0.0;
-            }
-        };
-        match (carry, limb_forward) {
-            (None | Some(CarryMode::Pocket), Some((e, n))) => {
-                gave((e, n));
-                (turned(s * e + c * n < 0.0), true)
-            }
-            (Some(CarryMode::Pocket), None) => kept(self.last_used),
-            (Some(CarryMode::Swinging), _) => match arm::forwardness(buf, window, (s, c)) {
-                Some(f) => {
-                    self.arm_steps = self.arm_steps.saturating_add(1);
-                    let v = &mut self.arm_vote;
-                    *v = (v.0 * ARM_KEEP + f * s, v.1 * ARM_KEEP + f * c);
-                    let v = *v;
-                    gave(v);
-                    (turned(s * v.0 + c * v.1 < 0.0), true)
-                }
-                None => kept(self.last_used),
-            },
-            _ => (Some(theta), false),
-        }
+        self.average.last = self.average.last.map(back);
     }
 
     /// The end of a bout (a stop or a gap): the next step is not averaged with the last one.
     pub fn end_bout(&mut self) {
-        self.last_single = None;
-        self.last_yaw = None;
+        self.average.last = None;
+        self.steer.end_bout();
         self.turn.clear();
     }
 
@@ -723,7 +667,7 @@ impl Heading {
     pub fn diagnostics(&self) -> HeadingDiagnostics {
         HeadingDiagnostics {
             last_rad: self.last_used,
-            yaw_offset_rad: self.yaw_offset.get(),
+            yaw_offset_rad: self.steer.offset(),
             continuity_offset_rad: self.carried.offset(),
         }
     }
@@ -742,6 +686,7 @@ pub fn single_step(cfg: &HeadingConfig, buf: &VecDeque<NavSample>, w: StepWindow
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
+    use crate::engine::math::wrap_pi;
 
     #[test]
     fn a_limb_that_turns_its_way_forward_is_not_averaged_across_the_turn() {

@@ -41,8 +41,8 @@ use std::collections::VecDeque;
 pub const MAX_STEPS: usize = 64;
 
 /// Steps in a row, after a bout's first, that must tilt the phone by less than
-/// [`super::HeadingConfig::opening_limb_tilt_deg`] to say that no limb carries it. Two: a
-/// pocket's second step tilted the simulated phone by 12.6–21°, its third by 14.6–24.5°.
+/// [`super::HeadingConfig::opening_limb_tilt_deg`] to say that no limb carries it. Two: from
+/// its second step on, a thigh tilts the phone by a good part of a stride.
 pub const TRUNK_STEPS: usize = 2;
 
 /// The phone's tilt over a step: the largest angle, degrees, between its up direction at the

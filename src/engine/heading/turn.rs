@@ -109,11 +109,10 @@ impl Stride {
 }
 
 /// The largest turn of gravity in the device between the strides a lead compares, degrees: a
-/// phone being moved in the body turns about the vertical without the walker. The simulated
-/// moves between modes turn it by 10–60° over the strides a lead compares; steady walking by
-/// under 4° on the simulator, and under 10° at 99.6 % of the real hand-held IPIN 2023 steps (the
-/// loosest hold here; 94 % under 5°). 5° instead cost the hand-held walks' acceleration heading
-/// half its gain (IPIN 4.54 → 4.83 m) and saved a few leaks of 25–37° on the moves.
+/// phone being moved in the body turns about the vertical without the walker. Moves between
+/// carrying modes turn it by tens of degrees over the strides a lead compares, steady walking
+/// (even a loose hold in the hand) by a few; a tighter limit costs the hand-held walks much of
+/// the lead's gain.
 pub const STEADY_DEG: f64 = 10.0;
 
 /// The device over the stride around `c`, (c − T, c + T) for the step period T: the thigh's and

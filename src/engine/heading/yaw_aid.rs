@@ -2,37 +2,32 @@
 //! reading pose, and optionally a learnt offset from it elsewhere (see [`YawAid`]).
 //! May import: the rest of `engine`.
 
-/// Yaw-aided heading: our addition to the papers, measured on the Microsoft indoor traces.
+/// Yaw-aided heading: our addition to the papers.
 ///
 /// Basso's methods find the direction of walking afresh at every step from the acceleration, for
 /// a phone in a trouser pocket, where the device's own yaw says nothing about where the walker
 /// goes. A phone held flat in front of the body to read the screen is different: the top of the
 /// phone *is* the way forward, and the acceleration methods are poor there (the hand damps the
-/// pelvis motion; on the 24 hand-held Microsoft walks tip-to-tail headings are off by 20–40° per
-/// segment with occasional 180° flips). So:
+/// pelvis motion, and the headings flip by 180° now and then). So:
 /// - **Reading pose** (screen up, tilted less than [`YawAid::reading_tilt_deg`] from level): the
 ///   step's heading is the device's yaw ψ, the twist of the attitude about the vertical,
-///   2·atan2(q_z, q_w) (swing–twist decomposition; [`device_twist`]). Measured: waypoint p75
-///   5.9 m against 8.7 m for tip-to-tail alone.
+///   2·atan2(q_z, q_w) (swing–twist decomposition; [`device_twist`]).
 /// - **The hand, at any tilt** ([`YawAid::hand_mode`]): when the carrying mode is
 ///   `hand` ([`crate::engine::carry`]: screen up by up to 66°, held steady), the device's yaw
-///   too, whatever its tilt. The IPIN 2023 walkers hold the phone 55–62° from level, beyond the
-///   reading pose: pooled waypoint p75 of routes 01–25, PDR only, 5.48 → 4.4 m (a tilt limit of
-///   70° instead gave 4.37 m, but would take a swinging or pocketed phone's yaw too). Only while
-///   the screen faces up at the step (its normal's up component ≥
-///   [`YawAid::hand_screen_up_min`]) and gravity turned in the device by at most
-///   [`YawAid::hand_steady_deg`] since the last step: the mode is a vote over seconds, so a phone
-///   being put away or lifted to the ear is still `hand` for a few steps, and its yaw then turns
-///   with the hand (on the simulator 75–130° off for 4 steps). 20°: 8° and 12° also took real
-///   IPIN steps in sharp turns (pooled p75 3.47 → 3.77 / 3.59 m); 20–30° leave IPIN unchanged.
+///   too, whatever its tilt: walkers hold the phone well beyond the reading pose, and a wider
+///   tilt limit would take a swinging or pocketed phone's yaw too. Only while the screen faces
+///   up at the step (its normal's up component ≥ [`YawAid::hand_screen_up_min`]) and gravity
+///   turned in the device by at most [`YawAid::hand_steady_deg`] since the last step: the mode
+///   is a vote over seconds, so a phone being put away or lifted to the ear is still `hand` for
+///   a few steps, and its yaw then turns with the hand. 20°: smaller limits also refuse real
+///   steps in sharp turns.
 /// - **Otherwise**, by default, the papers' acceleration heading. With
 ///   [`YawAid::learn_offset`] the engine instead walks along ψ̄ + δ: ψ integrated from the
 ///   attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on
 ///   straight steps ([`YawAid::straight_deg`]) as a circular exponential mean over
-///   [`YawAid::steps`] steps with an outlier gate ([`YawOffset`]). It is off by default because on
-///   simulated pockets it made straight walks worse (tip-to-tail 0.5° → 7° mean error): the
-///   device yaw sampled at the step instants carries the thigh's sway, which two steps do not
-///   cancel exactly.
+///   [`YawAid::steps`] steps with an outlier gate ([`YawOffset`]). It is off by default because
+///   in a pocket the device yaw sampled at the step instants carries the thigh's sway, which two
+///   steps do not cancel exactly.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct YawAid {
@@ -44,8 +39,8 @@ pub struct YawAid {
     pub straight_deg: f64,
     /// Largest tilt of the screen from facing up for the reading pose, degrees; `0` disables it.
     pub reading_tilt_deg: f64,
-    /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ (off by default: on
-    /// simulated pockets it made straight walks worse, see the module notes).
+    /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ (off by default: in a
+    /// pocket the thigh's sway spoils it, see above).
     pub learn_offset: bool,
     /// In the carrying mode `hand`, the device's yaw at any tilt (see above), while the phone is
     /// steady and its screen faces up at the step ([`YawAid::hand_steady_deg`],
@@ -129,6 +124,90 @@ impl YawOffset {
             self.sum.0 + k * (c - self.sum.0),
             self.sum.1 + k * (s - self.sum.1),
         );
+    }
+}
+
+/// The yaw aid's stage: the device's yaw at the last step and the learnt offset.
+#[derive(Debug, Clone, Default)]
+pub struct Steer {
+    // The device's yaw at the previous step of the bout, compass radians, unwrapped.
+    last_yaw: Option<f64>,
+    offset: YawOffset,
+}
+
+/// What the yaw aid is given at a step.
+#[derive(Debug, Clone, Copy)]
+pub struct SteerInput {
+    /// The device → ENU attitude at the step.
+    pub attitude: nalgebra::UnitQuaternion<f64>,
+    /// The device's integrated yaw at the step, compass radians, unwrapped.
+    pub yaw: f64,
+    /// Up in the device frame at this step, when known.
+    pub up: Option<nalgebra::Vector3<f64>>,
+    /// Up in the device frame at the last step, when known.
+    pub previous_up: Option<nalgebra::Vector3<f64>>,
+    /// Where the phone is carried, once decided.
+    pub carry: Option<crate::engine::carry::CarryMode>,
+    /// The step continues the previous one.
+    pub continued: bool,
+    /// The acceleration heading of the step (averaged, turn-led), rad from north.
+    pub averaged: Option<f64>,
+}
+
+impl Steer {
+    /// The step's heading from the device's yaw, rad from north: in the hand, screen up, at any
+    /// tilt the carrying mode allows, or (else, and before the mode is known) held nearly flat,
+    /// the top of the phone; elsewhere, with [`YawAid::learn_offset`], the yaw plus the offset
+    /// learnt on straight steps; else none.
+    pub fn push(&mut self, aid: &YawAid, x: &SteerInput) -> Option<f64> {
+        let SteerInput {
+            attitude,
+            yaw,
+            up,
+            previous_up,
+            carry,
+            continued,
+            averaged,
+        } = *x;
+        let prev = self.last_yaw.replace(yaw).filter(|_| continued);
+        let steady = match (up, previous_up) {
+            (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
+            _ => true,
+        };
+        let reading = (aid.hand_mode
+            && carry == Some(crate::engine::carry::CarryMode::Hand)
+            && steady
+            && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
+            || reading_pose(&attitude, aid);
+        if reading {
+            // Held in front, screen up: the top of the phone is the way forward.
+            device_twist(&attitude)
+        } else if !aid.learn_offset {
+            None
+        } else {
+            // Two-step mean, as A-HE, so the sway of a pocket cancels.
+            let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
+            // Only straight steps teach the offset: in a turn θ̄ (a stride average of the
+            // acceleration) lags the yaw.
+            let straight = prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
+            if let (Some(th), true) = (averaged, straight) {
+                self.offset
+                    .update(aid, crate::engine::math::wrap_pi(th - psi));
+            }
+            self.offset
+                .get()
+                .map(|d| crate::engine::math::wrap_2pi(psi + d))
+        }
+    }
+
+    /// The learnt offset δ from the device's yaw to the direction of walking, rad.
+    pub fn offset(&self) -> Option<f64> {
+        self.offset.get()
+    }
+
+    /// The end of a bout: the next step's yaw is not compared with the last.
+    pub fn end_bout(&mut self) {
+        self.last_yaw = None;
     }
 }
 

@@ -53,6 +53,10 @@ pub(super) struct Pocket {
     pub sign: Option<f64>,
     /// The raw angle of the last sample ([`LegPitch::push`]).
     pub pitch: Option<f64>,
+    /// The last barometer reading's time, s.
+    last_pressure_t: Option<f64>,
+    /// Barometer readings accepted.
+    pub pressure_samples: u64,
 }
 
 impl Pocket {
@@ -68,7 +72,22 @@ impl Pocket {
             recent: std::collections::VecDeque::with_capacity(BARO_STAIR_STEPS),
             sign: None,
             pitch: None,
+            last_pressure_t: None,
+            pressure_samples: 0,
         }
+    }
+
+    /// Feeds one barometer reading to the height. Refused (state untouched) when out of range
+    /// or earlier than the previous reading.
+    pub(super) fn push_pressure(&mut self, p: &PressureSample) -> Result<(), InputError> {
+        p.check()?;
+        if let Some(last) = self.last_pressure_t.filter(|&last| p.t < last) {
+            return Err(InputError::TimeWentBackwards { t: p.t, last });
+        }
+        self.last_pressure_t = Some(p.t);
+        self.pressure_samples += 1;
+        self.vertical.push_pressure(p.t, p.hpa);
+        Ok(())
     }
 }
 
@@ -206,26 +225,5 @@ impl Pipeline {
                 }
             }
         }
-    }
-
-    /// Feeds one barometer reading. Refused (state untouched) when out of range or earlier than
-    /// the previous reading.
-    pub fn push_pressure(&mut self, p: &PressureSample) -> Result<(), InputError> {
-        let refused = p.check().err().or_else(|| {
-            self.last_pressure_t
-                .filter(|&last| p.t < last)
-                .map(|last| InputError::TimeWentBackwards { t: p.t, last })
-        });
-        if let Some(e) = refused {
-            match e {
-                InputError::TimeWentBackwards { .. } => self.diag.rejected_backwards += 1,
-                _ => self.diag.rejected_non_finite += 1,
-            }
-            return Err(e);
-        }
-        self.last_pressure_t = Some(p.t);
-        self.diag.pressure_samples += 1;
-        self.pocket.vertical.push_pressure(p.t, p.hpa);
-        Ok(())
     }
 }

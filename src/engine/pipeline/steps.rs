@@ -1,11 +1,12 @@
 //! From the step detector's candidates to steps: the onset look-back, and each step's heading,
 //! activity, length, position and height. May import: the rest of `engine`.
 
-use super::{Held, Pipeline, StepRecord};
+use super::bout::{BoutStep, Held};
+use super::{Pipeline, StepRecord};
 use crate::engine::activity::Activity;
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
-use crate::engine::heading::{self, NavSample, Pose, StepWindow};
+use crate::engine::heading::{self, NavSample, Pose};
 use crate::engine::motion::Motion;
 use crate::engine::step_length::StepLengthInput;
 
@@ -17,7 +18,7 @@ impl Pipeline {
     /// the peak detector starts empty.
     pub(super) fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
         let since = t - self.cfg.onset_lookback_s;
-        let samples: Vec<&NavSample> = self.buf.iter().filter(|x| x.t >= since).collect();
+        let samples: Vec<&NavSample> = self.window.buf.iter().filter(|x| x.t >= since).collect();
         let m = self.motion.diagnostics();
         let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.up)).collect();
         self.detector.restart(m.cadence_hz, &ups, m.mean_z);
@@ -56,29 +57,19 @@ impl Pipeline {
     /// steps keep the latest (README, "The pocket's lone last jolt": giving them theirs was
     /// measured, and mixed).
     pub(super) fn emit(&mut self, c: Candidate, state: Motion, judged_at: Option<Pose>) {
-        if self.two.is_some() {
+        if self.foot.two_sensor() {
             // With a foot sensor, the track is its strides (see `two_sensor`).
             return;
         }
-        // Continuous with the previous step unless a cycle was skipped or a stop intervened.
-        let cont = self
-            .t_km1
-            .filter(|&p| c.t - p > 0.0 && c.t - p < 1.6 * c.period_s);
-        let period = cont.map_or(c.period_s, |p| c.t - p);
-        let t_km1 = c.t - period;
-        let t_km2 = match (cont, self.t_km2) {
-            (Some(p1), Some(p2)) if p1 - p2 > 0.0 && p1 - p2 < 1.6 * c.period_s => p2,
-            _ => t_km1 - period,
-        };
-        let w = StepWindow {
-            t_km2,
-            t_km1,
-            t_k: c.t,
-        };
+        let BoutStep {
+            window: w,
+            continued: cont,
+            period_s: period,
+        } = self.bout.window(&c);
         let has_heading = self.orientation.has_heading();
         let attitude = judged_at.map_or(self.attitude, |p| p.attitude);
         let h = self.heading.push(&heading::StepInput {
-            buf: &self.buf,
+            buf: &self.window.buf,
             window: w,
             continued: cont.is_some(),
             has_heading,
@@ -95,8 +86,8 @@ impl Pipeline {
         let freq = 1.0 / period;
         let modelled = self.step_length.push(&StepLengthInput {
             freq_hz: freq,
-            buf: &self.buf,
-            t0: t_km1,
+            buf: &self.window.buf,
+            t0: w.t_km1,
             t1: c.t,
             // Eq. 5 is a line for level walking (Munoz Diaz 2015 §5).
             pitch_amplitude_deg: pocket
@@ -135,57 +126,34 @@ impl Pipeline {
             self.release_held(turn);
         }
         if h.held {
-            self.held.push(Held::Step(step, unguarded));
+            self.bout.hold(Held::Step(step, unguarded));
         } else {
             self.place(step, unguarded);
         }
         // Counted now, held or not: the live count does not wait for the side.
-        self.diag.steps += 1;
-        self.t_km2 = cont;
-        self.t_km1 = Some(c.t);
+        self.track.count_step();
+        self.bout.push(c.t, cont);
     }
 
     /// Puts a step on the track, after the last, and gives it to the fusion (with `unguarded`,
     /// its heading in the magnetometer's yaw).
-    fn place(&mut self, mut step: StepRecord, unguarded: Option<f64>) {
-        match step.heading_rad {
-            Some(h) => {
-                let (sh, ch) = libm::sincos(h);
-                self.pos.0 += step.length_m * sh;
-                self.pos.1 += step.length_m * ch;
-                self.diag.distance_m += step.length_m;
-            }
-            None => self.diag.steps_without_heading += 1,
-        }
-        (step.east_m, step.north_m) = self.pos;
-        if let Some(f) = &mut self.fusion {
-            f.push_step(&fusion::StepInput {
-                t: step.t,
-                length_m: step.length_m,
-                heading_rad: unguarded,
-            });
-        }
-        self.steps.push(step);
+    fn place(&mut self, step: StepRecord, unguarded: Option<f64>) {
+        self.gnss.fuse_step(&fusion::StepInput {
+            t: step.t,
+            length_m: step.length_m,
+            heading_rad: unguarded,
+        });
+        self.track.place(step);
     }
 
     /// Places the steps the heading stage held at the bout's opening
     /// ([`crate::engine::heading::opening`]), turned by 180° when `turn`, and gives the fusion
     /// the fixes that came meanwhile, in their order.
     pub(super) fn release_held(&mut self, turn: bool) {
-        let back = |h: f64| crate::engine::math::wrap_2pi(h + std::f64::consts::PI);
-        let back_if = |h: Option<f64>| h.map(|h| if turn { back(h) } else { h });
-        for held in std::mem::take(&mut self.held) {
+        for held in self.bout.release(turn) {
             match held {
-                Held::Step(mut step, unguarded) => {
-                    step.heading_rad = back_if(step.heading_rad);
-                    step.step_heading_rad = back_if(step.step_heading_rad);
-                    self.place(step, back_if(unguarded));
-                }
-                Held::Fix(f) => {
-                    if let Some(fusion) = &mut self.fusion {
-                        fusion.push_fix(&f);
-                    }
-                }
+                Held::Step(step, unguarded) => self.place(step, unguarded),
+                Held::Fix(f) => self.gnss.fuse_fix(&f),
             }
         }
     }
@@ -206,7 +174,7 @@ impl Pipeline {
     pub fn step_length_input(&self, step: &StepRecord) -> StepLengthInput<'_> {
         StepLengthInput {
             freq_hz: step.freq_hz,
-            buf: &self.buf,
+            buf: &self.window.buf,
             t0: step.t - 1.0 / step.freq_hz,
             t1: step.t,
             pitch_amplitude_deg: step.pitch_amplitude_deg,
