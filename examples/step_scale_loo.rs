@@ -5,8 +5,8 @@
 //! `s = s̄ + g_w·(w̄/w_ref − 1) + g_f·(f̄/f_ref − 1)`:
 //! w̄ the walk's mean Weinberg amplitude (a_max − a_min)^¼ between its first and last waypoint,
 //! f̄ its mean cadence, and s̄, g_w, g_f least squares on the *other* walks' true scales
-//! (leave-one-walk-out), then fitted on one set and scored on the other. The README's table
-//! ("A step length that adapts: tried, not adopted") is this output.
+//! (leave-one-walk-out), then fitted on one set and scored on the other. The table in
+//! docs/experiments.md ("A step length that adapts: tried, not adopted") is this output.
 //!
 //! `cargo run --release --example step_scale_loo`
 #![allow(clippy::disallowed_methods)] // diagnostics, not the track path

@@ -2,7 +2,7 @@
 //! segments between waypoints, with one part of the truth put in at a time, and scored as
 //! `pdr eval` scores the track: pooled waypoint p75, PDR only, the same rotation alignment
 //! (`eval::waypoint_errors`). Then the bearings of the long segments are checked for drift.
-//! The README quotes this output.
+//! docs/methods/carrying-mode.md quotes this output.
 //!
 //! The rows that put truth in are bounds, not methods: no estimator has the truth. A row can
 //! also be lower than any estimator could reach, because the truth's own scatter (a waypoint

@@ -1,6 +1,6 @@
 //! The comparison table: every step detector, heading method, orientation source, step-length
 //! model and placement (foot mode) the engine offers, each run on every data set where it can run, beside the
-//! paper's own claim. `pdr eval --compare` prints it; the README carries it.
+//! paper's own claim. `pdr eval --compare` prints it; docs/evaluation.md carries it.
 //! May import: `engine`, `io`, `eval`, `settings`.
 //!
 //! Each row changes one choice from the defaults (one option of one of [`COMPARED`]), so a row

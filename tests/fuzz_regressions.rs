@@ -3,7 +3,7 @@
 //! the fuzzer: no panic, nothing non-finite reaches the engine or the live readouts, and each
 //! input finishes within a time limit (a `timeout-*` input once never did).
 //!
-//! Native only (it reads the fixture tree). See README, "Fuzzing".
+//! Native only (it reads the fixture tree). See docs/reliability.md, "Fuzzing".
 #![cfg(not(target_arch = "wasm32"))]
 
 #[path = "../fuzz/src/lib.rs"]

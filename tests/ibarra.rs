@@ -59,7 +59,7 @@ fn zero_crossing_counts_the_demo_walk_and_cadence_changes() {
         run(&sim, zc()).len(),
         sim.truth.steps.len(),
     );
-    // The demo walk has a run, a stop and handling: the PLL counts −2 of 364 (README).
+    // The demo walk has a run, a stop and handling: the PLL counts −2 of 364 (docs/methods/ibarra2015.md).
     let sim = scenarios::demo_walk().generate();
     let (n, truth) = (run(&sim, zc()).len(), sim.truth.steps.len());
     assert!(n.abs_diff(truth) <= 4, "demo: {n} of {truth}");

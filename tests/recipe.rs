@@ -1,4 +1,4 @@
-//! Recipes (README, "Logs from any recorder (recipes)"): the JSON schema and its errors, every
+//! Recipes (docs/recipes.md): the JSON schema and its errors, every
 //! separator and unit, headed and header-less files, errors naming file, line and field, the
 //! sanity warnings firing and staying quiet, and matching by file name. Whole walks and the
 //! command line: `tests/recipe_walks.rs`.
@@ -341,7 +341,7 @@ fn recipe_json_errors_name_the_entry_and_field() {
     assert!(err.contains("twice"), "{err}");
     let err = e("{\"recipe\": 1, \"name\": \"x\", \"files\": []}");
     assert!(err.contains("1 to 32 entries"), "{err}");
-    // The example recipe of the README (the one the simulator writes) reads and round-trips.
+    // The example recipe of docs/recipes.md (the one the simulator writes) reads and round-trips.
     let r = Recipe::from_json(formats::PLAIN_CSV_RECIPE).unwrap();
     assert_eq!(Recipe::from_json(&r.to_json()).unwrap(), r);
 }

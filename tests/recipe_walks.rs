@@ -1,6 +1,5 @@
-//! Recipes on whole walks and from the command line (README, "Logs from any recorder
-//! (recipes)"): a simulated walk written as a header-less folder and read back, the form's
-//! guessed recipe, `pdr run --recipe` / `pdr eval --recipe`, recipes inside zips, one file of
+//! Recipes on whole walks and from the command line (docs/recipes.md): a simulated walk
+//! written as a header-less folder and read back, the form's guessed recipe, `pdr run --recipe` / `pdr eval --recipe`, recipes inside zips, one file of
 //! several sensors, and the shared x-io walks read by a recipe as by their own reader.
 
 use pdr::engine::{replay, PipelineConfig, Record};

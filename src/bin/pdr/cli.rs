@@ -119,8 +119,8 @@ enum Cmd {
         /// Write the fused and smoothed tracks as CSV.
         #[arg(long)]
         fused: Option<PathBuf>,
-        /// Read the log with a recipe (column mapping, JSON; see README, "Logs from any
-        /// recorder"): the files it matches are read by it, whatever their format.
+        /// Read the log with a recipe (column mapping, JSON; see docs/recipes.md): the files it
+        /// matches are read by it, whatever their format.
         #[arg(long)]
         recipe: Option<PathBuf>,
         #[command(flatten)]

@@ -76,7 +76,7 @@ fn read_one(file: &Path, name: &str, recipe: Option<&Recipe>) -> Result<Log, Str
     match logs.len() {
         0 => Err(format!(
             "{name}: no recognisable log (see README, Import; for another recorder's files, \
-             describe them with `--recipe FILE`, see \"Logs from any recorder\")"
+             describe them with `--recipe FILE`, see docs/recipes.md)"
         )),
         1 => logs.pop().expect("one log").map_err(|e| e.to_string()),
         n => Err(format!(

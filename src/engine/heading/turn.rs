@@ -31,7 +31,7 @@
 //!   direction in the device over the strides compared within [`STEADY_DEG`].
 //! - **The device's own yaw** (the hand, the reading pose) is taken at the instant the step is
 //!   judged and is not led: on the real hand-held walks, taking it back to the step's middle
-//!   made every figure worse (README, "The heading in a turn").
+//!   made every figure worse (docs/methods/turns.md).
 //! - A walker who turns on the spot between two bouts: the first steps take the new direction
 //!   from their own windows.
 

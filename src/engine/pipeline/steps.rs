@@ -54,8 +54,8 @@ impl Pipeline {
     /// Emits a step. `judged_at`: for a step the step detector held for a cycle
     /// ([`crate::engine::pll::Pll::take_late_step`]), the heading stage's pose when it was judged,
     /// which its heading takes, as an on-time step's takes the latest. The onset look-back's
-    /// steps keep the latest (README, "The pocket's lone last jolt": giving them theirs was
-    /// measured, and mixed).
+    /// steps keep the latest (docs/methods/first-and-last-steps.md, "The pocket's lone last jolt":
+    /// giving them theirs was measured, and mixed).
     pub(super) fn emit(&mut self, c: Candidate, state: Motion, judged_at: Option<Pose>) {
         if self.foot.two_sensor() {
             // With a foot sensor, the track is its strides (see `two_sensor`).

@@ -136,8 +136,8 @@ impl Platform {
     }
 
     /// Guesses the platform from the mean acceleration including gravity, when nothing better
-    /// is known (see `sensor_logger::decide_platform` for the full order of rules, and the
-    /// README, "Import"): the axis with the largest mean magnitude reads +9.81 on Android when the
+    /// is known (see `sensor_logger::decide_platform` for the full order of rules, and
+    /// docs/formats.md): the axis with the largest mean magnitude reads +9.81 on Android when the
     /// phone lies face up (z) or stands upright (y), and −1 g on iOS. Phones are carried face up
     /// or upright far more often than face down or upside down, so a positive mean is Android.
     /// `None` when the mean is zero or not finite.
