@@ -69,46 +69,67 @@ fn receiver(r: &Readouts, gnss_mode: &str) -> (String, String) {
     }
 }
 
-/// The readouts in words. `source` names the motion source ("devicemotion events", "Generic
-/// Sensor API"); `gnss_mode` is the fusion mode the walk runs (`off`, `energy_saving`, …).
-pub fn readout_texts(r: &Readouts, source: &str, gnss_mode: &str) -> ReadoutTexts {
-    let started = r.samples > 0;
-    let or_dash = |v: Option<String>, before: &str| v.unwrap_or_else(|| before.to_string());
-    let dash = if started { None } else { Some("–") };
-    let height = match r.up_m {
+/// The height above the start with what it comes from ("+3.1 m · leg pitch"), once known.
+fn height(r: &Readouts) -> String {
+    match r.up_m {
         Some(up) => format!(
             "{}{:.1} m{}",
             if up >= 0.0 { "+" } else { "−" },
             up.abs(),
             r.height_source.map_or(String::new(), |s| format!(" · {s}"))
         ),
-        None => dash.unwrap_or("no height yet").to_string(),
-    };
-    let time = clock(r.duration_s);
-    let gaps = if r.gaps > 0 {
-        format!(" · {}", count(r.gaps, "gap", "gaps"))
-    } else {
-        String::new()
-    };
+        None if r.samples > 0 => "no height yet".into(),
+        None => "–".into(),
+    }
+}
+
+/// The heading with its compass point ("87° E"), and what it is measured from (or how many of
+/// a walk's first steps wait for a forward direction).
+fn heading(r: &Readouts) -> (Option<String>, String) {
     let heading = r.heading_deg.map(|d| {
         let h = d.rem_euclid(360.0);
         format!("{}° {}", h.round(), compass_point(h))
     });
-    let heading_ref = if r.held_steps > 0 {
+    let reference = if r.held_steps > 0 {
         format!("{} waiting", count(r.held_steps as u64, "step", "steps"))
     } else if r.absolute_heading {
         "from north".into()
+    } else if r.samples > 0 {
+        "relative to start".into()
     } else {
-        dash.unwrap_or("relative to start").into()
+        "–".into()
     };
-    let (saving, saving_title) = receiver(r, gnss_mode);
-    let fixes = if r.fixes > 0 {
+    (heading, reference)
+}
+
+/// The fixes received, with the receiver's share in energy-saving mode, and its tooltip.
+fn fixes(r: &Readouts, gnss_mode: &str) -> (String, String) {
+    let (saving, title) = receiver(r, gnss_mode);
+    let text = if r.fixes > 0 {
         format!("{}{saving}", count(r.fixes as u64, "fix", "fixes"))
     } else if gnss_mode == "off" {
         "off".into()
     } else {
         "no fix".into()
     };
+    (text, title)
+}
+
+/// The readouts in words. `source` names the motion source ("devicemotion events", "Generic
+/// Sensor API"); `gnss_mode` is the fusion mode the walk runs (`off`, `energy_saving`, …).
+pub fn readout_texts(r: &Readouts, source: &str, gnss_mode: &str) -> ReadoutTexts {
+    let started = r.samples > 0;
+    let or_dash = |v: Option<String>, before: &str| v.unwrap_or_else(|| before.to_string());
+    let dash = if started { None } else { Some("–") };
+    let height = height(r);
+    let time = clock(r.duration_s);
+    let gaps = if r.gaps > 0 {
+        format!(" · {}", count(r.gaps, "gap", "gaps"))
+    } else {
+        String::new()
+    };
+    let (heading, heading_ref) = heading(r);
+    let (fixes, saving_title) = fixes(r, gnss_mode);
     let texts = vec![
         ("r-steps", r.steps.to_string()),
         (

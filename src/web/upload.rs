@@ -66,8 +66,11 @@ impl Upload {
         }
         #[derive(serde::Serialize)]
         struct Error {
-            #[serde(flatten)]
-            error: crate::io::ParseError,
+            file: String,
+            line: u64,
+            column: Option<usize>,
+            field: Option<String>,
+            message: String,
             text: String,
         }
         #[derive(serde::Serialize)]
@@ -98,7 +101,11 @@ impl Upload {
                 }
                 Err(e) => out.errors.push(Error {
                     text: error_text(&e),
-                    error: e,
+                    file: e.file,
+                    line: e.line,
+                    column: e.column,
+                    field: e.field,
+                    message: e.message,
                 }),
             }
         }
