@@ -166,11 +166,16 @@ impl Settings {
                 .split('.')
                 .try_fold(&v, |node, part| node.get(part))
                 .and_then(Value::as_str)
-                .unwrap_or_default();
-            choice(key)
-                .and_then(|c| c.label_of(value))
-                .unwrap_or(value)
-                .to_string()
+                .ok_or_else(|| SettingsError::BadValue {
+                    key: key.to_string(),
+                    message: "the configuration has no such choice to describe".into(),
+                })?;
+            Ok::<_, SettingsError>(
+                choice(key)
+                    .and_then(|c| c.label_of(value))
+                    .unwrap_or(value)
+                    .to_string(),
+            )
         };
         let length = match &cfg.step_length {
             StepLengthModel::Weinberg { k } => format!("Weinberg step length (K = {k})"),
@@ -188,9 +193,9 @@ impl Settings {
         };
         Ok(format!(
             "{}, {}, {length}, GNSS: {}",
-            shown("detector.kind"),
-            shown("heading.method"),
-            shown("fusion.mode.kind")
+            shown("detector.kind")?,
+            shown("heading.method")?,
+            shown("fusion.mode.kind")?
         ))
     }
 }

@@ -243,7 +243,8 @@ fn one_file_of_several_sensors_reads_as_its_own_reader_does() {
     let e = Recipe::from_json(&twice)
         .unwrap()
         .match_dir(&["xio/walk.csv".to_string()], "xio/")
-        .unwrap_err();
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("both read walk.csv as accelerometer"), "{e}");
 }
 

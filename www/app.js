@@ -5,7 +5,7 @@ import { setupLive } from './live.js';
 import { setupWizard } from './wizard.js';
 import { setupUpload } from './upload.js';
 import { setupBasemap } from './basemap.js';
-import { $, dark, fit } from './util.js';
+import { $, dark, fit, test } from './util.js';
 
 /** Fills every select marked `data-choice` with the options of the setting it is named after. */
 function fillChoices() {
@@ -40,7 +40,7 @@ async function main() {
   $('end-error').textContent = s.end_error_m.toFixed(1);
 
   keepDrawn($('track'), demo);
-  window.__pdr = { steps: s.steps, distance_m: s.distance_m, ready_ms: performance.now() };
+  test.demo = { steps: s.steps, distance_m: s.distance_m, ready_ms: performance.now() };
   document.documentElement.dataset.state = 'ready';
 
   // The GNSS walk takes a moment to simulate: after the first paint.
@@ -56,7 +56,7 @@ async function main() {
     + `heading ${f.heading_correction_deg.toFixed(1)}° (true ${f.true_heading_correction_deg.toFixed(0).replace('-', '−')}°), ` +
     `declination ${f.declination_deg.toFixed(1)}° from the World Magnetic Model. Grey: the true path.`;
   keepDrawn($('fusion'), fusion);
-  window.__pdr.fusion = f;
+  test.demo.fusion = f;
   document.documentElement.dataset.fusion = 'ready';
 }
 

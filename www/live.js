@@ -1,10 +1,10 @@
 // Live mode: sensors in, readouts and plots out, the recording into IndexedDB.
 // Event plumbing only. Every number goes to the engine (Live, in wasm) as the browser gives it;
 // the conversions (iOS sign, deg/s, angles, iOS's compass) are in src/live/events.rs.
-import { Live, recover_recording } from './pkg/pdr.js';
+import { Live, live_message, recover_recording } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, fit, note } from './util.js';
+import { $, dark, download, fit, note, test } from './util.js';
 
 // The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
@@ -21,25 +21,10 @@ const WRITE_CHUNKS = 40; // chunks per IndexedDB transaction when catching up
 const isIos = () => /iPhone|iPad|iPod/.test(navigator.userAgent)
   || (/Macintosh/.test(navigator.userAgent) && navigator.maxTouchPoints > 1);
 
-const MESSAGES = {
-  insecure: 'Motion and location need a secure page. Open it as https:// (./dev run serves one on port 8443 with a self-signed certificate; accept the warning once) or as http://localhost.',
-  motionDenied: 'Motion access was refused, so steps cannot be counted. On an iPhone, tap Start again and choose Allow; if no prompt appears, close the tab and open the page again (Safari › Settings › Motion & Orientation Access must be on). On Android, allow “Motion sensors” in the site settings (the icon left of the address).',
-  noSensor: 'No motion data has arrived. This device or browser may have no accelerometer, or may withhold it (desktop browsers usually do). Use a phone with Chrome, Samsung Internet, Firefox or Safari.',
-  noCompass: 'No compass heading: the track’s shape is right, but it is turned by an unknown angle. Allow motion and orientation access, or use a browser that reports an absolute orientation.',
-  locationDenied: 'Location was refused: the track uses the motion sensors alone, without GNSS corrections. To use GNSS, allow location for this site and tap Start again.',
-  locationUnavailable: 'No GNSS fix yet (indoors, or the receiver is starting). The track goes on without; fixes are used when they come.',
-  noGeolocation: 'This browser has no geolocation: the track uses the motion sensors alone.',
-  noWakeLock: 'This browser cannot keep the screen on. Set a long screen timeout: when the screen goes off, the browser stops the sensors and the walk has a gap.',
-  engine: 'Some sensor events were refused: ',
-  cannotStart: 'Live mode could not start: ',
-  unreadable: 'An unfinished recording is stored on this device but cannot be read: ',
-  storage: 'The recording cannot be saved on this device (storage full, or refused in private mode). The walk goes on and what was not saved is kept in memory: tap Stop, then “Download recording”, to keep the whole walk; closing the page now would lose it. ',
-};
-
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
 let messageList = 'live-messages';
 function message(key, show, kind = 'warn', extra = '') {
-  note(messageList, key, show && MESSAGES[key] + extra, kind);
+  note(messageList, key, show && live_message(key) + extra, kind);
 }
 
 /** The settings of live mode's controls: each enabled control named by its setting's path, and
@@ -50,17 +35,6 @@ function settings() {
     set[el.name] = el.type === 'number' ? el.valueAsNumber : el.value;
   }
   return { set, profile: profiles.selected() };
-}
-
-function fmtTime(s) {
-  const m = Math.floor(s / 60);
-  const h = Math.floor(m / 60);
-  const ss = String(Math.floor(s % 60)).padStart(2, '0');
-  return h ? `${h}:${String(m % 60).padStart(2, '0')}:${ss}` : `${m}:${ss}`;
-}
-
-function compassPoint(deg) {
-  return ['N', 'NE', 'E', 'SE', 'S', 'SW', 'W', 'NW'][Math.round((((deg % 360) + 360) % 360) / 45) % 8];
 }
 
 const fileName = (started) => `pdr-${new Date(started).toISOString().slice(0, 19).replace(/[:T]/g, '-')}.pdrlog`;
@@ -357,54 +331,13 @@ class Session {
   }
 }
 
-/**
- * Energy saving: whether the receiver is off now, and its share of the time since the first fix
- * (the tooltip has the times).
- */
-function receiver(r, s) {
-  const el = $('r-fixes');
-  if (s.gnssMode !== 'energy_saving' || !r.gnss_on_s || !(r.gnss_on_s[1] > 0)) { el.title = ''; return ''; }
-  const [on, span] = r.gnss_on_s;
-  el.title = `The receiver has been on ${fmtTime(on)} of the ${fmtTime(span)} since the first fix.`;
-  return `${r.gnss_wanted ? '' : ' · off'} · on ${Math.round(100 * on / span)} %`;
-}
-
-/** Writes the readouts into the page and the pocket guard. */
+/** Writes the readouts into the page and the pocket guard (the words are the engine's). */
 function show(r, s) {
-  const set = (id, v) => { const el = $(id); if (el.textContent !== v) el.textContent = v; };
-  set('r-steps', String(r.steps));
-  set('r-motion', r.activity ? [r.activity, r.carry].filter(Boolean).join(' · ') : 'waiting for motion');
-  // The floor change from the start ("+1 floor"), and the height with what it comes from.
-  set('r-floor', r.floor_change ?? (r.samples ? 'start floor' : '–'));
-  set('r-height', r.up_m != null ? `${r.up_m >= 0 ? '+' : '−'}${Math.abs(r.up_m).toFixed(1)} m${r.height_source ? ` · ${r.height_source}` : ''}` : (r.samples ? 'no height yet' : '–'));
-  set('r-distance', r.distance_m.toFixed(1));
-  set('r-time', fmtTime(r.duration_s) + (r.gaps ? ` · ${r.gaps} gap${r.gaps > 1 ? 's' : ''}` : ''));
-  set('r-cadence', r.cadence_hz != null ? r.cadence_hz.toFixed(2) : '–');
-  set('r-spm', r.cadence_hz != null ? `${Math.round(r.cadence_hz * 60)} steps/min` : '– steps/min');
-  const h = r.heading_deg != null ? ((r.heading_deg % 360) + 360) % 360 : null;
-  set('r-heading', h != null ? `${Math.round(h)}° ${compassPoint(h)}` : '–');
-  // A walk's first steps wait off the track until the limb says which way is forward.
-  set('r-heading-ref', r.held_steps
-    ? `${r.held_steps} step${r.held_steps > 1 ? 's' : ''} waiting`
-    : (r.absolute_heading ? 'from north' : (r.samples ? 'relative to start' : '–')));
-  $('r-heading-ref').title = r.held_steps
-    ? 'A walk’s first steps wait off the track until the phone’s swing says which way is forward.' : '';
-  set('r-gnss', r.gnss_accuracy_m != null ? `±${Math.round(r.gnss_accuracy_m)} m` : '–');
-  set('r-fixes', r.fixes ? `${r.fixes} fix${r.fixes > 1 ? 'es' : ''}${receiver(r, s)}` : (s.gnssMode === 'off' ? 'off' : 'no fix'));
-  // What the fusion learnt, ± 1σ (words from the engine), and its notice when it waits for a
-  // usable fix or distrusts the fixes.
-  set('r-scale', r.scale_text ?? '–');
-  set('r-correction', `heading ${r.correction_text ?? '–'}`);
-  const notice = $('gnss-notice');
-  set('gnss-notice', r.gnss_notice ?? '');
-  notice.hidden = !r.gnss_notice;
-  notice.dataset.verdict = r.gnss_verdict ?? '';
-  set('r-rate', r.sample_rate_hz ? r.sample_rate_hz.toFixed(0) : '–');
-  set('r-source', s.source + (r.orientation ? ` · ${r.orientation}` : ''));
-  set('g-steps', String(r.steps));
-  set('g-distance', r.distance_m.toFixed(0));
-  set('g-time', fmtTime(r.duration_s));
-  set('g-note', r.samples ? [r.activity, r.floor_change].filter(Boolean).join(' · ') : 'waiting for the sensors…');
+  const t = s.live.readout_texts(s.source, s.gnssMode ?? '');
+  for (const [id, text] of t.texts) { const el = $(id); if (el.textContent !== text) el.textContent = text; }
+  for (const [id, title] of t.titles) $(id).title = title;
+  $('gnss-notice').hidden = !r.gnss_notice;
+  $('gnss-notice').dataset.verdict = r.gnss_verdict ?? '';
 }
 
 // --- pocket guard ------------------------------------------------------------------------
@@ -506,7 +439,7 @@ async function begin(makeLive, rec, opts = {}) {
   current = new Session(engine, rec, ios, opts.onTick);
   const session = current;
   // For the end-to-end tests and the curious: the session's state now.
-  window.__pdrLive = {
+  test.live = {
     get readouts() { return session.live.readouts(); },
     get source() { return session.source; },
     get unsaved() { return session.unsaved.length; },
@@ -577,15 +510,6 @@ function readRecording(pieces) {
   return { ...r, text, steps };
 }
 
-/** The sentence about a damaged recording, or ''. */
-function damage(r) {
-  if (!r.skipped_lines && !r.missing_pieces && !r.notes.length) return '';
-  const parts = [];
-  if (r.skipped_lines) parts.push(`${r.skipped_lines} damaged line${r.skipped_lines > 1 ? 's were' : ' was'} skipped`);
-  if (r.missing_pieces) parts.push(`${r.missing_pieces} piece${r.missing_pieces > 1 ? 's are' : ' is'} missing (a gap in the walk)`);
-  return ` Part of it is damaged: ${parts.join(', ') || 'it was repaired'}; everything else is kept. First problem: ${r.notes[0] ?? '–'}.`;
-}
-
 async function offerRecovery() {
   let open;
   try {
@@ -609,16 +533,16 @@ async function offerRecovery() {
   const started = new Date(Number.isFinite(rec.started) ? rec.started : Date.now());
   $('recovery-text').textContent = `An unfinished recording from ${started.toLocaleString()} `
     + `(${samples} samples${steps != null ? `, ${steps} steps` : ''}) was not stopped: the page was closed or reloaded. `
-    + `Resume it, or download it.${damage(read)}`;
+    + `Resume it, or download it.${read.damage}`;
   $('recovery').hidden = false;
   document.documentElement.dataset.recovery = 'offered';
-  window.__pdrRecovery = { id: rec.id, samples, steps, skipped_lines: read.skipped_lines, missing_pieces: read.missing_pieces, notes: read.notes };
+  test.recovery = { id: rec.id, samples, steps, skipped_lines: read.skipped_lines, missing_pieces: read.missing_pieces, notes: read.notes };
   const done = () => { $('recovery').hidden = true; document.documentElement.dataset.recovery = 'done'; };
   $('recover-resume').onclick = () => {
     done();
     const config = settings();
     begin((ios) => Live.resume(config, ios, performance.timeOrigin, text),
-      { id: rec.id, started: started.getTime(), resumed: true, nextSeq: stored.nextSeq, damaged: damage(read) !== '' });
+      { id: rec.id, started: started.getTime(), resumed: true, nextSeq: stored.nextSeq, damaged: read.damage !== '' });
   };
   $('recover-save').onclick = async () => {
     download(text, fileName(started.getTime()));

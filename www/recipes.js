@@ -2,23 +2,20 @@
 // recognised, and the recipes saved on this device (localStorage). The parsing, the preview and
 // the sanity checks are the engine's (src/io/import/recipe, through the worker); this file only
 // builds the form, keeps the saved recipes and hands the recipe JSON around.
-import { recipe_choices, recipe_normalise } from './pkg/pdr.js';
-import { $, download } from './util.js';
+import { recipe_choices, recipe_guess_columns, recipe_normalise } from './pkg/pdr.js';
+import { $, download, el, readStored, safeName } from './util.js';
 
 const LIST = 'pdr-recipes';
 
 /** `{name: json}` of every saved recipe. */
-export function saved() {
-  try {
-    const v = JSON.parse(localStorage.getItem(LIST) ?? '{}');
-    return v && typeof v === 'object' ? v : {};
-  } catch { return {}; }
-}
+export const saved = () => readStored(LIST, 'recipes') ?? {};
 
-/** Saves a recipe (its JSON, checked by the engine) under its own name. */
+/** Saves a recipe (its JSON, checked by the engine) under its own name; refused while the
+ * stored recipes cannot be read. */
 export function save(json) {
   const text = recipe_normalise(json);
-  const all = saved();
+  const all = readStored(LIST, 'recipes');
+  if (!all) throw new Error('The stored recipes cannot be read and cannot be kept aside: nothing was saved.');
   all[JSON.parse(text).name] = text;
   localStorage.setItem(LIST, JSON.stringify(all));
 }
@@ -47,14 +44,7 @@ export async function splitUploaded(files) {
   return { files: rest, recipes };
 }
 
-function el(tag, props = {}, ...children) {
-  const e = Object.assign(document.createElement(tag), props);
-  e.append(...children);
-  return e;
-}
-
 const base = (name) => name.split('/').pop();
-const DELIMITERS = { comma: 'comma-separated', tab: 'tab-separated', semicolon: 'semicolon-separated', whitespace: 'space-separated' };
 
 let form = null; // {files: [{guess, rules}], preview(json), run(json)}
 let timer = 0;
@@ -85,10 +75,17 @@ function current() {
   return JSON.stringify({ recipe: 1, name: $('recipe-name').value.trim() || 'my logger', files });
 }
 
+/** A select named `key` (`data-k`) of `[value, label]` choices, set to `value`. */
+function choice(key, pairs, value) {
+  const s = el('select', {}, ...pairs.map(([v, label]) => new Option(label, v)));
+  s.dataset.k = key;
+  s.value = value;
+  return s;
+}
+
 /**
- * The column and unit selects of one sensor row of a file, for its sensor. Without a rule, the
- * columns follow the time column in order, the `index`-th sensor of the file three columns on
- * from the one before it.
+ * The column and unit selects of one sensor row of a file, for its sensor: the rule's, else the
+ * engine's first guess for the file's `index`-th sensor (`recipe_guess_columns`).
  */
 function fields(row, f, rule, index) {
   const choices = recipe_choices();
@@ -97,32 +94,15 @@ function fields(row, f, rule, index) {
   box.replaceChildren();
   if (!sensor) return;
   const spec = choices.sensors.find((c) => c.sensor === sensor);
-  const options = () => f.guess.columns.map((c, i) => {
-    const first = f.guess.first[0]?.[i];
-    const label = f.guess.header ? c : `column ${c}${first != null ? ` (${first})` : ''}`;
-    return new Option(label, f.guess.header ? c : String(i + 1));
-  });
-  const want = (k, i) => {
-    const c = rule?.columns?.[k];
-    if (c != null) return String(c);
-    const at = i === 0 ? 0 : i + 3 * index;
-    return options()[Math.min(at, f.guess.columns.length - 1)]?.value;
-  };
-  ['t', ...spec.needs].forEach((k, i) => {
-    const sel = el('select', {}, ...options());
+  for (const [k, at] of recipe_guess_columns(f.guess.columns.length, sensor, index)) {
+    const sel = el('select', {}, ...f.guess.options.map(([value, label]) => new Option(label, value)));
     sel.dataset.col = k;
-    sel.value = want(k, i);
+    sel.value = rule?.columns?.[k] != null ? String(rule.columns[k]) : f.guess.options[at]?.[0];
     box.append(el('label', {}, k === 't' ? 'time ' : `${k} `, sel));
-  });
-  const tu = el('select', {}, ...choices.time_units.map((u) => new Option(u === 'us' ? 'µs' : u, u)));
-  tu.dataset.k = 'time_unit';
-  tu.value = rule?.time_unit ?? 'ms';
-  box.append(el('label', {}, 'time in ', tu));
+  }
+  box.append(el('label', {}, 'time in ', choice('time_unit', choices.time_units, rule?.time_unit ?? 'ms')));
   if (spec.units.length) {
-    const u = el('select', {}, ...spec.units.map((x) => new Option(x.replace('m/s2', 'm/s²').replace('uT', 'µT').replace('deg/s', '°/s'), x)));
-    u.dataset.k = 'unit';
-    u.value = rule?.sensor === sensor && rule?.unit ? rule.unit : spec.units[0];
-    box.append(el('label', {}, 'unit ', u));
+    box.append(el('label', {}, 'unit ', choice('unit', spec.units, rule?.sensor === sensor && rule?.unit ? rule.unit : spec.units[0][0])));
   }
 }
 
@@ -143,19 +123,16 @@ export function showForm(description, { preview, run }) {
     preview,
     run,
   };
-  const sensors = recipe_choices().sensors.map((s) => s.sensor);
+  const sensors = recipe_choices().sensors;
   const list = el('div', { className: 'recipe-files' });
   for (const f of form.files) {
     const g = f.guess;
     const fs = el('fieldset', { className: 'recipe-file' });
     fs.dataset.file = g.name;
-    const first = g.first[0]?.join(', ') ?? '';
     const rows = el('div', { className: 'recipe-sensors' });
     const addRow = (rule) => {
       const index = rows.children.length;
-      const sensor = el('select', {}, new Option('not used', ''), ...sensors.map((s) => new Option(s.replace('-', ' '), s)));
-      sensor.dataset.k = 'sensor';
-      sensor.value = rule?.sensor ?? '';
+      const sensor = choice('sensor', [['', 'not used'], ...sensors.map((s) => [s.sensor, s.label])], rule?.sensor ?? '');
       const row = el('div', { className: 'recipe-sensor controls' }, el('label', {}, 'sensor ', sensor), el('span', { className: 'recipe-fields controls' }));
       sensor.addEventListener('change', () => { fields(row, f, rule, index); changed(); });
       rows.append(row);
@@ -164,7 +141,7 @@ export function showForm(description, { preview, run }) {
     const more = el('button', { type: 'button', className: 'small recipe-more', textContent: '+ another sensor in this file' });
     more.addEventListener('click', () => { addRow(null); changed(); });
     fs.append(el('legend', { textContent: base(g.name) }),
-      el('p', { className: 'hint', textContent: `${DELIMITERS[g.delimiter] ?? g.delimiter}, ${g.header ? `header: ${g.columns.join(', ')}` : 'no header'}${first ? ` · first row: ${first}` : ''}` }),
+      el('p', { className: 'hint', textContent: g.hint }),
       rows, more);
     list.append(fs);
     for (const rule of f.rules.length ? f.rules : [null]) addRow(rule);
@@ -190,7 +167,7 @@ export function showForm(description, { preview, run }) {
   dlB.addEventListener('click', () => {
     try {
       const text = recipe_normalise(current());
-      download(text, `${JSON.parse(text).name.replace(/[^\w.-]+/g, '_')}.recipe.json`, 'application/json');
+      download(text, `${safeName(JSON.parse(text).name)}.recipe.json`, 'application/json');
     } catch (err) { $('recipe-saved').textContent = String(err?.message ?? err); }
   });
   box.replaceChildren(

@@ -1,22 +1,13 @@
 // Upload mode: files in (picker, folder, drag & drop), the worker parses and runs the engine,
 // the page draws each analysis (AnalysisView, in wasm) and lets the user zoom, pan, hover,
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
-import { AnalysisView, compare_settings, profile_summary, settings_label } from './pkg/pdr.js';
+import { AnalysisView, compare_settings, plot_titles, upload_config } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
-import { $, dark, download, fit } from './util.js';
-const PLOTS = [
-  ['accel', 'Vertical acceleration, PLL output and steps'],
-  ['sigma', 'σ of vertical acceleration and activity'],
-  ['height', 'Height above the start and floor'],
-  ['heading', 'Heading per step'],
-  ['steps', 'Step frequency and length'],
-  ['gnss', 'GNSS accuracy and innovations'],
-  ['fusion', 'Fusion: estimated step-length scale and heading correction'],
-];
+import { $, dark, download, el, fit, safeName, test } from './util.js';
 
 let worker = null;
-let logs = []; // [{info, card, views: {a, b}, span, cursor, step, bounds}]
+let logs = []; // [{info, card, views: {a, b}, step, bounds}]
 let lastFiles = null;
 let lastRecipes = []; // recipes uploaded with lastFiles (JSON), applied again on a re-run
 let pending = 0; // worker jobs not yet done
@@ -28,26 +19,14 @@ function banner(text, kind = 'error') {
   $('upload-banners').append(li);
 }
 
-/** Whether a profile's JSON carries a fuzzy scale (the engine reads it; a bad file has none). */
-function hasFuzzyScale(json) {
-  if (!json) return false;
-  try { return profile_summary(json).fuzzy_scale != null; } catch { return false; }
-}
-
-/** The settings of a row (A or B) for the worker, and how they are described. */
+/** The settings of a row (A or B) for the worker, and how they are described (`upload_config`
+ * decides whether the chosen profile applies to the chosen step-length model). */
 function config(tag) {
   const row = document.querySelector(`.config[data-config="${tag}"]`);
   const set = {};
   for (const sel of row.querySelectorAll('select[data-choice]')) set[sel.name] = sel.value;
-  const profile = row.querySelector('[name=profile]');
-  // A profile is a line in frequency and, when the wizard's walks measured it, the fuzzy
-  // model's scale: it goes with the line, and with the fuzzy model when it has a scale (else
-  // the fuzzy model runs unscaled). Weinberg has neither.
-  const json = profile.value ? profiles.all()[profile.value] : undefined;
-  const kind = set['step_length.kind'];
-  const usable = kind === 'frequency' || (kind === 'fuzzy' && hasFuzzyScale(json));
-  const settings = { set, profile: usable ? json : undefined };
-  return { settings, label: settings_label(settings) };
+  const profile = row.querySelector('[name=profile]').value;
+  return upload_config(set, profile ? profiles.all()[profile] : undefined);
 }
 
 function configs() {
@@ -68,9 +47,9 @@ function fillProfiles(adopt = false) {
 
 // --- loading -------------------------------------------------------------------------------
 function progress(text, fraction) {
-  if (window.__pdrUpload) {
-    window.__pdrUpload.progress_seen = true;
-    window.__pdrUpload.progress_max = Math.max(window.__pdrUpload.progress_max ?? 0, fraction);
+  if (test.upload) {
+    test.upload.progress_seen = true;
+    test.upload.progress_max = Math.max(test.upload.progress_max ?? 0, fraction);
   }
   $('upload-progress').hidden = false;
   $('upload-cancel').hidden = false;
@@ -104,7 +83,7 @@ function load(files, extra = []) {
   $('upload-results').replaceChildren();
   $('upload-banners').replaceChildren();
   startWorker();
-  window.__pdrUpload = {
+  test.upload = {
     logs: [],
     errors: [],
     started: performance.now(),
@@ -120,13 +99,13 @@ function load(files, extra = []) {
       const cv = logs[k].card.querySelector(`canvas.plot-${kind}`);
       const r = cv.getBoundingClientRect();
       const [left, right] = cv.axis;
-      const [t0, t1] = logs[k].span;
+      const [t0, t1] = logs[k].views.a.span();
       return [r.left + left + (t - t0) / (t1 - t0) * (right - left), r.top + r.height / 2];
     },
-    span: (k) => [...logs[k].span],
+    span: (k) => logs[k].views.a.span(),
     // Shows `[t0, t1]` on log `k`'s plots, as a zoom would.
-    setSpan(k, t0, t1) { logs[k].span = [t0, t1]; drawPlots(logs[k]); },
-    full: (k) => [...logs[k].full],
+    setSpan(k, t0, t1) { logs[k].views.a.set_span(t0, t1); drawPlots(logs[k]); },
+    full: (k) => logs[k].views.a.full_span(),
     stepTime: (k, i) => logs[k].views.a.step_info(i).t,
   };
   progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
@@ -136,7 +115,7 @@ function load(files, extra = []) {
 
 /** The end of a load or a re-run: the bar stays, full, with what was done (or why not). */
 function finish(cancelled = false) {
-  const u = window.__pdrUpload;
+  const u = test.upload;
   const ms = u ? performance.now() - u.started : 0;
   const n = logs.filter(Boolean).length;
   if (cancelled) $('upload-status').textContent = 'Cancelled.';
@@ -163,11 +142,10 @@ function onWorker(m) {
         0.35 + 0.65 * ((m.index + m.done / Math.max(m.total, 1)) / Math.max(logs.length, 1)));
     }
   } else if (m.type === 'parsed') {
-    Object.assign(window.__pdrUpload, { parse_ms: m.parse_ms, bytes: m.bytes });
+    Object.assign(test.upload, { parse_ms: m.parse_ms, bytes: m.bytes });
     for (const e of m.parsed.errors) {
-      const where = [e.file, e.line, e.column].filter((x) => x != null && x !== 0).join(':');
-      banner(`${where}${e.field ? ` (${e.field})` : ''}: ${e.message}`);
-      window.__pdrUpload.errors.push(e);
+      banner(e.text);
+      test.upload.errors.push(e);
     }
     if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files: describe them below, or choose other files.', 'warn');
     for (const e of m.parsed.recipe_errors ?? []) banner(`A saved recipe was left out: ${e}`, 'warn');
@@ -178,7 +156,7 @@ function onWorker(m) {
     l.views[m.tag]?.free();
     l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
     show(l, m.tag, m.label);
-    Object.assign(window.__pdrUpload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
+    Object.assign(test.upload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
   } else if (m.type === 'describe') {
     recipes.showForm(m.description, {
       preview: (json) => worker?.postMessage({ type: 'preview', recipe: json }),
@@ -187,7 +165,7 @@ function onWorker(m) {
   } else if (m.type === 'preview') {
     recipes.showPreview(m.result);
   } else if (m.type === 'pdrlog') {
-    download(m.text, `${logs[m.index].info.source.replace(/[^\w.-]+/g, '_')}.pdrlog`);
+    download(m.text, `${safeName(logs[m.index].info.source)}.pdrlog`);
   } else if (m.type === 'done') {
     pending -= 1;
     if (pending <= 0) finish();
@@ -228,23 +206,15 @@ async function dropped(dt) {
 }
 
 // --- results -------------------------------------------------------------------------------
-function el(tag, props = {}, ...children) {
-  const e = Object.assign(document.createElement(tag), props);
-  e.append(...children);
-  return e;
-}
-
 function card(info) {
   const c = el('article', { className: 'log-result' });
   c.dataset.index = info.index;
   c.append(el('h3', { textContent: info.source }),
-    el('p', { className: 'hint', textContent: `${info.format} · ${info.samples.toLocaleString('en')} IMU samples · ${(info.duration_s / 60).toFixed(1)} min`
-      + (info.warnings ? ` · ${info.warnings} lines skipped` : '')
-      + (info.recipe ? ` · read with your recipe "${info.recipe}"` : '') }));
+    el('p', { className: 'hint', textContent: info.hint }));
   c.append(el('div', { className: 'maps' }));
   c.append(el('div', { className: 'stepinfo', textContent: 'Hover or tap a step on the track, or click a plot, to see its values.' }));
   const plots = el('div', { className: 'plots' });
-  for (const [kind, label] of PLOTS) {
+  for (const [kind, label] of plot_titles()) {
     const cv = el('canvas', { className: `plot plot-${kind}` });
     cv.dataset.kind = kind;
     cv.setAttribute('role', 'img');
@@ -278,7 +248,7 @@ function show(l, tag, label) {
   const v = l.views[tag];
   const s = v.summary();
   l.summaries = { ...(l.summaries ?? {}), [tag]: s };
-  window.__pdrUpload.logs[l.info.index] = { ...(window.__pdrUpload.logs[l.info.index] ?? {}), [tag]: s };
+  test.upload.logs[l.info.index] = { ...(test.upload.logs[l.info.index] ?? {}), [tag]: s };
   const maps = l.card.querySelector('.maps');
   let box = maps.querySelector(`[data-tag="${tag}"]`);
   if (!box) {
@@ -303,8 +273,6 @@ function show(l, tag, label) {
     h.textContent = `${b.dataset.tag.toUpperCase()}: ${b.dataset.label}`;
   }
   if (tag === 'a') {
-    l.span = [s.t0 ?? 0, s.t1 ?? 1];
-    l.full = [...l.span];
     l.step = null;
     wirePlots(l);
   }
@@ -334,7 +302,7 @@ function drawPlots(l) {
     const dpr = fit(cv);
     if (!dpr) continue;
     // [left, right, top, bottom] of the plot area in canvas pixels (for the legibility test).
-    cv.area = v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, l.span[0], l.span[1], cursor);
+    cv.area = v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, cursor);
     // Where the time axis lies, canvas pixels → CSS pixels, for pointer → time.
     cv.axis = cv.area.slice(0, 2).map((x) => x / dpr);
   }
@@ -407,33 +375,29 @@ function wireMap(l, tag, cv) {
   cv.addEventListener('pointercancel', (e) => pointers.delete(e.pointerId));
 }
 
-/** The plots share one time axis: wheel or pinch zooms it about the pointer, drag pans, click
- * picks, double-click resets. */
+/** The plots share one time axis (its span kept by the engine): wheel or pinch zooms it about
+ * the pointer, drag pans, click picks, double-click resets. */
 function wirePlots(l) {
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
     if (cv.dataset.wired) continue;
     cv.dataset.wired = '1';
     const pointers = new Map(); // pointerId → clientX
     let drag = null;
+    const v = () => l.views.a;
     // A client x in CSS pixels from the canvas's left edge, and where the engine drew the axis.
     const at = (x) => x - cv.getBoundingClientRect().left;
     const axis = () => cv.axis ?? [0, cv.getBoundingClientRect().width];
-    const timeAt = (x) => l.views.a.axis_time_at(l.span, l.full, axis(), at(x));
-    // A new span from the engine (none when a pinch has nothing to zoom by), then redraw.
-    const setSpan = (span) => {
-      if (!span) return;
-      l.span = span;
-      drawPlots(l);
-    };
+    const grab = (x) => { v().axis_grab(); return { x, moved: true }; };
     cv.addEventListener('wheel', (e) => {
       e.preventDefault();
-      setSpan(l.views.a.axis_wheel(l.span, l.full, axis(), at(e.clientX), e.deltaY));
+      v().axis_wheel(axis(), at(e.clientX), e.deltaY);
+      drawPlots(l);
     }, { passive: false });
-    cv.addEventListener('dblclick', () => { l.span = [...l.full]; drawPlots(l); });
+    cv.addEventListener('dblclick', () => { v().reset_span(); drawPlots(l); });
     cv.addEventListener('pointerdown', (e) => {
       cv.setPointerCapture(e.pointerId);
       pointers.set(e.pointerId, e.clientX);
-      drag = { x: e.clientX, span: [...l.span], moved: pointers.size > 1 };
+      drag = { ...grab(e.clientX), moved: pointers.size > 1 };
     });
     cv.addEventListener('pointermove', (e) => {
       if (!pointers.has(e.pointerId)) return;
@@ -442,21 +406,21 @@ function wirePlots(l) {
       if (pointers.size === 2) {
         // Pinch (see TimeAxis::pinched).
         const other = [...pointers.entries()].find(([id]) => id !== e.pointerId)[1];
-        setSpan(l.views.a.axis_pinch(l.span, l.full, axis(), at(prev), at(e.clientX), at(other)));
+        if (v().axis_pinch(axis(), at(prev), at(e.clientX), at(other))) drawPlots(l);
         return;
       }
       if (!drag) return;
       if (Math.abs(e.clientX - drag.x) > 3) drag.moved = true;
       if (!drag.moved) return;
-      setSpan(l.views.a.axis_pan(drag.span, l.full, axis(), at(drag.x), at(e.clientX)));
+      v().axis_pan(axis(), at(drag.x), at(e.clientX));
+      drawPlots(l);
     });
-    const up = (e) => {
+    cv.addEventListener('pointerup', (e) => {
       pointers.delete(e.pointerId);
-      if (drag && !drag.moved && !pointers.size) select(l, l.views.a.step_near_time(timeAt(e.clientX)), l.views.a);
+      if (drag && !drag.moved && !pointers.size) select(l, v().step_near_time(v().axis_time_at(axis(), at(e.clientX))), v());
       // A finger left after a pinch does not start a pan from where it was.
-      drag = pointers.size ? { x: [...pointers.values()][0], span: [...l.span], moved: true } : null;
-    };
-    cv.addEventListener('pointerup', up);
+      drag = pointers.size ? grab([...pointers.values()][0]) : null;
+    });
     // The browser took the gesture (a vertical scroll): nothing to pick.
     cv.addEventListener('pointercancel', (e) => { pointers.delete(e.pointerId); drag = null; });
   }
@@ -476,7 +440,7 @@ function pngOf(l) {
 
 async function exportClicked(l, what) {
   const v = l.views.a;
-  const base = l.info.source.split('/').pop().replace(/[^\w.-]+/g, '_');
+  const base = safeName(l.info.source.split('/').pop());
   if (what === 'gpx') download(v.gpx(), `${base}.gpx`, 'application/gpx+xml');
   else if (what === 'geojson') download(v.geojson(), `${base}.geojson`, 'application/geo+json');
   else if (what === 'csv') download(v.steps_csv(), `${base}.steps.csv`, 'text/csv');
@@ -485,6 +449,7 @@ async function exportClicked(l, what) {
 }
 
 export function setupUpload() {
+  recipes.saved(); // damaged stored recipes are told at once, not at the first upload
   fillProfiles(true);
   window.addEventListener('storage', () => fillProfiles());
   window.addEventListener('pdr-profiles-changed', () => fillProfiles(true));
@@ -533,8 +498,8 @@ export function setupUpload() {
         l.card.querySelector('.mapbox[data-tag="b"]')?.remove();
       }
     }
-    window.__pdrUpload.started = performance.now();
-    window.__pdrUpload.progress_max = 0;
+    test.upload.started = performance.now();
+    test.upload.progress_max = 0;
     progress('running the engine again…', 0.35);
     for (const l of logs) {
       for (const [tag, config] of Object.entries(c)) {

@@ -43,3 +43,63 @@ export function note(listId, key, text, kind = 'warn') {
   li.textContent = text;
   return li;
 }
+
+/** An element: `tag` with `props` assigned and `children` appended. */
+export function el(tag, props = {}, ...children) {
+  const e = Object.assign(document.createElement(tag), props);
+  e.append(...children);
+  return e;
+}
+
+/** `name` as a file name: every run of characters other than letters, digits, `_` (and those in
+ * `keep`, `.-` by default) becomes one `_`. */
+export const safeName = (name, keep = '.-') => name.replace(new RegExp(`[^\\w${keep}]+`, 'g'), '_');
+
+/** The page's state for the end-to-end tests and the curious, in one place: `demo`, `upload`,
+ * `live`, `recovery`, `calibration`, `storage` (each set by the part it describes). */
+export const test = (window.__pdrTest ??= {});
+
+/**
+ * The object stored as JSON under `key` in localStorage (`{}` when there is none). Text that
+ * does not read as one (damaged by hand, by an old version, by a full disk) is never overwritten:
+ * it is moved to `<key>-unreadable-<time>` and stays there until the user deletes it; the page
+ * says so in the list `storage-messages` (`what` names the store in words). When it cannot be
+ * moved (storage full), it stays under `key` and `null` is returned: the caller must not save.
+ */
+export function readStored(key, what) {
+  const text = localStorage.getItem(key);
+  let value = {};
+  try { if (text != null) value = JSON.parse(text); } catch { value = null; }
+  if (value && typeof value === 'object' && !Array.isArray(value)) {
+    showAside(key, what);
+    return value;
+  }
+  try {
+    localStorage.setItem(`${key}-unreadable-${new Date().toISOString()}`, text);
+    localStorage.removeItem(key);
+  } catch {
+    storageNote(key, `The ${what} stored on this device cannot be read, and there is no room to keep them aside: nothing is saved over them. Free some storage and reload the page.`);
+    return null;
+  }
+  showAside(key, what);
+  return {};
+}
+
+/** The message about the unreadable texts kept aside for `key`, with a download and a delete. */
+function showAside(key, what) {
+  const kept = Object.keys(localStorage).filter((k) => k.startsWith(`${key}-unreadable-`)).sort();
+  if (!kept.length) { storageNote(key, null); return; }
+  const li = storageNote(key, `The ${what} stored on this device could not be read (damaged JSON), so they are not shown. `
+    + `Their text is kept unchanged under “${kept.join('”, “')}” in this browser's storage and nothing is saved over it: download it to repair it by hand. `);
+  const download_ = el('button', { type: 'button', className: 'small', textContent: 'Download it' });
+  download_.addEventListener('click', () => { for (const k of kept) download(localStorage.getItem(k), `${safeName(k)}.json`, 'application/json'); });
+  const forget = el('button', { type: 'button', className: 'small', textContent: 'Delete it' });
+  forget.addEventListener('click', () => { for (const k of kept) localStorage.removeItem(k); storageNote(key, null); });
+  li.append(download_, ' ', forget);
+}
+
+function storageNote(key, text) {
+  const li = note('storage-messages', key, text, 'error');
+  $('storage-messages').hidden = !$('storage-messages').children.length;
+  return li;
+}

@@ -6,7 +6,7 @@
 import { CalibrationWizard, gnss_limit_m, pitch_calibration, profile_summary, profile_with_pitch_offset, refine_profile } from './pkg/pdr.js';
 import { startWalk, stopWalk } from './live.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, fit, note } from './util.js';
+import { $, dark, download, el, fit, note, safeName, test } from './util.js';
 
 const PACES = { slow: 'slow walk', normal: 'normal walk', fast: 'fast walk', jog: 'jog', run: 'run' };
 
@@ -71,8 +71,7 @@ async function finish() {
   const distance = w.gnss ? w.session.live.fix_path_m(gnss_limit_m()) : w.target;
   try {
     const p = wizard.add_walk(w.band, w.pace, distance, w.session.live.step_freqs(), w.session.live.fuzzy_lengths());
-    result.textContent = `N = ${p.steps} steps over ${p.distance_m.toFixed(1)} m · f̄ = ${p.f_mean_hz.toFixed(2)} Hz (eq. 1) · SL̄ = D/N = ${p.sl_mean_m.toFixed(3)} m (eq. 2) → one point of your ${w.band} line`
-      + (p.fuzzy_sum_m != null ? ` · fuzzy Σ = ${p.fuzzy_sum_m.toFixed(1)} m at k = 1` : '');
+    result.textContent = p.text;
   } catch (err) {
     result.textContent = String(err?.message ?? err);
     result.classList.add('error');
@@ -83,7 +82,7 @@ async function finish() {
     try {
       pitch = pitch_calibration(distance, w.session.live.pitch_amplitudes());
     } catch (err) {
-      pitch = { ok: false, why: String(err?.message ?? err) };
+      pitch = { ok: false, why: String(err?.message ?? err), text: `Leg-pitch step length not calibrated: ${err?.message ?? err}.` };
     }
     showPitch();
   }
@@ -99,52 +98,36 @@ function refresh() {
   for (const band of ['walking', 'running']) {
     const f = st[band];
     if (!f.points) continue;
-    const box = document.createElement('div');
-    box.className = 'fit';
-    const canvas = document.createElement('canvas');
-    canvas.id = `cal-chart-${band}`;
+    const canvas = el('canvas', { id: `cal-chart-${band}` });
     canvas.setAttribute('role', 'img');
     canvas.setAttribute('aria-label', `Calibration points, line and residuals, ${band}`);
-    box.append(canvas);
+    const box = el('div', { className: 'fit' }, canvas);
     if (f.warnings.length) {
-      const ul = document.createElement('ul');
-      for (const w of f.warnings) {
-        const li = document.createElement('li');
+      box.append(el('ul', {}, ...f.warnings.map((w) => {
+        const li = el('li', { textContent: w.message });
         li.dataset.kind = w.kind;
-        li.textContent = w.message;
         if (w.walk != null) {
-          const drop = document.createElement('button');
-          drop.type = 'button';
-          drop.className = 'small';
-          drop.textContent = `Drop walk ${w.walk + 1}`;
+          const drop = el('button', { type: 'button', className: 'small', textContent: `Drop walk ${w.walk + 1}` });
           drop.addEventListener('click', () => { wizard.remove_walk(w.walk); refresh(); });
           li.append(' ', drop);
         }
-        ul.append(li);
-      }
-      box.append(ul);
+        return li;
+      })));
     }
     fits.append(box);
     draw(canvas, band);
   }
   // The notes end with the fitted fuzzy scale, when the walks measured one (engine's text).
-  $('cal-notes').replaceChildren(...st.notes.map((n) => Object.assign(document.createElement('li'), { textContent: n })));
+  $('cal-notes').replaceChildren(...st.notes.map((n) => el('li', { textContent: n })));
   $('cal-save').disabled = st.walking.points + st.running.points === 0;
-  window.__pdrCalibration = { ...st, pitch };
+  test.calibration = { ...st, pitch };
 }
 
 /** Says what the normal walk gave the leg-pitch step length, or why it gave nothing. */
 function showPitch() {
-  const el = $('cal-pitch');
-  if (!pitch) {
-    el.textContent = 'Leg-pitch step length (S = a·Δθ + b, Munoz Diaz 2015 §5.1): the normal walk also gives your offset b when the phone is in a front trouser pocket and the browser gives the gyroscope.';
-  } else if (pitch.ok) {
-    el.textContent = `Leg-pitch step length (Munoz Diaz 2015 §5.1): with the universal slope a = ${pitch.slope_m_per_deg} m/°, your offset is b = ${pitch.offset_m.toFixed(3)} m per stride (${pitch.with_pitch} steps with a leg pitch). It is saved with the profile.`;
-  } else {
-    el.textContent = `Leg-pitch step length not calibrated: ${pitch.why}.`;
-  }
-  el.dataset.pitch = pitch ? (pitch.ok ? 'ok' : 'refused') : 'none';
-  if (window.__pdrCalibration) window.__pdrCalibration.pitch = pitch;
+  $('cal-pitch').textContent = pitch.text;
+  $('cal-pitch').dataset.pitch = pitch.ok ? 'ok' : 'refused';
+  if (test.calibration) test.calibration.pitch = pitch;
 }
 
 function draw(canvas, band) {
@@ -216,19 +199,13 @@ function refineAfterWalk(e) {
   const name = profiles.selectedName();
   const json = profiles.selected();
   if (!$('refine').checked || !json) return;
-  const r = refine_profile(json, e.detail.evidence);
-  if (r.why) {
-    note('profile-messages', 'refined', null);
-    note('profile-messages', 'not-refined', `“${name}” not refined: ${r.why}.`, 'note');
-    return;
-  }
-  note('profile-messages', 'not-refined', null);
-  const [before, after] = r.offset_m;
+  const r = refine_profile(json, e.detail.evidence, name);
+  note('profile-messages', r.why ? 'refined' : 'not-refined', null);
+  if (r.why) { note('profile-messages', 'not-refined', r.text, 'note'); return; }
   profiles.save(name, r.json);
   showProfiles();
-  const li = note('profile-messages', 'refined',
-    `“${name}”: walking offset b ${before.toFixed(3)} → ${after.toFixed(3)} m (the fixes found your steps ${r.scale.toFixed(3)}× the profile's at ${r.cadence_hz.toFixed(2)} Hz). `, 'ok');
-  const undo = Object.assign(document.createElement('button'), { type: 'button', className: 'small', textContent: 'Undo' });
+  const li = note('profile-messages', 'refined', r.text, 'ok');
+  const undo = el('button', { type: 'button', className: 'small', textContent: 'Undo' });
   undo.addEventListener('click', () => { profiles.save(name, json); showProfiles(); li.remove(); });
   li.append(undo);
 }
@@ -248,7 +225,7 @@ export function setupWizard() {
   $('profile-select').addEventListener('change', (e) => { profiles.select(e.target.value); showProfiles(); });
   $('profile-export').addEventListener('click', () => {
     const name = profiles.selectedName();
-    download(profiles.selected(), `pdr-profile-${name.replace(/[^\w-]+/g, '_')}.json`, 'application/json');
+    download(profiles.selected(), `pdr-profile-${safeName(name, '-')}.json`, 'application/json');
   });
   $('profile-import').addEventListener('change', (e) => { if (e.target.files[0]) importProfile(e.target.files[0]); e.target.value = ''; });
   $('profile-delete').addEventListener('click', () => { profiles.remove(profiles.selectedName()); showProfiles(); });

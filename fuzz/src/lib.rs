@@ -713,7 +713,8 @@ pub fn recipe(data: &[u8]) {
         .ok()
         .and_then(|t| Recipe::from_json(t).ok());
     if let Some(r) = &parsed {
-        let back = Recipe::from_json(&r.to_json()).expect("a written recipe reads back");
+        let json = r.to_json().expect("an accepted recipe writes to JSON");
+        let back = Recipe::from_json(&json).expect("a written recipe reads back");
         assert_eq!(&back, r, "the recipe changed through JSON");
     }
     let r = parsed.unwrap_or_else(|| {

@@ -38,7 +38,7 @@
 //! The origin's altitude counts as known when the frame's height is not exactly 0 m (the engine
 //! sets it to 0 when the first fix has none).
 
-use crate::engine::fusion::FusedStep;
+use crate::engine::fusion::{FixOutcome, FusedStep};
 use crate::engine::geo::LocalFrame;
 use crate::engine::types::GnssFix;
 use crate::engine::StepRecord;
@@ -96,12 +96,7 @@ pub fn fused_csv(fused: &[FusedStep], smoothed: &[FusedStep], frame: &LocalFrame
     let mut s = String::with_capacity(160 * (fused.len() + 1));
     s.push_str("t_s,east_m,north_m,sd_east_m,sd_north_m,scale,heading_correction_deg,fix,innovation_east_m,innovation_north_m,smoothed_east_m,smoothed_north_m,lat,lon,smoothed_lat,smoothed_lon\n");
     for (f, m) in fused.iter().zip(smoothed) {
-        let fix = f.fix.map_or(String::new(), |o| {
-            serde_json::to_value(o)
-                .ok()
-                .and_then(|v| v.as_str().map(str::to_string))
-                .unwrap_or_default()
-        });
+        let fix = f.fix.map_or("", FixOutcome::as_str);
         let (ie, inn) = f
             .innovation
             .map_or((String::new(), String::new()), |[e, n]| {

@@ -28,6 +28,8 @@
 //! gives the absolute `alpha` ([`ios_compass_alpha`]), and wins over `alpha` when present.
 
 pub mod events;
+pub mod messages;
+pub mod readout_text;
 pub mod session;
 
 pub use events::{

@@ -11,15 +11,23 @@ use web_sys::HtmlCanvasElement;
 pub struct AnalysisView {
     a: crate::analysis::Analysis,
     frame: std::cell::Cell<crate::plot::upload::MapFrame>,
+    /// The `(t0, t1)` the plots show, s (the log's clock): the whole log until zoomed.
+    span: std::cell::Cell<(f64, f64)>,
+    /// The span when the drag now panning the plots began.
+    grabbed: std::cell::Cell<(f64, f64)>,
 }
 
 #[wasm_bindgen]
 impl AnalysisView {
     /// Reads the bytes [`Upload::analyse`] made.
     pub fn from_bytes(bytes: &[u8]) -> Result<AnalysisView, JsError> {
+        let a = crate::analysis::Analysis::from_bytes(bytes).map_err(to_js)?;
+        let full = Self::full(&a);
         Ok(AnalysisView {
-            a: crate::analysis::Analysis::from_bytes(bytes).map_err(to_js)?,
+            a,
             frame: Default::default(),
+            span: full.into(),
+            grabbed: full.into(),
         })
     }
 
@@ -186,83 +194,87 @@ impl AnalysisView {
         to_json_value(&v)
     }
 
-    /// Draws diagnostics plot `kind` (`accel`, `sigma`, `height`, `heading`, `steps`, `gnss`,
-    /// `fusion`)
-    /// between `t0` and `t1` (s), with a cursor at `cursor`. Returns the canvas pixel columns
-    /// of `t0` and `t1`, then the rows of the plot area's top and bottom.
+    /// Draws a diagnostics plot (`accel`, `sigma`, `height`, `heading`, `steps`, `gnss`, `fusion`)
+    /// over the span shown ([`Self::span`]), with a cursor at `cursor` (s). Returns the canvas
+    /// pixel columns of the span's ends, then the rows of the plot area's top and bottom.
     pub fn draw_plot(
         &self,
         canvas: &HtmlCanvasElement,
         dark: bool,
         dpr: f64,
         kind: &str,
-        t0: f64,
-        t1: f64,
         cursor: Option<f64>,
     ) -> Result<Vec<f64>, JsError> {
         let plot = crate::plot::upload::Plot::parse(kind)
             .ok_or_else(|| to_js(format!("no plot `{kind}`")))?;
+        let span = self.span.get();
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
-            crate::plot::upload::draw_plot_area(area, &self.a, plot, (t0, t1), cursor, theme, scale)
+            crate::plot::upload::draw_plot_area(area, &self.a, plot, span, cursor, theme, scale)
         })
         .map(|((left, right), (top, bottom))| [left, right, top, bottom].map(f64::from).to_vec())
     }
 
-    /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.
-    /// `span` is the `[t0, t1]` shown, `full` the whole log's, `axis` the `[left, right]` of the
-    /// time axis (the columns [`Self::draw_plot`] returned, divided by the pixel ratio).
-    pub fn axis_time_at(
-        &self,
-        span: &[f64],
-        full: &[f64],
-        axis: &[f64],
-        x: f64,
-    ) -> Result<f64, JsError> {
-        Ok(Self::time_axis(span, full, axis)?.time_at(x))
+    /// The `[t0, t1]` the plots show, s (the log's clock).
+    pub fn span(&self) -> Vec<f64> {
+        let (t0, t1) = self.span.get();
+        vec![t0, t1]
     }
 
-    /// The wheel turned by `delta_y` at CSS pixel `x` of a plot: the next `[t0, t1]`, zoomed
-    /// about the pointer.
-    pub fn axis_wheel(
-        &self,
-        span: &[f64],
-        full: &[f64],
-        axis: &[f64],
-        x: f64,
-        delta_y: f64,
-    ) -> Result<Vec<f64>, JsError> {
+    /// The whole log's `[t0, t1]`, s.
+    pub fn full_span(&self) -> Vec<f64> {
+        let (t0, t1) = Self::full(&self.a);
+        vec![t0, t1]
+    }
+
+    /// Shows `[t0, t1]` on the plots, as a zoom would.
+    pub fn set_span(&self, t0: f64, t1: f64) {
+        self.span.set((t0, t1));
+    }
+
+    /// Shows the whole log again (a double-click).
+    pub fn reset_span(&self) {
+        self.span.set(Self::full(&self.a));
+    }
+
+    /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.
+    /// `axis` is the `[left, right]` of the time axis (the columns [`Self::draw_plot`]
+    /// returned, divided by the pixel ratio).
+    pub fn axis_time_at(&self, axis: &[f64], x: f64) -> Result<f64, JsError> {
+        Ok(self.time_axis(self.span.get(), axis)?.time_at(x))
+    }
+
+    /// The wheel turned by `delta_y` at CSS pixel `x` of a plot: the span zoomed about the
+    /// pointer.
+    pub fn axis_wheel(&self, axis: &[f64], x: f64, delta_y: f64) -> Result<(), JsError> {
         let k = crate::plot::wheel_factor(delta_y);
-        let (t0, t1) = Self::time_axis(span, full, axis)?.zoomed_at(x, k);
-        Ok(vec![t0, t1])
+        let next = self.time_axis(self.span.get(), axis)?.zoomed_at(x, k);
+        self.span.set(next);
+        Ok(())
     }
 
     /// A pinch on a plot: one finger moved from CSS pixel `prev` to `x` while the other stays at
-    /// `other`. The next `[t0, t1]`, or nothing while the fingers are too close.
-    pub fn axis_pinch(
-        &self,
-        span: &[f64],
-        full: &[f64],
-        axis: &[f64],
-        prev: f64,
-        x: f64,
-        other: f64,
-    ) -> Result<Option<Vec<f64>>, JsError> {
-        let next = Self::time_axis(span, full, axis)?.pinched(prev, x, other);
-        Ok(next.map(|(t0, t1)| vec![t0, t1]))
+    /// `other`. Whether the span changed (not while the fingers are too close).
+    pub fn axis_pinch(&self, axis: &[f64], prev: f64, x: f64, other: f64) -> Result<bool, JsError> {
+        let next = self
+            .time_axis(self.span.get(), axis)?
+            .pinched(prev, x, other);
+        if let Some(next) = next {
+            self.span.set(next);
+        }
+        Ok(next.is_some())
     }
 
-    /// A drag on a plot from CSS pixel `from` to `x`, `span` being the one shown when the drag
-    /// began: the next `[t0, t1]`.
-    pub fn axis_pan(
-        &self,
-        span: &[f64],
-        full: &[f64],
-        axis: &[f64],
-        from: f64,
-        x: f64,
-    ) -> Result<Vec<f64>, JsError> {
-        let (t0, t1) = Self::time_axis(span, full, axis)?.panned(from, x);
-        Ok(vec![t0, t1])
+    /// A drag begins (or goes on with the finger left after a pinch): the span it pans from.
+    pub fn axis_grab(&self) {
+        self.grabbed.set(self.span.get());
+    }
+
+    /// A drag on a plot from CSS pixel `from` (where [`Self::axis_grab`] was called) to `x`:
+    /// the span panned.
+    pub fn axis_pan(&self, axis: &[f64], from: f64, x: f64) -> Result<(), JsError> {
+        let next = self.time_axis(self.grabbed.get(), axis)?.panned(from, x);
+        self.span.set(next);
+        Ok(())
     }
 
     /// Draws the stride ellipse ending at step `k`.
@@ -295,23 +307,53 @@ impl AnalysisView {
 }
 
 impl AnalysisView {
-    /// The plots' time axis from the page's `span`, `full` and `axis`, two numbers each.
+    /// The whole log's span, s: its first and last samples' times.
+    fn full(a: &crate::analysis::Analysis) -> (f64, f64) {
+        (
+            a.trace.t.first().copied().unwrap_or(0.0),
+            a.trace.t.last().copied().unwrap_or(1.0),
+        )
+    }
+
+    /// The plots' time axis showing `span`, its ends at the CSS pixels `axis` (two numbers).
     fn time_axis(
-        span: &[f64],
-        full: &[f64],
+        &self,
+        span: (f64, f64),
         axis: &[f64],
     ) -> Result<crate::plot::upload::TimeAxis, JsError> {
-        let pair = |v: &[f64], name: &str| match *v {
-            [a, b] => Ok((a, b)),
-            _ => Err(to_js(format!(
-                "`{name}` needs two numbers, not {}",
-                v.len()
-            ))),
+        let [left, right] = *axis else {
+            return Err(to_js(format!(
+                "`axis` needs two numbers, not {}",
+                axis.len()
+            )));
         };
         Ok(crate::plot::upload::TimeAxis {
-            span: pair(span, "span")?,
-            full: pair(full, "full")?,
-            px: pair(axis, "axis")?,
+            span,
+            full: Self::full(&self.a),
+            px: (left, right),
         })
     }
+}
+
+/// The diagnostics plots in the page's order, `[[kind, title]]`: the kind
+/// [`AnalysisView::draw_plot`] takes and the title people read (the canvas's label).
+#[wasm_bindgen]
+pub fn plot_titles() -> Result<JsValue, JsError> {
+    use crate::plot::upload::Plot;
+    let titles: Vec<(&str, &str)> = Plot::ALL
+        .iter()
+        .map(|p| match p {
+            Plot::Accel => ("accel", "Vertical acceleration, PLL output and steps"),
+            Plot::Sigma => ("sigma", "σ of vertical acceleration and activity"),
+            Plot::Height => ("height", "Height above the start and floor"),
+            Plot::Heading => ("heading", "Heading per step"),
+            Plot::Steps => ("steps", "Step frequency and length"),
+            Plot::Gnss => ("gnss", "GNSS accuracy and innovations"),
+            Plot::Fusion => (
+                "fusion",
+                "Fusion: estimated step-length scale and heading correction",
+            ),
+        })
+        .collect();
+    to_json_value(&titles)
 }

@@ -37,7 +37,8 @@ impl CalibrationWizard {
 
     /// Adds a walk of `distance_m` whose steps had the frequencies `step_freqs_hz` and, when
     /// given (`Live.fuzzy_lengths()`), the unscaled fuzzy lengths `fuzzy_lengths_m`; returns its
-    /// `{band, pace, distance_m, steps, f_mean_hz, sl_mean_m, fuzzy_sum_m}`.
+    /// `{band, pace, distance_m, steps, f_mean_hz, sl_mean_m, fuzzy_sum_m, text}` (`text`: the
+    /// walk's figures for people, eq. 1 and 2).
     pub fn add_walk(
         &mut self,
         band_name: &str,
@@ -55,7 +56,20 @@ impl CalibrationWizard {
             .wizard
             .add(band(band_name)?, pace, &walk)
             .map_err(to_js)?;
-        to_value(w)
+        #[derive(serde::Serialize)]
+        struct Added<'a> {
+            #[serde(flatten)]
+            walk: &'a crate::engine::calibration::WizardWalk,
+            text: String,
+        }
+        let fuzzy = w
+            .fuzzy_sum_m
+            .map_or(String::new(), |f| format!(" · fuzzy Σ = {f:.1} m at k = 1"));
+        let text = format!(
+            "N = {} steps over {:.1} m · f̄ = {:.2} Hz (eq. 1) · SL̄ = D/N = {:.3} m (eq. 2) → one point of your {band_name} line{fuzzy}",
+            w.steps, w.distance_m, w.f_mean_hz, w.sl_mean_m
+        );
+        super::to_json_value(&Added { walk: w, text })
     }
 
     /// Removes walk `index` (an outlier the user drops).
@@ -237,15 +251,21 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
 /// `{json, offset_m: [before, after], scale, cadence_hz}`; `{why}` when the walk may not refine
 /// it (the filter's verdict not `calibrated`, too few fixes used or steps, the scale uncertain
 /// or not different from 1: see `engine::refinement::refine`), `why` for people ("GNSS was not
-/// certain enough of your step length: scale 0.81 ± 0.06").
+/// certain enough of your step length: scale 0.81 ± 0.06"). `text` says either to people,
+/// naming the profile `name`.
 #[wasm_bindgen]
-pub fn refine_profile(text: &str, evidence: JsValue) -> Result<JsValue, JsError> {
+pub fn refine_profile(text: &str, evidence: JsValue, name: &str) -> Result<JsValue, JsError> {
     let p = read_profile(text)?;
     let walk: crate::engine::refinement::WalkEvidence =
         serde_wasm_bindgen::from_value(evidence).map_err(to_js)?;
     let r = match crate::engine::refinement::refine(&p, &walk) {
         Ok(r) => r,
-        Err(why) => return super::to_json_value(&serde_json::json!({ "why": why.to_string() })),
+        Err(why) => {
+            return super::to_json_value(&serde_json::json!({
+                "why": why.to_string(),
+                "text": format!("“{name}” not refined: {why}."),
+            }))
+        }
     };
     #[derive(serde::Serialize)]
     struct Refined {
@@ -253,12 +273,18 @@ pub fn refine_profile(text: &str, evidence: JsValue) -> Result<JsValue, JsError>
         offset_m: (f64, f64),
         scale: f64,
         cadence_hz: f64,
+        text: String,
     }
+    let (before, after) = r.offset_m;
     to_value(&Refined {
         json: r.file.to_json().map_err(to_js)?,
         offset_m: r.offset_m,
         scale: r.scale,
         cadence_hz: r.cadence_hz,
+        text: format!(
+            "“{name}”: walking offset b {before:.3} → {after:.3} m (the fixes found your steps {:.3}× the profile's at {:.2} Hz). ",
+            r.scale, r.cadence_hz
+        ),
     })
 }
 
@@ -266,9 +292,10 @@ use crate::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG as PITCH_SLOPE_M
 
 /// Munoz Diaz 2015 §5.1's one-walk calibration of the pitch step length: a walk of
 /// `distance_m` whose steps had the leg pitch amplitudes `amplitudes_deg` (`Live.pitch_amplitudes()`,
-/// NaN without one). `{ok: true, offset_m, slope_m_per_deg, steps, with_pitch}`, or `{ok: false,
-/// why, steps, with_pitch}` when the walk cannot give one (most steps without a leg pitch: the
-/// phone not in a trouser pocket, or no gyroscope; too few steps; no distance).
+/// NaN without one). `{ok: true, offset_m, slope_m_per_deg, steps, with_pitch, text}`, or `{ok:
+/// false, why, steps, with_pitch, text}` when the walk cannot give one (most steps without a leg
+/// pitch: the phone not in a trouser pocket, or no gyroscope; too few steps; no distance);
+/// `text` says the outcome to people.
 #[wasm_bindgen]
 pub fn pitch_calibration(distance_m: f64, amplitudes_deg: Vec<f64>) -> Result<JsValue, JsError> {
     let steps = amplitudes_deg.len();
@@ -290,12 +317,17 @@ pub fn pitch_calibration(distance_m: f64, amplitudes_deg: Vec<f64>) -> Result<Js
             Ok(b) => serde_json::json!({
                 "ok": true, "offset_m": b, "slope_m_per_deg": PITCH_SLOPE_M_PER_DEG,
                 "steps": steps, "with_pitch": with_pitch,
+                "text": format!("Leg-pitch step length (Munoz Diaz 2015 §5.1): with the universal slope a = {PITCH_SLOPE_M_PER_DEG} m/°, your offset is b = {b:.3} m per stride ({with_pitch} steps with a leg pitch). It is saved with the profile."),
             }),
             Err(e) => serde_json::json!({
                 "ok": false, "steps": steps, "with_pitch": with_pitch, "why": e.to_string(),
             }),
         }
     };
+    let mut v = v;
+    if let Some(why) = v.get("why").and_then(|w| w.as_str()).map(str::to_string) {
+        v["text"] = format!("Leg-pitch step length not calibrated: {why}.").into();
+    }
     super::to_json_value(&v)
 }
 

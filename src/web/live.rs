@@ -216,6 +216,17 @@ impl Live {
         to_value(&self.session.readouts())
     }
 
+    /// The readouts in words for the page's elements (see `live::readout_text`): `{texts:
+    /// [[id, text]], titles: [[id, tooltip]]}`. `source` names the motion source; `gnss_mode`
+    /// is the fusion mode the walk runs.
+    pub fn readout_texts(&self, source: &str, gnss_mode: &str) -> Result<JsValue, JsError> {
+        to_value(&crate::live::readout_text::readout_texts(
+            &self.session.readouts(),
+            source,
+            gnss_mode,
+        ))
+    }
+
     /// Draws the map (over the base map when it is on and a fix has placed the walk).
     pub fn draw(
         &mut self,
@@ -261,6 +272,14 @@ impl Live {
     }
 }
 
+/// Live mode's message for `key` (see `live::messages`), or an error for an unknown key.
+#[wasm_bindgen]
+pub fn live_message(key: &str) -> Result<String, JsError> {
+    crate::live::messages::message(key)
+        .map(str::to_string)
+        .ok_or_else(|| to_js(format!("no live message `{key}`")))
+}
+
 /// Replays a pdr-log (a live recording) through the engine with `settings` (`{set, profile}`;
 /// `undefined` for the defaults): `{steps, distance_m, samples, skipped_lines}`.
 #[wasm_bindgen]
@@ -293,9 +312,10 @@ pub fn replay_log(text: &str, settings: JsValue) -> Result<JsValue, JsError> {
 
 /// What can be read of a live recording stored in pieces (`[{seq, text}]`, as IndexedDB holds
 /// them), for the recovery offer and the download: `{text, samples, skipped_lines,
-/// missing_pieces, notes}`. `text` is `null` when the pieces joined in the order given are a
-/// whole, good log (use them as they are), else the log of every good line (see
-/// `io::pdrlog::recover`). Never throws: anything that is not a piece is noted and skipped.
+/// missing_pieces, notes, damage}`. `text` is `null` when the pieces joined in the order given
+/// are a whole, good log (use them as they are), else the log of every good line (see
+/// `io::pdrlog::recover`); `damage` is the offer's sentence about a damaged one, or "". Never
+/// throws: anything that is not a piece is noted and skipped.
 #[wasm_bindgen]
 pub fn recover_recording(pieces: &JsValue) -> Result<JsValue, JsError> {
     let get = |o: &JsValue, k: &str| js_sys::Reflect::get(o, &JsValue::from_str(k)).ok();
@@ -323,13 +343,17 @@ pub fn recover_recording(pieces: &JsValue) -> Result<JsValue, JsError> {
         skipped_lines: u64,
         missing_pieces: u64,
         notes: Vec<String>,
+        damage: String,
     }
     let whole = r.whole && bad.is_empty();
+    let skipped_lines = r.skipped_lines + bad.len() as u64;
+    let notes: Vec<String> = bad.into_iter().chain(r.notes).collect();
     to_json_value(&Summary {
         text: (!whole).then(|| crate::io::pdrlog::to_string(&r.records)),
         samples: r.samples,
-        skipped_lines: r.skipped_lines + bad.len() as u64,
+        skipped_lines,
         missing_pieces: r.missing_pieces,
-        notes: bad.into_iter().chain(r.notes).collect(),
+        damage: crate::live::messages::damage(skipped_lines, r.missing_pieces, &notes),
+        notes,
     })
 }

@@ -47,7 +47,8 @@ impl Upload {
     }
 
     /// Reads every log in the files: `{logs: [{index, source, format, samples, duration_s,
-    /// warnings}], errors: [{file, line, column, field, message}]}`. A file that fails is an
+    /// warnings, recipe, checks, hint}], errors: [{file, line, column, field, message, text}]}`
+    /// (`hint` and `text` for people: [`log_hint`], [`error_text`]). A file that fails is an
     /// error; the others still load. `progress(bytes_read)` is called as reading goes on.
     /// Workers only (it reads with `FileReaderSync`).
     pub fn parse(&mut self, progress: js_sys::Function) -> Result<JsValue, JsError> {
@@ -61,11 +62,21 @@ impl Upload {
             warnings: usize,
             recipe: Option<String>,
             checks: Vec<String>,
+            hint: String,
+        }
+        #[derive(serde::Serialize)]
+        struct Error {
+            file: String,
+            line: u64,
+            column: Option<usize>,
+            field: Option<String>,
+            message: String,
+            text: String,
         }
         #[derive(serde::Serialize)]
         struct Parsed {
             logs: Vec<Info>,
-            errors: Vec<crate::io::ParseError>,
+            errors: Vec<Error>,
         }
         let mut set = self.blob_set(progress)?;
         let mut out = Parsed {
@@ -84,10 +95,18 @@ impl Upload {
                         warnings: log.skipped as usize,
                         recipe: log.recipe.clone(),
                         checks: log.checks.clone(),
+                        hint: log_hint(&log),
                     });
                     self.logs.push(log);
                 }
-                Err(e) => out.errors.push(e),
+                Err(e) => out.errors.push(Error {
+                    text: error_text(&e),
+                    file: e.file,
+                    line: e.line,
+                    column: e.column,
+                    field: e.field,
+                    message: e.message,
+                }),
             }
         }
         to_value(&out)
@@ -127,16 +146,46 @@ impl Upload {
         let mut errors = Vec::new();
         self.recipes = recipes
             .iter()
-            .filter_map(|t| Recipe::from_json(t).map_err(|e| errors.push(e)).ok())
+            .filter_map(|t| {
+                Recipe::from_json(t)
+                    .map_err(|e| errors.push(e.to_string()))
+                    .ok()
+            })
             .collect();
         errors
     }
 
     /// The files as the recipe form shows them: `{files: [{name, delimiter, header, columns,
-    /// first}], draft}` ([`recipe::describe`]), reading only each file's first bytes.
+    /// first, hint, options}], draft}` ([`recipe::describe`]), reading only each file's first
+    /// bytes; `hint` describes the file to people and `options` are its columns' `[value,
+    /// label]` ([`recipe::form`]).
     pub fn describe(&self, progress: js_sys::Function) -> Result<JsValue, JsError> {
+        #[derive(serde::Serialize)]
+        struct FileForm<'a> {
+            #[serde(flatten)]
+            guess: &'a recipe::check::FileGuess,
+            hint: String,
+            options: Vec<(String, String)>,
+        }
+        #[derive(serde::Serialize)]
+        struct Form<'a> {
+            files: Vec<FileForm<'a>>,
+            draft: &'a Option<Recipe>,
+        }
         let mut set = self.blob_set(progress)?;
-        to_json_value(&recipe::describe(&mut set))
+        let d = recipe::describe(&mut set);
+        to_json_value(&Form {
+            files: d
+                .files
+                .iter()
+                .map(|g| FileForm {
+                    guess: g,
+                    hint: recipe::form::file_hint(g),
+                    options: recipe::form::column_options(g),
+                })
+                .collect(),
+            draft: &d.draft,
+        })
     }
 
     /// What a recipe (JSON) makes of the files, reading at most [`PREVIEW_SAMPLES`] samples
@@ -158,7 +207,7 @@ impl Upload {
             error: Some(e),
         };
         let out = match Recipe::from_json(recipe_json) {
-            Err(e) => fail(e),
+            Err(e) => fail(e.to_string()),
             Ok(r) => {
                 let mut set = self.blob_set(progress)?;
                 let names = set.names().to_vec();
@@ -199,6 +248,55 @@ impl Upload {
     }
 }
 
+/// What the page says of a log under its name: its format, IMU samples, minutes, the lines
+/// skipped and the recipe that read it ("Sensor Logger · 12,345 IMU samples · 4.2 min").
+fn log_hint(log: &crate::io::import::Log) -> String {
+    let minutes = log.time_span().map_or(0.0, |(a, b)| b - a) / 60.0;
+    let mut s = format!(
+        "{} · {} IMU samples · {minutes:.1} min",
+        log.format.as_str(),
+        thousands(log.imu_samples())
+    );
+    if log.skipped > 0 {
+        s += &format!(" · {} lines skipped", log.skipped);
+    }
+    if let Some(r) = &log.recipe {
+        s += &format!(" · read with your recipe \"{r}\"");
+    }
+    s
+}
+
+/// A whole number with a comma every three digits ("12,345").
+fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// A file the upload could not read, as the page's banner says it: `file:line:column (field):
+/// message`, without a line or column that is not known.
+fn error_text(e: &crate::io::ParseError) -> String {
+    let mut s = e.file.clone();
+    for n in [Some(e.line), e.column.map(|c| c as u64)]
+        .into_iter()
+        .flatten()
+    {
+        if n != 0 {
+            s += &format!(":{n}");
+        }
+    }
+    if let Some(f) = e.field.as_deref().filter(|f| !f.is_empty()) {
+        s += &format!(" ({f})");
+    }
+    format!("{s}: {}", e.message)
+}
+
 /// Samples per file the recipe form's live preview reads (its checks look at these): 20 s at
 /// 100 Hz, enough for a sample rate, a median gravity and a rotation rate, and quick to redo at
 /// every change of the form.
@@ -212,38 +310,69 @@ impl Upload {
     }
 }
 
-/// What the recipe form offers: `[{sensor, needs, units}]`, every sensor with the columns it
-/// needs (besides `t`) and the units it takes (the first is the default), and `time_units`.
+/// What the recipe form offers: `{sensors: [{sensor, label, needs, units}], time_units}`, every
+/// sensor with its label, the columns it needs (besides `t`) and the units it takes as `[value,
+/// label]` (the first is the default), and the time units as `[value, label]`.
 #[wasm_bindgen]
 pub fn recipe_choices() -> Result<JsValue, JsError> {
+    use recipe::form::{sensor_label, time_unit_label, unit_label};
     #[derive(serde::Serialize)]
     struct Choice {
         sensor: &'static str,
+        label: String,
         needs: &'static [&'static str],
-        units: Vec<&'static str>,
+        units: Vec<(&'static str, String)>,
     }
     #[derive(serde::Serialize)]
     struct Choices {
         sensors: Vec<Choice>,
-        time_units: Vec<&'static str>,
+        time_units: Vec<(&'static str, &'static str)>,
     }
     to_json_value(&Choices {
         sensors: recipe::Sensor::ALL
             .iter()
-            .map(|s| Choice {
+            .map(|&s| Choice {
                 sensor: s.as_str(),
+                label: sensor_label(s),
                 needs: s.needs(),
-                units: s.units().iter().map(|u| u.as_str()).collect(),
+                units: s
+                    .units()
+                    .iter()
+                    .map(|&u| (u.as_str(), unit_label(u)))
+                    .collect(),
             })
             .collect(),
-        time_units: recipe::TimeUnit::ALL.iter().map(|u| u.as_str()).collect(),
+        time_units: recipe::TimeUnit::ALL
+            .iter()
+            .map(|&u| (u.as_str(), time_unit_label(u)))
+            .collect(),
     })
+}
+
+/// The recipe form's first guess of the columns of the `index`-th sensor (`sensor`, as in the
+/// JSON) of a file of `columns` columns: `[[field, 0-based column]]` for `t` and each field the
+/// sensor needs ([`recipe::form::guess_columns`]).
+#[wasm_bindgen]
+pub fn recipe_guess_columns(
+    columns: usize,
+    sensor: &str,
+    index: usize,
+) -> Result<JsValue, JsError> {
+    let s = recipe::Sensor::ALL
+        .iter()
+        .copied()
+        .find(|s| s.as_str() == sensor)
+        .ok_or_else(|| to_js(format!("no sensor `{sensor}`")))?;
+    to_json_value(&recipe::form::guess_columns(columns, s, index))
 }
 
 /// Checks a recipe's JSON and returns it normalised (pretty, as the CLI reads it), or the error.
 #[wasm_bindgen]
 pub fn recipe_normalise(json: &str) -> Result<String, JsError> {
-    Recipe::from_json(json).map(|r| r.to_json()).map_err(to_js)
+    Recipe::from_json(json)
+        .map_err(to_js)?
+        .to_json()
+        .map_err(to_js)
 }
 
 impl Default for Upload {

@@ -257,8 +257,8 @@ test('base map under live mode: the setting kept from last time, the tiles of th
   await page.click('#start');
   await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
   await holdToUnlock(page, 2200); // the pocket guard hides the plots
-  await page.waitForFunction(() => window.__pdrLive?.readouts.fixes > 0, null, { timeout: 10_000 });
-  await page.evaluate(() => window.__pdrLive.draw());
+  await page.waitForFunction(() => window.__pdrTest?.live?.readouts.fixes > 0, null, { timeout: 10_000 });
+  await page.evaluate(() => window.__pdrTest.live.draw());
   const shown = await tilesDrawn(page, '#live-map');
   assert.equal(shown.credit, 'Test tiles');
   // The page asked for Lugano's tiles for the live map, and otherwise only for Florence's (the

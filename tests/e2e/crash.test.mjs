@@ -83,7 +83,7 @@ async function sensors(context, page) {
 
 const round1 = (v) => Math.round(v * 10) / 10;
 const look = (page) => page.evaluate(() => {
-  const r = window.__pdrLive.readouts;
+  const r = window.__pdrTest.live.readouts;
   return { samples: r.samples, steps: r.steps, shown: Number(document.getElementById('g-steps').textContent) };
 });
 
@@ -157,7 +157,7 @@ test('crashes while recording: every sample but the last batch is recovered, and
       // Open again: the page offers the recording.
       ({ page, errors } = await loadPage(b.context, URL_HTTP));
       await page.waitForFunction(() => document.documentElement.dataset.recovery === 'offered', null, { timeout: 10_000 });
-      const offer = await page.evaluate(() => window.__pdrRecovery);
+      const offer = await page.evaluate(() => window.__pdrTest.recovery);
       dbg('offered', offer);
       const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#recover-save')]);
       const file = path.join(tmp, `trial-${n}.pdrlog`);

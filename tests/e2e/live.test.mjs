@@ -44,7 +44,7 @@ async function start(page) {
   await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
 }
 
-const readouts = (page) => page.evaluate(() => window.__pdrLive?.readouts);
+const readouts = (page) => page.evaluate(() => window.__pdrTest?.live?.readouts);
 const messages = (page) => page.$$eval('#live-messages li', (els) => els.map((e) => `${e.dataset.key}: ${e.textContent}`));
 
 /** Pixels of a canvas differing from its corner, and the canvas's backing size. */
@@ -98,7 +98,7 @@ test('live walk: steps within 2 %, track drawn, readouts update, GNSS fix shown,
   assert.ok(Math.abs(mid.shown - mid.steps) <= 3, `halfway: ${mid.shown} shown, ${mid.steps} counted`);
   const err = Math.abs(r.steps - w.truth_steps) / w.truth_steps;
   console.log(`live walk (Android events): ${r.steps} steps of ${w.truth_steps} (${(100 * err).toFixed(1)} %), `
-    + `${r.distance_m.toFixed(1)} m of ${w.distance_m.toFixed(1)} m, source ${await page.evaluate(() => window.__pdrLive.source)}`);
+    + `${r.distance_m.toFixed(1)} m of ${w.distance_m.toFixed(1)} m, source ${await page.evaluate(() => window.__pdrTest.live.source)}`);
   assert.ok(err <= 0.02, `step count ${r.steps} against ${w.truth_steps}`);
   assert.equal(r.refused, 0, `refused events: ${r.last_error}`);
   assert.equal(r.orientation, 'os');
@@ -149,7 +149,7 @@ test('iOS-style events (sign flipped, interval in s, compass heading) give the A
   const a = await liveWalk({ ios: false });
   const i = await liveWalk({ ios: true });
   console.log(`Android ${a.r.steps} steps ${a.r.distance_m.toFixed(3)} m; iOS ${i.r.steps} steps ${i.r.distance_m.toFixed(3)} m`);
-  assert.equal(await i.page.evaluate(() => window.__pdrLive.source), 'devicemotion events');
+  assert.equal(await i.page.evaluate(() => window.__pdrTest.live.source), 'devicemotion events');
   assert.equal(i.r.steps, a.r.steps);
   assert.ok(Math.abs(i.r.distance_m - a.r.distance_m) < 0.01);
   assert.ok(i.r.absolute_heading, 'the compass heading was not used');
@@ -193,7 +193,7 @@ test('reload while recording: the recovery offer holds every sample, and resumin
   const before = (await readouts(page)).samples;
   await page.reload(); // at once: the last batch is written on pagehide
   await page.waitForFunction(() => document.documentElement.dataset.recovery === 'offered', null, { timeout: 10_000 });
-  const offered = await page.evaluate(() => window.__pdrRecovery);
+  const offered = await page.evaluate(() => window.__pdrTest.recovery);
   console.log(`recovery after reload: ${offered.samples} samples recorded of ${before} sent`);
   assert.equal(offered.samples, before);
   assert.match(await page.textContent('#recovery-text'), new RegExp(`\\(${before} samples, \\d+ steps\\)`));

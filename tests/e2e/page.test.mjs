@@ -56,7 +56,7 @@ test('page loads without errors, WASM initialises and the track is drawn', async
   const shot = path.join(ARTIFACTS, 'desktop.png');
   await page.screenshot({ path: shot, fullPage: true });
   console.log(`screenshot: ${shot}`);
-  const ready = await page.evaluate(() => window.__pdr.ready_ms);
+  const ready = await page.evaluate(() => window.__pdrTest.demo.ready_ms);
   console.log(`load to first drawn track: ${ready.toFixed(0)} ms`);
   await context.close();
 });
@@ -68,7 +68,7 @@ test('the GNSS demo draws fixes and tracks, and its figures match the native eng
   const s = await canvasStats(page, 'fusion');
   assert.ok(s.differing > 0.02 * s.total, `fusion canvas looks blank: ${s.differing} of ${s.total}`);
   assert.ok(s.blue > 500, `too few fused-track pixels: ${s.blue}`);
-  const wasm = await page.evaluate(() => window.__pdr.fusion);
+  const wasm = await page.evaluate(() => window.__pdrTest.demo.fusion);
   assert.equal(wasm.fused_p75_m, native.fused_p75_m, 'wasm and native fused errors differ');
   assert.equal(wasm.smoothed_p75_m, native.smoothed_p75_m);
   assert.equal(await page.textContent('#fused-p75'), native.fused_p75_m.toFixed(1));
@@ -161,7 +161,7 @@ test('the step count shown matches the engine run natively on the same demo walk
   const native = JSON.parse(execFileSync(BIN, ['demo', '--json'], { encoding: 'utf8' }));
   const { context, page } = await open(URL_HTTP);
   const shown = Number(await page.textContent('#steps'));
-  const fromWasm = await page.evaluate(() => window.__pdr);
+  const fromWasm = await page.evaluate(() => window.__pdrTest.demo);
   assert.equal(shown, native.steps);
   assert.equal(fromWasm.steps, native.steps);
   assert.equal(fromWasm.distance_m, native.distance_m, 'wasm and native distances differ');

@@ -57,10 +57,10 @@ for (const [device, options] of [['desktop', { viewport: { width: 1100, height: 
       const { context, page, errors } = await openPage(browser(), URL_HTTP, { options: { ...options, colorScheme: theme } });
       await page.setInputFiles('#upload-files', walk());
       await page.waitForFunction(() => document.documentElement.dataset.upload === 'done', null, { timeout: 60_000 });
-      const [f0, f1] = await page.evaluate(() => window.__pdrUpload.full(0));
+      const [f0, f1] = await page.evaluate(() => window.__pdrTest.upload.full(0));
       const mid = (f0 + f1) / 2;
       for (const [zoom, span] of [['full', [f0, f1]], ['10s', [mid, mid + 10]], ['1s', [mid, mid + 1]]]) {
-        await page.evaluate(([t0, t1]) => window.__pdrUpload.setSpan(0, t0, t1), span);
+        await page.evaluate(([t0, t1]) => window.__pdrTest.upload.setSpan(0, t0, t1), span);
         await page.locator('.log-result .plots').screenshot({ path: path.join(ARTIFACTS, `plots-${zoom}-${device}-${theme}.png`) });
         for (const s of await shares(page, theme)) {
           console.log(`${device} ${theme} ${zoom} ${s.kind}: ${s.colour} covers ${(100 * s.share).toFixed(1)} %`);

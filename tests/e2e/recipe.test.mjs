@@ -71,7 +71,7 @@ test('a header-less folder: the form, a wrong unit flagged, run, save, and read 
     // Run it.
     await page.click('#recipe-run');
     await done(page);
-    let logs = await page.evaluate(() => window.__pdrUpload.logs);
+    let logs = await page.evaluate(() => window.__pdrTest.upload.logs);
     assert.equal(logs.length, 1);
     assert.equal(logs[0].a.steps, nativeSteps, 'the page counts the steps pdr run --recipe counts');
     assert.ok(nativeSteps > 50);
@@ -80,7 +80,7 @@ test('a header-less folder: the form, a wrong unit flagged, run, save, and read 
     // Upload again: read with the saved recipe at once, no form.
     await page.setInputFiles('#upload-folder', folder);
     await done(page);
-    logs = await page.evaluate(() => window.__pdrUpload.logs);
+    logs = await page.evaluate(() => window.__pdrTest.upload.logs);
     assert.equal(logs[0].a.steps, nativeSteps);
     assert.equal(await page.locator('#recipe-form').isHidden(), true);
     assert.match(await page.locator('.log-result .hint').first().textContent(), /recipe · .*read with your recipe "Test logger"/);
@@ -121,7 +121,7 @@ test('a recipe uploaded beside its files is applied to them', async () => {
   try {
     await page.setInputFiles('#upload-folder', both);
     await done(page);
-    const logs = await page.evaluate(() => window.__pdrUpload.logs);
+    const logs = await page.evaluate(() => window.__pdrTest.upload.logs);
     assert.equal(logs.length, 1);
     assert.equal(logs[0].a.steps, Number(native.match(/^steps\s+(\d+)/m)[1]));
     assert.equal(await page.locator('#recipe-form').isHidden(), true);
@@ -175,7 +175,7 @@ test('one file with several sensors: a row per sensor, run, and the downloaded r
     await fs.screenshot({ path: path.join(ARTIFACTS, 'recipe-two-sensors-desktop.png') });
     await page.click('#recipe-run');
     await done(page);
-    const logs = await page.evaluate(() => window.__pdrUpload.logs);
+    const logs = await page.evaluate(() => window.__pdrTest.upload.logs);
     const native = execFileSync(BIN, ['run', file, '--recipe', saved], { encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
     const steps = Number(native.match(/^steps\s+(\d+)/m)[1]);
     assert.ok(steps > 50, `${steps} steps`);

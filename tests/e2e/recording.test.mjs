@@ -19,7 +19,7 @@ function walk(scenario) {
 }
 
 const open = (init = []) => openPage(browser(), URL_HTTP, { options: { ...PHONE, acceptDownloads: true }, init });
-const readouts = (page) => page.evaluate(() => window.__pdrLive?.readouts);
+const readouts = (page) => page.evaluate(() => window.__pdrTest?.live?.readouts);
 const messages = (page) => page.$$eval('#live-messages li', (els) => els.map((e) => `${e.dataset.key}: ${e.textContent}`));
 const imuLines = (text) => text.split('\n').filter((l) => l.startsWith('imu,'));
 const runSteps = (file) => Number(execFileSync(BIN, ['run', file], { encoding: 'utf8' }).match(/^steps\s+(\d+)/m)[1]);
@@ -91,7 +91,7 @@ test('storage full: the page says so, the walk goes on, and the download holds e
   await dispatch(page, w.events, { base, from: 2 * third });
   await page.waitForTimeout(400);
   const r = await readouts(page);
-  const held = await page.evaluate(() => ({ unsaved: window.__pdrLive.unsaved, refused: window.__quota.refused }));
+  const held = await page.evaluate(() => ({ unsaved: window.__pdrTest.live.unsaved, refused: window.__quota.refused }));
   console.log(`storage full after the first chunk: ${held.refused} writes refused, ${held.unsaved} chunks held in memory; `
     + `${r.steps} steps of ${w.truth_steps}, ${r.samples} samples`);
   assert.ok(held.unsaved > 5 && held.refused > 2, JSON.stringify(held));
@@ -130,9 +130,9 @@ test('storage full, then free again: the chunks held in memory are written in or
   await dispatch(page, w.events, { base, from: half >> 1, to: half });
   await page.waitForSelector('#live-messages li[data-key="storage"]', { timeout: 5000 });
   await page.waitForTimeout(1200); // a retry refused too
-  assert.ok(await page.evaluate(() => window.__pdrLive.unsaved) > 0);
+  assert.ok(await page.evaluate(() => window.__pdrTest.live.unsaved) > 0);
   await page.evaluate(() => { window.__quota.mode = 'free'; });
-  await page.waitForFunction(() => window.__pdrLive.unsaved === 0, null, { timeout: 10_000 });
+  await page.waitForFunction(() => window.__pdrTest.live.unsaved === 0, null, { timeout: 10_000 });
   await page.waitForSelector('#live-messages li[data-key="storage"]', { state: 'detached' });
   await dispatch(page, w.events, { base, from: half });
   await page.waitForTimeout(400);
@@ -202,7 +202,7 @@ test('a damaged recording is offered with every good line, and says what was ski
   await writeRecording(page, 'rec-damaged', stored);
   await page.reload();
   await page.waitForFunction(() => document.documentElement.dataset.recovery === 'offered', null, { timeout: 10_000 });
-  const offer = await page.evaluate(() => window.__pdrRecovery);
+  const offer = await page.evaluate(() => window.__pdrTest.recovery);
   const said = await page.textContent('#recovery-text');
   console.log(`damaged recording: offered ${offer.samples} samples of ${good.length} good; ${offer.skipped_lines} lines skipped, `
     + `${offer.missing_pieces} piece missing; "${said}"`);
@@ -224,7 +224,7 @@ test('a damaged recording is offered with every good line, and says what was ski
   await writeRecording(page, 'rec-damaged-2', stored.filter((p) => p.seq !== 0));
   await page.reload();
   await page.waitForFunction(() => document.documentElement.dataset.recovery === 'offered', null, { timeout: 10_000 });
-  const offer2 = await page.evaluate(() => window.__pdrRecovery);
+  const offer2 = await page.evaluate(() => window.__pdrTest.recovery);
   const good2 = good.filter((l) => !pieces[0].includes(l));
   assert.equal(offer2.id, 'rec-damaged-2');
   assert.equal(offer2.samples, good2.length);

@@ -174,8 +174,8 @@ const stored = (full) => settle(async (full) => {
 async function figures(minute, end = false) {
   await cdp.send('HeapProfiler.collectGarbage');
   const heap = await cdp.send('Runtime.getHeapUsage');
-  const r = await page.evaluate(() => ({ ...window.__pdrLive.readouts, fired: window.__soak.fired, starved: window.__soak.starved,
-    wasm: window.__wasm.memory.buffer.byteLength, saved: window.__pdrLive.saved, unsaved: window.__pdrLive.unsaved }));
+  const r = await page.evaluate(() => ({ ...window.__pdrTest.live.readouts, fired: window.__soak.fired, starved: window.__soak.starved,
+    wasm: window.__wasm.memory.buffer.byteLength, saved: window.__pdrTest.live.saved, unsaved: window.__pdrTest.live.unsaved }));
   // The draw, in wall time: DRAWS redraws in one page call, less the same call with none (the
   // least of 5 tries each), over DRAWS.
   const timed = async (n) => {
@@ -183,7 +183,7 @@ async function figures(minute, end = false) {
     await page.evaluate((n) => {
       const canvases = ['live-map', 'live-scope'].map((id) => document.getElementById(id).getContext('2d'));
       for (let i = 0; i < n; i++) {
-        window.__pdrLive.draw();
+        window.__pdrTest.live.draw();
         for (const c of canvases) c.getImageData(0, 0, 1, 1); // the pixels made, not only the commands recorded
       }
     }, n);

@@ -26,7 +26,7 @@ function open(viewport = { width: 1100, height: 900 }, device = {}) {
 async function upload(page, paths, { folder = false, timeout = 60_000 } = {}) {
   await page.setInputFiles(folder ? '#upload-folder' : '#upload-files', paths);
   await page.waitForFunction(() => document.documentElement.dataset.upload === 'done', null, { timeout });
-  return page.evaluate(() => ({ logs: window.__pdrUpload.logs, errors: window.__pdrUpload.errors, progress: window.__pdrUpload.progress_seen, ms: window.__pdrUpload.done_ms }));
+  return page.evaluate(() => ({ logs: window.__pdrTest.upload.logs, errors: window.__pdrTest.upload.errors, progress: window.__pdrTest.upload.progress_seen, ms: window.__pdrTest.upload.done_ms }));
 }
 
 /** `pdr run`'s step count and distance for a file or folder, with extra options. */
@@ -143,12 +143,12 @@ function simulated(format, scenario = 'demo') {
 /** Hovers step `i` of result `k` on its map; returns the step line and the step picked. */
 async function hover(page, k, i) {
   await page.locator(`.log-result[data-index="${k}"] canvas.map`).scrollIntoViewIfNeeded();
-  const [x, y] = await page.evaluate(([k, i]) => window.__pdrUpload.stepPixel(k, i), [k, i]);
+  const [x, y] = await page.evaluate(([k, i]) => window.__pdrTest.upload.stepPixel(k, i), [k, i]);
   await page.mouse.move(x, y);
   await page.waitForFunction((k) => document.querySelector(`.log-result[data-index="${k}"] .stepinfo`).dataset.step, k);
   const picked = Number(await page.getAttribute(`.log-result[data-index="${k}"] .stepinfo`, 'data-step'));
   // Where the walk crosses itself another step may lie under the pointer: it must be that close.
-  const [px, py] = await page.evaluate(([k, i]) => window.__pdrUpload.stepPixel(k, i), [k, picked]);
+  const [px, py] = await page.evaluate(([k, i]) => window.__pdrTest.upload.stepPixel(k, i), [k, picked]);
   assert.ok(Math.hypot(px - x, py - y) <= 12, `hovered step ${i} at (${x}, ${y}), picked ${picked} at (${px}, ${py})`);
   return { info: await page.textContent(`.log-result[data-index="${k}"] .stepinfo`), picked };
 }
@@ -171,7 +171,7 @@ test('a generated log and a walk in every single-file format: progress, the nati
   const { context, page, errors } = await open();
   const r = await upload(page, files);
   assert.ok(r.progress, 'no progress was shown');
-  assert.equal(await page.evaluate(() => window.__pdrUpload.progress_max), 1, 'the progress bar did not complete');
+  assert.equal(await page.evaluate(() => window.__pdrTest.upload.progress_max), 1, 'the progress bar did not complete');
   assert.match(await page.textContent('#upload-status'), new RegExp(`^${files.length} recordings loaded from [\\d.]+ MB in [\\d.]+ s$`));
   assert.deepEqual(r.errors, []);
   assert.equal(r.logs.length, files.length);
@@ -241,7 +241,7 @@ test('phone: tapping a plot picks the step at that time, a pinch zooms the time 
   assert.equal(new Set(axes).size, 1, `time axes differ: ${axes}`);
   // A tap on the time of step 200 picks step 200.
   await page.locator('canvas.plot-accel').scrollIntoViewIfNeeded();
-  const [x, y] = await page.evaluate(() => window.__pdrUpload.plotPoint(0, 'accel', window.__pdrUpload.stepTime(0, 200)));
+  const [x, y] = await page.evaluate(() => window.__pdrTest.upload.plotPoint(0, 'accel', window.__pdrTest.upload.stepTime(0, 200)));
   await page.touchscreen.tap(x, y);
   await page.waitForFunction(() => document.querySelector('.log-result .stepinfo').dataset.step);
   const picked = Number(await page.getAttribute('.log-result .stepinfo', 'data-step'));
@@ -249,7 +249,7 @@ test('phone: tapping a plot picks the step at that time, a pinch zooms the time 
   // Two fingers moving apart on the step plot: the span shrinks by about their distance ratio.
   await page.locator('canvas.plot-steps').scrollIntoViewIfNeeded();
   const box = await page.locator('canvas.plot-steps').boundingBox();
-  const before = await page.evaluate(() => window.__pdrUpload.span(0));
+  const before = await page.evaluate(() => window.__pdrTest.upload.span(0));
   const cdp = await context.newCDPSession(page);
   const cy = box.y + box.height / 2;
   const cx = box.x + box.width / 2;
@@ -259,7 +259,7 @@ test('phone: tapping a plot picks the step at that time, a pinch zooms the time 
   await touch('touchStart', 40);
   for (let d = 45; d <= 120; d += 5) await touch('touchMove', d);
   await touch('touchEnd', 0);
-  const after = await page.evaluate(() => window.__pdrUpload.span(0));
+  const after = await page.evaluate(() => window.__pdrTest.upload.span(0));
   const ratio = (after[1] - after[0]) / (before[1] - before[0]);
   console.log(`pinch 80 → 240 px: time span ${(before[1] - before[0]).toFixed(0)} s → ${(after[1] - after[0]).toFixed(0)} s`);
   assert.ok(ratio > 0.2 && ratio < 0.5, `span ratio ${ratio}`);
@@ -388,8 +388,8 @@ test('drag and drop: files and a zip dropped together load like the picker', asy
   await page.dispatchEvent('#drop', 'dragover', { dataTransfer: dt });
   assert.ok(await page.$eval('#drop', (d) => d.classList.contains('over')), 'the drop zone does not show the drag');
   await page.dispatchEvent('#drop', 'drop', { dataTransfer: dt });
-  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload?.logs.length === 2);
-  const logs = await page.evaluate(() => window.__pdrUpload.logs.map((l) => ({ source: l.a.source, format: l.a.format, steps: l.a.steps })));
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrTest?.upload?.logs.length === 2);
+  const logs = await page.evaluate(() => window.__pdrTest.upload.logs.map((l) => ({ source: l.a.source, format: l.a.format, steps: l.a.steps })));
   logs.sort((x, y) => (x.source < y.source ? 1 : -1));
   console.log(`dropped: ${logs.map((l) => `${l.source} (${l.format}) ${l.steps} steps`).join('; ')}`);
   assert.deepEqual(logs.map((l) => l.source), ['dropped.pdrlog', 'Recording.zip/2026-01-01_00-00-00']);
@@ -412,7 +412,7 @@ test('cancel: a one-hour log stops loading at once, and the next upload works', 
   assert.ok(await page.isHidden('#upload-cancel'));
   // Nothing arrives from the stopped worker.
   await page.waitForTimeout(2500);
-  assert.equal(await page.evaluate(() => window.__pdrUpload.logs.filter(Boolean).length), 0);
+  assert.equal(await page.evaluate(() => window.__pdrTest.upload.logs.filter(Boolean).length), 0);
   assert.equal(await page.locator('.log-result[data-ready]').count(), 0);
   const r = await upload(page, [path.join(FIXTURES, 'ms_indoor.txt')]);
   assert.equal(r.logs.length, 1);
@@ -493,9 +493,9 @@ test('compare two configurations side by side, and re-run', async () => {
   await page.selectOption('.config[data-config="a"] [name="detector.kind"]', 'peak');
   await page.selectOption('.config[data-config="a"] [name="heading.method"]', 'closed_form2021');
   await page.click('#rerun');
-  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0].a.steps !== undefined);
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrTest.upload.logs[0].a.steps !== undefined);
   const peak = native(walk, '--detector', 'peak', '--heading', 'closed_form2021').steps;
-  await page.waitForFunction((n) => window.__pdrUpload.logs[0].a.steps === n, peak, { timeout: 20_000 });
+  await page.waitForFunction((n) => window.__pdrTest.upload.logs[0].a.steps === n, peak, { timeout: 20_000 });
   assert.match(await page.locator('.log-result .mapbox .config-label').first().textContent(), /^A: peak counter, closed form \(2021\), /);
   assert.deepEqual(errors, []);
   await context.close();
@@ -614,7 +614,7 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
   const m = await cdp.send('Performance.getMetrics');
   const heap = m.metrics.find((x) => x.name === 'JSHeapUsedSize').value / 1e6;
   const l = r.logs[0];
-  const parse = await page.evaluate(() => window.__pdrUpload.parse_ms);
+  const parse = await page.evaluate(() => window.__pdrTest.upload.parse_ms);
   console.log(`one hour, ${mb.toFixed(0)} MB pdr-log, ${l.a.samples} samples: parse + engine + first draw ${(r.ms / 1000).toFixed(2)} s `
     + `(parse ${(parse / 1000).toFixed(2)} s; engine with the plots' signals ${(l.engine_ms / 1000).toFixed(2)} s = `
     + `${(l.a.samples / l.engine_ms / 1000).toFixed(2)} M samples/s in wasm, ${(l.analyse_ms / 1000).toFixed(2)} s with the analysis serialised for the page); worker wasm memory ${l.memory_mb.toFixed(0)} MB `
@@ -623,10 +623,10 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
   // Re-runs in the same worker: the spread of the engine's throughput on this machine.
   const runs = [];
   for (let i = 0; i < 3; i++) {
-    await page.evaluate(() => { window.__pdrUpload.logs[0].engine_ms = undefined; });
+    await page.evaluate(() => { window.__pdrTest.upload.logs[0].engine_ms = undefined; });
     await page.click('#rerun');
-    await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0].engine_ms !== undefined, null, { timeout: 60_000 });
-    runs.push(await page.evaluate(() => window.__pdrUpload.logs[0].engine_ms));
+    await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrTest.upload.logs[0].engine_ms !== undefined, null, { timeout: 60_000 });
+    runs.push(await page.evaluate(() => window.__pdrTest.upload.logs[0].engine_ms));
   }
   console.log(`one hour, engine re-run in wasm: ${runs.map((ms) => `${(l.a.samples / ms / 1000).toFixed(2)}`).join(', ')} M samples/s`);
 
@@ -662,7 +662,7 @@ test('benchmark: a one-hour 100 Hz pdr-log, parse + engine + first draw (printed
     + `(${(grown2.renderer / csvMb).toFixed(2)} × the files), all Chromium processes ${grown2.all.toFixed(0)} MB (${(grown2.all / csvMb).toFixed(2)} ×)`);
   assert.deepEqual(r2.errors, []);
   const l2 = r2.logs[0];
-  const parse2 = await p2.evaluate(() => window.__pdrUpload.parse_ms);
+  const parse2 = await p2.evaluate(() => window.__pdrTest.upload.parse_ms);
   console.log(`one hour, ${csvMb.toFixed(0)} MB Sensor Logger CSV folder, ${l2.a.samples} samples: parse + engine + first draw ${(r2.ms / 1000).toFixed(2)} s `
     + `(parse ${(parse2 / 1000).toFixed(2)} s, engine ${(l2.engine_ms / 1000).toFixed(2)} s); worker wasm memory ${l2.memory_mb.toFixed(0)} MB `
     + `(${(l2.memory_mb / csvMb).toFixed(2)} × the files)`);

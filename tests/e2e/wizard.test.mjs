@@ -58,7 +58,7 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
     assert.ok(Math.abs(n - w.truth_steps) <= 1, `${pace}: ${n} steps of ${w.truth_steps}`);
     assert.match(result, /f̄ = \d\.\d\d Hz \(eq\. 1\) · SL̄ = D\/N = \d\.\d{3} m \(eq\. 2\)/);
   }
-  const st = await page.evaluate(() => window.__pdrCalibration);
+  const st = await page.evaluate(() => window.__pdrTest.calibration);
   console.log(`fit: a ${st.walking.a.toFixed(4)} (true ${A}), b ${st.walking.b.toFixed(4)} (true ${B}), R² ${st.walking.r2.toFixed(4)}`);
   assert.ok(Math.abs(st.walking.a - A) < 0.02 * A, `a = ${st.walking.a}`);
   assert.ok(Math.abs(st.walking.b - B) < 0.02 * B, `b = ${st.walking.b}`);
@@ -132,8 +132,8 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   assert.ok(errBuiltIn > 0.08, `built-in: ${(100 * errBuiltIn).toFixed(1)} %`);
   // Upload mode uses the selected profile.
   await page.setInputFiles('#upload-files', path.join(tmp, 'other.pdrlog'));
-  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrUpload.logs[0]?.a);
-  const uploaded = await page.evaluate(() => window.__pdrUpload.logs[0].a.score.distance_m);
+  await page.waitForFunction(() => document.documentElement.dataset.upload === 'done' && window.__pdrTest.upload.logs[0]?.a);
+  const uploaded = await page.evaluate(() => window.__pdrTest.upload.logs[0].a.score.distance_m);
   assert.ok(Math.abs(uploaded - withProfile.distance_m) < 1e-9, `upload with the profile: ${uploaded} m`);
   // The fuzzy model with the profile applies its scale: the replay with the fuzzy model and the
   // profile, and upload mode's rerun with the fuzzy model chosen, agree and measure 120 m.
@@ -148,12 +148,12 @@ test('calibration wizard: three paces over a typed distance give the walker\'s l
   assert.ok(errFuzzy < 0.03, `fuzzy with the profile: ${(100 * errFuzzy).toFixed(1)} %`);
   await page.selectOption('.config[data-config="a"] [name="step_length.kind"]', 'fuzzy');
   await page.click('#rerun');
-  await page.waitForFunction((d) => Math.abs(window.__pdrUpload.logs[0].a.score.distance_m - d) < 1e-9, fuzzy[0].distance_m, { timeout: 20_000 });
+  await page.waitForFunction((d) => Math.abs(window.__pdrTest.upload.logs[0].a.score.distance_m - d) < 1e-9, fuzzy[0].distance_m, { timeout: 20_000 });
   await page.selectOption('.config[data-config="a"] [name="step_length.kind"]', 'frequency');
   // Re-run with the built-in step length chosen instead: the distance becomes the built-in one.
   await page.selectOption('.config[data-config="a"] [name=profile]', '');
   await page.click('#rerun');
-  await page.waitForFunction((d) => Math.abs(window.__pdrUpload.logs[0].a.score.distance_m - d) < 1e-9, builtIn.distance_m, { timeout: 20_000 });
+  await page.waitForFunction((d) => Math.abs(window.__pdrTest.upload.logs[0].a.score.distance_m - d) < 1e-9, builtIn.distance_m, { timeout: 20_000 });
 
   // Export, delete, import: the same profile back.
   const [dl] = await Promise.all([page.waitForEvent('download'), page.click('#profile-export')]);

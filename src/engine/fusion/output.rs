@@ -24,6 +24,22 @@ pub enum FixOutcome {
     Held,
 }
 
+impl FixOutcome {
+    /// The outcome's name as the files write it (the fused CSV's `fix` column, the JSON).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            FixOutcome::Used => "used",
+            FixOutcome::Started => "started",
+            FixOutcome::TooInaccurate => "too_inaccurate",
+            FixOutcome::Stale => "stale",
+            FixOutcome::Gated => "gated",
+            FixOutcome::Reset => "reset",
+            FixOutcome::ReceiverOff => "receiver_off",
+            FixOutcome::Held => "held",
+        }
+    }
+}
+
 /// Counters of the fixes by outcome.
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct FixCounts {
@@ -95,6 +111,28 @@ impl GnssVerdict {
             GnssVerdict::Learning => "GNSS: learning your step length and heading",
             GnssVerdict::Calibrated => "GNSS: step length and heading known",
             GnssVerdict::Distrusted => "GNSS disagrees with your steps: using steps",
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::FixOutcome;
+
+    #[test]
+    fn outcome_names_are_the_json_names() {
+        use FixOutcome::*;
+        for o in [
+            Used,
+            Started,
+            TooInaccurate,
+            Stale,
+            Gated,
+            Reset,
+            ReceiverOff,
+            Held,
+        ] {
+            assert_eq!(serde_json::to_value(o).unwrap(), o.as_str());
         }
     }
 }

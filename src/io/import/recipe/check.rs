@@ -114,7 +114,6 @@ pub(crate) fn report(recipe: &Recipe, files: &[(&FileRule, FileData)]) -> Report
     };
     for (rule, f) in files {
         let name = fileset::base(&f.file).to_string();
-        let mut warn = |m: String| out.warnings.push(format!("{name}: {m}"));
         let times: Vec<f64> = match &f.samples {
             Samples::Vectors(v) => v.iter().map(|s| s.0).collect(),
             Samples::Quaternions(v) => v.iter().map(|s| s.0).collect(),
@@ -128,77 +127,11 @@ pub(crate) fn report(recipe: &Recipe, files: &[(&FileRule, FileData)]) -> Report
             _ => Vec::new(),
         };
         let med = median(mags.clone());
-        let unit = rule.value_unit().map_or("", |u| u.as_str());
-        let time_unit = rule.time_unit.as_str();
-        // Time.
-        if let (n, Some(line)) = f.backwards {
-            warn(format!(
-                "time goes backwards {n} time(s), first at line {line}: is the time column right?"
-            ));
-        }
-        if times.len() >= 2 && hz.is_none() {
-            warn("time does not increase: is the time column right?".into());
-        }
-        let (lo, hi) = if rule.sensor == Sensor::Gnss {
-            (0.01, 100.0)
-        } else {
-            RATE_HZ
-        };
-        if let Some(hz) = hz.filter(|h| !(lo..=hi).contains(h)) {
-            warn(format!(
-                "{} samples per second is implausible: is the time unit ({time_unit}) right?",
-                sig(hz)
-            ));
-        }
-        // Values.
-        match (rule.sensor, med) {
-            (Sensor::Accelerometer | Sensor::Gravity, Some(m))
-                if !(GRAVITY_RANGE.0..=GRAVITY_RANGE.1).contains(&m) =>
-            {
-                let hint = if (m / G0 - 9.81).abs() < 2.0 {
-                    " (it looks like m/s² read as g)"
-                } else if (m * G0 - 9.81).abs() < 2.0 {
-                    " (it looks like g read as m/s²)"
-                } else {
-                    ""
-                };
-                warn(format!(
-                    "the median acceleration is {} m/s², not near 9.81: is the unit ({unit}) right?{hint}",
-                    sig(m)
-                ));
-            }
-            (Sensor::LinearAccelerometer, Some(m)) if m > LINEAR_MAX => warn(format!(
-                "the median linear acceleration is {} m/s²: does it include gravity (then it is an \
-                 accelerometer), or is the unit ({unit}) wrong?",
-                sig(m)
-            )),
-            (Sensor::Magnetometer, Some(m)) if !(FIELD_RANGE.0..=FIELD_RANGE.1).contains(&m) => {
-                warn(format!(
-                    "the median field is {} µT, outside {}–{} µT: is the unit ({unit}) right?",
-                    sig(m),
-                    FIELD_RANGE.0,
-                    FIELD_RANGE.1
-                ))
-            }
-            (Sensor::Pressure, Some(m)) if !(PRESSURE_RANGE.0..=PRESSURE_RANGE.1).contains(&m) => {
-                warn(format!(
-                    "the median pressure is {} hPa, outside {}–{} hPa: is the unit ({unit}) right?",
-                    sig(m),
-                    PRESSURE_RANGE.0,
-                    PRESSURE_RANGE.1
-                ))
-            }
-            _ => {}
-        }
-        if rule.sensor == Sensor::Gyroscope {
-            if let Some(p95) = percentile(mags.clone(), 0.95).filter(|p| *p > RATE_MAX) {
-                warn(format!(
-                    "rotation rates reach {} rad/s (95th percentile), implausibly fast for a walk: \
-                     is the unit ({unit}) right? (°/s read as rad/s?)",
-                    sig(p95)
-                ));
-            }
-        }
+        let warnings = time_warnings(rule, f, times.len(), hz)
+            .into_iter()
+            .chain(value_warnings(rule, med, mags));
+        out.warnings
+            .extend(warnings.map(|m| format!("{name}: {m}")));
         if rule.sensor == Sensor::Pressure {
             out.notes.push(format!(
                 "{name}: {} pressure samples read and checked; the engine uses them for the height and floor changes",
@@ -216,6 +149,88 @@ pub(crate) fn report(recipe: &Recipe, files: &[(&FileRule, FileData)]) -> Report
             rate_hz: hz,
             median: med,
         });
+    }
+    out
+}
+
+/// The checks of a file's time column: it goes forward, and at a plausible rate (`hz`, the
+/// median rate of its `samples` samples) for the time unit the recipe says.
+fn time_warnings(rule: &FileRule, f: &FileData, samples: usize, hz: Option<f64>) -> Vec<String> {
+    let mut out = Vec::new();
+    let time_unit = rule.time_unit.as_str();
+    if let (n, Some(line)) = f.backwards {
+        out.push(format!(
+            "time goes backwards {n} time(s), first at line {line}: is the time column right?"
+        ));
+    }
+    if samples >= 2 && hz.is_none() {
+        out.push("time does not increase: is the time column right?".into());
+    }
+    let (lo, hi) = if rule.sensor == Sensor::Gnss {
+        (0.01, 100.0)
+    } else {
+        RATE_HZ
+    };
+    if let Some(hz) = hz.filter(|h| !(lo..=hi).contains(h)) {
+        out.push(format!(
+            "{} samples per second is implausible: is the time unit ({time_unit}) right?",
+            sig(hz)
+        ));
+    }
+    out
+}
+
+/// The checks of a file's values: their median magnitude `med` (and the magnitudes `mags`, for
+/// the gyroscope's 95th percentile) in the range the sensor gives a walker, else a likely
+/// wrong unit or column.
+fn value_warnings(rule: &FileRule, med: Option<f64>, mags: Vec<f64>) -> Vec<String> {
+    let mut out = Vec::new();
+    let unit = rule.value_unit().map_or("", |u| u.as_str());
+    match (rule.sensor, med) {
+        (Sensor::Accelerometer | Sensor::Gravity, Some(m))
+            if !(GRAVITY_RANGE.0..=GRAVITY_RANGE.1).contains(&m) =>
+        {
+            let hint = if (m / G0 - 9.81).abs() < 2.0 {
+                " (it looks like m/s² read as g)"
+            } else if (m * G0 - 9.81).abs() < 2.0 {
+                " (it looks like g read as m/s²)"
+            } else {
+                ""
+            };
+            out.push(format!(
+                "the median acceleration is {} m/s², not near 9.81: is the unit ({unit}) right?{hint}",
+                sig(m)
+            ));
+        }
+        (Sensor::LinearAccelerometer, Some(m)) if m > LINEAR_MAX => out.push(format!(
+            "the median linear acceleration is {} m/s²: does it include gravity (then it is an \
+             accelerometer), or is the unit ({unit}) wrong?",
+            sig(m)
+        )),
+        (Sensor::Magnetometer, Some(m)) if !(FIELD_RANGE.0..=FIELD_RANGE.1).contains(&m) => out
+            .push(format!(
+                "the median field is {} µT, outside {}–{} µT: is the unit ({unit}) right?",
+                sig(m),
+                FIELD_RANGE.0,
+                FIELD_RANGE.1
+            )),
+        (Sensor::Pressure, Some(m)) if !(PRESSURE_RANGE.0..=PRESSURE_RANGE.1).contains(&m) => out
+            .push(format!(
+                "the median pressure is {} hPa, outside {}–{} hPa: is the unit ({unit}) right?",
+                sig(m),
+                PRESSURE_RANGE.0,
+                PRESSURE_RANGE.1
+            )),
+        _ => {}
+    }
+    if rule.sensor == Sensor::Gyroscope {
+        if let Some(p95) = percentile(mags, 0.95).filter(|p| *p > RATE_MAX) {
+            out.push(format!(
+                "rotation rates reach {} rad/s (95th percentile), implausibly fast for a walk: \
+                 is the unit ({unit}) right? (°/s read as rad/s?)",
+                sig(p95)
+            ));
+        }
     }
     out
 }

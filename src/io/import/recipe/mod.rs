@@ -15,23 +15,31 @@
 //!   [`Streams`](super::Streams) merge as every other per-sensor folder), with a
 //!   [`check::Report`]: the first rows as parsed, in SI units, and sanity warnings.
 //! - [`check::describe`]: a first guess (columns, separator, header, sensor, time unit) of the
-//!   files of an unrecognised upload, for the page's form.
+//!   files of an unrecognised upload, for the page's form; [`form`]: the form's words and its
+//!   guess of the columns.
 
 pub mod check;
+mod error;
+pub mod form;
 mod merge;
 pub mod read;
 mod schema;
 
 pub use check::{describe, Description, FileReport, Report};
+pub use error::RecipeError;
 pub use merge::{read_dir, read_set, RecipeLog};
 pub use schema::{
     Column, Columns, Delimiter, FileRule, Recipe, Sensor, TimeUnit, ValueUnit, RECIPE_VERSION,
 };
 
 /// Reads a recipe file (`pdr run --recipe FILE`); errors name the file.
-pub fn load(path: &std::path::Path) -> Result<Recipe, String> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    Recipe::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
+pub fn load(path: &std::path::Path) -> Result<Recipe, RecipeError> {
+    let file = |why: String| RecipeError::File {
+        path: path.display().to_string(),
+        why,
+    };
+    let text = std::fs::read_to_string(path).map_err(|e| file(e.to_string()))?;
+    Recipe::from_json(&text).map_err(|e| file(e.to_string()))
 }
 
 /// Why a recipe reads no folder of a file set: for the folder with the most files, the reason
@@ -51,7 +59,7 @@ pub fn why_not(set: &dyn super::FileSet, recipe: &Recipe) -> String {
         return "there are no files".into();
     };
     match recipe.match_dir(names, dir) {
-        Err(e) if dir.is_empty() => e,
+        Err(e) if dir.is_empty() => e.to_string(),
         Err(e) => format!("in {dir}: {e}"),
         Ok(_) => "it matches".into(),
     }

@@ -1,7 +1,7 @@
 //! The recipe's JSON schema (version [`RECIPE_VERSION`]) and its checks.
 //! May import: `engine` and `io`.
 
-use super::glob;
+use super::{glob, RecipeError};
 use crate::io::import::fileset;
 use serde::{Deserialize, Serialize};
 
@@ -500,22 +500,27 @@ fn parse_axis(a: &str) -> Option<(usize, f64)> {
 impl Recipe {
     /// Reads and checks a recipe: JSON with no unknown field, the supported version, and every
     /// file entry consistent ([`Recipe::check`]). The error names the entry and field.
-    pub fn from_json(text: &str) -> Result<Recipe, String> {
-        let r: Recipe = serde_json::from_str(text).map_err(|e| format!("recipe: {e}"))?;
+    pub fn from_json(text: &str) -> Result<Recipe, RecipeError> {
+        let r: Recipe = serde_json::from_str(text).map_err(|e| RecipeError::Json(e.to_string()))?;
         r.check()?;
         Ok(r)
     }
 
     /// The recipe as pretty JSON (what the page offers to download and the CLI reads).
-    pub fn to_json(&self) -> String {
-        serde_json::to_string_pretty(self).unwrap_or_default()
+    pub fn to_json(&self) -> Result<String, RecipeError> {
+        serde_json::to_string_pretty(self).map_err(|e| RecipeError::Write(e.to_string()))
     }
 
     /// Checks what serde cannot: the version, a name, 1 to [`MAX_FILES`] file entries, the
     /// columns each sensor needs and no others, column numbers from 1, names only with a
     /// header, units that fit the sensor, an accelerometer (the engine counts steps from
     /// acceleration) and something to restore gravity to a linear accelerometer.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), RecipeError> {
+        self.check_rules().map_err(RecipeError::Invalid)
+    }
+
+    /// [`Recipe::check`]'s rules, the message naming the entry and field.
+    fn check_rules(&self) -> Result<(), String> {
         if self.recipe != RECIPE_VERSION {
             return Err(format!(
                 "recipe: version {} is not supported (this build reads \"recipe\": {RECIPE_VERSION})",
@@ -556,7 +561,17 @@ impl Recipe {
     /// differ (a file of accelerometer and gyroscope columns). `Err` says why the recipe does not
     /// match the folder: an entry that is not optional matches no file there, an entry matches
     /// several, or two entries read one file as the same sensor.
-    pub fn match_dir(&self, names: &[String], dir: &str) -> Result<Vec<Option<usize>>, String> {
+    pub fn match_dir(
+        &self,
+        names: &[String],
+        dir: &str,
+    ) -> Result<Vec<Option<usize>>, RecipeError> {
+        self.match_dir_words(names, dir)
+            .map_err(RecipeError::NoMatch)
+    }
+
+    /// [`Recipe::match_dir`], the error in words.
+    fn match_dir_words(&self, names: &[String], dir: &str) -> Result<Vec<Option<usize>>, String> {
         let mut out = Vec::with_capacity(self.files.len());
         for f in &self.files {
             let hits: Vec<usize> = names
