@@ -8,7 +8,7 @@
 //! step detector → for each step: period and frequency, heading, step length, dead reckoning
 //! (Basso 2021 eq. 24 with x north and y east: north += SL cos θ, east += SL sin θ).
 //!
-//! # Decisions beyond the papers (measured in the tests and the closing notes)
+//! # Decisions beyond the papers (measured in the tests; figures in docs/engine.md and docs/methods/)
 //! - **Onset look-back.** The motion detector confirms a gait (σ_z and the periodicity of the
 //!   vertical acceleration) one to three seconds after a person starts walking, so gating steps by
 //!   the motion state alone misses the first steps of every walk. When it does, the step detector
