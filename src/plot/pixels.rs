@@ -249,35 +249,7 @@ fn upload_maps() -> Vec<(String, u64)> {
 
 /// The live map and scope of a simulated walk with a gap in its input.
 fn live() -> Vec<(String, u64)> {
-    use crate::live::{
-        browser_events, BrowserEvent, LiveSession, MotionEvent, OrientationEvent, Platform,
-    };
-    let sim = crate::sim::scenarios::straight_walk(1.8, 30.0).generate();
-    let mut live = LiveSession::new(
-        crate::engine::PipelineConfig::default(),
-        Platform::Android,
-        0.0,
-    )
-    .unwrap();
-    for ev in browser_events(&sim.records, Platform::Android) {
-        match ev {
-            BrowserEvent::Orientation {
-                t,
-                alpha,
-                beta,
-                gamma,
-            } => live.push_orientation(&OrientationEvent::absolute(t, alpha, beta, gamma)),
-            BrowserEvent::Motion { t, x, y, z, .. } if !(12e3..16e3).contains(&t) => {
-                live.push_motion(&MotionEvent {
-                    time_stamp_ms: t,
-                    accel: Some([x, y, z]),
-                    rotation_rate_deg_s: None,
-                })
-                .unwrap();
-            }
-            _ => {}
-        }
-    }
+    let mut live = super::live::simulated_session();
     let d = live.map_data();
     let view = super::LiveView {
         pdr: &d.pdr,
