@@ -225,7 +225,7 @@ fn entries<'a>(
 ) -> Vec<(&'a str, Mark)> {
     let (fused, by_floor) = (!t.fused.is_empty(), t.by_floor);
     let mut entries = Vec::new();
-    if !(by_floor && !fused) {
+    if !by_floor || fused {
         entries.push((
             if fused { "PDR only" } else { "PDR track" },
             Mark::Line(t.pdr_colour),
