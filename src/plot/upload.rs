@@ -28,7 +28,8 @@ pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
 pub use map::{draw_map, pick_step};
 pub use palette::{activity_colour, floor_colour};
-pub use plots::{draw_plot_area, Plot};
+pub use plots::draw_plot_area;
+pub use series::Plot;
 pub use time_axis::TimeAxis;
 
 #[cfg(test)]

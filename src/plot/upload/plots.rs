@@ -9,7 +9,9 @@ use super::height::{floor_tick, HeightSeries};
 use super::palette::{
     activity_colour, activity_key, carry_colour, carry_key, draw_key, draw_title,
 };
-use super::series::{AccelLines, GnssLines, HeadingLines, Lines, PllLane, PlotSeries, SigmaLines};
+use super::series::{
+    AccelLines, GnssLines, HeadingLines, Lines, PllLane, Plot, PlotSeries, SigmaLines,
+};
 use crate::analysis::Analysis;
 use crate::engine::StepRecord;
 use crate::plot::theme::Theme;
@@ -18,54 +20,6 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-
-/// The diagnostics plots, all against the same time axis.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Plot {
-    /// Vertical acceleration, PLL output, detected (and true) steps.
-    Accel,
-    /// σ of the vertical acceleration with the thresholds and the activity (a band, with its
-    /// key).
-    Sigma,
-    /// Height above the start (m) and floor (Munoz Diaz 2015 §6, and the barometer).
-    Height,
-    /// Per-step heading: single-step, two-step average, and the device's heading.
-    Heading,
-    /// Step frequency and step length per step.
-    Steps,
-    /// GNSS accuracy and the innovations of the fixes offered to the filter.
-    Gnss,
-    /// The fusion's estimated step-length scale and heading correction (Basso 2021 §2.2.5's
-    /// systematic errors) per step.
-    Fusion,
-}
-
-impl Plot {
-    /// Every plot, in the page's order.
-    pub const ALL: [Plot; 7] = [
-        Plot::Accel,
-        Plot::Sigma,
-        Plot::Height,
-        Plot::Heading,
-        Plot::Steps,
-        Plot::Gnss,
-        Plot::Fusion,
-    ];
-
-    /// From its name in the page.
-    pub fn parse(name: &str) -> Option<Plot> {
-        Some(match name {
-            "accel" => Plot::Accel,
-            "sigma" => Plot::Sigma,
-            "height" => Plot::Height,
-            "heading" => Plot::Heading,
-            "steps" => Plot::Steps,
-            "gnss" => Plot::Gnss,
-            "fusion" => Plot::Fusion,
-            _ => return None,
-        })
-    }
-}
 
 /// Draws one diagnostics plot between `t0` and `t1` (s, the log's clock), with a cursor at a
 /// time when given. The time axis is in seconds from the log's first sample. Returns the plot
@@ -89,9 +43,7 @@ pub fn draw_plot_area<DB: DrawingBackend>(
     let pen = Pen {
         theme,
         scale,
-        font: ("sans-serif", 12.0 * scale)
-            .into_font()
-            .color(&theme.foreground),
+        font: theme.text(scale),
         x: (t0 - origin, t1 - origin),
         y: series.y,
         // Envelopes drawn as two lines (coarse) thinner than a signal, so they do not merge.

@@ -8,11 +8,58 @@ use super::decimate::{band, envelope, of, Column, GAP_S};
 use super::fusion::FusionSeries;
 use super::heading;
 use super::height::HeightSeries;
-use super::plots::Plot;
 use crate::analysis::{activity_from_code, Analysis};
 use crate::engine::activity::Activity;
 use crate::engine::carry::CarryMode;
 use crate::engine::StepRecord;
+
+/// The diagnostics plots, all against the same time axis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plot {
+    /// Vertical acceleration, PLL output, detected (and true) steps.
+    Accel,
+    /// σ of the vertical acceleration with the thresholds and the activity (a band, with its
+    /// key).
+    Sigma,
+    /// Height above the start (m) and floor (Munoz Diaz 2015 §6, and the barometer).
+    Height,
+    /// Per-step heading: single-step, two-step average, and the device's heading.
+    Heading,
+    /// Step frequency and step length per step.
+    Steps,
+    /// GNSS accuracy and the innovations of the fixes offered to the filter.
+    Gnss,
+    /// The fusion's estimated step-length scale and heading correction (Basso 2021 §2.2.5's
+    /// systematic errors) per step.
+    Fusion,
+}
+
+impl Plot {
+    /// Every plot, in the page's order.
+    pub const ALL: [Plot; 7] = [
+        Plot::Accel,
+        Plot::Sigma,
+        Plot::Height,
+        Plot::Heading,
+        Plot::Steps,
+        Plot::Gnss,
+        Plot::Fusion,
+    ];
+
+    /// From its name in the page.
+    pub fn parse(name: &str) -> Option<Plot> {
+        Some(match name {
+            "accel" => Plot::Accel,
+            "sigma" => Plot::Sigma,
+            "height" => Plot::Height,
+            "heading" => Plot::Heading,
+            "steps" => Plot::Steps,
+            "gnss" => Plot::Gnss,
+            "fusion" => Plot::Fusion,
+            _ => return None,
+        })
+    }
+}
 
 /// One diagnostics plot's series between two times, with what frames them.
 pub struct PlotSeries {
