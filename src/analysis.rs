@@ -168,49 +168,11 @@ pub fn analyse(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Analysis, ConfigError> {
     let total = log.records.len();
-    let mut tr = Trace::default();
-    let n = log.imu_samples();
-    // Every signal at its final size at once: growing by doubling would copy each and, in wasm,
-    // raise the memory's high-water mark by up to their size again.
-    for v in [
-        &mut tr.up,
-        &mut tr.pll,
-        &mut tr.sigma,
-        &mut tr.device_heading_deg,
-        &mut tr.east,
-        &mut tr.north,
-    ] {
-        v.reserve_exact(n);
-    }
-    tr.t.reserve_exact(n);
-    tr.motion.reserve_exact(n);
-    tr.activity.reserve_exact(n);
-    tr.height.reserve_exact(n);
-    tr.floor.reserve_exact(n);
-    let deg = 180.0 / std::f64::consts::PI;
+    let mut tr = Trace::with_capacity(log.imu_samples());
     progress(0, total);
     let mut observe = |pipeline: &Pipeline, i: usize, r: &Record, accepted: bool| {
         if let (Record::Imu(s), true) = (r, accepted) {
-            let (up, e, north) = pipeline.last_nav().unwrap_or((f64::NAN, 0.0, 0.0));
-            tr.t.push(s.t);
-            tr.up.push(up as f32);
-            tr.pll
-                .push(pipeline.pll_output().map_or(f32::NAN, |p| p as f32));
-            tr.sigma.push(pipeline.vertical_stats().1 as f32);
-            let motion = pipeline.motion_state();
-            tr.motion.push(motion as u8);
-            let d = pipeline.diagnostics();
-            tr.activity.push(activity_code(activity_of(&d, motion)));
-            tr.height.push(d.up_m as f32);
-            tr.floor
-                .push(d.floor.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16);
-            tr.device_heading_deg
-                .push(pipeline.attitude().map_or(f32::NAN, |q| {
-                    let top = q * nalgebra::Vector3::y();
-                    (libm::atan2(top.x, top.y) * deg).rem_euclid(360.0) as f32
-                }));
-            tr.east.push(e as f32);
-            tr.north.push(north as f32);
+            tr.push(pipeline, s.t);
         }
         if (i + 1) % PROGRESS_EVERY == 0 && i + 1 < total {
             progress(i + 1, total);
@@ -233,17 +195,10 @@ pub fn analyse(
     });
     let fused = p.fused();
     let pdr_offset = p.pdr_offset();
-    let mut warnings: Vec<String> = log.warnings.iter().map(|e| e.to_string()).collect();
-    if log.skipped > warnings.len() as u64 {
-        warnings.push(format!("{} lines skipped in all", log.skipped));
-    }
-    for (i, e) in run.errors.iter().take(10) {
-        warnings.push(format!("record {}: {e} (refused by the engine)", i + 1));
-    }
     Ok(Analysis {
         source: log.source.clone(),
         format: log.format.as_str().to_string(),
-        warnings,
+        warnings: warnings(log, &run.errors),
         score,
         steps: p.track().to_vec(),
         trace: tr,
@@ -267,15 +222,7 @@ pub fn analyse(
         pdr_offset,
         origin: frame.map(|f| (f.lat0_deg, f.lon0_deg, f.h0_m)),
         truth_is_trajectory: log.truth.waypoints.is_empty() && !log.truth.trajectory.is_empty(),
-        truth_path: if log.truth.waypoints.is_empty() {
-            crate::eval::trajectory::trajectory_in_track_frame(
-                p.track(),
-                &log.truth.trajectory,
-                TRUTH_EVERY_S,
-            )
-        } else {
-            crate::eval::waypoints_in_track_frame(p.track(), &log.truth.waypoints)
-        },
+        truth_path: truth_path(log, p.track()),
         truth_steps: log.truth.step_events.iter().map(|s| s.t).collect(),
         sigma_thresholds: (cfg.motion.still_max, cfg.motion.run_sigma_min),
         vertical: d.vertical,
@@ -284,6 +231,83 @@ pub fn analyse(
             matches!(r, Record::Imu(s) if s.gyro.is_some() || s.mag.is_some() || s.orientation.is_some())
         }),
     })
+}
+
+impl Trace {
+    /// An empty trace with room for `n` samples. Every signal at its final size at once:
+    /// growing by doubling would copy each and, in wasm, raise the memory's high-water mark by
+    /// up to their size again.
+    fn with_capacity(n: usize) -> Self {
+        let mut tr = Trace::default();
+        for v in [
+            &mut tr.up,
+            &mut tr.pll,
+            &mut tr.sigma,
+            &mut tr.device_heading_deg,
+            &mut tr.east,
+            &mut tr.north,
+        ] {
+            v.reserve_exact(n);
+        }
+        tr.t.reserve_exact(n);
+        tr.motion.reserve_exact(n);
+        tr.activity.reserve_exact(n);
+        tr.height.reserve_exact(n);
+        tr.floor.reserve_exact(n);
+        tr
+    }
+
+    /// Keeps the signals of the IMU sample at `t` (s) the pipeline has just taken.
+    fn push(&mut self, pipeline: &Pipeline, t: f64) {
+        let deg = 180.0 / std::f64::consts::PI;
+        let (up, e, north) = pipeline.last_nav().unwrap_or((f64::NAN, 0.0, 0.0));
+        self.t.push(t);
+        self.up.push(up as f32);
+        self.pll
+            .push(pipeline.pll_output().map_or(f32::NAN, |p| p as f32));
+        self.sigma.push(pipeline.vertical_stats().1 as f32);
+        let motion = pipeline.motion_state();
+        self.motion.push(motion as u8);
+        let d = pipeline.diagnostics();
+        self.activity.push(activity_code(activity_of(&d, motion)));
+        self.height.push(d.up_m as f32);
+        self.floor
+            .push(d.floor.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16);
+        self.device_heading_deg
+            .push(pipeline.attitude().map_or(f32::NAN, |q| {
+                let top = q * nalgebra::Vector3::y();
+                (libm::atan2(top.x, top.y) * deg).rem_euclid(360.0) as f32
+            }));
+        self.east.push(e as f32);
+        self.north.push(north as f32);
+    }
+}
+
+/// The reader's warnings, the count of the lines it skipped when it gave fewer, and the first
+/// ten records the engine refused.
+fn warnings<E: std::fmt::Display>(log: &Log, refused: &[(usize, E)]) -> Vec<String> {
+    let mut warnings: Vec<String> = log.warnings.iter().map(|e| e.to_string()).collect();
+    if log.skipped > warnings.len() as u64 {
+        warnings.push(format!("{} lines skipped in all", log.skipped));
+    }
+    for (i, e) in refused.iter().take(10) {
+        warnings.push(format!("record {}: {e} (refused by the engine)", i + 1));
+    }
+    warnings
+}
+
+/// The truth's path in the track's frame: its waypoints, else its motion-capture trajectory
+/// every [`TRUTH_EVERY_S`].
+fn truth_path(log: &Log, track: &[StepRecord]) -> Vec<(f64, f64)> {
+    if log.truth.waypoints.is_empty() {
+        crate::eval::trajectory::trajectory_in_track_frame(
+            track,
+            &log.truth.trajectory,
+            TRUTH_EVERY_S,
+        )
+    } else {
+        crate::eval::waypoints_in_track_frame(track, &log.truth.waypoints)
+    }
 }
 
 impl Analysis {

@@ -55,14 +55,36 @@ pub fn carry_text(steps: &[StepRecord]) -> Option<String> {
     )
 }
 
+/// The figures' rows as they are made: (label, text).
+struct Rows(Vec<(String, String)>);
+
+impl Rows {
+    fn row(&mut self, k: &str, v: String) {
+        self.0.push((k.to_string(), v));
+    }
+}
+
 impl Analysis {
     /// The figures shown under the map, for people: (label, text) rows, then up to three of
     /// the reader's warnings as notes.
     pub fn figures(&self) -> Vec<(String, String)> {
+        let mut rows = Rows(Vec::new());
+        self.count_rows(&mut rows);
+        self.heading_rows(&mut rows);
+        self.truth_rows(&mut rows);
+        self.gnss_rows(&mut rows);
+        self.height_rows(&mut rows);
+        for w in self.warnings.iter().take(3) {
+            rows.row("Note", w.clone());
+        }
+        rows.0
+    }
+
+    /// The steps (or strides) with the truth's count, the distance and where the phone was
+    /// carried.
+    fn count_rows(&self, rows: &mut Rows) {
         let sc = &self.score;
         let n = self.steps.len();
-        let mut rows = Vec::new();
-        let mut row = |k: &str, v: String| rows.push((k.to_string(), v));
         let truth = sc.truth_steps.map_or(String::new(), |t| {
             let debounced = sc.step_error_debounced_pct.map_or(String::new(), |d| {
                 format!("; {} % against debounced truth", fixed(d, 1))
@@ -74,7 +96,7 @@ impl Analysis {
         });
         match sc.strides {
             // Foot mode: one record per stride, each two steps.
-            Some(strides) => row(
+            Some(strides) => rows.row(
                 "Strides",
                 format!(
                     "{strides} ({} steps{truth}): foot mode, zero-velocity updates",
@@ -82,14 +104,14 @@ impl Analysis {
                 ),
             ),
             None => match sc.steps_in_window {
-                Some(inside) => row(
+                Some(inside) => rows.row(
                     "Steps",
                     format!("{n}; {inside} inside the truth's counted walk{truth}"),
                 ),
-                None => row("Steps", format!("{n}{truth}")),
+                None => rows.row("Steps", format!("{n}{truth}")),
             },
         }
-        row(
+        rows.row(
             "Distance",
             format!(
                 "{} m in {} min",
@@ -98,12 +120,17 @@ impl Analysis {
             ),
         );
         if let Some(c) = self.carry_text() {
-            row("Carried", c);
+            rows.row("Carried", c);
         }
+    }
+
+    /// The steps whose heading followed the gyroscope, and those without a heading.
+    fn heading_rows(&self, rows: &mut Rows) {
+        let n = self.steps.len();
         // Where the magnetometer was bent, the heading followed the gyroscope (engine::magnetic).
         let held = self.steps.iter().filter(|s| s.gyro_heading).count();
         if held > 0 {
-            row(
+            rows.row(
                 "Gyroscope heading",
                 format!("{held} of {n} steps: the magnetometer was bent there"),
             );
@@ -119,7 +146,7 @@ impl Analysis {
                 Some(why) => format!("{why}, so the track cannot be drawn"),
                 None => "left out of the track".to_string(),
             };
-            row(
+            rows.row(
                 "No heading",
                 format!(
                     "{without} of {n} steps ({} m of steps in all): {why}",
@@ -127,8 +154,14 @@ impl Analysis {
                 ),
             );
         }
+    }
+
+    /// The scores against the truth: waypoints, motion capture, turns, floors and loop
+    /// closure.
+    fn truth_rows(&self, rows: &mut Rows) {
+        let sc = &self.score;
         if let Some(w) = sc.waypoint_error_m {
-            row(
+            rows.row(
                 "Waypoints",
                 format!(
                     "error p75 {} m, max {} m over {} waypoints",
@@ -139,7 +172,7 @@ impl Analysis {
             );
         }
         if let Some(t) = &sc.trajectory {
-            row(
+            rows.row(
                 "Against the motion capture",
                 format!(
                     "heading error median {}° over {} steps (p75 {}°, one offset of {}° removed); distance {} m of {} m (ratio {}); position p75 {} m, pinned at the start and turned",
@@ -155,7 +188,7 @@ impl Analysis {
             );
         }
         if let Some(t) = &sc.turns {
-            row(
+            rows.row(
                 "Turns",
                 format!(
                     "{} of {} true turns scored, median error {}°",
@@ -166,7 +199,7 @@ impl Analysis {
             );
         }
         if let Some(f) = sc.floors.as_ref().filter(|f| f.landmarks > 0) {
-            row(
+            rows.row(
                 "Floors",
                 format!(
                     "{} of {} landmarks on the right relative floor",
@@ -176,7 +209,7 @@ impl Analysis {
         }
         if let Some(l) = sc.loop_closure_m {
             match sc.strides.filter(|_| sc.distance_m > 0.0) {
-                Some(_) => row(
+                Some(_) => rows.row(
                     "Loop closure",
                     format!(
                         "{} m ({} % of the distance)",
@@ -184,16 +217,21 @@ impl Analysis {
                         fixed(100.0 * l / sc.distance_m, 2)
                     ),
                 ),
-                None => row("Loop closure", format!("{} m", fixed(l, 1))),
+                None => rows.row("Loop closure", format!("{} m", fixed(l, 1))),
             }
         }
+    }
+
+    /// The GNSS's and the fusion's errors, the fixes' fate, the corrections and the verdict.
+    fn gnss_rows(&self, rows: &mut Rows) {
+        let sc = &self.score;
         for (e, name) in [
             (sc.gnss_error_m, "GNSS alone"),
             (sc.fused_error_m, "Fused"),
             (sc.smoothed_error_m, "Smoothed"),
         ] {
             if let Some(e) = e {
-                row(
+                rows.row(
                     name,
                     format!("p75 {} m, max {} m", fixed(e.p75, 1), fixed(e.max, 1)),
                 );
@@ -202,19 +240,23 @@ impl Analysis {
         if !self.fixes.is_empty() {
             let n = self.fixes.len();
             match &self.fix_counts {
-                Some(c) => row(
+                Some(c) => rows.row(
                     "GNSS",
                     format!("{n} fixes: {}", crate::io::fusion_words::fix_counts_text(c)),
                 ),
-                None => row("GNSS", format!("{n} fixes")),
+                None => rows.row("GNSS", format!("{n} fixes")),
             }
         }
         if let Some(text) = self.corrections_text() {
-            row("Corrections", text);
+            rows.row("Corrections", text);
         }
         if let Some(v) = self.verdict {
-            row("Fusion", v.text().to_string());
+            rows.row("Fusion", v.text().to_string());
         }
+    }
+
+    /// The height at the end with the floors visited, and the barometer's readings.
+    fn height_rows(&self, rows: &mut Rows) {
         if self.has_height() {
             let end = self.steps.last().map_or((0.0, 0), |s| (s.up_m, s.floor));
             let floors = self.floors();
@@ -222,7 +264,7 @@ impl Analysis {
                 Some(v) => format!("from {}", v.as_str()),
                 None => "source not given".to_string(),
             };
-            row(
+            rows.row(
                 "Height",
                 format!(
                     "{} m at the end ({}), {} floor{} visited ({}); {source}",
@@ -239,12 +281,8 @@ impl Analysis {
             );
         }
         if self.pressure_samples > 0 {
-            row("Barometer", format!("{} readings", self.pressure_samples));
+            rows.row("Barometer", format!("{} readings", self.pressure_samples));
         }
-        for w in self.warnings.iter().take(3) {
-            row("Note", w.clone());
-        }
-        rows
     }
 
     /// The fusion's corrections at the last fused step, ± 1σ: "step-length scale 0.93 ± 0.02 ·

@@ -182,12 +182,30 @@ pub fn credit_line<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::plot::raster::Raster;
+    use crate::plot::raster;
 
     #[test]
     fn the_veil_is_lighter_in_the_light_scheme() {
         assert_eq!(veil_alpha(&Theme::LIGHT), 0.3);
         assert_eq!(veil_alpha(&Theme::DARK), 0.6);
+    }
+
+    /// A tile URL of the test server: a tile of zoom 14 to 17 within three tiles of the
+    /// place (around 43.77° N, 11.26° E: Florence, where the demo walks).
+    fn assert_near_florence(url: &str, lat: f64, lon: f64) {
+        let parts: Vec<u32> = url
+            .trim_start_matches("https://tiles.test/")
+            .trim_end_matches(".png")
+            .split('/')
+            .map(|s| s.parse().unwrap())
+            .collect();
+        let (z, x, y) = (parts[0] as u8, parts[1], parts[2]);
+        let (tx, ty) = crate::plot::tiles::tile_xy(lat, lon, z).unwrap();
+        assert!((14..=17).contains(&z), "{url}");
+        assert!(
+            x.abs_diff(tx as u32) <= 3 && y.abs_diff(ty as u32) <= 3,
+            "{url}"
+        );
     }
 
     /// The fusion demo drawn over a base map whose painter fills each tile with a checker
@@ -198,16 +216,8 @@ mod tests {
         let demo = crate::demo::run_fusion_demo();
         let (lat, lon, h) = demo.origin;
         let (w, h_px) = (500u32, 400u32);
-        let pixels = std::rc::Rc::new(std::cell::RefCell::new(vec![
-            (0, 0, 0);
-            (w * h_px) as usize
-        ]));
-        let area = Raster {
-            w,
-            h: h_px,
-            px: pixels.clone(),
-        }
-        .into_drawing_area();
+        let (r, pixels) = raster::new(w, h_px);
+        let area = r.into_drawing_area();
         let template = TileTemplate::parse("https://tiles.test/{z}/{x}/{y}.png", "").unwrap();
         let (a, b) = (RGBColor(0x40, 0xa0, 0x40), RGBColor(0x40, 0x40, 0xa0));
         let mut urls = Vec::new();
@@ -254,22 +264,10 @@ mod tests {
         );
         assert_eq!(shown.line, "Map tiles: tiles.test");
         assert!(shown.counts.0 >= 1 && shown.counts.1 == 0 && shown.counts.2 == 0);
-        // Florence at the zoom of a walk: zoom 14 to 17 tiles around 43.77° N, 11.26° E.
+        // Florence at the zoom of a walk.
         assert!(!urls.is_empty());
         for u in &urls {
-            let parts: Vec<u32> = u
-                .trim_start_matches("https://tiles.test/")
-                .trim_end_matches(".png")
-                .split('/')
-                .map(|s| s.parse().unwrap())
-                .collect();
-            let (z, x, y) = (parts[0] as u8, parts[1], parts[2]);
-            let (tx, ty) = crate::plot::tiles::tile_xy(lat, lon, z).unwrap();
-            assert!((14..=17).contains(&z), "{u}");
-            assert!(
-                x.abs_diff(tx as u32) <= 3 && y.abs_diff(ty as u32) <= 3,
-                "{u}"
-            );
+            assert_near_florence(u, lat, lon);
         }
         // The checker colours, under the veil (the background at 0.3, blended as the canvas
         // does), fill most of the map; the track is drawn over them.
@@ -291,10 +289,8 @@ mod tests {
             "{tile_px} of {} pixels show a tile",
             w * h_px
         );
-        let track = p
-            .iter()
-            .filter(|px| **px == (t.track.0, t.track.1, t.track.2))
-            .count();
+        drop(p);
+        let track = raster::count(&pixels, t.track);
         assert!(track > 100, "track {track}");
     }
 }

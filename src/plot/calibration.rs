@@ -18,9 +18,7 @@ pub fn draw_calibration<DB: DrawingBackend>(
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
     area.fill(&theme.background)?;
-    let font = ("sans-serif", 12.0 * scale)
-        .into_font()
-        .color(&theme.foreground);
+    let font = theme.text(scale);
     let (a, b) = fit.fit.as_ref().map_or((line.a, line.b), |f| (f.a, f.b));
     let heading = match (&fit.fit, fit.se) {
         (Some(f), Some((sa, sb))) => format!(

@@ -292,6 +292,24 @@ pub(crate) fn start_end<DB: DrawingBackend>(
     Ok(())
 }
 
+/// The accuracy circles of GNSS fixes (east, north, radius, m), each as wide on the map as its
+/// radius (at least a pixel), in the `ring` style.
+pub(crate) fn accuracy_rings<DB: DrawingBackend>(
+    chart: &mut MapChart<'_, DB>,
+    fixes: impl Iterator<Item = (f64, f64, f64)>,
+    ring: ShapeStyle,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let circles: Vec<Circle<(f64, f64), u32>> = fixes
+        .map(|(e, n, acc)| {
+            let a = chart.backend_coord(&(e, n));
+            let b = chart.backend_coord(&(e + acc, n));
+            Circle::new((e, n), (b.0 - a.0).unsigned_abs().max(1), ring)
+        })
+        .collect();
+    chart.draw_series(circles)?;
+    Ok(())
+}
+
 /// How a legend entry is drawn.
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum Mark {

@@ -2,7 +2,7 @@
 //! May import: the map frame, the base map and the theme; never `web`, `live` or `eval`.
 
 use super::basemap::{credit_line, map_chart_under, Basemap};
-use super::frame::{legend, north_and_scale, start_end, MapChart, Mark};
+use super::frame::{accuracy_rings, legend, north_and_scale, start_end, Mark};
 use super::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -41,19 +41,8 @@ pub fn draw_fusion<DB: DrawingBackend>(
         .chain(view.truth.unwrap_or(&[]))
         .copied();
     let mut chart = map_chart_under(area, pts, None, basemap.as_deref_mut(), theme, scale)?;
-    let to_px = |chart: &MapChart<'_, DB>, p: (f64, f64)| chart.backend_coord(&p);
     let gnss = ShapeStyle::from(&theme.gnss.mix(0.35)).stroke_width(px(1.0));
-    let circles: Vec<Circle<(f64, f64), u32>> = view
-        .fixes
-        .iter()
-        .step_by(5)
-        .map(|&(e, n, acc)| {
-            let a = to_px(&chart, (e, n));
-            let b = to_px(&chart, (e + acc, n));
-            Circle::new((e, n), (b.0 - a.0).unsigned_abs().max(1), gnss)
-        })
-        .collect();
-    chart.draw_series(circles)?;
+    accuracy_rings(&mut chart, view.fixes.iter().step_by(5).copied(), gnss)?;
     chart.draw_series(
         view.fixes
             .iter()

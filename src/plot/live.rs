@@ -3,7 +3,7 @@
 //! feeds a simulated walk through `crate::live`, to have a live map to draw).
 
 use super::basemap::{credit_line, map_chart_under, Basemap};
-use super::frame::{legend, north_and_scale, Mark};
+use super::frame::{accuracy_rings, legend, north_and_scale, Mark};
 use super::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -49,18 +49,7 @@ pub fn draw_live<DB: DrawingBackend>(
     let mut chart = map_chart_under(area, pts, None, basemap.as_deref_mut(), theme, scale)?;
     let ring = ShapeStyle::from(&theme.gnss.mix(0.45)).stroke_width(px(1.0));
     // The newest fixes' circles (a long walk has thousands).
-    let circles: Vec<Circle<(f64, f64), u32>> = view
-        .fixes
-        .iter()
-        .rev()
-        .take(300)
-        .map(|&(e, n, acc)| {
-            let a = chart.backend_coord(&(e, n));
-            let b = chart.backend_coord(&(e + acc, n));
-            Circle::new((e, n), (b.0 - a.0).unsigned_abs().max(1), ring)
-        })
-        .collect();
-    chart.draw_series(circles)?;
+    accuracy_rings(&mut chart, view.fixes.iter().rev().take(300).copied(), ring)?;
     chart.draw_series(
         view.fixes
             .iter()
@@ -93,26 +82,50 @@ pub fn draw_live<DB: DrawingBackend>(
     }
     if let Some(&b) = main.last() {
         let at = chart.backend_coord(&b);
-        if let Some(h) = view.heading_rad {
-            let len = f64::from(px(22.0));
-            let tip = (
-                at.0 + (len * libm::sin(h)).round() as i32,
-                at.1 - (len * libm::cos(h)).round() as i32,
-            );
-            area.draw(&PathElement::new(
-                vec![at, tip],
-                ShapeStyle::from(&theme.end).stroke_width(px(3.0)),
-            ))?;
-        }
-        area.draw(&Circle::new(at, px(7.0), theme.end.filled()))?;
-        area.draw(&Circle::new(
-            at,
-            px(7.0),
-            ShapeStyle::from(&theme.background).stroke_width(px(2.0)),
+        draw_position(area, at, view.heading_rad, theme, scale)?;
+    }
+    let entries = entries(view, theme);
+    if !entries.is_empty() {
+        legend(area, &chart, &entries, theme, scale)?;
+    }
+    north_and_scale(area, &mut chart, theme, scale)?;
+    credit_line(area, &chart, basemap.as_deref(), theme, scale)
+}
+
+/// The current position at pixel `at`: a dot ringed in the background colour, with an arrow
+/// along the heading (rad from north) when there is one.
+fn draw_position<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    at: (i32, i32),
+    heading_rad: Option<f64>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    if let Some(h) = heading_rad {
+        let len = f64::from(px(22.0));
+        let tip = (
+            at.0 + (len * libm::sin(h)).round() as i32,
+            at.1 - (len * libm::cos(h)).round() as i32,
+        );
+        area.draw(&PathElement::new(
+            vec![at, tip],
+            ShapeStyle::from(&theme.end).stroke_width(px(3.0)),
         ))?;
     }
+    area.draw(&Circle::new(at, px(7.0), theme.end.filled()))?;
+    area.draw(&Circle::new(
+        at,
+        px(7.0),
+        ShapeStyle::from(&theme.background).stroke_width(px(2.0)),
+    ))?;
+    Ok(())
+}
+
+/// The legend's entries: the tracks when there is a fused one, the fixes and the gaps.
+fn entries(view: &LiveView<'_>, theme: &Theme) -> Vec<(&'static str, Mark)> {
     let mut entries = Vec::new();
-    if fused {
+    if !view.fused.is_empty() {
         entries.push(("fused", Mark::Line(theme.track)));
         if !view.smoothed.is_empty() {
             entries.push(("smoothed", Mark::Line(theme.smoothed)));
@@ -125,62 +138,59 @@ pub fn draw_live<DB: DrawingBackend>(
     if !view.gaps.is_empty() {
         entries.push(("gap in input", Mark::Ring(theme.end)));
     }
-    if !entries.is_empty() {
-        legend(area, &chart, &entries, theme, scale)?;
+    entries
+}
+
+/// A live session fed a simulated straight walk's browser events, with 4 s without motion
+/// events (a gap) in it: the live map and scope to draw, here and in the pixel check.
+#[cfg(test)]
+pub(crate) fn simulated_session() -> crate::live::LiveSession {
+    use crate::live::{
+        browser_events, BrowserEvent, LiveSession, MotionEvent, OrientationEvent, Platform,
+    };
+    let sim = crate::sim::scenarios::straight_walk(1.8, 30.0).generate();
+    let imu = |r: &crate::engine::Record| matches!(r, crate::engine::Record::Imu(_));
+    assert!(sim.records.iter().any(imu));
+    let mut live = LiveSession::new(
+        crate::engine::PipelineConfig::default(),
+        Platform::Android,
+        0.0,
+    )
+    .unwrap();
+    for ev in browser_events(&sim.records, Platform::Android) {
+        match ev {
+            BrowserEvent::Orientation {
+                t,
+                alpha,
+                beta,
+                gamma,
+            } => live.push_orientation(&OrientationEvent::absolute(t, alpha, beta, gamma)),
+            BrowserEvent::Motion { t, x, y, z, .. } if !(12e3..16e3).contains(&t) => {
+                live.push_motion(&MotionEvent {
+                    time_stamp_ms: t,
+                    accel: Some([x, y, z]),
+                    rotation_rate_deg_s: None,
+                })
+                .unwrap();
+            }
+            _ => {}
+        }
     }
-    north_and_scale(area, &mut chart, theme, scale)?;
-    credit_line(area, &chart, basemap.as_deref(), theme, scale)
+    live
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::plot::draw_scope;
-    use crate::plot::raster::Raster;
+    use crate::plot::raster;
 
     #[test]
     fn draws_the_live_map_and_scope() {
-        use crate::engine::Record;
-        use crate::live::{
-            browser_events, BrowserEvent, LiveSession, MotionEvent, OrientationEvent, Platform,
-        };
-        let sim = crate::sim::scenarios::straight_walk(1.8, 30.0).generate();
-        let mut live = LiveSession::new(
-            crate::engine::PipelineConfig::default(),
-            Platform::Android,
-            0.0,
-        )
-        .unwrap();
-        for ev in browser_events(&sim.records, Platform::Android) {
-            match ev {
-                BrowserEvent::Orientation {
-                    t,
-                    alpha,
-                    beta,
-                    gamma,
-                } => live.push_orientation(&OrientationEvent::absolute(t, alpha, beta, gamma)),
-                BrowserEvent::Motion { t, x, y, z, .. } if !(12e3..16e3).contains(&t) => {
-                    live.push_motion(&MotionEvent {
-                        time_stamp_ms: t,
-                        accel: Some([x, y, z]),
-                        rotation_rate_deg_s: None,
-                    })
-                    .unwrap();
-                }
-                _ => {}
-            }
-        }
-        assert!(sim.records.iter().any(|r| matches!(r, Record::Imu(_))));
+        let mut live = super::simulated_session();
         let d = live.map_data();
         assert_eq!(d.gaps.len(), 1, "the 4 s without events is a gap");
-        let (w, h) = (400u32, 400u32);
-        let px = std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); (w * h) as usize]));
-        let area = Raster {
-            w,
-            h,
-            px: px.clone(),
-        }
-        .into_drawing_area();
+        let (r, px) = raster::new(400, 400);
         let view = LiveView {
             pdr: &d.pdr,
             fused: &d.fused,
@@ -189,14 +199,9 @@ mod tests {
             gaps: &d.gaps,
             heading_rad: d.heading_rad,
         };
-        draw_live(&area, &view, None, &Theme::LIGHT, 1.0).unwrap();
+        draw_live(&r.into_drawing_area(), &view, None, &Theme::LIGHT, 1.0).unwrap();
         let t = Theme::LIGHT;
-        let count = |c: RGBColor| {
-            px.borrow()
-                .iter()
-                .filter(|p| **p == (c.0, c.1, c.2))
-                .count()
-        };
+        let count = |c: RGBColor| raster::count(&px, c);
         assert!(count(t.track) > 200, "track {}", count(t.track));
         assert!(count(t.start) > 20 && count(t.end) > 40);
         let crate::live::ScopeData {
@@ -205,29 +210,9 @@ mod tests {
             now,
         } = live.scope_data();
         assert!(steps.len() >= 10 && steps.iter().all(|&s| s > now - 10.0));
-        let area = Raster {
-            w: 600,
-            h: 200,
-            px: std::rc::Rc::new(std::cell::RefCell::new(vec![(0, 0, 0); 600 * 200])),
-        };
-        let shared = area.px.clone();
-        draw_scope(
-            &area.into_drawing_area(),
-            &samples,
-            &steps,
-            now,
-            10.0,
-            &t,
-            1.0,
-        )
-        .unwrap();
-        let n = |c: RGBColor| {
-            shared
-                .borrow()
-                .iter()
-                .filter(|p| **p == (c.0, c.1, c.2))
-                .count()
-        };
+        let (r, shared) = raster::new(600, 200);
+        draw_scope(&r.into_drawing_area(), &samples, &steps, now, 10.0, &t, 1.0).unwrap();
+        let n = |c: RGBColor| raster::count(&shared, c);
         assert!(
             n(t.track) > 500 && n(t.gnss) > 300 && n(t.end) > 10 * 100,
             "{} {} {}",

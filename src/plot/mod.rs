@@ -21,6 +21,8 @@ mod track;
 pub mod upload;
 
 #[cfg(test)]
+mod pixels;
+#[cfg(test)]
 pub(crate) mod raster;
 
 pub use basemap::{Basemap, Shown, TileState};

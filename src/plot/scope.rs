@@ -22,9 +22,7 @@ pub fn draw_scope<DB: DrawingBackend>(
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
     area.fill(&theme.background)?;
-    let font = ("sans-serif", 12.0 * scale)
-        .into_font()
-        .color(&theme.foreground);
+    let font = theme.text(scale);
     let amp = samples
         .iter()
         .map(|s| s.1.abs())
@@ -85,18 +83,9 @@ pub fn draw_scope<DB: DrawingBackend>(
             .filter(|&&t| visible(t))
             .map(|&t| PathElement::new(vec![(rel(t), -1.6), (rel(t), 1.6)], step_style)),
     )?;
-    // Runs of samples without a gap.
-    let mut runs: Vec<&[ScopePoint]> = Vec::new();
-    let mut from = 0;
-    for i in 1..=samples.len() {
-        if i == samples.len() || samples[i].0 - samples[i - 1].0 > 0.5 {
-            runs.push(&samples[from..i]);
-            from = i;
-        }
-    }
     let pll_style = ShapeStyle::from(&theme.gnss).stroke_width(px(1.5));
     let acc_style = ShapeStyle::from(&theme.track).stroke_width(px(2.0));
-    for run in runs {
+    for run in runs(samples) {
         let wave: Vec<(f64, f64)> = run
             .iter()
             .filter(|s| visible(s.0))
@@ -108,7 +97,30 @@ pub fn draw_scope<DB: DrawingBackend>(
             acc_style,
         ))?;
     }
-    // Key, above the plot.
+    draw_key(area, theme, &font, scale)
+}
+
+/// Runs of samples without a gap (samples further apart than 0.5 s).
+fn runs(samples: &[ScopePoint]) -> Vec<&[ScopePoint]> {
+    let mut runs: Vec<&[ScopePoint]> = Vec::new();
+    let mut from = 0;
+    for i in 1..=samples.len() {
+        if i == samples.len() || samples[i].0 - samples[i - 1].0 > 0.5 {
+            runs.push(&samples[from..i]);
+            from = i;
+        }
+    }
+    runs
+}
+
+/// The key, above the plot: each series' colour and name.
+fn draw_key<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    theme: &Theme,
+    font: &TextStyle,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
     let (x0, y0) = (px(40.0) as i32, px(4.0) as i32);
     let mut x = x0;
     for (label, colour) in [
@@ -124,7 +136,7 @@ pub fn draw_scope<DB: DrawingBackend>(
             ShapeStyle::from(&colour).stroke_width(px(3.0)),
         ))?;
         area.draw(&Text::new(label, (x + px(20.0) as i32, y0), font.clone()))?;
-        let (w, _) = area.estimate_text_size(label, &font)?;
+        let (w, _) = area.estimate_text_size(label, font)?;
         x += px(32.0) as i32 + w as i32;
     }
     Ok(())

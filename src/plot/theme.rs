@@ -1,5 +1,5 @@
 //! The colour schemes every plot draws with.
-//! May import: plotters' colours only; never `web`, `live` or `eval`.
+//! May import: plotters' colours and text styles only; never `web`, `live` or `eval`.
 
 use plotters::prelude::*;
 
@@ -55,4 +55,12 @@ impl Theme {
         pdr: RGBColor(0xc3, 0x8b, 0xe0),
         smoothed: RGBColor(0x3f, 0xd0, 0xbb),
     };
+
+    /// The plots' text: sans-serif of 12 CSS pixels in the foreground colour, at `scale`
+    /// device pixels per CSS pixel.
+    pub fn text(&self, scale: f64) -> TextStyle<'static> {
+        ("sans-serif", 12.0 * scale)
+            .into_font()
+            .color(&self.foreground)
+    }
 }

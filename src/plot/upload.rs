@@ -5,7 +5,7 @@
 //! One file each: the map (`map`), the diagnostics plots (`plots`), the decimation of their
 //! signals to pixel columns (`decimate`), the unwrapping of their headings (`heading`), the
 //! height and floor plot's series (`height`), the fusion plot's series and ±1σ bands
-//! (`fusion`), the colours of the activities, carrying modes and floors, with the titles and keys
+//! (`fusion`), every plot's series computed apart from their drawing (`series`), the colours of the activities, carrying modes and floors, with the titles and keys
 //! (`palette`), the time axis's gestures (`time_axis`), the plots' legibility test
 //! (`legibility`) and the ellipse (`ellipse`).
 //! May import: `engine`, `analysis` and the rest of `plot`; never `web`, `live` or `eval`.
@@ -18,6 +18,7 @@ mod height;
 mod map;
 mod palette;
 mod plots;
+mod series;
 mod time_axis;
 
 #[cfg(test)]
@@ -25,9 +26,10 @@ pub(crate) mod legibility;
 
 pub use crate::plot::MapFrame;
 pub use ellipse::draw_ellipse;
-pub use map::{draw_map, pdr_points, pick_step};
+pub use map::{draw_map, pick_step};
 pub use palette::{activity_colour, floor_colour};
-pub use plots::{draw_plot, draw_plot_area, Plot};
+pub use plots::draw_plot_area;
+pub use series::Plot;
 pub use time_axis::TimeAxis;
 
 #[cfg(test)]
@@ -71,7 +73,7 @@ mod tests {
             (Plot::Fusion, t.track),
         ] {
             let (r, px) = raster::new(600, 200);
-            let (left, right) = draw_plot(
+            let ((left, right), _) = draw_plot_area(
                 &r.into_drawing_area(),
                 &a,
                 plot,
@@ -97,7 +99,7 @@ mod tests {
         assert!(axes.iter().all(|x| *x == axes[0]), "{axes:?}");
         // The heading correction is drawn too (dots on the fusion plot's right axis).
         let (r, px) = raster::new(600, 200);
-        draw_plot(
+        draw_plot_area(
             &r.into_drawing_area(),
             &a,
             Plot::Fusion,

@@ -20,9 +20,7 @@ pub fn draw_ellipse<DB: DrawingBackend>(
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let px = |v: f64| (v * scale).round().max(1.0) as u32;
     area.fill(&theme.background)?;
-    let font = ("sans-serif", 12.0 * scale)
-        .into_font()
-        .color(&theme.foreground);
+    let font = theme.text(scale);
     let Some(step) = a.steps.get(k) else {
         area.draw(&Text::new(
             "no step selected",

@@ -3,7 +3,8 @@
 //! block of one colour (compiled for tests only).
 //! May import: the plots, the raster and the analysis; never `web`, `live` or `eval`.
 
-use super::plots::{draw_plot_area, Plot};
+use super::plots::draw_plot_area;
+use super::series::Plot;
 use crate::analysis::Analysis;
 use crate::plot::raster;
 use crate::plot::Theme;

@@ -4,13 +4,15 @@
 use super::palette::floor_colour;
 use crate::analysis::Analysis;
 use crate::plot::basemap::{credit_line, map_chart_under, Basemap};
-use crate::plot::frame::{frame_of, legend, north_and_scale, start_end, MapFrame, Mark};
+use crate::plot::frame::{
+    accuracy_rings, frame_of, legend, north_and_scale, start_end, MapChart, MapFrame, Mark,
+};
 use crate::plot::theme::Theme;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// The PDR track's points in the map's frame (the fixes' frame when there are fixes).
-pub fn pdr_points(a: &Analysis) -> Vec<(f64, f64)> {
+fn pdr_points(a: &Analysis) -> Vec<(f64, f64)> {
     let (oe, on) = a.pdr_offset;
     std::iter::once((oe, on))
         .chain(a.steps.iter().map(|s| (s.east_m + oe, s.north_m + on)))
@@ -58,18 +60,9 @@ pub fn draw_map<DB: DrawingBackend>(
         .chain(a.fixes.iter().map(|f| (f[1], f[2])));
     let mut chart = map_chart_under(area, pts, bounds, basemap.as_deref_mut(), theme, scale)?;
     let ring = ShapeStyle::from(&theme.gnss.mix(0.35)).stroke_width(px(1.0));
-    let step = (a.fixes.len() / 300).max(1);
-    let circles: Vec<Circle<(f64, f64), u32>> = a
-        .fixes
-        .iter()
-        .step_by(step)
-        .map(|f| {
-            let p0 = chart.backend_coord(&(f[1], f[2]));
-            let p1 = chart.backend_coord(&(f[1] + f[3], f[2]));
-            Circle::new((f[1], f[2]), (p1.0 - p0.0).unsigned_abs().max(1), ring)
-        })
-        .collect();
-    chart.draw_series(circles)?;
+    let every = (a.fixes.len() / 300).max(1);
+    let rings = a.fixes.iter().step_by(every).map(|f| (f[1], f[2], f[3]));
+    accuracy_rings(&mut chart, rings, ring)?;
     chart.draw_series(
         a.fixes
             .iter()
@@ -97,41 +90,14 @@ pub fn draw_map<DB: DrawingBackend>(
     // per floor, and the legend names the floors.
     let floors = a.floors();
     let by_floor = floors.len() > 1;
-    let main = if fused.is_empty() { &pdr } else { &fused };
-    let main_floors: Vec<i32> = if fused.is_empty() {
-        std::iter::once(0)
-            .chain(a.steps.iter().map(|s| s.floor))
-            .collect()
-    } else {
-        a.fused.iter().map(|f| floor_at(a, f[0])).collect()
+    let tracks = Tracks {
+        pdr: &pdr,
+        fused: &fused,
+        smoothed: &smoothed,
+        pdr_colour,
+        by_floor,
     };
-    let draw_line = |chart: &mut _, path: &[(f64, f64)], colour: RGBColor| {
-        draw_path(chart, path, ShapeStyle::from(&colour).stroke_width(px(2.5)))
-    };
-    if !(by_floor && fused.is_empty()) {
-        draw_line(&mut chart, &pdr, pdr_colour)?;
-    }
-    draw_line(&mut chart, &smoothed, theme.smoothed)?;
-    if !by_floor || fused.is_empty() {
-        draw_line(&mut chart, &fused, theme.track)?;
-    }
-    if by_floor {
-        // Runs of one floor, each joined to the next run's first point so that the line stays
-        // whole.
-        let mut from = 0;
-        for k in 1..=main.len() {
-            if k < main.len() && main_floors[k] == main_floors[from] {
-                continue;
-            }
-            let end = (k + 1).min(main.len());
-            draw_line(
-                &mut chart,
-                &main[from..end],
-                floor_colour(main_floors[from], theme),
-            )?;
-            from = k;
-        }
-    }
+    draw_tracks(&mut chart, a, &tracks, theme, scale)?;
     start_end(
         &mut chart,
         if fused.is_empty() { &pdr } else { &fused },
@@ -153,36 +119,25 @@ pub fn draw_map<DB: DrawingBackend>(
     } else {
         Vec::new()
     };
-    let mut entries = Vec::new();
-    if !(by_floor && fused.is_empty()) {
-        entries.push((
-            if fused.is_empty() {
-                "PDR track"
-            } else {
-                "PDR only"
-            },
-            Mark::Line(pdr_colour),
-        ));
-    }
-    if !fused.is_empty() {
-        if !by_floor {
-            entries.push(("fused", Mark::Line(theme.track)));
-        }
-        entries.push(("smoothed", Mark::Line(theme.smoothed)));
-    }
-    for (name, c) in &floor_names {
-        entries.push((name.as_str(), Mark::Line(*c)));
-    }
-    if !a.fixes.is_empty() {
-        entries.push(("GNSS fixes", Mark::Dot(theme.gnss)));
-    }
-    if !truth.is_empty() {
-        entries.push(("truth (aligned)", Mark::Line(theme.reference)));
-    }
+    let entries = entries(a, &tracks, !truth.is_empty(), &floor_names, theme);
     legend(area, &chart, &entries, theme, scale)?;
     north_and_scale(area, &mut chart, theme, scale)?;
-    let (rx, ry) = chart.plotting_area().get_pixel_range();
+    no_heading_note(area, &chart, a, theme, scale)?;
+    credit_line(area, &chart, basemap.as_deref(), theme, scale)?;
+    Ok(frame_of(&chart))
+}
+
+/// Says, over the middle of the map, why a walk without a heading has no track.
+fn no_heading_note<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    chart: &MapChart<'_, DB>,
+    a: &Analysis,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
     if let Some(why) = a.no_heading_why() {
+        let (rx, ry) = chart.plotting_area().get_pixel_range();
         let font = ("sans-serif", 13.0 * scale)
             .into_font()
             .color(&theme.foreground);
@@ -198,8 +153,100 @@ pub fn draw_map<DB: DrawingBackend>(
             font,
         ))?;
     }
-    credit_line(area, &chart, basemap.as_deref(), theme, scale)?;
-    Ok(frame_of(&chart))
+    Ok(())
+}
+
+/// The map's tracks, in the fixes' frame: the PDR track, the fused and smoothed ones (empty
+/// without fixes), the PDR track's colour, and whether the main track is coloured by floor.
+struct Tracks<'a> {
+    pdr: &'a [(f64, f64)],
+    fused: &'a [(f64, f64)],
+    smoothed: &'a [(f64, f64)],
+    pdr_colour: RGBColor,
+    by_floor: bool,
+}
+
+/// Draws the PDR, smoothed and fused tracks, the main one (the fused one, else the PDR track)
+/// in runs of one floor's colour when the walk visits more than one.
+fn draw_tracks<DB: DrawingBackend>(
+    chart: &mut MapChart<'_, DB>,
+    a: &Analysis,
+    t: &Tracks<'_>,
+    theme: &Theme,
+    scale: f64,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let px = |v: f64| (v * scale).round().max(1.0) as u32;
+    let (fused, by_floor) = (t.fused, t.by_floor);
+    let main = if fused.is_empty() { t.pdr } else { fused };
+    let main_floors: Vec<i32> = if fused.is_empty() {
+        std::iter::once(0)
+            .chain(a.steps.iter().map(|s| s.floor))
+            .collect()
+    } else {
+        a.fused.iter().map(|f| floor_at(a, f[0])).collect()
+    };
+    let draw_line = |chart: &mut _, path: &[(f64, f64)], colour: RGBColor| {
+        draw_path(chart, path, ShapeStyle::from(&colour).stroke_width(px(2.5)))
+    };
+    if !(by_floor && fused.is_empty()) {
+        draw_line(chart, t.pdr, t.pdr_colour)?;
+    }
+    draw_line(chart, t.smoothed, theme.smoothed)?;
+    if !by_floor || fused.is_empty() {
+        draw_line(chart, fused, theme.track)?;
+    }
+    if by_floor {
+        // Runs of one floor, each joined to the next run's first point so that the line stays
+        // whole.
+        let mut from = 0;
+        for k in 1..=main.len() {
+            if k < main.len() && main_floors[k] == main_floors[from] {
+                continue;
+            }
+            let end = (k + 1).min(main.len());
+            draw_line(
+                chart,
+                &main[from..end],
+                floor_colour(main_floors[from], theme),
+            )?;
+            from = k;
+        }
+    }
+    Ok(())
+}
+
+/// The legend's entries: the tracks drawn, the floors' colours, the fixes and the truth.
+fn entries<'a>(
+    a: &Analysis,
+    t: &Tracks<'_>,
+    truth: bool,
+    floor_names: &'a [(String, RGBColor)],
+    theme: &Theme,
+) -> Vec<(&'a str, Mark)> {
+    let (fused, by_floor) = (!t.fused.is_empty(), t.by_floor);
+    let mut entries = Vec::new();
+    if !by_floor || fused {
+        entries.push((
+            if fused { "PDR only" } else { "PDR track" },
+            Mark::Line(t.pdr_colour),
+        ));
+    }
+    if fused {
+        if !by_floor {
+            entries.push(("fused", Mark::Line(theme.track)));
+        }
+        entries.push(("smoothed", Mark::Line(theme.smoothed)));
+    }
+    for (name, c) in floor_names {
+        entries.push((name.as_str(), Mark::Line(*c)));
+    }
+    if !a.fixes.is_empty() {
+        entries.push(("GNSS fixes", Mark::Dot(theme.gnss)));
+    }
+    if truth {
+        entries.push(("truth (aligned)", Mark::Line(theme.reference)));
+    }
+    entries
 }
 
 /// The floor of the step nearest to time `t` (0 without steps).
@@ -209,7 +256,7 @@ fn floor_at(a: &Analysis, t: f64) -> i32 {
 
 /// Draws a path as one line.
 fn draw_path<DB: DrawingBackend>(
-    chart: &mut crate::plot::frame::MapChart<'_, DB>,
+    chart: &mut MapChart<'_, DB>,
     path: &[(f64, f64)],
     style: ShapeStyle,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {

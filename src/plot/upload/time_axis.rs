@@ -11,7 +11,7 @@ pub struct TimeAxis {
     /// The whole log, s: zoom and pan stay inside it.
     pub full: (f64, f64),
     /// Where the axis lies, pixels from the canvas's left edge (in the pointer's pixels): the
-    /// columns [`draw_plot`](super::plots::draw_plot) returns, left and right.
+    /// columns [`draw_plot_area`](super::plots::draw_plot_area) returns, left and right.
     pub px: (f64, f64),
 }
 
