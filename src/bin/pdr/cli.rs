@@ -330,7 +330,9 @@ pub fn main() -> ExitCode {
 
 /// The recipe of `--recipe`, read, when given.
 fn load_recipe(path: Option<&Path>) -> Result<Option<pdr::io::import::recipe::Recipe>, String> {
-    path.map(pdr::io::import::recipe::load).transpose()
+    path.map(pdr::io::import::recipe::load)
+        .transpose()
+        .map_err(String::from)
 }
 
 impl ScenarioArg {
