@@ -4,27 +4,24 @@
 //!
 //! Each carrying mode walks along its own source ([`super::Heading`]): the device's yaw in the
 //! hand, the acceleration heading elsewhere. The acceleration heading is absolute but only as
-//! good as its forward sign and its axis, which a limb can turn (on the simulator a swinging
-//! hand reads it 176° off, 3 of the 8 pocket poses 120–150°); the yaw in the hand is what a
-//! walker looks along. So at a change the walker is taken to go on the way they went: the steps
+//! good as its forward sign and its axis, which a limb can turn by up to half a turn; the yaw
+//! in the hand is what a walker looks along. So at a change the walker is taken to go on the way they went: the steps
 //! keep the heading carried while [`Continuity::steps`] acceleration headings of the new mode are
 //! gathered, and the offset from their circular mean to the heading carried, weighed by how far
 //! each is trusted (below), is then added to every acceleration heading, until the next change.
 //!
 //! - **A change** is one of the source (the hand's yaw to the acceleration heading), or one of
 //!   the mode with the phone moved in the body ([`moved`]). A vote that flickers between two
-//!   modes of one source while the phone stays where it was (a pocket on stairs: up to 13 times
-//!   on the simulator) changes nothing; carried there, it took the simulated stairs walks' end
-//!   errors from 4–10 m to 15–22 m.
+//!   modes of one source while the phone stays where it was (a pocket on stairs) changes
+//!   nothing: carrying the heading there made the simulated stairs walks' ends worse.
 //! - **The heading carried** is the median of the last [`RECENT`] steps' walked at least
 //!   [`Continuity::lag_s`] before the change: the mode is a vote over seconds, so the phone was
 //!   already moving for that long, and the steps meanwhile can walk its move (taken from the
-//!   last 3 steps, an ear's move into a swinging hand was carried 180° off on 4 of 8 simulated
-//!   walks). Only a recent one: the last step at most [`Continuity::max_gap_s`] before (a
+//!   last steps, an ear's move into a swinging hand was carried half a turn off). Only a recent one: the last step at most [`Continuity::max_gap_s`] before (a
 //!   walker who stood still longer may have turned). Nor from a step at or after one whose limb
 //!   turned its way forward (the thigh's sign or the swinging arm's vote, [`Walked::flipped`]):
-//!   that is the phone on its way too, more than 2 s before the vote turned (on the simulator a
-//!   swinging hand's arm vote turned over for 3–7 steps while the phone went to the pocket).
+//!   that is the phone on its way too, more than 2 s before the vote turned (a swinging hand's
+//!   arm vote turns over for a few steps while the phone goes to the pocket).
 //! - **How much of the offset:** the heading carried and the new source's are weighed by how
 //!   far each source is off over a walk ([`SourceErrors`]): from a pocket into a swinging hand
 //!   or to the ear the new source keeps nearly its own heading; from the hand's yaw into a
@@ -41,7 +38,7 @@
 //! - **The hand's yaw** is the walker's own: it ends a carry and is taken as it is.
 //! - [`Continuity::sign_only`] keeps only the offset's sign: 180° when the mean is more than
 //!   90° off (and the heading carried is trusted more), else 0 (measured worse on the
-//!   simulator: a pocket 15.7° against 11.3°).
+//!   simulator; docs/methods/mode-change.md).
 
 use super::super::carry::CarryMode;
 use super::super::math::{wrap_2pi, wrap_pi};
@@ -88,7 +85,7 @@ pub struct Continuity {
     /// While the phone moves in the body ([`moved`]) and no change is open, an acceleration
     /// heading's step walks the heading walked before the move: the mode's vote turns 2 s or
     /// more after the phone began to move, and meanwhile the acceleration heading is the
-    /// move's (on the simulator 30–90° off over the 5 s from a change onto a limb).
+    /// move's.
     pub hold_while_moved: bool,
 }
 
@@ -100,21 +97,21 @@ pub struct Continuity {
 /// turned when the two are more than 90° apart).
 ///
 /// The defaults are the simulator's (`examples/carry_heading`, seeds 1–8, one mode per walk:
-/// the RMS over the walks of each walk's mean signed heading error, rounded up to 0.5°): no
-/// log here has a pocket, a swinging hand, the ear or a bag with a heading truth.
+/// the RMS over the walks of each walk's mean signed heading error, rounded up to 0.5°; the
+/// values measured are in docs/methods/mode-change.md).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct SourceErrors {
-    /// The device's yaw in the hand (0.13° on the simulator; a real yaw's field is bent
-    /// indoors, but it is still the walker's own line).
+    /// The device's yaw in the hand (a real yaw's field is bent indoors, but it is still the
+    /// walker's own line).
     pub yaw: f64,
-    /// The acceleration heading in a pocket (6.92°).
+    /// The acceleration heading in a pocket.
     pub pocket: f64,
-    /// In a swinging hand (1.89°).
+    /// In a swinging hand.
     pub swinging: f64,
-    /// At the ear (1.29°).
+    /// At the ear.
     pub ear: f64,
-    /// In a bag (8.04°).
+    /// In a bag.
     pub bag: f64,
     /// In the hand or before the mode is known: the largest.
     pub other: f64,
@@ -231,8 +228,8 @@ fn walked_before(cfg: &Continuity, t: f64, recent: &VecDeque<Walked>) -> Option<
 /// Whether the [`KEPT`] steps up to `t` were walked without a stop (no gap over 1 s, longer than
 /// a step of the slowest walking, 1.2 Hz): a walk
 /// under way for that long, so that gravity's turn in the device is the phone's move, not a
-/// walker who stood and set off again, nor a hand that began to swing (on the simulator a
-/// swinging hand's first steps read 160–180° off, and held that for 10 steps).
+/// walker who stood and set off again, nor a hand that began to swing (a swinging hand's first
+/// steps can read half a turn off for several steps).
 fn walked_on(t: f64, recent: &VecDeque<Walked>) -> bool {
     let times = recent.iter().map(|r| r.t).chain([t]);
     recent.len() == KEPT && times.clone().zip(times.skip(1)).all(|(a, b)| b - a <= 1.0)
