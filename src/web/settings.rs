@@ -2,7 +2,7 @@
 //! described.
 //! May import: `settings`.
 
-use super::{settings_from, to_js, to_json_value, to_value};
+use super::{to_js, to_json_value, to_value};
 use crate::settings::{compare_preset, CHOICES};
 use wasm_bindgen::prelude::*;
 
@@ -17,13 +17,6 @@ pub fn choices() -> Result<JsValue, JsError> {
 #[wasm_bindgen]
 pub fn compare_settings() -> Result<JsValue, JsError> {
     to_json_value(&compare_preset())
-}
-
-/// How a configuration is described to people ("PLL (Basso 2016), tip-to-tail (2016), …"), or
-/// an error naming the setting that is wrong.
-#[wasm_bindgen]
-pub fn settings_label(settings: JsValue) -> Result<String, JsError> {
-    settings_from(settings)?.label().map_err(to_js)
 }
 
 /// What upload mode runs for a row of its form: the choices `set` (`{"detector.kind": …}`) and
