@@ -45,6 +45,13 @@ impl Fnv {
     }
 }
 
+/// The hash of a drawing's pixels.
+fn pixel_hash(px: &raster::Pixels) -> u64 {
+    let mut f = Fnv::new();
+    f.pixels(px);
+    f.0
+}
+
 /// Compares the hashes with the recorded ones, printing the whole table when any differs.
 fn check(got: &[(String, u64)], want: &[(&str, u64)]) {
     let differ: Vec<&str> = got
@@ -245,9 +252,10 @@ mod tests {
                     out.push((format!("map zoomed {name} {size} {theme_name}"), f.0));
                     let (r, px) = raster::new(h.min(w), h.min(w));
                     draw_ellipse(&r.into_drawing_area(), a, 40, &theme, scale).unwrap();
-                    let mut f = Fnv::new();
-                    f.pixels(&px);
-                    out.push((format!("ellipse {name} {size} {theme_name}"), f.0));
+                    out.push((
+                        format!("ellipse {name} {size} {theme_name}"),
+                        pixel_hash(&px),
+                    ));
                 }
             }
         }
@@ -272,9 +280,7 @@ mod tests {
             for (size, w, h, scale) in MAP_SIZES {
                 let (r, px) = raster::new(w, h);
                 crate::plot::draw_live(&r.into_drawing_area(), &view, None, &theme, scale).unwrap();
-                let mut f = Fnv::new();
-                f.pixels(&px);
-                out.push((format!("live map {size} {theme_name}"), f.0));
+                out.push((format!("live map {size} {theme_name}"), pixel_hash(&px)));
             }
             for (size, w, h, scale) in PLOT_SIZES {
                 let (r, px) = raster::new(w, h);
@@ -288,9 +294,7 @@ mod tests {
                     scale,
                 )
                 .unwrap();
-                let mut f = Fnv::new();
-                f.pixels(&px);
-                out.push((format!("scope {size} {theme_name}"), f.0));
+                out.push((format!("scope {size} {theme_name}"), pixel_hash(&px)));
             }
         }
         out
@@ -355,9 +359,7 @@ mod tests {
                     scale,
                 )
                 .unwrap();
-                let mut f = Fnv::new();
-                f.pixels(&px);
-                out.push((format!("track {size} {theme_name}"), f.0));
+                out.push((format!("track {size} {theme_name}"), pixel_hash(&px)));
                 for (k, fit) in fits.iter().enumerate() {
                     let (r, px) = raster::new(w, h);
                     crate::plot::draw_calibration(
@@ -369,9 +371,10 @@ mod tests {
                         scale,
                     )
                     .unwrap();
-                    let mut f = Fnv::new();
-                    f.pixels(&px);
-                    out.push((format!("calibration {k} {size} {theme_name}"), f.0));
+                    out.push((
+                        format!("calibration {k} {size} {theme_name}"),
+                        pixel_hash(&px),
+                    ));
                 }
             }
         }

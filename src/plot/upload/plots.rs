@@ -259,7 +259,17 @@ fn draw_accel<DB: DrawingBackend>(
             pen.line(pen.theme.reference, 2.0),
         )
     }))?;
-    for run in &l.signal {
+    draw_signal(chart, &l.signal, pen)?;
+    Ok(())
+}
+
+/// A signal's runs (a gap breaks the line) in the track's colour at the signal's width.
+fn draw_signal<DB: DrawingBackend>(
+    chart: &mut PlotChart<'_, DB>,
+    runs: &[Vec<(f64, f64)>],
+    pen: &Pen<'_>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    for run in runs {
         chart.draw_series(LineSeries::new(
             run.clone(),
             pen.line(pen.theme.track, pen.signal_w),
@@ -286,12 +296,7 @@ fn draw_sigma<DB: DrawingBackend>(
     ] {
         chart.draw_series(LineSeries::new([(x0, v), (x1, v)], pen.line(c, 1.0)))?;
     }
-    for run in &l.signal {
-        chart.draw_series(LineSeries::new(
-            run.clone(),
-            pen.line(pen.theme.track, pen.signal_w),
-        ))?;
-    }
+    draw_signal(chart, &l.signal, pen)?;
     Ok(())
 }
 
@@ -367,12 +372,7 @@ fn draw_height<DB: DrawingBackend>(
         h.floor.iter().copied(),
         pen.line(theme.gnss, 2.0),
     ))?;
-    for run in &h.height {
-        chart.draw_series(LineSeries::new(
-            run.clone(),
-            pen.line(theme.track, pen.signal_w),
-        ))?;
-    }
+    draw_signal(chart, &h.height, pen)?;
     if step_lines {
         chart.draw_series(
             at_steps
