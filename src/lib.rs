@@ -4,6 +4,7 @@
 //! Layers point down only (each module's first lines say what it may import; `tests/layers.rs`
 //! checks it), from the bottom up:
 //! - [`engine`]: pure maths and state (no files, no browsers). The papers' methods.
+//! - [`view`]: a piece of the page as the engine describes it (elements, attributes, words).
 //! - [`settings`]: the one front door for the engine's configuration.
 //! - [`io`]: the project's own log format, the import of other formats, track exports.
 //! - [`sim`]: a gait simulator with known truth, and its walks written in every format.
@@ -35,6 +36,7 @@ pub mod live;
 pub mod plot;
 pub mod settings;
 pub mod sim;
+pub mod view;
 
 #[cfg(target_arch = "wasm32")]
 pub mod web;

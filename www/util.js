@@ -51,6 +51,17 @@ export function el(tag, props = {}, ...children) {
   return e;
 }
 
+/** The elements a view tree from the engine describes (src/view.rs): `[tag, {attribute: value},
+ * [children]]`, a child being a tree or text. */
+export function render(node) {
+  if (typeof node === 'string') return node;
+  const [tag, attrs, children] = node;
+  const e = document.createElement(tag);
+  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+  e.append(...children.map(render));
+  return e;
+}
+
 /** `name` as a file name: every run of characters other than letters, digits, `_` (and those in
  * `keep`, `.-` by default) becomes one `_`. */
 export const safeName = (name, keep = '.-') => name.replace(new RegExp(`[^\\w${keep}]+`, 'g'), '_');
