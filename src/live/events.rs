@@ -261,7 +261,9 @@ pub fn browser_events(records: &[Record], platform: Platform) -> Vec<BrowserEven
 /// `max_touch_points` > 1), not from `DeviceMotionEvent.requestPermission`, which recent
 /// Chromium has too.
 pub fn is_ios(user_agent: &str, max_touch_points: f64) -> bool {
-    ["iPhone", "iPad", "iPod"].iter().any(|d| user_agent.contains(d))
+    ["iPhone", "iPad", "iPod"]
+        .iter()
+        .any(|d| user_agent.contains(d))
         || (user_agent.contains("Macintosh") && max_touch_points > 1.0)
 }
 
