@@ -1,11 +1,12 @@
 //! The embedded demo walks, run through the default pipeline; the web page and `pdr demo` show
 //! the same figures.
-//! May import: `engine`, `sim`, `eval`.
+//! May import: `engine`, `sim`, `eval`, `analysis` (numbers as the page writes them).
 //!
 //! - [`run_demo`]: the simulator's [`crate::sim::scenarios::demo_walk`], PDR only;
 //! - [`run_fusion_demo`]: [`crate::sim::scenarios::gnss_city_walk`], with GNSS, through the
 //!   fusion filter and the smoother.
 
+use crate::analysis::fixed;
 use crate::engine::fusion::FusedStep;
 use crate::engine::{replay, PipelineConfig, StepRecord};
 use crate::sim::scenarios;
@@ -181,5 +182,96 @@ pub fn run_fusion_demo() -> FusionDemoSummary {
         pdr: pdr.iter().map(|x| (x.1, x.2)).collect(),
         fused: fused.iter().map(|x| (x.east_m, x.north_m)).collect(),
         smoothed: smoothed.iter().map(|x| (x.east_m, x.north_m)).collect(),
+    }
+}
+
+impl DemoSummary {
+    /// The figures in words for the page's elements: `(element id, text)`.
+    pub fn texts(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("steps", self.steps.to_string()),
+            ("steps-truth", format!("true: {}", self.truth_steps)),
+            ("distance", fixed(self.distance_m, 1)),
+            (
+                "distance-truth",
+                format!("true: {} m", fixed(self.truth_distance_m, 1)),
+            ),
+            ("end-error", fixed(self.end_error_m, 1)),
+        ]
+    }
+}
+
+impl FusionDemoSummary {
+    /// The figures and the caption in words for the page's elements: `(element id, text)`.
+    pub fn texts(&self) -> Vec<(&'static str, String)> {
+        let caption = format!(
+            "{} fixes, {} refused as outliers. Learnt: step length × {} (true {}), heading {}° \
+             (true {}°), declination {}° from the World Magnetic Model. Grey: the true path.",
+            self.fixes,
+            self.fixes_gated,
+            fixed(self.scale, 3),
+            fixed(self.true_scale, 3),
+            fixed(self.heading_correction_deg, 1),
+            fixed(self.true_heading_correction_deg, 0).replacen('-', "−", 1),
+            fixed(self.declination_deg, 1),
+        );
+        vec![
+            ("gnss-p75", fixed(self.gnss_p75_m, 1)),
+            ("fused-p75", fixed(self.fused_p75_m, 1)),
+            ("smoothed-p75", fixed(self.smoothed_p75_m, 1)),
+            (
+                "fused-note",
+                format!("PDR only: {} m", fixed(self.pdr_p75_m, 1)),
+            ),
+            ("fusion-caption", caption),
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figures_in_words() {
+        let d = DemoSummary {
+            steps: 41,
+            truth_steps: 40,
+            distance_m: 30.25,
+            truth_distance_m: 30.0,
+            end_error_m: 1.04,
+            duration_s: 30.0,
+            samples: 3000,
+            track: Vec::new(),
+            truth_path: Vec::new(),
+        };
+        let t = d.texts();
+        assert_eq!(t[0], ("steps", "41".to_string()));
+        assert_eq!(t[1].1, "true: 40");
+        assert_eq!(t[2].1, "30.3", "a tie rounds up as toFixed does");
+        assert_eq!(t[3].1, "true: 30.0 m");
+        assert_eq!(t[4], ("end-error", "1.0".to_string()));
+    }
+
+    #[test]
+    fn fusion_caption_in_words() {
+        let f = FusionDemoSummary {
+            scale: 0.93456,
+            true_scale: 1.0 / 1.07,
+            heading_correction_deg: -4.04,
+            true_heading_correction_deg: -4.0,
+            declination_deg: 2.5,
+            fixes: 60,
+            fixes_gated: 3,
+            pdr_p75_m: 12.34,
+            ..run_fusion_demo()
+        };
+        let t = f.texts();
+        assert_eq!(t[3], ("fused-note", "PDR only: 12.3 m".to_string()));
+        assert_eq!(
+            t[4].1,
+            "60 fixes, 3 refused as outliers. Learnt: step length × 0.935 (true 0.935), heading -4.0° \
+             (true −4°), declination 2.5° from the World Magnetic Model. Grey: the true path."
+        );
     }
 }

@@ -25,7 +25,7 @@ const ALLOWED: &[(&str, &[&str])] = &[
     ("live", &["engine", "io", "view"]),
     ("analysis", &["engine", "io", "eval", "view"]),
     ("plot", &["engine", "analysis"]),
-    ("demo", &["engine", "sim", "eval"]),
+    ("demo", &["engine", "sim", "eval", "analysis"]),
     (
         "web",
         &[

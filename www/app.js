@@ -5,7 +5,7 @@ import { setupLive } from './live.js';
 import { setupWizard } from './wizard.js';
 import { setupUpload } from './upload.js';
 import { setupBasemap } from './basemap.js';
-import { $, dark, fit, test } from './util.js';
+import { $, dark, fill, fit, test } from './util.js';
 
 /** Fills every select marked `data-choice` with the options of the setting it is named after. */
 function fillChoices() {
@@ -33,11 +33,7 @@ async function main() {
   setupUpload();
   const demo = new Demo();
   const s = demo.summary();
-  $('steps').textContent = String(s.steps);
-  $('steps-truth').textContent = `true: ${s.truth_steps}`;
-  $('distance').textContent = s.distance_m.toFixed(1);
-  $('distance-truth').textContent = `true: ${s.truth_distance_m.toFixed(1)} m`;
-  $('end-error').textContent = s.end_error_m.toFixed(1);
+  fill(demo.texts());
 
   keepDrawn($('track'), demo);
   test.demo = { steps: s.steps, distance_m: s.distance_m, ready_ms: performance.now() };
@@ -47,14 +43,7 @@ async function main() {
   await new Promise((resolve) => setTimeout(resolve, 0));
   const fusion = new FusionDemo();
   const f = fusion.summary();
-  $('gnss-p75').textContent = f.gnss_p75_m.toFixed(1);
-  $('fused-p75').textContent = f.fused_p75_m.toFixed(1);
-  $('smoothed-p75').textContent = f.smoothed_p75_m.toFixed(1);
-  $('fused-note').textContent = `PDR only: ${f.pdr_p75_m.toFixed(1)} m`;
-  $('fusion-caption').textContent = `${f.fixes} fixes, ${f.fixes_gated} refused as outliers. ` +
-    `Learnt: step length × ${f.scale.toFixed(3)} (true ${f.true_scale.toFixed(3)}), `
-    + `heading ${f.heading_correction_deg.toFixed(1)}° (true ${f.true_heading_correction_deg.toFixed(0).replace('-', '−')}°), ` +
-    `declination ${f.declination_deg.toFixed(1)}° from the World Magnetic Model. Grey: the true path.`;
+  fill(fusion.texts());
   keepDrawn($('fusion'), fusion);
   test.demo.fusion = f;
   document.documentElement.dataset.fusion = 'ready';

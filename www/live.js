@@ -1,25 +1,18 @@
 // Live mode: sensors in, readouts and plots out, the recording into IndexedDB.
 // Event plumbing only. Every number goes to the engine (Live, in wasm) as the browser gives it;
 // the conversions (iOS sign, deg/s, angles, iOS's compass) are in src/live/events.rs.
-import { Live, live_message, recover_recording } from './pkg/pdr.js';
+import {
+  Live, Recorder, is_ios, live_controls, live_message, recording_file_name as fileName,
+  recover_recording, recovery_offer,
+} from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, fit, note, test } from './util.js';
+import { $, dark, download, fill, fit, note, test } from './util.js';
 
 // The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
 const DRAW_MS = 100; // at most ten redraws a second
 const HOLD_MS = 2000; // press-and-hold to unlock the pocket guard
-const RETRY_MS = [1000, 60_000]; // storage refused: retry after 1 s, doubling up to a minute
-const WRITE_CHUNKS = 40; // chunks per IndexedDB transaction when catching up
-
-/**
- * Whether motion events follow iOS's conventions: every browser on iOS is WebKit. Told from the
- * user agent (iPadOS reports a Mac with a touch screen), not from `requestPermission`, which
- * recent Chromium has too.
- */
-const isIos = () => /iPhone|iPad|iPod/.test(navigator.userAgent)
-  || (/Macintosh/.test(navigator.userAgent) && navigator.maxTouchPoints > 1);
 
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
 let messageList = 'live-messages';
@@ -36,8 +29,6 @@ function settings() {
   }
   return { set, profile: profiles.selected() };
 }
-
-const fileName = (started) => `pdr-${new Date(started).toISOString().slice(0, 19).replace(/[:T]/g, '-')}.pdrlog`;
 
 /** The live session with everything around it. One at a time. */
 class Session {
@@ -56,12 +47,8 @@ class Session {
     this.geoWatch = null;
     this.wakeLock = null;
     this.writes = Promise.resolve();
-    this.writing = false;
-    this.unsaved = []; // chunks not yet in IndexedDB, in order: written, or kept until downloaded
-    this.saved = { chunks: 0, chars: 0 }; // written so far
-    this.retryAt = 0;
-    this.retryMs = RETRY_MS[0];
-    this.seq = rec?.nextSeq ?? 0;
+    // The chunks not yet in IndexedDB, in order (written, or kept until downloaded), and when to write them.
+    this.recorder = rec ? new Recorder(rec.nextSeq ?? 0) : Recorder.off();
     this.handlers = [];
   }
 
@@ -205,41 +192,29 @@ class Session {
   // --- recording -----------------------------------------------------------------------
   /** Takes the engine's new log lines as the next chunk, and writes the chunks not yet saved. */
   flush() {
-    const text = this.live.take_log();
-    if (!this.rec) return this.writes;
-    if (text) {
-      const { samples, steps } = this.live.readouts();
-      this.unsaved.push({ seq: this.seq++, text, samples, steps });
-    }
+    this.live.log_to(this.recorder);
     return this.save();
   }
 
   /**
-   * Writes the unsaved chunks in order, a few per transaction (all or none of each). A chunk
-   * leaves `unsaved` only once written. When storage refuses, the chunks stay in memory, the
-   * page says so, and writing is tried again later (1 s, doubling up to a minute).
+   * Writes the batches of unsaved chunks the recorder hands out, in order, one per transaction
+   * (all or none of each), and tells it how each went. It lets a chunk go only once written;
+   * when storage refuses, the page says so and the recorder says when to try again
+   * (src/live/recorder.rs). `force`: now, the recording stops.
    */
   save(force = false) {
-    if (this.writing || !this.unsaved.length || (!force && performance.now() < this.retryAt)) return this.writes;
-    this.writing = true;
+    const rec = this.recorder;
+    if (!rec.begin(performance.now(), force)) return this.writes;
     this.writes = (async () => {
       try {
-        while (this.unsaved.length) {
-          const batch = this.unsaved.slice(0, WRITE_CHUNKS);
+        for (let batch = rec.batch(); batch.length; batch = rec.batch()) {
           await store.append(this.rec.id, batch);
-          this.unsaved.splice(0, batch.length);
-          this.saved.chunks += batch.length;
-          for (const c of batch) this.saved.chars += c.text.length;
+          rec.written();
         }
-        if (this.storageFull) { this.storageFull = false; message('storage', false); }
-        this.retryMs = RETRY_MS[0];
+        if (rec.succeeded()) message('storage', false);
       } catch (err) {
-        this.storageFull = true;
+        rec.failed(performance.now());
         message('storage', true, 'error', `(${err?.name ?? 'Error'}: ${err?.message ?? err})`);
-        this.retryAt = performance.now() + this.retryMs;
-        this.retryMs = Math.min(2 * this.retryMs, RETRY_MS[1]);
-      } finally {
-        this.writing = false;
       }
     })();
     return this.writes;
@@ -251,10 +226,11 @@ class Session {
    * else its own chunks are joined as they are.
    */
   async recording() {
-    let stored = { pieces: [] };
+    const unsaved = this.recorder.unsaved();
+    let stored;
     try {
-      stored = await store.pieces(this.rec.id, this.unsaved);
-    } catch { stored = { pieces: this.unsaved }; } // no IndexedDB at all: memory holds it all
+      stored = await store.pieces(this.rec.id, unsaved);
+    } catch { stored = { pieces: unsaved }; } // no IndexedDB at all: memory holds it all
     if (this.rec.damaged) return readRecording(stored.pieces);
     return { text: stored.pieces.map((c) => c.text).join('') };
   }
@@ -267,7 +243,8 @@ class Session {
     if (this.ended || !this.rec) return;
     this.flush();
     try {
-      if (this.unsaved.length) localStorage.setItem(store.tailKey(this.rec.id), JSON.stringify(this.unsaved));
+      const tail = this.recorder.unsaved();
+      if (tail.length) localStorage.setItem(store.tailKey(this.rec.id), JSON.stringify(tail));
     } catch { /* storage full or refused: the last batch is lost */ }
   }
 
@@ -322,7 +299,7 @@ class Session {
     this.wakeLock = null;
     this.flush();
     await this.save(true);
-    if (this.rec && !this.unsaved.length) await store.setState(this.rec.id, 'done').catch(() => {});
+    if (this.rec && !this.recorder.unsaved_count()) await store.setState(this.rec.id, 'done').catch(() => {});
     message('noSensor', false);
     this.dirty = true;
     this.lastDraw = -Infinity;
@@ -334,7 +311,7 @@ class Session {
 /** Writes the readouts into the page and the pocket guard (the words are the engine's). */
 function show(r, s) {
   const t = s.live.readout_texts(s.source, s.gnssMode ?? '');
-  for (const [id, text] of t.texts) { const el = $(id); if (el.textContent !== text) el.textContent = text; }
+  fill(t.texts);
   for (const [id, title] of t.titles) $(id).title = title;
   $('gnss-notice').hidden = !r.gnss_notice;
   $('gnss-notice').dataset.verdict = r.gnss_verdict ?? '';
@@ -361,6 +338,10 @@ function setupGuard() {
     timer = null;
     button.classList.remove('holding');
   };
+  const hold = () => {
+    button.classList.add('holding');
+    timer = setTimeout(() => { cancel(); unlock(); }, HOLD_MS);
+  };
   // Touches anywhere else do nothing.
   for (const type of ['click', 'dblclick', 'contextmenu', 'touchstart', 'touchmove', 'wheel']) {
     guard.addEventListener(type, (e) => { if (e.cancelable) e.preventDefault(); }, { passive: false });
@@ -368,16 +349,12 @@ function setupGuard() {
   button.addEventListener('pointerdown', (e) => {
     e.preventDefault();
     button.setPointerCapture?.(e.pointerId);
-    button.classList.add('holding');
-    timer = setTimeout(() => { cancel(); unlock(); }, HOLD_MS);
+    hold();
   });
   for (const type of ['pointerup', 'pointercancel', 'pointerleave', 'lostpointercapture']) button.addEventListener(type, cancel);
   // Keyboard users: hold Space or Enter.
   button.addEventListener('keydown', (e) => {
-    if ((e.key === ' ' || e.key === 'Enter') && !timer && !e.repeat) {
-      button.classList.add('holding');
-      timer = setTimeout(() => { cancel(); unlock(); }, HOLD_MS);
-    }
+    if ((e.key === ' ' || e.key === 'Enter') && !timer && !e.repeat) hold();
   });
   button.addEventListener('keyup', cancel);
 }
@@ -387,10 +364,7 @@ let current = null;
 let lastFinished = null;
 
 function controls(state) {
-  $('start').hidden = state === 'recording';
-  $('stop').hidden = state !== 'recording';
-  $('lock').hidden = state !== 'recording';
-  $('download').hidden = state !== 'stopped';
+  for (const [id, hidden] of live_controls(state)) $(id).hidden = hidden;
   $('live-settings').disabled = state === 'recording';
   document.documentElement.dataset.live = state;
 }
@@ -419,8 +393,8 @@ async function begin(makeLive, rec, opts = {}) {
   delete document.documentElement.dataset.source; // set again once the sensors listen
   const live = !opts.onTick;
   messageList = opts.messages ?? 'live-messages';
-  $('guard-title').textContent = opts.title ?? 'Recording — screen locked for the pocket';
-  const ios = isIos();
+  $('guard-title').textContent = opts.title ?? live_message('guardTitle');
+  const ios = is_ios(navigator.userAgent, navigator.maxTouchPoints); // motion events follow iOS's conventions
   if (!(await askMotionPermission())) {
     message('motionDenied', true, 'error');
     if (live) controls('idle');
@@ -442,8 +416,8 @@ async function begin(makeLive, rec, opts = {}) {
   test.live = {
     get readouts() { return session.live.readouts(); },
     get source() { return session.source; },
-    get unsaved() { return session.unsaved.length; },
-    get saved() { return { ...session.saved, unsavedChars: session.unsaved.reduce((n, c) => n + c.text.length, 0) }; },
+    get unsaved() { return session.recorder.unsaved_count(); },
+    get saved() { return session.recorder.saved(); },
     draw: () => session.draw(),
   };
   if (live) {
@@ -500,14 +474,12 @@ async function stop() {
 
 /**
  * What the engine reads of a recording's stored pieces: `{text, samples, steps, skipped_lines,
- * missing_pieces, notes}`; `text` is the pieces as they are when they are whole, else every good
- * line (see `recover_recording`). `steps` is what the page counted when the last piece was taken.
+ * missing_pieces, notes, damage}`; `text` is the pieces as they are when they are whole, else
+ * every good line (see `recover_recording`).
  */
 function readRecording(pieces) {
   const r = recover_recording(pieces);
-  const text = r.text ?? pieces.map((c) => c.text).join('');
-  const steps = pieces.findLast((c) => Number.isFinite(c?.steps))?.steps;
-  return { ...r, text, steps };
+  return { ...r, text: r.text ?? pieces.map((c) => c.text).join('') };
 }
 
 async function offerRecovery() {
@@ -531,9 +503,7 @@ async function offerRecovery() {
   }
   const { text, samples, steps } = read;
   const started = new Date(Number.isFinite(rec.started) ? rec.started : Date.now());
-  $('recovery-text').textContent = `An unfinished recording from ${started.toLocaleString()} `
-    + `(${samples} samples${steps != null ? `, ${steps} steps` : ''}) was not stopped: the page was closed or reloaded. `
-    + `Resume it, or download it.${read.damage}`;
+  $('recovery-text').textContent = recovery_offer(started.toLocaleString(), samples, steps, read.damage);
   $('recovery').hidden = false;
   document.documentElement.dataset.recovery = 'offered';
   test.recovery = { id: rec.id, samples, steps, skipped_lines: read.skipped_lines, missing_pieces: read.missing_pieces, notes: read.notes };

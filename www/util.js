@@ -1,7 +1,13 @@
 // What the page's modules share: element lookup, the colour scheme, canvas sizing, downloads,
-// and the lists of messages. Browser APIs only.
+// and the lists of messages. Browser APIs only; the words are the engine's.
+import { stored_unreadable } from './pkg/pdr.js';
 
 export const $ = (id) => document.getElementById(id);
+
+/** Writes texts from the engine, `[[element id, text]]`, into the page (only those that changed). */
+export function fill(texts) {
+  for (const [id, text] of texts) { const e = $(id); if (e.textContent !== text) e.textContent = text; }
+}
 
 /** The colour scheme; `dark.matches` is true in dark mode, `change` fires when it changes. */
 export const dark = window.matchMedia('(prefers-color-scheme: dark)');
@@ -89,7 +95,7 @@ export function readStored(key, what) {
     localStorage.setItem(`${key}-unreadable-${new Date().toISOString()}`, text);
     localStorage.removeItem(key);
   } catch {
-    storageNote(key, `The ${what} stored on this device cannot be read, and there is no room to keep them aside: nothing is saved over them. Free some storage and reload the page.`);
+    storageNote(key, stored_unreadable(what, []));
     return null;
   }
   showAside(key, what);
@@ -100,8 +106,7 @@ export function readStored(key, what) {
 function showAside(key, what) {
   const kept = Object.keys(localStorage).filter((k) => k.startsWith(`${key}-unreadable-`)).sort();
   if (!kept.length) { storageNote(key, null); return; }
-  const li = storageNote(key, `The ${what} stored on this device could not be read (damaged JSON), so they are not shown. `
-    + `Their text is kept unchanged under “${kept.join('”, “')}” in this browser's storage and nothing is saved over it: download it to repair it by hand. `);
+  const li = storageNote(key, stored_unreadable(what, kept));
   const download_ = el('button', { type: 'button', className: 'small', textContent: 'Download it' });
   download_.addEventListener('click', () => { for (const k of kept) download(localStorage.getItem(k), `${safeName(k)}.json`, 'application/json'); });
   const forget = el('button', { type: 'button', className: 'small', textContent: 'Delete it' });

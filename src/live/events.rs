@@ -256,6 +256,17 @@ pub fn browser_events(records: &[Record], platform: Platform) -> Vec<BrowserEven
     out
 }
 
+/// Whether the browser follows iOS's conventions for motion events: every browser on iOS is
+/// WebKit. Told from the user agent (iPadOS reports a Mac, with a touch screen:
+/// `max_touch_points` > 1), not from `DeviceMotionEvent.requestPermission`, which recent
+/// Chromium has too.
+pub fn is_ios(user_agent: &str, max_touch_points: f64) -> bool {
+    ["iPhone", "iPad", "iPod"]
+        .iter()
+        .any(|d| user_agent.contains(d))
+        || (user_agent.contains("Macintosh") && max_touch_points > 1.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -320,5 +331,16 @@ mod tests {
         // Rolled right (gamma 90°): the screen faces east, the device's x axis points down.
         let q = orientation_quaternion(0.0, 0.0, 90.0);
         assert!((q * Vector3::x() - Vector3::new(0.0, 0.0, -1.0)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn ios_is_told_from_the_user_agent() {
+        let iphone = "Mozilla/5.0 (iPhone; CPU iPhone OS 17_0 like Mac OS X) AppleWebKit/605.1.15";
+        let mac = "Mozilla/5.0 (Macintosh; Intel Mac OS X 10_15_7) AppleWebKit/605.1.15";
+        let android = "Mozilla/5.0 (Linux; Android 14; Pixel 8) AppleWebKit/537.36 Chrome/120";
+        assert!(is_ios(iphone, 5.0));
+        assert!(is_ios(mac, 5.0), "an iPad asking for the desktop site");
+        assert!(!is_ios(mac, 0.0), "a Mac");
+        assert!(!is_ios(android, 5.0));
     }
 }

@@ -1,10 +1,13 @@
 //! What live mode tells the user when the browser, the sensors or the storage get in the way:
-//! the page's messages by key, and the sentence about a damaged recording.
+//! the page's messages by key, the offer to recover an unfinished recording with its sentence
+//! about a damaged one, and what the page says about its stored lists that cannot be read.
 //! May import: nothing.
 
-/// The message shown for `key` (the page adds a detail after some, e.g. the error's words).
+/// The message shown for `key` (the page adds a detail after some, e.g. the error's words);
+/// `guardTitle` is the pocket guard's title while a recording runs.
 pub fn message(key: &str) -> Option<&'static str> {
     Some(match key {
+        "guardTitle" => "Recording — screen locked for the pocket",
         "insecure" => "Motion and location need a secure page. Open it as https:// (./dev run serves one on port 8443 with a self-signed certificate; accept the warning once) or as http://localhost.",
         "motionDenied" => "Motion access was refused, so steps cannot be counted. On an iPhone, tap Start again and choose Allow; if no prompt appears, close the tab and open the page again (Safari › Settings › Motion & Orientation Access must be on). On Android, allow “Motion sensors” in the site settings (the icon left of the address).",
         "noSensor" => "No motion data has arrived. This device or browser may have no accelerometer, or may withhold it (desktop browsers usually do). Use a phone with Chrome, Samsung Internet, Firefox or Safari.",
@@ -57,6 +60,36 @@ pub fn damage(skipped_lines: u64, missing_pieces: u64, notes: &[String]) -> Stri
     )
 }
 
+/// The recovery offer: a recording started at `started` (a date in the user's words) with
+/// `samples` and, when known, `steps` was not stopped; `damage` is [`damage`]'s sentence.
+pub fn recovery_offer(started: &str, samples: usize, steps: Option<usize>, damage: &str) -> String {
+    let steps = steps.map_or(String::new(), |n| format!(", {n} steps"));
+    format!(
+        "An unfinished recording from {started} ({samples} samples{steps}) was not stopped: the \
+         page was closed or reloaded. Resume it, or download it.{damage}"
+    )
+}
+
+/// The page's list of `what` (its words: "step-length profiles") cannot be read, and cannot be
+/// moved aside either (storage full).
+pub fn stored_unreadable(what: &str) -> String {
+    format!(
+        "The {what} stored on this device cannot be read, and there is no room to keep them \
+         aside: nothing is saved over them. Free some storage and reload the page."
+    )
+}
+
+/// The page's list of `what` could not be read: its text is kept under the storage keys
+/// `kept`. The page adds a download and a delete button after it.
+pub fn kept_aside(what: &str, kept: &[String]) -> String {
+    format!(
+        "The {what} stored on this device could not be read (damaged JSON), so they are not \
+         shown. Their text is kept unchanged under “{}” in this browser's storage and nothing \
+         is saved over it: download it to repair it by hand. ",
+        kept.join("”, “")
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -69,5 +102,25 @@ mod tests {
             " Part of it is damaged: 1 damaged line was skipped, 2 pieces are missing (a gap in the walk); everything else is kept. First problem: line 3: bad."
         );
         assert!(message("storage").is_some() && message("nothing").is_none());
+    }
+
+    #[test]
+    fn recovery_and_storage_sentences() {
+        assert_eq!(
+            recovery_offer("28/11/2026, 18:29:01", 120, Some(7), ""),
+            "An unfinished recording from 28/11/2026, 18:29:01 (120 samples, 7 steps) was not stopped: the page was closed or reloaded. Resume it, or download it."
+        );
+        assert_eq!(
+            recovery_offer("then", 0, None, " Part of it is damaged."),
+            "An unfinished recording from then (0 samples) was not stopped: the page was closed or reloaded. Resume it, or download it. Part of it is damaged."
+        );
+        assert_eq!(
+            stored_unreadable("recipes"),
+            "The recipes stored on this device cannot be read, and there is no room to keep them aside: nothing is saved over them. Free some storage and reload the page."
+        );
+        assert_eq!(
+            kept_aside("step-length profiles", &["a-unreadable-1".into(), "a-unreadable-2".into()]),
+            "The step-length profiles stored on this device could not be read (damaged JSON), so they are not shown. Their text is kept unchanged under “a-unreadable-1”, “a-unreadable-2” in this browser's storage and nothing is saved over it: download it to repair it by hand. "
+        );
     }
 }

@@ -27,16 +27,19 @@
 //! Safari's `deviceorientation` is relative; its `webkitCompassHeading` (when calibrated, ≥ 0)
 //! gives the absolute `alpha` ([`ios_compass_alpha`]), and wins over `alpha` when present.
 
+pub mod controls;
 pub mod events;
 pub mod messages;
 pub mod readout_text;
+pub mod recorder;
 pub mod session;
 
 pub use events::{
-    browser_events, ios_compass_alpha, normalise_motion, orientation_angles,
+    browser_events, ios_compass_alpha, is_ios, normalise_motion, orientation_angles,
     orientation_quaternion, BrowserEvent, EventError, MotionEvent, OrientationEvent, Platform,
     SensorReading,
 };
+pub use recorder::{Chunk, Recorder, Saved};
 pub use session::{
     GapMark, LiveError, LiveSession, MapData, Readouts, ScopeData, ScopeSample, NO_MOTION_MS,
     SCOPE_S,

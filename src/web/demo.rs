@@ -30,6 +30,11 @@ impl Demo {
         to_value(&self.summary)
     }
 
+    /// The figures in words for the page's elements: `[[id, text]]`.
+    pub fn texts(&self) -> Result<JsValue, JsError> {
+        to_value(&self.summary.texts())
+    }
+
     /// Draws the track on `canvas`, whose backing store the caller has sized to CSS size × `dpr`.
     pub fn draw(&self, canvas: &HtmlCanvasElement, dark: bool, dpr: f64) -> Result<(), JsError> {
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
@@ -63,6 +68,11 @@ impl FusionDemo {
     /// The figures (see `FusionDemoSummary`).
     pub fn summary(&self) -> Result<JsValue, JsError> {
         to_value(&self.summary)
+    }
+
+    /// The figures and caption in words for the page's elements: `[[id, text]]`.
+    pub fn texts(&self) -> Result<JsValue, JsError> {
+        to_value(&self.summary.texts())
     }
 
     /// Draws fixes, PDR-only, fused and smoothed tracks and the truth on `canvas`, over the base

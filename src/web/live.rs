@@ -211,6 +211,14 @@ impl Live {
         self.session.take_log()
     }
 
+    /// Takes the recording since the last call as `recorder`'s next chunk, with the samples
+    /// and steps counted so far.
+    pub fn log_to(&mut self, recorder: &mut super::recorder::Recorder) {
+        let text = self.session.take_log();
+        let r = self.session.readouts();
+        recorder.inner.push(text, r.samples, r.steps);
+    }
+
     /// The readouts (see `live::Readouts`).
     pub fn readouts(&self) -> Result<JsValue, JsError> {
         to_value(&self.session.readouts())
@@ -280,6 +288,36 @@ pub fn live_message(key: &str) -> Result<String, JsError> {
         .ok_or_else(|| to_js(format!("no live message `{key}`")))
 }
 
+/// The recovery offer's sentence (see `live::messages::recovery_offer`).
+#[wasm_bindgen]
+pub fn recovery_offer(started: &str, samples: usize, steps: Option<usize>, damage: &str) -> String {
+    crate::live::messages::recovery_offer(started, samples, steps, damage)
+}
+
+/// What the page says about its stored list of `what` that cannot be read: kept aside under the
+/// keys `kept`, or (none kept) it cannot even be moved aside.
+#[wasm_bindgen]
+pub fn stored_unreadable(what: &str, kept: Vec<String>) -> String {
+    if kept.is_empty() {
+        crate::live::messages::stored_unreadable(what)
+    } else {
+        crate::live::messages::kept_aside(what, &kept)
+    }
+}
+
+/// Whether the browser follows iOS's conventions for motion events (see `live::is_ios`), from
+/// `navigator.userAgent` and `navigator.maxTouchPoints`.
+#[wasm_bindgen]
+pub fn is_ios(user_agent: &str, max_touch_points: f64) -> bool {
+    crate::live::is_ios(user_agent, max_touch_points)
+}
+
+/// Live mode's buttons in `state` (`idle`, `recording`, `stopped`): `[[id, hidden]]`.
+#[wasm_bindgen]
+pub fn live_controls(state: &str) -> Result<JsValue, JsError> {
+    to_value(&crate::live::controls::controls(state))
+}
+
 /// Replays a pdr-log (a live recording) through the engine with `settings` (`{set, profile}`;
 /// `undefined` for the defaults): `{steps, distance_m, samples, skipped_lines}`.
 #[wasm_bindgen]
@@ -311,8 +349,9 @@ pub fn replay_log(text: &str, settings: JsValue) -> Result<JsValue, JsError> {
 }
 
 /// What can be read of a live recording stored in pieces (`[{seq, text}]`, as IndexedDB holds
-/// them), for the recovery offer and the download: `{text, samples, skipped_lines,
-/// missing_pieces, notes, damage}`. `text` is `null` when the pieces joined in the order given
+/// them), for the recovery offer and the download: `{text, samples, steps, skipped_lines,
+/// missing_pieces, notes, damage}` (`steps`: what the page counted when the last piece that
+/// says was taken, `null` when none does). `text` is `null` when the pieces joined in the order given
 /// are a whole, good log (use them as they are), else the log of every good line (see
 /// `io::pdrlog::recover`); `damage` is the offer's sentence about a damaged one, or "". Never
 /// throws: anything that is not a piece is noted and skipped.
@@ -321,8 +360,11 @@ pub fn recover_recording(pieces: &JsValue) -> Result<JsValue, JsError> {
     let get = |o: &JsValue, k: &str| js_sys::Reflect::get(o, &JsValue::from_str(k)).ok();
     let mut bad = Vec::new();
     let mut owned: Vec<(u64, Option<String>)> = Vec::new();
+    let mut steps = None;
     if let Some(arr) = pieces.dyn_ref::<js_sys::Array>() {
         for (i, p) in arr.iter().enumerate() {
+            let n = get(&p, "steps").and_then(|v| v.as_f64());
+            steps = n.filter(|n| n.is_finite()).or(steps);
             match get(&p, "seq").and_then(|v| v.as_f64()) {
                 Some(seq) if seq >= 0.0 && seq.fract() == 0.0 && seq < 1e15 => {
                     owned.push((seq as u64, get(&p, "text").and_then(|t| t.as_string())));
@@ -342,6 +384,7 @@ pub fn recover_recording(pieces: &JsValue) -> Result<JsValue, JsError> {
         samples: usize,
         skipped_lines: u64,
         missing_pieces: u64,
+        steps: Option<f64>,
         notes: Vec<String>,
         damage: String,
     }
@@ -353,6 +396,7 @@ pub fn recover_recording(pieces: &JsValue) -> Result<JsValue, JsError> {
         samples: r.samples,
         skipped_lines,
         missing_pieces: r.missing_pieces,
+        steps,
         damage: crate::live::messages::damage(skipped_lines, r.missing_pieces, &notes),
         notes,
     })

@@ -10,6 +10,7 @@ mod calibration;
 mod canvas;
 mod demo;
 mod live;
+mod recorder;
 mod settings;
 mod upload;
 

@@ -20,6 +20,29 @@ pub fn unix_of_civil(y: i64, month: u32, day: u32, h: u32, mi: u32, s: u32) -> O
     Some((days * 86_400 + i64::from(h) * 3600 + i64::from(mi) * 60 + i64::from(s)) as f64)
 }
 
+/// The UTC calendar date and time `(year, month, day, hour, minute, second)` of Unix seconds
+/// `t` (the fraction dropped, as JavaScript's dates do); `None` outside JavaScript's dates
+/// (±8.64e12 s) or for a non-finite `t`.
+pub fn civil_of_unix(t: f64) -> Option<(i64, u32, u32, u32, u32, u32)> {
+    if !t.is_finite() || t.abs() > 8.64e12 {
+        return None;
+    }
+    let secs = t.floor() as i64;
+    let (days, sod) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    // Howard Hinnant's days → civil date.
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z.rem_euclid(146_097);
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let day = (doy - (153 * mp + 2) / 5 + 1) as u32;
+    let month = (if mp < 10 { mp + 3 } else { mp - 9 }) as u32;
+    let year = yoe + era * 400 + i64::from(month <= 2);
+    let sod = sod as u32;
+    Some((year, month, day, sod / 3600, sod / 60 % 60, sod % 60))
+}
+
 const MONTHS: [&str; 12] = [
     "jan", "feb", "mar", "apr", "may", "jun", "jul", "aug", "sep", "oct", "nov", "dec",
 ];
@@ -96,6 +119,22 @@ mod tests {
         assert_eq!(unix_of_civil(2026, 1, 1, 0, 0, 0), Some(1_767_225_600.0));
         assert_eq!(unix_of_civil(2024, 2, 29, 12, 0, 0), Some(1_709_208_000.0));
         assert_eq!(unix_of_civil(2023, 13, 1, 0, 0, 0), None);
+        for t in [
+            0.0,
+            1_709_208_000.0,
+            1_767_225_599.5,
+            -86_401.0,
+            951_782_400.0,
+        ] {
+            let (y, mo, d, h, mi, s) = civil_of_unix(t).unwrap();
+            assert_eq!(unix_of_civil(y, mo, d, h, mi, s), Some(t.floor()), "{t}");
+        }
+        assert_eq!(
+            civil_of_unix(1_709_208_000.0),
+            Some((2024, 2, 29, 12, 0, 0))
+        );
+        assert_eq!(civil_of_unix(-1.0), Some((1969, 12, 31, 23, 59, 59)));
+        assert_eq!(civil_of_unix(f64::INFINITY), None);
     }
 
     #[test]
