@@ -135,8 +135,13 @@ fn https_with_the_self_signed_certificate_and_the_qr_code() {
     assert!(r.starts_with("HTTP/1.1 404"), "{r}");
 
     // A client that does not trust the certificate is refused in the handshake.
-    let e = get_tls(client(rustls::RootCertStore::empty()), "localhost", s.https, "/")
-        .unwrap_err();
+    let e = get_tls(
+        client(rustls::RootCertStore::empty()),
+        "localhost",
+        s.https,
+        "/",
+    )
+    .unwrap_err();
     assert!(e.to_string().contains("invalid peer certificate"), "{e}");
 
     // Garbage, and a client that hangs up mid-handshake, do not stop the server.
@@ -153,7 +158,10 @@ fn https_with_the_self_signed_certificate_and_the_qr_code() {
     plain.write_all(b"GET / HTTP/1.1\r\n\r\n").unwrap();
     let mut r = String::new();
     plain.read_to_string(&mut r).unwrap();
-    assert!(r.starts_with("HTTP/1.1 200 OK\r\n") && r.ends_with("hello"), "{r}");
+    assert!(
+        r.starts_with("HTTP/1.1 200 OK\r\n") && r.ends_with("hello"),
+        "{r}"
+    );
 
     // The phone's address with its QR code (half blocks), when the machine has a LAN address.
     if s.banner.contains("phone (LAN):   https://") {
@@ -174,7 +182,10 @@ fn the_certificate_is_kept_and_reused() {
     let trust = trusting(&first.cert_dir);
     drop(first);
     let second = start(&dir);
-    assert_eq!(std::fs::read(second.cert_dir.join("cert.pem")).unwrap(), pem);
+    assert_eq!(
+        std::fs::read(second.cert_dir.join("cert.pem")).unwrap(),
+        pem
+    );
     let r = get_tls(trust, "localhost", second.https, "/").unwrap();
     assert!(r.ends_with("hello"), "{r}");
     drop(second);

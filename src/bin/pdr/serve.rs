@@ -398,9 +398,16 @@ mod tests {
         let (cert, key) = certificate(&dir, &names).unwrap();
         assert!(tls_config(&cert, &key).is_ok());
         // The same names: the same certificate, read back.
-        assert_eq!(certificate(&dir, &names).unwrap(), (cert.clone(), key.clone()));
-        assert!(tls_config(b"", &key).unwrap_err().contains("certificate: none"));
-        assert!(tls_config(&cert, b"not a key").unwrap_err().starts_with("private key"));
+        assert_eq!(
+            certificate(&dir, &names).unwrap(),
+            (cert.clone(), key.clone())
+        );
+        assert!(tls_config(b"", &key)
+            .unwrap_err()
+            .contains("certificate: none"));
+        assert!(tls_config(&cert, b"not a key")
+            .unwrap_err()
+            .starts_with("private key"));
         assert!(tls_config(&key, &cert).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
     }
