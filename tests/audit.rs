@@ -225,11 +225,18 @@ fn verdict(found: &[Finding], notes: &[(&str, &str, &str)]) -> Result<String, St
     }
 }
 
-/// The advisory database's folder, or `None` when it is absent.
+/// The advisory database's folder, or `None` when `../shared/advisory-db` is absent. A folder
+/// named by `PDR_ADVISORY_DB` must be a database: a wrong path there is an error, not a skip.
 fn database() -> Option<PathBuf> {
-    let dir = std::env::var_os(DB_ENV)
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/advisory-db"));
+    if let Some(dir) = std::env::var_os(DB_ENV).map(PathBuf::from) {
+        assert!(
+            dir.join("crates").is_dir(),
+            "{DB_ENV}={}: no advisory database there (no crates/ folder)",
+            dir.display()
+        );
+        return Some(dir);
+    }
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/advisory-db");
     dir.join("crates").is_dir().then_some(dir)
 }
 
