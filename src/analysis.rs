@@ -5,7 +5,7 @@
 //! check it natively.
 //! May import: `engine`, `io`, `eval`.
 //!
-//! It is serialised ([`Analysis::to_bytes`], bincode) to cross from the worker to the page:
+//! It is serialised ([`Analysis::to_bytes`], postcard) to cross from the worker to the page:
 //! signals are `f32` (plenty for a plot), times `f64` (Unix seconds need it).
 
 use crate::engine::activity::Activity;
@@ -311,15 +311,22 @@ fn truth_path(log: &Log, track: &[StepRecord]) -> Vec<(f64, f64)> {
 }
 
 impl Analysis {
-    /// The analysis as bytes (bincode: compact, and NaN survives), for the trip from the worker
-    /// to the page.
+    /// The analysis as bytes (postcard: compact, integers as varints, floats bit for bit so NaN
+    /// survives), for the trip from the worker to the page.
     pub fn to_bytes(&self) -> Result<Vec<u8>, AnalysisError> {
-        bincode::serialize(self).map_err(|e| AnalysisError::Encode(e.to_string()))
+        postcard::to_stdvec(self).map_err(|e| AnalysisError::Encode(e.to_string()))
     }
 
-    /// Reads [`Analysis::to_bytes`].
+    /// Reads [`Analysis::to_bytes`]; bytes left over after the analysis are an error.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, AnalysisError> {
-        bincode::deserialize(bytes).map_err(|e| AnalysisError::Decode(e.to_string()))
+        match postcard::take_from_bytes(bytes) {
+            Ok((a, [])) => Ok(a),
+            Ok((_, rest)) => Err(AnalysisError::Decode(format!(
+                "{} bytes after the end",
+                rest.len()
+            ))),
+            Err(e) => Err(AnalysisError::Decode(e.to_string())),
+        }
     }
 
     /// The local frame of the fixes, for geodetic exports.

@@ -193,7 +193,7 @@ pub struct LogResult {
     pub pressure_samples: u64,
     /// Floors (and heights) against the truth's landmarks, for a log whose landmarks have
     /// floors ([`floors::score_floors`]); `null` otherwise. (Always written: the analysis
-    /// crosses to the page as bincode, which cannot skip fields.)
+    /// crosses to the page as postcard, which cannot skip fields.)
     #[serde(default)]
     pub floors: Option<FloorResult>,
     /// Heading, distance and position against a trajectory truth (motion capture).

@@ -235,24 +235,37 @@ fn spawn(
     })
 }
 
-/// The TLS configuration from a PEM certificate and PKCS#8 key.
+/// The TLS configuration from a PEM certificate and private key, with ring as the crypto
+/// provider (see Cargo.toml for why ring).
 fn tls_config(cert: &[u8], key: &[u8]) -> Result<Arc<rustls::ServerConfig>, String> {
-    let certs = rustls_pemfile::certs(&mut &cert[..])
-        .map_err(|e| format!("certificate: {e}"))?
-        .into_iter()
-        .map(rustls::Certificate)
-        .collect();
-    let key = rustls_pemfile::pkcs8_private_keys(&mut &key[..])
-        .map_err(|e| format!("private key: {e}"))?
-        .into_iter()
-        .next()
-        .ok_or("private key: none in the file")?;
-    rustls::ServerConfig::builder()
-        .with_safe_defaults()
+    use rustls::pki_types::pem::PemObject;
+    use rustls::pki_types::{CertificateDer, PrivateKeyDer};
+    let certs = CertificateDer::pem_slice_iter(cert)
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| format!("certificate: {e}"))?;
+    if certs.is_empty() {
+        return Err("certificate: none in the file".into());
+    }
+    let key = PrivateKeyDer::from_pem_slice(key).map_err(|e| format!("private key: {e}"))?;
+    let provider = Arc::new(rustls::crypto::ring::default_provider());
+    rustls::ServerConfig::builder_with_provider(provider)
+        .with_safe_default_protocol_versions()
+        .map_err(|e| format!("TLS: {e}"))?
         .with_no_client_auth()
-        .with_single_cert(certs, rustls::PrivateKey(key))
+        .with_single_cert(certs, key)
         .map(Arc::new)
         .map_err(|e| format!("certificate: {e}"))
+}
+
+/// The QR code of `url` for a terminal: two rows of modules per line of text (Unicode half
+/// blocks), with the quiet zone the readers need. `None` for a URL too long for a QR code.
+fn qr_code(url: &str) -> Option<String> {
+    let code = qrcode::QrCode::new(url.as_bytes()).ok()?;
+    Some(
+        code.render::<qrcode::render::unicode::Dense1x2>()
+            .quiet_zone(true)
+            .build(),
+    )
 }
 
 /// Serves `opts.root` until the process is stopped.
@@ -287,13 +300,8 @@ pub fn serve(opts: ServeOpts) -> Result<(), String> {
             }
             out!("  phone (LAN):   {url}");
             out!("The certificate is self-signed: on the phone, accept the warning once.");
-            if let Ok(code) = qrcode::QrCode::new(url.as_bytes()) {
-                out!(
-                    "{}",
-                    code.render::<qrcode::render::unicode::Dense1x2>()
-                        .quiet_zone(true)
-                        .build()
-                );
+            if let Some(code) = qr_code(&url) {
+                out!("{code}");
             }
         }
         None => out!("  no LAN address found: a phone cannot reach this machine"),
@@ -367,6 +375,41 @@ mod tests {
         // A client that hangs up before the end of its request gets nothing.
         assert_eq!(ask(&root, b"GET / HT"), "");
         std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn the_qr_code_is_square_half_blocks_with_its_quiet_zone() {
+        // 26 bytes: a version-2 code, 25 modules and 4 of quiet zone on each side.
+        let code = qr_code("https://192.168.1.20:8443/").unwrap();
+        let lines: Vec<&str> = code.lines().collect();
+        assert_eq!(lines.len(), 33_usize.div_ceil(2));
+        for line in &lines {
+            assert_eq!(line.chars().count(), 33, "{line:?}");
+            assert!(line.chars().all(|c| " █▀▄".contains(c)), "{line:?}");
+        }
+        assert!(lines[0].trim().is_empty() && code.contains('█'));
+        assert!(qr_code(&"x".repeat(8000)).is_none());
+    }
+
+    #[test]
+    fn the_tls_configuration_reads_the_certificate_it_made() {
+        let dir = std::env::temp_dir().join(format!("pdr-serve-cert-{}", std::process::id()));
+        let names = ["localhost".to_string(), "127.0.0.1".to_string()];
+        let (cert, key) = certificate(&dir, &names).unwrap();
+        assert!(tls_config(&cert, &key).is_ok());
+        // The same names: the same certificate, read back.
+        assert_eq!(
+            certificate(&dir, &names).unwrap(),
+            (cert.clone(), key.clone())
+        );
+        assert!(tls_config(b"", &key)
+            .unwrap_err()
+            .contains("certificate: none"));
+        assert!(tls_config(&cert, b"not a key")
+            .unwrap_err()
+            .starts_with("private key"));
+        assert!(tls_config(&key, &cert).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
