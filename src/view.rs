@@ -10,19 +10,25 @@ use serde::{Serialize, Serializer};
 /// string, the shape `render` reads.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Node {
+    /// An element with its attributes and children.
     Element(El),
+    /// Text.
     Text(String),
 }
 
 /// An element: a tag, its attributes in order, its children.
 #[derive(Debug, Clone, PartialEq)]
 pub struct El {
+    /// The tag name (`p`, `button`, …).
     pub tag: &'static str,
+    /// The attributes, `(name, value)`, in the order set.
     pub attrs: Vec<(&'static str, String)>,
+    /// The children, elements and text, in order.
     pub children: Vec<Node>,
 }
 
 impl El {
+    /// An element `tag` with no attributes and no children.
     pub fn new(tag: &'static str) -> Self {
         El {
             tag,
