@@ -9,9 +9,11 @@ mod blobs;
 mod calibration;
 mod canvas;
 mod demo;
+mod gesture;
 mod live;
 mod settings;
 mod upload;
+mod upload_page;
 
 use wasm_bindgen::prelude::*;
 
