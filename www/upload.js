@@ -3,7 +3,7 @@
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
 import {
   AnalysisView, Gesture, cancelled_text, compare_settings, config_label, engine_progress, loaded_text, map_box,
-  read_progress, reading_text, result_card, upload_banners, upload_config,
+  profile_options, read_progress, reading_text, result_card, upload_banners, upload_config,
 } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
@@ -39,7 +39,7 @@ function configs() {
 function fillProfiles(adopt = false) {
   for (const sel of document.querySelectorAll('.config [name=profile]')) {
     const keep = adopt === true ? profiles.selectedName() : sel.value;
-    sel.replaceChildren(new Option('built-in step length', ''), ...Object.keys(profiles.all()).sort().map((n) => new Option(`profile: ${n}`, n)));
+    sel.replaceChildren(...profile_options(Object.keys(profiles.all())).map(render));
     // '' is the built-in step length: a choice of its own, kept like a profile's name.
     sel.value = keep === '' || keep in profiles.all() ? keep : profiles.selectedName();
   }

@@ -219,6 +219,22 @@ pub fn config_label(tag: &str, label: &str, two: bool) -> El {
     h.text(format!("{}: {label}", tag.to_uppercase()))
 }
 
+/// The choices of a row's profile: the built-in step length (value `''`), then each saved
+/// profile by name, sorted.
+pub fn profile_options(names: &[String]) -> Vec<El> {
+    let mut names: Vec<&String> = names.iter().collect();
+    names.sort();
+    let builtin = El::new("option")
+        .attr("value", "")
+        .text("built-in step length");
+    let profiles = names.into_iter().map(|n| {
+        El::new("option")
+            .attr("value", n.as_str())
+            .text(format!("profile: {n}"))
+    });
+    std::iter::once(builtin).chain(profiles).collect()
+}
+
 /// The figures under a map, `(label, text)` rows, as a definition list.
 pub fn figures(rows: &[(String, String)]) -> El {
     let mut dl = El::new("dl").class("summary");
@@ -324,6 +340,19 @@ mod tests {
         assert_eq!(h.text_content(), "B: peak detector");
         assert_eq!(h.get("hidden"), None);
         assert_eq!(config_label("a", "x", false).get("hidden"), Some(""));
+        let o = profile_options(&["walk".into(), "run".into()]);
+        let shown: Vec<_> = o
+            .iter()
+            .map(|e| (e.get("value").unwrap(), e.text_content()))
+            .collect();
+        assert_eq!(
+            shown,
+            [
+                ("", "built-in step length".to_string()),
+                ("run", "profile: run".to_string()),
+                ("walk", "profile: walk".to_string())
+            ]
+        );
         let f = figures(&[("Steps".into(), "12".into())]);
         assert_eq!(
             serde_json::to_string(&f).unwrap(),

@@ -79,3 +79,10 @@ pub fn map_box(tag: &str) -> Result<JsValue, JsError> {
 pub fn config_label(tag: &str, label: &str, two: bool) -> Result<JsValue, JsError> {
     to_json_value(&page::config_label(tag, label, two))
 }
+
+/// The choices of a row's profile, option view trees: the built-in step length, then the saved
+/// profiles `names`, sorted.
+#[wasm_bindgen]
+pub fn profile_options(names: Vec<String>) -> Result<JsValue, JsError> {
+    to_json_value(&page::profile_options(&names))
+}
