@@ -21,6 +21,7 @@ use crate::eval::LogResult;
 /// may not import `io`).
 pub use crate::io::export::{activity_words, floor_label};
 
+pub mod page;
 mod text;
 use crate::io::import::Log;
 pub use text::{carry_text, fixed};

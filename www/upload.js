@@ -1,10 +1,13 @@
 // Upload mode: files in (picker, folder, drag & drop), the worker parses and runs the engine,
 // the page draws each analysis (AnalysisView, in wasm) and lets the user zoom, pan, hover,
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
-import { AnalysisView, compare_settings, plot_titles, upload_config } from './pkg/pdr.js';
+import {
+  AnalysisView, Gesture, cancelled_text, compare_settings, config_label, engine_progress, loaded_text, map_box,
+  profile_options, read_progress, reading_text, result_card, upload_banners, upload_config,
+} from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
-import { $, dark, download, el, fit, safeName, test } from './util.js';
+import { $, dark, download, el, fit, render, safeName, test } from './util.js';
 
 let worker = null;
 let logs = []; // [{info, card, views: {a, b}, step, bounds}]
@@ -13,10 +16,7 @@ let lastRecipes = []; // recipes uploaded with lastFiles (JSON), applied again o
 let pending = 0; // worker jobs not yet done
 
 function banner(text, kind = 'error') {
-  const li = document.createElement('li');
-  li.className = kind;
-  li.textContent = text;
-  $('upload-banners').append(li);
+  $('upload-banners').append(el('li', { className: kind, textContent: text }));
 }
 
 /** The settings of a row (A or B) for the worker, and how they are described (`upload_config`
@@ -39,7 +39,7 @@ function configs() {
 function fillProfiles(adopt = false) {
   for (const sel of document.querySelectorAll('.config [name=profile]')) {
     const keep = adopt === true ? profiles.selectedName() : sel.value;
-    sel.replaceChildren(new Option('built-in step length', ''), ...Object.keys(profiles.all()).sort().map((n) => new Option(`profile: ${n}`, n)));
+    sel.replaceChildren(...profile_options(Object.keys(profiles.all())).map(render));
     // '' is the built-in step length: a choice of its own, kept like a profile's name.
     sel.value = keep === '' || keep in profiles.all() ? keep : profiles.selectedName();
   }
@@ -56,10 +56,6 @@ function progress(text, fraction) {
   $('upload-status').textContent = text;
   $('upload-bar').value = fraction;
   document.documentElement.dataset.upload = 'loading';
-}
-
-function fmtBytes(n) {
-  return n > 1e6 ? `${(n / 1e6).toFixed(1)} MB` : `${Math.ceil(n / 1e3)} kB`;
 }
 
 function startWorker() {
@@ -98,9 +94,7 @@ function load(files, extra = []) {
     plotPoint(k, kind, t) {
       const cv = logs[k].card.querySelector(`canvas.plot-${kind}`);
       const r = cv.getBoundingClientRect();
-      const [left, right] = cv.axis;
-      const [t0, t1] = logs[k].views.a.span();
-      return [r.left + left + (t - t0) / (t1 - t0) * (right - left), r.top + r.height / 2];
+      return [r.left + logs[k].views.a.axis_x_at(cv.axis, t), r.top + r.height / 2];
     },
     span: (k) => logs[k].views.a.span(),
     // Shows `[t0, t1]` on log `k`'s plots, as a zoom would.
@@ -108,7 +102,7 @@ function load(files, extra = []) {
     full: (k) => logs[k].views.a.full_span(),
     stepTime: (k, i) => logs[k].views.a.step_info(i).t,
   };
-  progress(`reading ${files.length} file${files.length > 1 ? 's' : ''}…`, 0);
+  progress(reading_text(files.length), 0);
   pending = 1;
   worker.postMessage({ type: 'load', files, configs: configs(), recipes: [...extra, ...Object.values(recipes.saved())] });
 }
@@ -122,9 +116,7 @@ function finish(cancelled = false) {
   else {
     if (u) u.progress_max = 1;
     $('upload-bar').value = 1;
-    $('upload-status').textContent = `${n} recording${n === 1 ? '' : 's'} loaded`
-      + (u?.bytes ? ` from ${fmtBytes(u.bytes)}` : '') + ` in ${(ms / 1000).toFixed(1)} s`
-      + (u?.errors.length ? `, ${u.errors.length} file${u.errors.length === 1 ? '' : 's'} refused` : '');
+    $('upload-status').textContent = loaded_text(n, u?.bytes ?? 0, ms / 1000, u?.errors.length ?? 0);
   }
   $('upload-cancel').hidden = true;
   $('rerun').disabled = !logs.length;
@@ -134,23 +126,14 @@ function finish(cancelled = false) {
 
 function onWorker(m) {
   if (m.type === 'progress') {
-    if (m.phase === 'read') progress(`parsed ${fmtBytes(m.done)} of ${fmtBytes(m.total)}`, 0.35 * m.done / Math.max(m.total, 1));
-    else {
-      const l = logs[m.index];
-      const samples = l ? Math.round(l.info.samples * m.done / Math.max(m.total, 1)) : 0;
-      progress(`${l?.info.source ?? ''}: ${samples.toLocaleString('en')} of ${(l?.info.samples ?? 0).toLocaleString('en')} samples through the engine`,
-        0.35 + 0.65 * ((m.index + m.done / Math.max(m.total, 1)) / Math.max(logs.length, 1)));
-    }
+    const info = logs[m.index]?.info;
+    if (m.phase === 'read') progress(...read_progress(m.done, m.total));
+    else progress(...engine_progress(info?.source ?? '', info?.samples ?? 0, m.done, m.total, m.index, logs.length));
   } else if (m.type === 'parsed') {
     Object.assign(test.upload, { parse_ms: m.parse_ms, bytes: m.bytes });
-    for (const e of m.parsed.errors) {
-      banner(e.text);
-      test.upload.errors.push(e);
-    }
-    if (!m.parsed.logs.length && !m.parsed.errors.length) banner('No recording recognised in these files: describe them below, or choose other files.', 'warn');
-    for (const e of m.parsed.recipe_errors ?? []) banner(`A saved recipe was left out: ${e}`, 'warn');
+    test.upload.errors.push(...m.parsed.errors);
+    for (const [kind, text] of upload_banners(m.parsed)) banner(text, kind);
     for (const info of m.parsed.logs) logs[info.index] = { info, views: {}, card: card(info) };
-    for (const info of m.parsed.logs) for (const c of info.checks ?? []) banner(`${info.source}, read with the recipe "${info.recipe}": ${c}`, 'warn');
   } else if (m.type === 'analysis') {
     const l = logs[m.index];
     l.views[m.tag]?.free();
@@ -207,70 +190,31 @@ async function dropped(dt) {
 
 // --- results -------------------------------------------------------------------------------
 function card(info) {
-  const c = el('article', { className: 'log-result' });
-  c.dataset.index = info.index;
-  c.append(el('h3', { textContent: info.source }),
-    el('p', { className: 'hint', textContent: info.hint }));
-  c.append(el('div', { className: 'maps' }));
-  c.append(el('div', { className: 'stepinfo', textContent: 'Hover or tap a step on the track, or click a plot, to see its values.' }));
-  const plots = el('div', { className: 'plots' });
-  for (const [kind, label] of plot_titles()) {
-    const cv = el('canvas', { className: `plot plot-${kind}` });
-    cv.dataset.kind = kind;
-    cv.setAttribute('role', 'img');
-    cv.setAttribute('aria-label', label);
-    plots.append(cv);
-  }
-  const ell = el('canvas', { className: 'ellipse' });
-  ell.setAttribute('role', 'img');
-  ell.setAttribute('aria-label', 'Horizontal acceleration over the selected stride, with its heading');
-  plots.append(el('p', { className: 'hint', textContent: 'Wheel or pinch to zoom the time axis, drag to pan, double-click to reset; click to pick a step.' }), ell);
-  c.append(plots);
-  const ex = el('div', { className: 'controls exports' });
-  for (const [what, label] of [['gpx', 'GPX'], ['geojson', 'GeoJSON'], ['csv', 'Steps CSV'], ['pdrlog', 'pdr-log'], ['png', 'PNG of the plots']]) {
-    const b = el('button', { type: 'button', className: 'small', textContent: label });
-    b.dataset.export = what;
-    ex.append(b);
-  }
-  c.append(ex);
+  const c = render(result_card(info.index, info.source, info.hint));
   $('upload-results').append(c);
   return c;
-}
-
-/** The figures under a map, as the engine words them. */
-function figures(view) {
-  const dl = el('dl', { className: 'summary' });
-  for (const [k, v] of view.figures()) dl.append(el('dt', { textContent: k }), el('dd', { textContent: v }));
-  return dl;
 }
 
 function show(l, tag, label) {
   const v = l.views[tag];
   const s = v.summary();
-  l.summaries = { ...(l.summaries ?? {}), [tag]: s };
   test.upload.logs[l.info.index] = { ...(test.upload.logs[l.info.index] ?? {}), [tag]: s };
   const maps = l.card.querySelector('.maps');
   let box = maps.querySelector(`[data-tag="${tag}"]`);
   if (!box) {
-    box = el('div', { className: 'mapbox' });
-    box.dataset.tag = tag;
-    const cv = el('canvas', { className: 'map' });
-    cv.setAttribute('role', 'img');
-    cv.setAttribute('aria-label', 'Track in metres, east right, north up');
-    box.append(el('h4', { className: 'config-label' }), cv, el('dl'));
-    maps.append(box);
-    [...maps.children].sort((a, b) => a.dataset.tag.localeCompare(b.dataset.tag)).forEach((c) => maps.append(c));
-    wireMap(l, tag, cv);
+    box = render(map_box(tag));
+    // A's map first.
+    if (tag === 'a') maps.prepend(box);
+    else maps.append(box);
+    wireMap(l, tag, box.querySelector('canvas'));
   }
-  box.querySelector('dl').replaceWith(figures(v));
+  box.querySelector('dl').replaceWith(render(v.figures()));
   // The configuration each map was run with, named once there are two.
   box.dataset.label = label;
   const two = Object.keys(l.views).length > 1;
   maps.classList.toggle('two', two);
   for (const b of maps.children) {
-    const h = b.querySelector('.config-label');
-    h.hidden = !two;
-    h.textContent = `${b.dataset.tag.toUpperCase()}: ${b.dataset.label}`;
+    b.querySelector('.config-label').replaceWith(render(config_label(b.dataset.tag, b.dataset.label, two)));
   }
   if (tag === 'a') {
     l.step = null;
@@ -320,109 +264,49 @@ function select(l, i, view) {
   drawAll(l);
 }
 
-/** Hover or tap picks a step; wheel and pinch zoom; drag pans; double-click resets. */
-function wireMap(l, tag, cv) {
-  const pointers = new Map();
-  let drag = null;
-  const pos = (e) => {
+/** Sends a canvas's pointer, wheel and double-click events to `handle` as the numbers the
+ * engine's gesture rules read: (x, y) from the canvas's corner in CSS pixels × `scale(rect)`. */
+function forward(cv, scale, handle) {
+  const send = (e) => {
     const r = cv.getBoundingClientRect();
-    const dpr = cv.width / r.width;
-    return [(e.clientX - r.left) * dpr, (e.clientY - r.top) * dpr, dpr];
+    const k = scale(r);
+    const pointer = { kind: e.type, id: e.pointerId ?? 0, mouse: e.pointerType === 'mouse', delta_y: e.deltaY ?? 0 };
+    handle({ ...pointer, x: (e.clientX - r.left) * k, y: (e.clientY - r.top) * k, scale: k });
   };
-  // New bounds from the engine (none when a pinch has nothing to zoom by), then redraw.
-  const setBounds = (bounds) => {
-    if (!bounds) return;
-    l.bounds = bounds;
-    drawAll(l);
-  };
-  cv.addEventListener('wheel', (e) => { e.preventDefault(); const [x, y] = pos(e); setBounds(l.views[tag].map_wheel(x, y, e.deltaY)); }, { passive: false });
-  cv.addEventListener('dblclick', () => { l.bounds = null; drawAll(l); });
-  cv.addEventListener('pointerdown', (e) => {
-    cv.setPointerCapture(e.pointerId);
-    pointers.set(e.pointerId, pos(e));
-    drag = { moved: false };
-  });
-  cv.addEventListener('pointermove', (e) => {
-    const p = pos(e);
+  cv.addEventListener('wheel', (e) => { e.preventDefault(); send(e); }, { passive: false });
+  cv.addEventListener('pointerdown', (e) => { cv.setPointerCapture(e.pointerId); send(e); });
+  for (const kind of ['dblclick', 'pointermove', 'pointerup', 'pointercancel']) cv.addEventListener(kind, send);
+}
+
+/** What the engine answered a gesture on `view`: a step to select, new map bounds, or the plots
+ * to redraw. */
+function answered(l, view, { step, bounds, redraw }) {
+  if (bounds) l.bounds = bounds;
+  if (step != null) select(l, step, view);
+  else if (bounds) drawAll(l);
+  else if (redraw) drawPlots(l);
+}
+
+/** Hover or tap picks a step; wheel and pinch zoom; drag pans; double-click resets (the map's
+ * bounds are the log's, shared by its maps). In canvas pixels. */
+function wireMap(l, tag, cv) {
+  const g = new Gesture('map');
+  forward(cv, (r) => cv.width / r.width, (ev) => {
     const v = l.views[tag];
-    if (!pointers.has(e.pointerId)) {
-      if (e.pointerType === 'mouse') {
-        const i = v.pick(p[0], p[1], 12 * p[2]);
-        if (i != null && i !== l.step) select(l, i, v);
-      }
-      return;
-    }
-    const prev = pointers.get(e.pointerId);
-    pointers.set(e.pointerId, p);
-    if (pointers.size === 2) {
-      const [a, b] = [...pointers.values()];
-      const other = a === p ? b : a;
-      setBounds(v.map_pinch(prev[0], prev[1], p[0], p[1], other[0], other[1]));
-    } else if (pointers.size === 1 && Math.hypot(p[0] - prev[0], p[1] - prev[1]) > 0.5) {
-      drag.moved = true;
-      setBounds(v.map_pan(p[0] - prev[0], p[1] - prev[1]));
-    }
+    answered(l, v, v.map_gesture(g, ev, l.step ?? undefined));
   });
-  const up = (e) => {
-    const p = pointers.get(e.pointerId);
-    pointers.delete(e.pointerId);
-    if (p && drag && !drag.moved) {
-      const v = l.views[tag];
-      select(l, v.pick(p[0], p[1], 24 * p[2]), v);
-    }
-  };
-  cv.addEventListener('pointerup', up);
-  cv.addEventListener('pointercancel', (e) => pointers.delete(e.pointerId));
 }
 
 /** The plots share one time axis (its span kept by the engine): wheel or pinch zooms it about
- * the pointer, drag pans, click picks, double-click resets. */
+ * the pointer, drag pans, click picks, double-click resets. In CSS pixels. */
 function wirePlots(l) {
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
     if (cv.dataset.wired) continue;
     cv.dataset.wired = '1';
-    const pointers = new Map(); // pointerId → clientX
-    let drag = null;
-    const v = () => l.views.a;
-    // A client x in CSS pixels from the canvas's left edge, and where the engine drew the axis.
-    const at = (x) => x - cv.getBoundingClientRect().left;
+    const g = new Gesture('plot');
+    // Where the engine drew the time axis (CSS pixels from the canvas's left edge).
     const axis = () => cv.axis ?? [0, cv.getBoundingClientRect().width];
-    const grab = (x) => { v().axis_grab(); return { x, moved: true }; };
-    cv.addEventListener('wheel', (e) => {
-      e.preventDefault();
-      v().axis_wheel(axis(), at(e.clientX), e.deltaY);
-      drawPlots(l);
-    }, { passive: false });
-    cv.addEventListener('dblclick', () => { v().reset_span(); drawPlots(l); });
-    cv.addEventListener('pointerdown', (e) => {
-      cv.setPointerCapture(e.pointerId);
-      pointers.set(e.pointerId, e.clientX);
-      drag = { ...grab(e.clientX), moved: pointers.size > 1 };
-    });
-    cv.addEventListener('pointermove', (e) => {
-      if (!pointers.has(e.pointerId)) return;
-      const prev = pointers.get(e.pointerId);
-      pointers.set(e.pointerId, e.clientX);
-      if (pointers.size === 2) {
-        // Pinch (see TimeAxis::pinched).
-        const other = [...pointers.entries()].find(([id]) => id !== e.pointerId)[1];
-        if (v().axis_pinch(axis(), at(prev), at(e.clientX), at(other))) drawPlots(l);
-        return;
-      }
-      if (!drag) return;
-      if (Math.abs(e.clientX - drag.x) > 3) drag.moved = true;
-      if (!drag.moved) return;
-      v().axis_pan(axis(), at(drag.x), at(e.clientX));
-      drawPlots(l);
-    });
-    cv.addEventListener('pointerup', (e) => {
-      pointers.delete(e.pointerId);
-      if (drag && !drag.moved && !pointers.size) select(l, v().step_near_time(v().axis_time_at(axis(), at(e.clientX))), v());
-      // A finger left after a pinch does not start a pan from where it was.
-      drag = pointers.size ? grab([...pointers.values()][0]) : null;
-    });
-    // The browser took the gesture (a vertical scroll): nothing to pick.
-    cv.addEventListener('pointercancel', (e) => { pointers.delete(e.pointerId); drag = null; });
+    forward(cv, () => 1, (ev) => answered(l, l.views.a, l.views.a.plot_gesture(g, ev, axis())));
   }
 }
 
@@ -439,13 +323,10 @@ function pngOf(l) {
 }
 
 async function exportClicked(l, what) {
-  const v = l.views.a;
   const base = safeName(l.info.source.split('/').pop());
-  if (what === 'gpx') download(v.gpx(), `${base}.gpx`, 'application/gpx+xml');
-  else if (what === 'geojson') download(v.geojson(), `${base}.geojson`, 'application/geo+json');
-  else if (what === 'csv') download(v.steps_csv(), `${base}.steps.csv`, 'text/csv');
-  else if (what === 'pdrlog') worker.postMessage({ type: 'pdrlog', index: l.info.index });
+  if (what === 'pdrlog') worker.postMessage({ type: 'pdrlog', index: l.info.index });
   else if (what === 'png') download(await pngOf(l), `${base}.png`, 'image/png');
+  else download(...l.views.a.export_file(what, base));
 }
 
 export function setupUpload() {
@@ -454,14 +335,13 @@ export function setupUpload() {
   window.addEventListener('storage', () => fillProfiles());
   window.addEventListener('pdr-profiles-changed', () => fillProfiles(true));
   for (const sel of document.querySelectorAll('.config [name=profile]')) sel.addEventListener('focus', () => fillProfiles());
-  $('upload-files').addEventListener('change', (e) => {
-    loadUploaded([...e.target.files].map((file) => ({ name: file.name, file })));
-    e.target.value = '';
-  });
-  $('upload-folder').addEventListener('change', (e) => {
-    loadUploaded([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
-    e.target.value = '';
-  });
+  // Files picked, or a folder (its files named with their paths in it).
+  for (const id of ['upload-files', 'upload-folder']) {
+    $(id).addEventListener('change', (e) => {
+      loadUploaded([...e.target.files].map((file) => ({ name: file.webkitRelativePath || file.name, file })));
+      e.target.value = '';
+    });
+  }
   const drop = $('drop');
   drop.addEventListener('dragover', (e) => { e.preventDefault(); drop.classList.add('over'); });
   drop.addEventListener('dragleave', () => drop.classList.remove('over'));
@@ -473,7 +353,7 @@ export function setupUpload() {
   $('upload-cancel').addEventListener('click', () => {
     worker?.terminate();
     worker = null;
-    banner('Cancelled: nothing more will be read or run. Choose the files again, or Re-run, to start over.', 'warn');
+    banner(cancelled_text(), 'warn');
     finish(true);
     $('rerun').disabled = !lastFiles;
   });

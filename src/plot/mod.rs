@@ -13,6 +13,7 @@ mod basemap;
 mod calibration;
 mod frame;
 mod fusion;
+pub mod gesture;
 mod live;
 mod scope;
 mod theme;

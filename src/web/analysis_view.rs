@@ -152,9 +152,9 @@ impl AnalysisView {
         vec![e0, e1, n0, n1]
     }
 
-    /// The figures shown under the map: `[[label, text], …]`.
+    /// The figures shown under the map, a `dl.summary` view tree.
     pub fn figures(&self) -> Result<JsValue, JsError> {
-        to_json_value(&self.a.figures())
+        to_json_value(&crate::analysis::page::figures(&self.a.figures()))
     }
 
     /// Step `i` described for people.
@@ -264,6 +264,12 @@ impl AnalysisView {
         Ok(next.is_some())
     }
 
+    /// The CSS pixel from a plot canvas's left edge at time `t` (s, the log's clock), `axis` as
+    /// for [`Self::axis_time_at`].
+    pub fn axis_x_at(&self, axis: &[f64], t: f64) -> Result<f64, JsError> {
+        Ok(self.time_axis(self.span.get(), axis)?.x_at(t))
+    }
+
     /// A drag begins (or goes on with the finger left after a pinch): the span it pans from.
     pub fn axis_grab(&self) {
         self.grabbed.set(self.span.get());
@@ -288,6 +294,18 @@ impl AnalysisView {
         on_canvas(canvas, dark, dpr, |area, theme, scale| {
             crate::plot::upload::draw_ellipse(area, &self.a, k, theme, scale)
         })
+    }
+
+    /// The track exported as `what` (`gpx`, `geojson` or `csv`, see [`Self::gpx`]) for a file
+    /// named `base` and its extension: `[text, file name, MIME type]`.
+    pub fn export_file(&self, what: &str, base: &str) -> Result<JsValue, JsError> {
+        let (text, ext, mime) = match what {
+            "gpx" => (self.gpx(), "gpx", "application/gpx+xml"),
+            "geojson" => (self.geojson(), "geojson", "application/geo+json"),
+            "csv" => (self.steps_csv(), "steps.csv", "text/csv"),
+            _ => return Err(to_js(format!("no export `{what}`"))),
+        };
+        super::to_value(&[text, format!("{base}.{ext}"), mime.to_string()])
     }
 
     /// The track as GPX (geodetic when the log has fixes; see `io::export::track_gpx`).
@@ -335,12 +353,11 @@ impl AnalysisView {
     }
 }
 
-/// The diagnostics plots in the page's order, `[[kind, title]]`: the kind
+/// The diagnostics plots in the page's order, `(kind, title)`: the kind
 /// [`AnalysisView::draw_plot`] takes and the title people read (the canvas's label).
-#[wasm_bindgen]
-pub fn plot_titles() -> Result<JsValue, JsError> {
+pub(super) fn plot_list() -> Vec<(&'static str, &'static str)> {
     use crate::plot::upload::Plot;
-    let titles: Vec<(&str, &str)> = Plot::ALL
+    Plot::ALL
         .iter()
         .map(|p| match p {
             Plot::Accel => ("accel", "Vertical acceleration, PLL output and steps"),
@@ -354,6 +371,5 @@ pub fn plot_titles() -> Result<JsValue, JsError> {
                 "Fusion: estimated step-length scale and heading correction",
             ),
         })
-        .collect();
-    to_json_value(&titles)
+        .collect()
 }

@@ -9,10 +9,12 @@ mod blobs;
 mod calibration;
 mod canvas;
 mod demo;
+mod gesture;
 mod live;
 mod recorder;
 mod settings;
 mod upload;
+mod upload_page;
 
 use wasm_bindgen::prelude::*;
 

@@ -27,6 +27,12 @@ impl TimeAxis {
         self.span.0 + self.fraction(x).clamp(0.0, 1.0) * (self.span.1 - self.span.0)
     }
 
+    /// The pixel at time `t` (s): where the axis shows it, left or right of the axis outside the
+    /// span.
+    pub fn x_at(&self, t: f64) -> f64 {
+        self.px.0 + (t - self.span.0) / (self.span.1 - self.span.0) * (self.px.1 - self.px.0)
+    }
+
     /// The span zoomed by `k` (above 1 out, below 1 in) keeping time `t` at the fraction `f` of
     /// the axis: at least 1 s, at most the whole log, and inside it.
     pub fn zoom(&self, t: f64, f: f64, k: f64) -> (f64, f64) {
@@ -88,6 +94,9 @@ mod tests {
         assert_eq!(a.time_at(292.0), 1148.4251968503936);
         assert_eq!(a.time_at(12.0), 1100.0);
         assert_eq!(a.time_at(592.0), 1200.0);
+        assert_eq!(a.x_at(1100.0), 46.0);
+        assert_eq!(a.x_at(1150.0), 300.0);
+        assert_eq!(a.x_at(1200.0), 554.0);
     }
 
     #[test]

@@ -1,0 +1,88 @@
+//! Upload mode's page words and pieces (`analysis::page`), exported: the progress and status
+//! sentences, the banners after reading, and the result card and map box as view trees.
+//! May import: `analysis`.
+
+use super::analysis_view::plot_list;
+use super::{to_js, to_json_value};
+use crate::analysis::page;
+use wasm_bindgen::prelude::*;
+
+/// The status as `files` files are being opened ("reading 3 files…").
+#[wasm_bindgen]
+pub fn reading_text(files: usize) -> String {
+    page::reading_text(files)
+}
+
+/// `[status, fraction of the bar]` while `done` of `total` bytes are parsed.
+#[wasm_bindgen]
+pub fn read_progress(done: f64, total: f64) -> Result<JsValue, JsError> {
+    to_json_value(&page::read_progress(done, total))
+}
+
+/// `[status, fraction of the bar]` while log `index` of `logs` (`source`, `samples` long) goes
+/// through the engine, `done` of `total` finished.
+#[wasm_bindgen]
+pub fn engine_progress(
+    source: &str,
+    samples: usize,
+    done: f64,
+    total: f64,
+    index: usize,
+    logs: usize,
+) -> Result<JsValue, JsError> {
+    to_json_value(&page::engine_progress(
+        source,
+        samples,
+        (done, total),
+        index,
+        logs,
+    ))
+}
+
+/// The status once done: `logs` read from `bytes` (0: not said) in `seconds`, `refused` files
+/// refused.
+#[wasm_bindgen]
+pub fn loaded_text(logs: usize, bytes: f64, seconds: f64, refused: usize) -> String {
+    page::loaded_text(logs, bytes, seconds, refused)
+}
+
+/// The banner when the user stops a load.
+#[wasm_bindgen]
+pub fn cancelled_text() -> String {
+    page::CANCELLED.to_string()
+}
+
+/// The banners after reading, `[[kind, text]]`, from what `Upload.parse` answered (with the
+/// saved recipes' errors as `recipe_errors`).
+#[wasm_bindgen]
+pub fn upload_banners(parsed: JsValue) -> Result<JsValue, JsError> {
+    let p: page::Parsed =
+        serde_wasm_bindgen::from_value(parsed).map_err(|e| to_js(format!("parsed: {e}")))?;
+    to_json_value(&page::banners(&p))
+}
+
+/// The result card of log `index` (`source`, `hint`) as a view tree.
+#[wasm_bindgen]
+pub fn result_card(index: usize, source: &str, hint: &str) -> Result<JsValue, JsError> {
+    to_json_value(&page::result_card(index, source, hint, &plot_list()))
+}
+
+/// The box of run `tag`'s map as a view tree.
+#[wasm_bindgen]
+pub fn map_box(tag: &str) -> Result<JsValue, JsError> {
+    to_json_value(&page::map_box(tag))
+}
+
+/// The heading of run `tag`'s map, naming the configuration `label`; hidden unless there are
+/// `two` maps.
+#[wasm_bindgen]
+pub fn config_label(tag: &str, label: &str, two: bool) -> Result<JsValue, JsError> {
+    to_json_value(&page::config_label(tag, label, two))
+}
+
+/// The choices of a row's profile, option view trees: the built-in step length, then the saved
+/// profiles `names`, sorted.
+#[wasm_bindgen]
+pub fn profile_options(names: Vec<String>) -> Result<JsValue, JsError> {
+    to_json_value(&page::profile_options(&names))
+}
