@@ -10,6 +10,7 @@ mod calibration;
 mod canvas;
 mod demo;
 mod live;
+mod recipe_form;
 mod settings;
 mod upload;
 
