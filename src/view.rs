@@ -10,19 +10,25 @@ use serde::{Serialize, Serializer};
 /// string, the shape `render` reads.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Node {
+    /// An element.
     Element(El),
+    /// Text.
     Text(String),
 }
 
 /// An element: a tag, its attributes in order, its children.
 #[derive(Debug, Clone, PartialEq)]
 pub struct El {
+    /// The tag (`p`, `select`, …).
     pub tag: &'static str,
+    /// The attributes, in order.
     pub attrs: Vec<(&'static str, String)>,
+    /// The children, in order.
     pub children: Vec<Node>,
 }
 
 impl El {
+    /// An element `tag` without attributes or children.
     pub fn new(tag: &'static str) -> Self {
         El {
             tag,

@@ -3,7 +3,7 @@
 // the sanity checks are the engine's (src/io/import/recipe, through the worker), and so are the
 // form, its preview and the recipe its values make (form_view.rs); this file only wires the
 // form's events, keeps the saved recipes and hands the recipe JSON around.
-import { RecipeForm, recipe_normalise } from './pkg/pdr.js';
+import { RecipeForm, recipe_in, recipe_normalise } from './pkg/pdr.js';
 import { $, download, readStored, render, safeName } from './util.js';
 
 const LIST = 'pdr-recipes';
@@ -34,13 +34,10 @@ export async function splitUploaded(files) {
   const recipes = [];
   const rest = [];
   for (const f of files) {
-    if (mayHoldRecipes([f])) {
-      try {
-        recipes.push(recipe_normalise(await f.file.text()));
-        continue;
-      } catch { /* not a recipe: a recording's JSON */ }
-    }
-    rest.push(f);
+    // A JSON file that is not a recipe is a recording's.
+    const recipe = mayHoldRecipes([f]) ? recipe_in(await f.file.text()) : undefined;
+    if (recipe) recipes.push(recipe);
+    else rest.push(f);
   }
   return { files: rest, recipes };
 }
@@ -49,13 +46,11 @@ let form = null; // {engine: RecipeForm, preview(json), run(json)}
 let timer = 0;
 
 /** The form's values for the engine (`RecipeForm.recipe`): each sensor row's file, and its
- * `data-k` and `data-col` selects as `[key, value]`. */
-function values() {
-  return [...$('recipe-form').querySelectorAll('.recipe-sensor')].map((row) => {
-    const pairs = (attr) => [...row.querySelectorAll(`[data-${attr}]`)].map((s) => [s.dataset[attr], s.value]);
-    return { file: row.closest('fieldset').dataset.file, k: pairs('k'), col: pairs('col') };
-  });
-}
+ * selects' `{k or col, value}` (their `data-k` or `data-col`). */
+const values = () => [...$('recipe-form').querySelectorAll('.recipe-sensor')].map((row) => ({
+  file: row.closest('fieldset').dataset.file,
+  selects: [...row.querySelectorAll('select')].map((s) => ({ ...s.dataset, value: s.value })),
+}));
 
 /**
  * The recipe (JSON) the form describes now: an entry for each sensor of each file (a file may

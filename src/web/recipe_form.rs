@@ -50,7 +50,7 @@ impl RecipeForm {
     }
 
     /// The recipe (JSON) the form's values make: the name field's `name` and each sensor row's
-    /// `{file, k: [[key, value]], col: [[field, value]]}`.
+    /// `{file, selects: [{k or col, value}]}`.
     pub fn recipe(&self, name: &str, rows: JsValue) -> Result<String, JsError> {
         let rows: Vec<RowValues> = serde_wasm_bindgen::from_value(rows).map_err(to_js)?;
         self.form.recipe(name, &rows).map_err(to_js)

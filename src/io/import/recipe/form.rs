@@ -124,7 +124,12 @@ fn rounded(a: f64, digits: usize, sci: bool) -> String {
     let tie = after
         .get(digits..)
         .is_some_and(|rest| rest.trim_end_matches('0') == "5");
-    let a = if tie { a.next_up() } else { a };
+    // The next f64 up (a > 0 here: zero is never a tie) is past the tie, so it rounds up.
+    let a = if tie {
+        f64::from_bits(a.to_bits() + 1)
+    } else {
+        a
+    };
     if sci {
         format!("{a:.digits$e}")
     } else {

@@ -26,16 +26,27 @@ pub struct Form {
 }
 
 /// One sensor row's values as the page reads them from its selects: the row's file (its name,
-/// the fieldset's `data-file`), its `data-k` selects (`sensor`, `time_unit`, `unit`) and its
-/// `data-col` selects (`t`, `x`, …), each `[key, value]` in the row's order.
+/// the fieldset's `data-file`) and its selects in the row's order.
 #[derive(Debug, Clone, Default, serde::Deserialize)]
 pub struct RowValues {
     /// The file's name (`data-file`).
     pub file: String,
-    /// The `data-k` selects' `(key, value)`.
-    pub k: Vec<(String, String)>,
-    /// The `data-col` selects' `(field, value)`.
-    pub col: Vec<(String, String)>,
+    /// The row's selects.
+    pub selects: Vec<SelectValue>,
+}
+
+/// A select of a row: its `data-k` (`sensor`, `time_unit`, `unit`) or its `data-col` (`t`,
+/// `x`, …), and its value.
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+pub struct SelectValue {
+    /// `data-k`.
+    #[serde(default)]
+    pub k: Option<String>,
+    /// `data-col`.
+    #[serde(default)]
+    pub col: Option<String>,
+    /// The chosen option's value.
+    pub value: String,
 }
 
 impl Form {
@@ -181,14 +192,19 @@ impl Form {
         let mut files = Vec::new();
         for row in rows {
             let g = self.file(&row.file)?;
-            let get = |k: &str| row.k.iter().find(|(key, _)| key == k).map(|(_, v)| v);
+            let get = |k: &str| {
+                row.selects
+                    .iter()
+                    .find(|s| s.k.as_deref() == Some(k))
+                    .map(|s| &s.value)
+            };
             let Some(sensor) = get("sensor").filter(|s| !s.is_empty()) else {
                 continue;
             };
             let columns: serde_json::Map<String, serde_json::Value> = row
-                .col
+                .selects
                 .iter()
-                .map(|(k, v)| (k.clone(), column_value(g.header, v)))
+                .filter_map(|s| Some((s.col.clone()?, column_value(g.header, &s.value))))
                 .collect();
             let mut rule = serde_json::json!({
                 "match": base(&g.name),
@@ -511,10 +527,20 @@ mod tests {
 
     #[test]
     fn the_values_make_a_recipe_the_reader_takes() {
-        let row = |file: &str, sensor: &str, unit: &str, cols: &[(&str, &str)]| RowValues {
-            file: file.into(),
-            k: pairs(&[("sensor", sensor), ("time_unit", "ms"), ("unit", unit)]),
-            col: pairs(cols),
+        let row = |file: &str, sensor: &str, unit: &str, cols: &[(&str, &str)]| {
+            let k = [("sensor", sensor), ("time_unit", "ms"), ("unit", unit)];
+            let select = |k: Option<&str>, col: Option<&str>, value: &str| SelectValue {
+                k: k.map(Into::into),
+                col: col.map(Into::into),
+                value: value.into(),
+            };
+            let first = k[..1].iter().map(|(k, v)| select(Some(k), None, v));
+            let columns = cols.iter().map(|(c, v)| select(None, Some(c), v));
+            let units = k[1..].iter().map(|(k, v)| select(Some(k), None, v));
+            RowValues {
+                file: file.into(),
+                selects: first.chain(columns).chain(units).collect(),
+            }
         };
         let cols = [("t", "1"), ("x", "2"), ("y", "3"), ("z", "4")];
         let rows = [
