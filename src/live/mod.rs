@@ -1,8 +1,9 @@
 //! Live input: browser sensor events into the engine's records ([`events`], the one place where
 //! the platforms' quirks are converted), and the live session around the one pipeline uploaded
 //! logs also go through ([`session`]). Pure Rust (the wasm glue in [`crate::web`] only reads the
-//! events' fields), so it is tested natively and in the browser alike.
-//! May import: `engine`, `io`.
+//! events' fields), so it is tested natively and in the browser alike. The step-length
+//! calibration wizard's words and fits box are here too ([`wizard`]): its walks are live walks.
+//! May import: `engine`, `io`, `view`.
 //!
 //! # `devicemotion`, as browsers deliver it
 //! - `accelerationIncludingGravity`, m/s², device frame (x right, y top, z out of the screen).
@@ -33,6 +34,7 @@ pub mod messages;
 pub mod readout_text;
 pub mod recorder;
 pub mod session;
+pub mod wizard;
 
 pub use events::{
     browser_events, ios_compass_alpha, is_ios, normalise_motion, orientation_angles,

@@ -1,5 +1,5 @@
 //! The calibration wizard's class and the profile files' functions.
-//! May import: `engine`, `plot`.
+//! May import: `engine`, `live`, `plot`.
 
 use super::canvas::on_canvas;
 use super::{to_js, to_value};
@@ -15,14 +15,20 @@ pub(super) fn read_profile(text: &str) -> Result<crate::engine::calibration::Pro
 #[wasm_bindgen]
 pub struct CalibrationWizard {
     wizard: crate::engine::calibration::Wizard,
+    /// The normal walk's leg-pitch calibration, the last one ([`CalibrationWizard::walked`]).
+    pitch: Option<crate::live::wizard::PitchCalibration>,
+}
+
+fn band_of(name: &str) -> Result<crate::engine::calibration::Band, String> {
+    crate::live::wizard::BANDS
+        .iter()
+        .find(|(_, n)| *n == name)
+        .map(|(b, _)| *b)
+        .ok_or_else(|| format!("unknown band `{name}`"))
 }
 
 fn band(name: &str) -> Result<crate::engine::calibration::Band, JsError> {
-    match name {
-        "walking" => Ok(crate::engine::calibration::Band::Walking),
-        "running" => Ok(crate::engine::calibration::Band::Running),
-        other => Err(to_js(format!("unknown band `{other}`"))),
-    }
+    band_of(name).map_err(to_js)
 }
 
 #[wasm_bindgen]
@@ -32,44 +38,45 @@ impl CalibrationWizard {
     pub fn new() -> CalibrationWizard {
         CalibrationWizard {
             wizard: Default::default(),
+            pitch: None,
         }
     }
 
-    /// Adds a walk of `distance_m` whose steps had the frequencies `step_freqs_hz` and, when
-    /// given (`Live.fuzzy_lengths()`), the unscaled fuzzy lengths `fuzzy_lengths_m`; returns its
-    /// `{band, pace, distance_m, steps, f_mean_hz, sl_mean_m, fuzzy_sum_m, text}` (`text`: the
-    /// walk's figures for people, eq. 1 and 2).
-    pub fn add_walk(
+    /// A walk ended: adds the walk of `distance_m` whose steps had the frequencies
+    /// `step_freqs_hz` and, when given (`Live.fuzzy_lengths()`), the unscaled fuzzy lengths
+    /// `fuzzy_lengths_m`; for the comfortable (normal) pace, also calibrates the leg-pitch step
+    /// length from the steps' leg pitch amplitudes (`Live.pitch_amplitudes()`; Munoz Diaz 2015
+    /// §5.1), kept for the profile. Returns `{text, error, pitch}`: the walk's figures for
+    /// people (eq. 1 and 2), or why it was not added (`error` true), and the leg-pitch
+    /// calibration (`null` for the other paces).
+    pub fn walked(
         &mut self,
         band_name: &str,
         pace: &str,
         distance_m: f64,
         step_freqs_hz: Vec<f64>,
         fuzzy_lengths_m: Option<Vec<f64>>,
+        pitch_amplitudes_deg: Vec<f64>,
     ) -> Result<JsValue, JsError> {
         let walk = crate::engine::calibration::CalibrationWalk {
             distance_m,
             step_freqs_hz,
             fuzzy_lengths_m: fuzzy_lengths_m.unwrap_or_default(),
         };
-        let w = self
-            .wizard
-            .add(band(band_name)?, pace, &walk)
-            .map_err(to_js)?;
-        #[derive(serde::Serialize)]
-        struct Added<'a> {
-            #[serde(flatten)]
-            walk: &'a crate::engine::calibration::WizardWalk,
-            text: String,
+        let added = band_of(band_name).and_then(|b| {
+            let w = self.wizard.add(b, pace, &walk).map_err(|e| e.to_string())?;
+            Ok(crate::live::wizard::walk_text(w, band_name))
+        });
+        let (text, error) = match added {
+            Ok(text) => (text, false),
+            Err(why) => (why, true),
+        };
+        let pitch = (pace == "normal")
+            .then(|| crate::live::wizard::pitch_calibration(distance_m, &pitch_amplitudes_deg));
+        if pitch.is_some() {
+            self.pitch = pitch.clone();
         }
-        let fuzzy = w
-            .fuzzy_sum_m
-            .map_or(String::new(), |f| format!(" · fuzzy Σ = {f:.1} m at k = 1"));
-        let text = format!(
-            "N = {} steps over {:.1} m · f̄ = {:.2} Hz (eq. 1) · SL̄ = D/N = {:.3} m (eq. 2) → one point of your {band_name} line{fuzzy}",
-            w.steps, w.distance_m, w.f_mean_hz, w.sl_mean_m
-        );
-        super::to_json_value(&Added { walk: w, text })
+        super::to_json_value(&serde_json::json!({ "text": text, "error": error, "pitch": pitch }))
     }
 
     /// Removes walk `index` (an outlier the user drops).
@@ -83,13 +90,8 @@ impl CalibrationWizard {
     /// outlier), the fuzzy scale when walks measured it, and the profile's notes:
     /// `{walks, walking, running, fuzzy_scale, notes}`.
     pub fn state(&self) -> Result<JsValue, JsError> {
-        use crate::engine::calibration::{fit_band, Band, FitWarning};
-        #[derive(serde::Serialize)]
-        struct Warning {
-            kind: &'static str,
-            message: String,
-            walk: Option<usize>,
-        }
+        use crate::engine::calibration::{fit_band, Band};
+        use crate::live::wizard::{warnings, Warning};
         #[derive(serde::Serialize)]
         struct Fit {
             points: usize,
@@ -100,10 +102,6 @@ impl CalibrationWizard {
             warnings: Vec<Warning>,
         }
         let fit = |b: Band| {
-            // Indices of this band's walks among all walks, to name an outlier's walk.
-            let idx: Vec<usize> = (0..self.wizard.walks.len())
-                .filter(|&i| self.wizard.walks[i].band == b)
-                .collect();
             let f = fit_band(&self.wizard.points(b));
             Fit {
                 points: f.points.len(),
@@ -111,23 +109,7 @@ impl CalibrationWizard {
                 b: f.fit.as_ref().map(|x| x.b),
                 r2: f.fit.as_ref().map(|x| x.r2),
                 se: f.se,
-                warnings: f
-                    .warnings
-                    .iter()
-                    .map(|w| Warning {
-                        kind: match w {
-                            FitWarning::TooFewPoints { .. } => "too_few_points",
-                            FitWarning::NarrowSpan { .. } => "narrow_span",
-                            FitWarning::NegativeSlope { .. } => "negative_slope",
-                            FitWarning::Outlier { .. } => "outlier",
-                        },
-                        message: w.message(),
-                        walk: match w {
-                            FitWarning::Outlier { index, .. } => idx.get(*index).copied(),
-                            _ => None,
-                        },
-                    })
-                    .collect(),
+                warnings: warnings(&self.wizard, b),
             }
         };
         #[derive(serde::Serialize)]
@@ -137,6 +119,7 @@ impl CalibrationWizard {
             running: Fit,
             fuzzy_scale: Option<f64>,
             notes: Vec<String>,
+            pitch: &'a Option<crate::live::wizard::PitchCalibration>,
         }
         let (_, notes) = self.wizard.profile(&Default::default());
         to_value(&State {
@@ -145,10 +128,34 @@ impl CalibrationWizard {
             running: fit(Band::Running),
             fuzzy_scale: self.wizard.fuzzy_scale(),
             notes,
+            pitch: &self.pitch,
         })
     }
 
-    /// The profile file (JSON) the walks make, named `name`.
+    /// The fits box and the notes as the page shows them (`crate::live::wizard`): `{fits,
+    /// notes}`, view trees; a fit's chart is a canvas `cal-chart-<band>` for [`Self::draw`], an
+    /// outlier's button carries its walk's index (`data-walk`) for [`Self::remove_walk`].
+    pub fn view(&self) -> Result<JsValue, JsError> {
+        use crate::live::wizard::{fits_view, notes_view};
+        super::to_json_value(&serde_json::json!({
+            "fits": fits_view(&self.wizard),
+            "notes": notes_view(&self.wizard),
+        }))
+    }
+
+    /// The profile the walks make, named by the name field's `field` (trimmed, "me" when
+    /// empty): `{name, json, text}`, its name, its file (JSON, checked) and what the page says
+    /// when it is saved.
+    pub fn profile(&self, field: &str) -> Result<JsValue, JsError> {
+        let name = crate::live::wizard::profile_name(field);
+        let json = self.profile_json(&name)?;
+        read_profile(&json)?;
+        let text = crate::live::wizard::message("saved", &name).map_err(to_js)?;
+        super::to_json_value(&serde_json::json!({ "name": name, "json": json, "text": text }))
+    }
+
+    /// The profile file (JSON) the walks make, named `name`, with the leg-pitch step length's
+    /// offset when the normal walk gave one.
     pub fn profile_json(&self, name: &str) -> Result<String, JsError> {
         use crate::engine::calibration::{Band, ProfileFile, PROFILE_VERSION};
         let (profile, _) = self.wizard.profile(&Default::default());
@@ -159,7 +166,7 @@ impl CalibrationWizard {
             walking_points: self.wizard.points(Band::Walking),
             running_points: self.wizard.points(Band::Running),
             fuzzy_scale: self.wizard.fuzzy_scale(),
-            pitch_offset_m: None,
+            pitch_offset_m: self.pitch.as_ref().and_then(|p| p.offset_m),
         }
         .to_json()
         .map_err(to_js)
@@ -288,7 +295,7 @@ pub fn refine_profile(text: &str, evidence: JsValue, name: &str) -> Result<JsVal
     })
 }
 
-use crate::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG as PITCH_SLOPE_M_PER_DEG;
+use crate::live::wizard::PITCH_SLOPE_M_PER_DEG;
 
 /// Munoz Diaz 2015 §5.1's one-walk calibration of the pitch step length: a walk of
 /// `distance_m` whose steps had the leg pitch amplitudes `amplitudes_deg` (`Live.pitch_amplitudes()`,
@@ -298,37 +305,68 @@ use crate::engine::pitch_step_length::UNIVERSAL_SLOPE_M_PER_DEG as PITCH_SLOPE_M
 /// `text` says the outcome to people.
 #[wasm_bindgen]
 pub fn pitch_calibration(distance_m: f64, amplitudes_deg: Vec<f64>) -> Result<JsValue, JsError> {
-    let steps = amplitudes_deg.len();
-    let with_pitch = amplitudes_deg
-        .iter()
-        .filter(|d| d.is_finite() && **d > 0.0)
-        .count();
-    let v = if 2 * with_pitch < steps || with_pitch == 0 {
-        serde_json::json!({
-            "ok": false, "steps": steps, "with_pitch": with_pitch,
-            "why": format!("only {with_pitch} of the walk's {steps} steps had a leg pitch: the pitch step length needs the phone in a front trouser pocket and a gyroscope (the browser's rotation rate)"),
-        })
-    } else {
-        match crate::engine::calibration::pitch_offset(
-            distance_m,
-            &amplitudes_deg,
-            PITCH_SLOPE_M_PER_DEG,
-        ) {
-            Ok(b) => serde_json::json!({
-                "ok": true, "offset_m": b, "slope_m_per_deg": PITCH_SLOPE_M_PER_DEG,
-                "steps": steps, "with_pitch": with_pitch,
-                "text": format!("Leg-pitch step length (Munoz Diaz 2015 §5.1): with the universal slope a = {PITCH_SLOPE_M_PER_DEG} m/°, your offset is b = {b:.3} m per stride ({with_pitch} steps with a leg pitch). It is saved with the profile."),
-            }),
-            Err(e) => serde_json::json!({
-                "ok": false, "steps": steps, "with_pitch": with_pitch, "why": e.to_string(),
-            }),
-        }
-    };
-    let mut v = v;
-    if let Some(why) = v.get("why").and_then(|w| w.as_str()).map(str::to_string) {
-        v["text"] = format!("Leg-pitch step length not calibrated: {why}.").into();
-    }
-    super::to_json_value(&v)
+    super::to_json_value(&crate::live::wizard::pitch_calibration(
+        distance_m,
+        &amplitudes_deg,
+    ))
+}
+
+/// The title of a calibration walk's screen, `undefined` without a positive distance
+/// ([`crate::live::wizard::walk_title`]).
+#[wasm_bindgen]
+pub fn walk_title(pace: &str, target_m: f64, gnss: bool) -> Result<Option<String>, JsError> {
+    crate::live::wizard::walk_title(pace, target_m, gnss).map_err(to_js)
+}
+
+/// A walk's progress in its row: the steps, and the path GNSS measured, m, when given.
+#[wasm_bindgen]
+pub fn walk_progress(steps: usize, gnss_path_m: Option<f64>, target_m: f64) -> String {
+    crate::live::wizard::walk_progress(steps, gnss_path_m, target_m)
+}
+
+/// The wizard's message `key` (`distance`, `busy`, `saved`, `import`), naming the profile `name`.
+#[wasm_bindgen]
+pub fn wizard_message(key: &str, name: &str) -> Result<String, JsError> {
+    crate::live::wizard::message(key, name).map_err(to_js)
+}
+
+/// What the GNSS check says in `state` (`missing`, `waiting`, `fix` with `accuracy_m`,
+/// `refused`, `failed`): `{text, good}`, `good` when a fix is within [`gnss_limit_m`].
+#[wasm_bindgen]
+pub fn gnss_state(state: &str, accuracy_m: Option<f64>) -> Result<JsValue, JsError> {
+    let (text, good) = crate::live::wizard::gnss_state(
+        state,
+        accuracy_m.unwrap_or(f64::NAN),
+        crate::engine::calibration::GNSS_MAX_ACCURACY_M,
+    )
+    .map_err(to_js)?;
+    super::to_json_value(&serde_json::json!({ "text": text, "good": good }))
+}
+
+/// A profile file (`text`, from the file `file_name`) imported beside the saved `profiles`
+/// (`{name: json}`): `{name, text}`, the name it is saved under and what the page says of it,
+/// or `{error}` for a file that is not a profile ([`crate::live::wizard::import_profile`]).
+#[wasm_bindgen]
+pub fn import_profile(file_name: &str, text: &str, profiles: JsValue) -> Result<JsValue, JsError> {
+    let existing: std::collections::BTreeMap<String, String> =
+        serde_wasm_bindgen::from_value(profiles).map_err(to_js)?;
+    super::to_json_value(
+        &match crate::live::wizard::import_profile(file_name, text, &existing) {
+            Ok((name, text)) => serde_json::json!({ "name": name, "text": text }),
+            Err(error) => serde_json::json!({ "error": error }),
+        },
+    )
+}
+
+/// The profile panel's choices and the profile in use, for the saved profiles' `names` and the
+/// `selected` one (`""`: the built-in lines): `{options, in_use}`, `options` view trees.
+#[wasm_bindgen]
+pub fn profiles_view(names: Vec<String>, selected: &str) -> Result<JsValue, JsError> {
+    use crate::live::wizard::{profile_in_use, profile_options};
+    super::to_json_value(&serde_json::json!({
+        "options": profile_options(names.iter().map(String::as_str), selected),
+        "in_use": profile_in_use(selected),
+    }))
 }
 
 /// The profile file (JSON) with the pitch step length's offset b, m, set (`pitch_offset_m`);

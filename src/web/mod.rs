@@ -11,6 +11,7 @@ mod canvas;
 mod demo;
 mod gesture;
 mod live;
+mod recipe_form;
 mod recorder;
 mod settings;
 mod upload;

@@ -156,42 +156,19 @@ impl Upload {
     }
 
     /// The files as the recipe form shows them: `{files: [{name, delimiter, header, columns,
-    /// first, hint, options}], draft}` ([`recipe::describe`]), reading only each file's first
-    /// bytes; `hint` describes the file to people and `options` are its columns' `[value,
-    /// label]` ([`recipe::form`]).
+    /// first}], draft}` ([`recipe::describe`]), reading only each file's first bytes; the page
+    /// makes its form of it with [`RecipeForm`](super::recipe_form::RecipeForm).
     pub fn describe(&self, progress: js_sys::Function) -> Result<JsValue, JsError> {
-        #[derive(serde::Serialize)]
-        struct FileForm<'a> {
-            #[serde(flatten)]
-            guess: &'a recipe::check::FileGuess,
-            hint: String,
-            options: Vec<(String, String)>,
-        }
-        #[derive(serde::Serialize)]
-        struct Form<'a> {
-            files: Vec<FileForm<'a>>,
-            draft: &'a Option<Recipe>,
-        }
         let mut set = self.blob_set(progress)?;
-        let d = recipe::describe(&mut set);
-        to_json_value(&Form {
-            files: d
-                .files
-                .iter()
-                .map(|g| FileForm {
-                    guess: g,
-                    hint: recipe::form::file_hint(g),
-                    options: recipe::form::column_options(g),
-                })
-                .collect(),
-            draft: &d.draft,
-        })
+        to_json_value(&recipe::describe(&mut set))
     }
 
     /// What a recipe (JSON) makes of the files, reading at most [`PREVIEW_SAMPLES`] samples
     /// per file: `{report: {files: [{file, sensor, columns, rows, samples, skipped, errors,
     /// rate_hz, median}], warnings, notes}}`, or `{error}` for a recipe that does not read, does
-    /// not match the files, or a file it cannot read.
+    /// not match the files, or a file it cannot read; with either, as the form shows it
+    /// ([`recipe::form_view::preview_view`]), `messages` (view trees of the list's items) and
+    /// `tables` (a view tree per file).
     pub fn preview(
         &self,
         recipe_json: &str,
@@ -201,10 +178,14 @@ impl Upload {
         struct Preview {
             report: Option<recipe::Report>,
             error: Option<String>,
+            messages: Vec<crate::view::El>,
+            tables: Vec<crate::view::El>,
         }
         let fail = |e: String| Preview {
             report: None,
             error: Some(e),
+            messages: Vec::new(),
+            tables: Vec::new(),
         };
         let out = match Recipe::from_json(recipe_json) {
             Err(e) => fail(e.to_string()),
@@ -228,11 +209,21 @@ impl Upload {
                     Some((_, Ok((_, report)))) => Preview {
                         report: Some(report),
                         error: None,
+                        messages: Vec::new(),
+                        tables: Vec::new(),
                     },
                 }
             }
         };
-        to_json_value(&out)
+        let (messages, tables) = match (&out.report, &out.error) {
+            (Some(r), _) => recipe::form_view::preview_view(Ok(r)),
+            (None, e) => recipe::form_view::preview_view(Err(e.as_deref().unwrap_or_default())),
+        };
+        to_json_value(&Preview {
+            messages,
+            tables,
+            ..out
+        })
     }
 
     /// Log `index` in the project's own format (pdr-log).
@@ -255,7 +246,7 @@ fn log_hint(log: &crate::io::import::Log) -> String {
     let mut s = format!(
         "{} · {} IMU samples · {minutes:.1} min",
         log.format.as_str(),
-        thousands(log.imu_samples())
+        recipe::form::thousands(log.imu_samples())
     );
     if log.skipped > 0 {
         s += &format!(" · {} lines skipped", log.skipped);
@@ -264,19 +255,6 @@ fn log_hint(log: &crate::io::import::Log) -> String {
         s += &format!(" · read with your recipe \"{r}\"");
     }
     s
-}
-
-/// A whole number with a comma every three digits ("12,345").
-fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 /// A file the upload could not read, as the page's banner says it: `file:line:column (field):
@@ -310,60 +288,12 @@ impl Upload {
     }
 }
 
-/// What the recipe form offers: `{sensors: [{sensor, label, needs, units}], time_units}`, every
-/// sensor with its label, the columns it needs (besides `t`) and the units it takes as `[value,
-/// label]` (the first is the default), and the time units as `[value, label]`.
+/// A file's text as a recipe, normalised ([`recipe_normalise`]), or `undefined` when it is not
+/// one (a recording's JSON uploaded beside the recipes): a recipe uploaded with its files is
+/// applied to them.
 #[wasm_bindgen]
-pub fn recipe_choices() -> Result<JsValue, JsError> {
-    use recipe::form::{sensor_label, time_unit_label, unit_label};
-    #[derive(serde::Serialize)]
-    struct Choice {
-        sensor: &'static str,
-        label: String,
-        needs: &'static [&'static str],
-        units: Vec<(&'static str, String)>,
-    }
-    #[derive(serde::Serialize)]
-    struct Choices {
-        sensors: Vec<Choice>,
-        time_units: Vec<(&'static str, &'static str)>,
-    }
-    to_json_value(&Choices {
-        sensors: recipe::Sensor::ALL
-            .iter()
-            .map(|&s| Choice {
-                sensor: s.as_str(),
-                label: sensor_label(s),
-                needs: s.needs(),
-                units: s
-                    .units()
-                    .iter()
-                    .map(|&u| (u.as_str(), unit_label(u)))
-                    .collect(),
-            })
-            .collect(),
-        time_units: recipe::TimeUnit::ALL
-            .iter()
-            .map(|&u| (u.as_str(), time_unit_label(u)))
-            .collect(),
-    })
-}
-
-/// The recipe form's first guess of the columns of the `index`-th sensor (`sensor`, as in the
-/// JSON) of a file of `columns` columns: `[[field, 0-based column]]` for `t` and each field the
-/// sensor needs ([`recipe::form::guess_columns`]).
-#[wasm_bindgen]
-pub fn recipe_guess_columns(
-    columns: usize,
-    sensor: &str,
-    index: usize,
-) -> Result<JsValue, JsError> {
-    let s = recipe::Sensor::ALL
-        .iter()
-        .copied()
-        .find(|s| s.as_str() == sensor)
-        .ok_or_else(|| to_js(format!("no sensor `{sensor}`")))?;
-    to_json_value(&recipe::form::guess_columns(columns, s, index))
+pub fn recipe_in(text: &str) -> Option<String> {
+    Recipe::from_json(text).ok()?.to_json().ok()
 }
 
 /// Checks a recipe's JSON and returns it normalised (pretty, as the CLI reads it), or the error.

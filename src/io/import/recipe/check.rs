@@ -245,7 +245,7 @@ fn sig(v: f64) -> String {
 }
 
 /// One file of an upload as the form shows it.
-#[derive(Debug, Clone, serde::Serialize)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct FileGuess {
     /// The file's name in the set.
     pub name: String,

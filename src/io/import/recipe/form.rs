@@ -1,5 +1,5 @@
 //! The recipe form's words and first guesses: how a file, its columns, sensors and units are
-//! named to people, and which columns a sensor's fields start on.
+//! named to people, how its preview writes numbers, and which columns a sensor's fields start on.
 //! May import: [`super::check`] and [`super::schema`].
 
 use super::check::FileGuess;
@@ -85,6 +85,71 @@ pub fn guess_columns(columns: usize, sensor: Sensor, index: usize) -> Vec<(&'sta
         .collect()
 }
 
+/// A number of the preview as the form shows it: six significant digits without trailing
+/// zeros ("9.80665", "0.0123", "1.5e-7"), and three decimals from a million up (times in ms or
+/// µs since an epoch: "1712345678.123"). A tie rounds away from zero, as the page's numbers
+/// always did; `NaN` and infinities are named.
+pub fn preview_number(v: f64) -> String {
+    if v.is_nan() {
+        return "NaN".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { "Infinity" } else { "-Infinity" }.into();
+    }
+    let sign = if v < 0.0 { "-" } else { "" };
+    if v.abs() >= 1e6 {
+        return format!("{sign}{}", rounded(v.abs(), 3, false));
+    }
+    let r: f64 = rounded(v.abs(), 5, true).parse().unwrap_or(0.0);
+    if r == 0.0 {
+        "0".into()
+    } else if r < 1e-6 {
+        format!("{sign}{r:e}")
+    } else {
+        format!("{sign}{r}")
+    }
+}
+
+/// `a` (≥ 0, finite) with `digits` decimals, of the mantissa when `sci`; a tie (the exact
+/// value half-way) rounds up, where Rust's formatter would round to even.
+fn rounded(a: f64, digits: usize, sci: bool) -> String {
+    // 1100 digits hold any f64 exactly.
+    let exact = if sci {
+        format!("{a:.1100e}")
+    } else {
+        format!("{a:.1100}")
+    };
+    let mantissa = exact.split('e').next().unwrap_or_default();
+    let after = mantissa.split_once('.').map_or("", |(_, f)| f);
+    let tie = after
+        .get(digits..)
+        .is_some_and(|rest| rest.trim_end_matches('0') == "5");
+    // The next f64 up (a > 0 here: zero is never a tie) is past the tie, so it rounds up.
+    let a = if tie {
+        f64::from_bits(a.to_bits() + 1)
+    } else {
+        a
+    };
+    if sci {
+        format!("{a:.digits$e}")
+    } else {
+        format!("{a:.digits$}")
+    }
+}
+
+/// A whole number with a comma every three digits ("12,345").
+pub fn thousands(n: usize) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,5 +161,34 @@ mod tests {
         assert_eq!(guess_columns(2, Sensor::Accelerometer, 0)[3], ("z", 1));
         assert_eq!(unit_label(ValueUnit::MS2), "m/s²");
         assert_eq!(time_unit_label(TimeUnit::Us), "µs");
+    }
+
+    #[test]
+    fn preview_numbers_read_as_the_page_always_showed_them() {
+        // What `Number(v.toPrecision(6)).toString()` and `v.toFixed(3)` give in a browser.
+        for (v, shown) in [
+            (9.80665, "9.80665"),
+            (9.806649, "9.80665"),
+            (0.1 + 0.2, "0.3"),
+            (100.0, "100"),
+            (-0.5, "-0.5"),
+            (0.0, "0"),
+            (-0.0, "0"),
+            (123456.5, "123457"),
+            (-123456.5, "-123457"),
+            (999999.5, "1000000"),
+            (0.000_012_345_67, "0.0000123457"),
+            (1.5e-7, "1.5e-7"),
+            (1_712_345_678.123_4, "1712345678.123"),
+            (1_000_000.0625, "1000000.063"),
+            (-2_000_000.0, "-2000000.000"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-Infinity"),
+        ] {
+            assert_eq!(preview_number(v), shown, "{v}");
+        }
+        assert_eq!(thousands(2000), "2,000");
+        assert_eq!(thousands(1_234_567), "1,234,567");
+        assert_eq!(thousands(999), "999");
     }
 }

@@ -1,5 +1,5 @@
 //! Recipes: logs from any recorder, read by a column mapping the user writes once.
-//! May import: `engine` and `io`.
+//! May import: `engine`, `io` and `view`.
 //!
 //! Many research and hobby loggers write one CSV per sensor, with or without a header, in their
 //! own column order, separator and units (`acc.csv`: `time in ms, x, y, z`, no header). No
@@ -16,11 +16,13 @@
 //!   [`check::Report`]: the first rows as parsed, in SI units, and sanity warnings.
 //! - [`check::describe`]: a first guess (columns, separator, header, sensor, time unit) of the
 //!   files of an unrecognised upload, for the page's form; [`form`]: the form's words and its
-//!   guess of the columns.
+//!   guess of the columns; [`form_view`]: the form and the preview as the page shows them, and
+//!   the recipe the form's values make.
 
 pub mod check;
 mod error;
 pub mod form;
+pub mod form_view;
 mod merge;
 pub mod read;
 mod schema;
