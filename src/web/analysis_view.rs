@@ -96,60 +96,11 @@ impl AnalysisView {
         })
     }
 
-    /// The metres the last map showed, `[min_e, max_e, min_n, max_n]`, and metres per canvas
-    /// pixel.
-    pub fn map_view(&self) -> Vec<f64> {
-        let f = self.frame.get();
-        vec![f.m.0, f.m.1, f.m.2, f.m.3, f.metres_per_px()]
-    }
-
-    /// The point (east, north) under canvas pixel (x, y) on the last map drawn.
-    pub fn to_metres(&self, x: f64, y: f64) -> Vec<f64> {
-        let (e, n) = self.frame.get().to_metres(x, y);
-        vec![e, n]
-    }
-
-    /// The step nearest to canvas pixel (x, y) on the last map, within `radius` pixels.
-    pub fn pick(&self, x: f64, y: f64, radius: f64) -> Option<usize> {
-        crate::plot::upload::pick_step(&self.a, &self.frame.get(), x, y, radius)
-    }
-
     /// Canvas pixel `[x, y]` of step `i` on the last map drawn.
     pub fn step_pixel(&self, i: usize) -> Option<Vec<f64>> {
         let (e, n) = self.a.step_position(i)?;
         let (x, y) = self.frame.get().to_pixel(e, n);
         Some(vec![x, y])
-    }
-
-    /// The wheel turned by `delta_y` (the wheel event's) at canvas pixel (x, y) of the last map:
-    /// the bounds `[min_e, max_e, min_n, max_n]` zoomed about that point, for [`Self::draw_map`].
-    pub fn map_wheel(&self, x: f64, y: f64, delta_y: f64) -> Vec<f64> {
-        let f = crate::plot::wheel_factor(delta_y);
-        let (e0, e1, n0, n1) = self.frame.get().zoomed(x, y, f);
-        vec![e0, e1, n0, n1]
-    }
-
-    /// A pinch on the last map: one pointer moved from canvas pixel (prev_x, prev_y) to (x, y)
-    /// while the other stays at (other_x, other_y). The bounds zoomed about their middle, or
-    /// nothing when two of the points coincide.
-    pub fn map_pinch(
-        &self,
-        prev_x: f64,
-        prev_y: f64,
-        x: f64,
-        y: f64,
-        other_x: f64,
-        other_y: f64,
-    ) -> Option<Vec<f64>> {
-        let f = self.frame.get();
-        let (e0, e1, n0, n1) = f.pinched((prev_x, prev_y), (x, y), (other_x, other_y))?;
-        Some(vec![e0, e1, n0, n1])
-    }
-
-    /// A drag of (dx, dy) canvas pixels on the last map: the bounds panned with the pointer.
-    pub fn map_pan(&self, dx: f64, dy: f64) -> Vec<f64> {
-        let (e0, e1, n0, n1) = self.frame.get().panned(dx, dy);
-        vec![e0, e1, n0, n1]
     }
 
     /// The figures shown under the map, a `dl.summary` view tree.
@@ -162,11 +113,6 @@ impl AnalysisView {
         self.a
             .step_text(i)
             .ok_or_else(|| to_js(format!("no step {i}")))
-    }
-
-    /// The step nearest to time `t` (s, the log's clock).
-    pub fn step_near_time(&self, t: f64) -> Option<usize> {
-        self.a.step_near_time(t)
     }
 
     /// Step `i`: `{index, t, t_rel_s, length_m, freq_hz, heading_deg, step_heading_deg, motion,
@@ -231,56 +177,10 @@ impl AnalysisView {
         self.span.set((t0, t1));
     }
 
-    /// Shows the whole log again (a double-click).
-    pub fn reset_span(&self) {
-        self.span.set(Self::full(&self.a));
-    }
-
-    /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.
-    /// `axis` is the `[left, right]` of the time axis (the columns [`Self::draw_plot`]
-    /// returned, divided by the pixel ratio).
-    pub fn axis_time_at(&self, axis: &[f64], x: f64) -> Result<f64, JsError> {
-        Ok(self.time_axis(self.span.get(), axis)?.time_at(x))
-    }
-
-    /// The wheel turned by `delta_y` at CSS pixel `x` of a plot: the span zoomed about the
-    /// pointer.
-    pub fn axis_wheel(&self, axis: &[f64], x: f64, delta_y: f64) -> Result<(), JsError> {
-        let k = crate::plot::wheel_factor(delta_y);
-        let next = self.time_axis(self.span.get(), axis)?.zoomed_at(x, k);
-        self.span.set(next);
-        Ok(())
-    }
-
-    /// A pinch on a plot: one finger moved from CSS pixel `prev` to `x` while the other stays at
-    /// `other`. Whether the span changed (not while the fingers are too close).
-    pub fn axis_pinch(&self, axis: &[f64], prev: f64, x: f64, other: f64) -> Result<bool, JsError> {
-        let next = self
-            .time_axis(self.span.get(), axis)?
-            .pinched(prev, x, other);
-        if let Some(next) = next {
-            self.span.set(next);
-        }
-        Ok(next.is_some())
-    }
-
     /// The CSS pixel from a plot canvas's left edge at time `t` (s, the log's clock), `axis` as
     /// for [`Self::axis_time_at`].
     pub fn axis_x_at(&self, axis: &[f64], t: f64) -> Result<f64, JsError> {
         Ok(self.time_axis(self.span.get(), axis)?.x_at(t))
-    }
-
-    /// A drag begins (or goes on with the finger left after a pinch): the span it pans from.
-    pub fn axis_grab(&self) {
-        self.grabbed.set(self.span.get());
-    }
-
-    /// A drag on a plot from CSS pixel `from` (where [`Self::axis_grab`] was called) to `x`:
-    /// the span panned.
-    pub fn axis_pan(&self, axis: &[f64], from: f64, x: f64) -> Result<(), JsError> {
-        let next = self.time_axis(self.grabbed.get(), axis)?.panned(from, x);
-        self.span.set(next);
-        Ok(())
     }
 
     /// Draws the stride ellipse ending at step `k`.
@@ -307,24 +207,99 @@ impl AnalysisView {
         };
         super::to_value(&[text, format!("{base}.{ext}"), mime.to_string()])
     }
+}
 
+/// What the engine's own gesture rules ([`super::gesture`]) and exports call.
+impl AnalysisView {
+    /// The step nearest to canvas pixel (x, y) on the last map, within `radius` pixels.
+    pub fn pick(&self, x: f64, y: f64, radius: f64) -> Option<usize> {
+        crate::plot::upload::pick_step(&self.a, &self.frame.get(), x, y, radius)
+    }
+    /// The wheel turned by `delta_y` (the wheel event's) at canvas pixel (x, y) of the last map:
+    /// the bounds `[min_e, max_e, min_n, max_n]` zoomed about that point, for [`Self::draw_map`].
+    pub fn map_wheel(&self, x: f64, y: f64, delta_y: f64) -> Vec<f64> {
+        let f = crate::plot::wheel_factor(delta_y);
+        let (e0, e1, n0, n1) = self.frame.get().zoomed(x, y, f);
+        vec![e0, e1, n0, n1]
+    }
+    /// A pinch on the last map: one pointer moved from canvas pixel (prev_x, prev_y) to (x, y)
+    /// while the other stays at (other_x, other_y). The bounds zoomed about their middle, or
+    /// nothing when two of the points coincide.
+    pub fn map_pinch(
+        &self,
+        prev_x: f64,
+        prev_y: f64,
+        x: f64,
+        y: f64,
+        other_x: f64,
+        other_y: f64,
+    ) -> Option<Vec<f64>> {
+        let f = self.frame.get();
+        let (e0, e1, n0, n1) = f.pinched((prev_x, prev_y), (x, y), (other_x, other_y))?;
+        Some(vec![e0, e1, n0, n1])
+    }
+    /// A drag of (dx, dy) canvas pixels on the last map: the bounds panned with the pointer.
+    pub fn map_pan(&self, dx: f64, dy: f64) -> Vec<f64> {
+        let (e0, e1, n0, n1) = self.frame.get().panned(dx, dy);
+        vec![e0, e1, n0, n1]
+    }
+    /// The step nearest to time `t` (s, the log's clock).
+    pub fn step_near_time(&self, t: f64) -> Option<usize> {
+        self.a.step_near_time(t)
+    }
+    /// Shows the whole log again (a double-click).
+    pub fn reset_span(&self) {
+        self.span.set(Self::full(&self.a));
+    }
+    /// The time (s) at CSS pixel `x` from a plot canvas's left edge, within the span shown.
+    /// `axis` is the `[left, right]` of the time axis (the columns [`Self::draw_plot`]
+    /// returned, divided by the pixel ratio).
+    pub fn axis_time_at(&self, axis: &[f64], x: f64) -> Result<f64, JsError> {
+        Ok(self.time_axis(self.span.get(), axis)?.time_at(x))
+    }
+    /// The wheel turned by `delta_y` at CSS pixel `x` of a plot: the span zoomed about the
+    /// pointer.
+    pub fn axis_wheel(&self, axis: &[f64], x: f64, delta_y: f64) -> Result<(), JsError> {
+        let k = crate::plot::wheel_factor(delta_y);
+        let next = self.time_axis(self.span.get(), axis)?.zoomed_at(x, k);
+        self.span.set(next);
+        Ok(())
+    }
+    /// A pinch on a plot: one finger moved from CSS pixel `prev` to `x` while the other stays at
+    /// `other`. Whether the span changed (not while the fingers are too close).
+    pub fn axis_pinch(&self, axis: &[f64], prev: f64, x: f64, other: f64) -> Result<bool, JsError> {
+        let next = self
+            .time_axis(self.span.get(), axis)?
+            .pinched(prev, x, other);
+        if let Some(next) = next {
+            self.span.set(next);
+        }
+        Ok(next.is_some())
+    }
+    /// A drag begins (or goes on with the finger left after a pinch): the span it pans from.
+    pub fn axis_grab(&self) {
+        self.grabbed.set(self.span.get());
+    }
+    /// A drag on a plot from CSS pixel `from` (where [`Self::axis_grab`] was called) to `x`:
+    /// the span panned.
+    pub fn axis_pan(&self, axis: &[f64], from: f64, x: f64) -> Result<(), JsError> {
+        let next = self.time_axis(self.grabbed.get(), axis)?.panned(from, x);
+        self.span.set(next);
+        Ok(())
+    }
     /// The track as GPX (geodetic when the log has fixes; see `io::export::track_gpx`).
     pub fn gpx(&self) -> String {
         crate::io::export::track_gpx(&self.a.steps, self.a.frame().as_ref())
     }
-
     /// The track as GeoJSON.
     pub fn geojson(&self) -> String {
         crate::io::export::track_geojson(&self.a.steps, self.a.frame().as_ref()).to_string()
     }
-
     /// One row per step, CSV.
     pub fn steps_csv(&self) -> String {
         crate::io::export::track_csv(&self.a.steps, self.a.frame().as_ref())
     }
-}
 
-impl AnalysisView {
     /// The whole log's span, s: its first and last samples' times.
     fn full(a: &crate::analysis::Analysis) -> (f64, f64) {
         (
