@@ -132,6 +132,20 @@ impl Serialize for Node {
     }
 }
 
+/// A whole number with a comma every three digits ("12,345"), as `toLocaleString('en')`
+/// writes it.
+pub fn thousands(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -150,5 +164,13 @@ mod tests {
         assert_eq!(e.text_content(), "step 3");
         assert_eq!(e.get("data-step"), Some("3"));
         assert_eq!(e.descendants().len(), 2);
+    }
+
+    #[test]
+    fn thousands_are_grouped() {
+        assert_eq!(thousands(0), "0");
+        assert_eq!(thousands(999), "999");
+        assert_eq!(thousands(2000), "2,000");
+        assert_eq!(thousands(1_234_567), "1,234,567");
     }
 }

@@ -3,7 +3,7 @@
 //! builds them), so that native tests read what the page shows.
 
 use super::text::fixed;
-use crate::view::El;
+use crate::view::{thousands, El};
 
 /// A file size for people: megabytes with one decimal past 1 MB, else kilobytes rounded up.
 pub fn bytes_text(bytes: f64) -> String {
@@ -12,19 +12,6 @@ pub fn bytes_text(bytes: f64) -> String {
     } else {
         format!("{} kB", (bytes / 1e3).ceil())
     }
-}
-
-/// A count with a comma between thousands, as `toLocaleString('en')` writes it.
-pub fn grouped(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 /// `n` and the noun, plural unless `n` is 1 ("1 file", "3 files").
@@ -60,8 +47,8 @@ pub fn engine_progress(
     let through = (samples as f64 * done / total.max(1.0)).round().max(0.0) as u64;
     let text = format!(
         "{source}: {} of {} samples through the engine",
-        grouped(through),
-        grouped(samples as u64)
+        thousands(through),
+        thousands(samples as u64)
     );
     let whole = (index as f64 + done / total.max(1.0)) / (logs.max(1) as f64);
     (text, READ_SHARE + ENGINE_SHARE * whole)
@@ -254,9 +241,6 @@ mod tests {
     fn sizes_counts_and_progress_read_as_before() {
         assert_eq!(bytes_text(1_234.0), "2 kB");
         assert_eq!(bytes_text(2_450_000.0), "2.5 MB");
-        assert_eq!(grouped(0), "0");
-        assert_eq!(grouped(999), "999");
-        assert_eq!(grouped(1_234_567), "1,234,567");
         assert_eq!(reading_text(1), "reading 1 file…");
         assert_eq!(reading_text(3), "reading 3 files…");
         let (t, f) = read_progress(500_000.0, 2_000_000.0);

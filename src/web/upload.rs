@@ -246,7 +246,7 @@ fn log_hint(log: &crate::io::import::Log) -> String {
     let mut s = format!(
         "{} · {} IMU samples · {minutes:.1} min",
         log.format.as_str(),
-        recipe::form::thousands(log.imu_samples())
+        crate::view::thousands(log.imu_samples() as u64)
     );
     if log.skipped > 0 {
         s += &format!(" · {} lines skipped", log.skipped);

@@ -29,7 +29,14 @@ pub fn civil_of_unix(t: f64) -> Option<(i64, u32, u32, u32, u32, u32)> {
     }
     let secs = t.floor() as i64;
     let (days, sod) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
-    // Howard Hinnant's days → civil date.
+    let (year, month, day) = civil_of_days(days);
+    let sod = sod as u32;
+    Some((year, month, day, sod / 3600, sod / 60 % 60, sod % 60))
+}
+
+/// The calendar date `(year, month, day)` of `days` since 1970-01-01 (Howard Hinnant's
+/// algorithm, exact over the whole `i64` range used here).
+pub fn civil_of_days(days: i64) -> (i64, u32, u32) {
     let z = days + 719_468;
     let era = z.div_euclid(146_097);
     let doe = z.rem_euclid(146_097);
@@ -38,9 +45,7 @@ pub fn civil_of_unix(t: f64) -> Option<(i64, u32, u32, u32, u32, u32)> {
     let mp = (5 * doy + 2) / 153;
     let day = (doy - (153 * mp + 2) / 5 + 1) as u32;
     let month = (if mp < 10 { mp + 3 } else { mp - 9 }) as u32;
-    let year = yoe + era * 400 + i64::from(month <= 2);
-    let sod = sod as u32;
-    Some((year, month, day, sod / 3600, sod / 60 % 60, sod % 60))
+    (yoe + era * 400 + i64::from(month <= 2), month, day)
 }
 
 const MONTHS: [&str; 12] = [

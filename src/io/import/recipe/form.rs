@@ -137,19 +137,6 @@ fn rounded(a: f64, digits: usize, sci: bool) -> String {
     }
 }
 
-/// A whole number with a comma every three digits ("12,345").
-pub fn thousands(n: usize) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -187,8 +174,5 @@ mod tests {
         ] {
             assert_eq!(preview_number(v), shown, "{v}");
         }
-        assert_eq!(thousands(2000), "2,000");
-        assert_eq!(thousands(1_234_567), "1,234,567");
-        assert_eq!(thousands(999), "999");
     }
 }

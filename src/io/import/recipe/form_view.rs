@@ -7,8 +7,8 @@
 
 use super::check::{FileGuess, Report};
 use super::form::{
-    column_options, file_hint, guess_columns, preview_number, sensor_label, thousands,
-    time_unit_label, unit_label,
+    column_options, file_hint, guess_columns, preview_number, sensor_label, time_unit_label,
+    unit_label,
 };
 use super::schema::{Column, FileRule, Recipe, Sensor, TimeUnit, RECIPE_VERSION};
 use crate::io::import::fileset::base;
@@ -369,7 +369,10 @@ pub fn preview_view(result: Result<&Report, &str>) -> (Vec<El>, Vec<El>) {
 pub fn facts(f: &super::check::FileReport) -> String {
     let mut facts = vec![
         f.sensor.to_string(),
-        format!("{} samples previewed", thousands(f.samples)),
+        format!(
+            "{} samples previewed",
+            crate::view::thousands(f.samples as u64)
+        ),
     ];
     if let Some(r) = f.rate_hz {
         facts.push(format!("{} Hz", preview_number(r)));
