@@ -2,7 +2,7 @@
 // (set_basemap, src/web/basemap.rs), which checks the template, fetches only the tiles on
 // screen and draws them under the maps. Maps redraw on the window event `pdr-basemap`: when the
 // setting changes, and once a frame while tiles arrive (the engine fires `pdr-tile` for each).
-import { basemap_default, set_basemap } from './pkg/pdr.js';
+import { basemap_default, basemap_form, basemap_message, basemap_stored, set_basemap } from './pkg/pdr.js';
 import { $, note } from './util.js';
 
 const KEY = 'pdr-basemap';
@@ -10,16 +10,7 @@ const KEY = 'pdr-basemap';
 export const TILE_CACHE = 'pdr-tiles-v1';
 
 /** The stored setting `{on, template, attribution}`; off with OpenStreetMap's tiles by default. */
-export function load() {
-  const [template] = basemap_default();
-  let s = {};
-  try { s = JSON.parse(localStorage.getItem(KEY) ?? '{}') ?? {}; } catch { /* damaged: the default */ }
-  return {
-    on: s.on === true,
-    template: typeof s.template === 'string' && s.template.trim() ? s.template : template,
-    attribution: typeof s.attribution === 'string' ? s.attribution : '',
-  };
-}
+export const load = () => basemap_stored(localStorage.getItem(KEY));
 
 function save(s) {
   localStorage.setItem(KEY, JSON.stringify(s));
@@ -34,7 +25,7 @@ function apply(s) {
     note('basemap-messages', 'template', null);
   } catch (err) {
     set_basemap('', '');
-    note('basemap-messages', 'template', `Base map off: ${err.message ?? err}`, 'error');
+    note('basemap-messages', 'template', basemap_message('off', String(err.message ?? err)), 'error');
   }
   $('basemap').dataset.on = s.on ? 'yes' : 'no';
   redraw();
@@ -47,11 +38,8 @@ export function setupBasemap() {
   $('basemap-template').value = s.template;
   $('basemap-attribution').value = s.attribution;
   apply(s);
-  const fromForm = () => ({
-    on: $('basemap-on').checked,
-    template: $('basemap-template').value.trim() || basemap_default()[0],
-    attribution: $('basemap-attribution').value.trim(),
-  });
+  const fromForm = () => basemap_form($('basemap-on').checked, $('basemap-template').value,
+    $('basemap-attribution').value);
   const changed = () => { const n = fromForm(); save(n); apply(n); };
   $('basemap-on').addEventListener('change', changed);
   $('basemap-apply').addEventListener('click', changed);
@@ -63,7 +51,7 @@ export function setupBasemap() {
   });
   $('basemap-forget').addEventListener('click', async () => {
     const gone = 'caches' in window && await caches.delete(TILE_CACHE);
-    note('basemap-messages', 'forget', gone ? 'Cached tiles deleted from this device.' : 'No cached tiles on this device.', 'ok');
+    note('basemap-messages', 'forget', basemap_message(gone ? 'forgotten' : 'none_cached'), 'ok');
   });
   // Tiles arrive one by one: one redraw a frame.
   let pending = false;

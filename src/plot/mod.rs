@@ -7,9 +7,10 @@
 //! (`frame`), the demo's track (`track`), the fusion map (`fusion`), the live map (`live`), the
 //! live scope (`scope`), the calibration chart (`calibration`), upload mode's plots
 //! ([`upload`]), and the opt-in base map under the maps (`basemap`, with the Web Mercator tile
-//! maths in [`tiles`]). Plot imports `engine` and `analysis` only, never `web`, `live` or `eval`.
+//! maths in [`tiles`] and the page's setting in [`basemap_setting`]). Plot imports `engine` and `analysis` only, never `web`, `live` or `eval`.
 
 mod basemap;
+pub mod basemap_setting;
 mod calibration;
 mod frame;
 mod fusion;

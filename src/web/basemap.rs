@@ -7,8 +7,9 @@
 //! template: with the setting off the page makes no request to another origin. A tile that
 //! arrives fires the window event `pdr-tile`; the page redraws its maps on it (once a frame).
 
-use super::to_js;
+use super::{to_js, to_value};
 use crate::engine::geo::LocalFrame;
+use crate::plot::basemap_setting::BasemapSetting;
 use crate::plot::tiles::{Piece, Tile, TileTemplate, OSM_ATTRIBUTION, OSM_TEMPLATE};
 use crate::plot::{Basemap, TileState};
 use std::cell::RefCell;
@@ -82,6 +83,27 @@ pub fn set_basemap(template: &str, attribution: &str) -> Result<(), JsError> {
 #[wasm_bindgen]
 pub fn basemap_default() -> Vec<String> {
     vec![OSM_TEMPLATE.to_string(), OSM_ATTRIBUTION.to_string()]
+}
+
+/// The stored setting `{on, template, attribution}` from its JSON text (`null`: nothing stored;
+/// see `plot::basemap_setting`): off with OpenStreetMap's tiles by default.
+#[wasm_bindgen]
+pub fn basemap_stored(text: Option<String>) -> Result<JsValue, JsError> {
+    to_value(&BasemapSetting::from_stored(text.as_deref()))
+}
+
+/// The setting `{on, template, attribution}` from the form's fields (trimmed; a blank template
+/// is OpenStreetMap's).
+#[wasm_bindgen]
+pub fn basemap_form(on: bool, template: &str, attribution: &str) -> Result<JsValue, JsError> {
+    to_value(&BasemapSetting::from_form(on, template, attribution))
+}
+
+/// What the page says about the base map for `key` (see `plot::basemap_setting::message`).
+#[wasm_bindgen]
+pub fn basemap_message(key: &str, detail: Option<String>) -> Result<String, JsError> {
+    crate::plot::basemap_setting::message(key, detail.as_deref().unwrap_or(""))
+        .ok_or_else(|| to_js(format!("no base map message `{key}`")))
 }
 
 /// Tells the page a tile arrived (or failed): the window event `pdr-tile`.
