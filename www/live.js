@@ -3,7 +3,7 @@
 // the conversions (iOS sign, deg/s, angles, iOS's compass) are in src/live/events.rs.
 import {
   Live, Recorder, is_ios, live_controls, live_message, recording_file_name as fileName,
-  recover_recording, recovery_offer,
+  live_messages_cleared, recover_recording, recovery_offer,
 } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
@@ -401,7 +401,7 @@ async function begin(makeLive, rec, opts = {}) {
     return false;
   }
   message('motionDenied', false);
-  for (const key of ['noSensor', 'noCompass', 'engine', 'cannotStart', 'storage', 'locationDenied', 'locationUnavailable']) message(key, false);
+  for (const key of live_messages_cleared()) message(key, false);
   let engine;
   try {
     engine = makeLive(ios);

@@ -24,6 +24,18 @@ pub fn message(key: &str) -> Option<&'static str> {
     })
 }
 
+/// The messages a new start (a recording, a resumed one, a calibration walk) clears: those
+/// about the previous session's sensors, engine, storage and location.
+pub const CLEARED_AT_START: [&str; 7] = [
+    "noSensor",
+    "noCompass",
+    "engine",
+    "cannotStart",
+    "storage",
+    "locationDenied",
+    "locationUnavailable",
+];
+
 /// The sentence the recovery offer adds about a damaged recording (lines skipped, pieces
 /// missing, the first problem's `notes`), or "" for a whole one.
 pub fn damage(skipped_lines: u64, missing_pieces: u64, notes: &[String]) -> String {
@@ -102,6 +114,13 @@ mod tests {
             " Part of it is damaged: 1 damaged line was skipped, 2 pieces are missing (a gap in the walk); everything else is kept. First problem: line 3: bad."
         );
         assert!(message("storage").is_some() && message("nothing").is_none());
+    }
+
+    #[test]
+    fn the_messages_a_start_clears_exist() {
+        for key in CLEARED_AT_START {
+            assert!(message(key).is_some(), "{key}");
+        }
     }
 
     #[test]

@@ -288,6 +288,14 @@ pub fn live_message(key: &str) -> Result<String, JsError> {
         .ok_or_else(|| to_js(format!("no live message `{key}`")))
 }
 
+/// The keys of the messages a new start clears (see `live::messages::CLEARED_AT_START`).
+#[wasm_bindgen]
+pub fn live_messages_cleared() -> Vec<String> {
+    crate::live::messages::CLEARED_AT_START
+        .map(str::to_string)
+        .to_vec()
+}
+
 /// The recovery offer's sentence (see `live::messages::recovery_offer`).
 #[wasm_bindgen]
 pub fn recovery_offer(started: &str, samples: usize, steps: Option<usize>, damage: &str) -> String {
