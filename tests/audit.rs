@@ -1,4 +1,4 @@
-//! The locked dependencies (`Cargo.lock`) against the RustSec advisory database: a known
+//! The locked dependencies (`Cargo.lock`, and `fuzz/Cargo.lock`) against the RustSec advisory database: a known
 //! vulnerability in any locked crate fails; an informational advisory (unmaintained, unsound,
 //! notice) is listed with the note in [`NOTES`] that says why the crate is still there, and
 //! fails without one, so that a new one is noticed. Skipped with a message when the database is
@@ -19,6 +19,9 @@
 use serde::Deserialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+
+/// The lock files checked: the app's, and the fuzz targets' (built by `./dev test`).
+const LOCKS: &[&str] = &["Cargo.lock", "fuzz/Cargo.lock"];
 
 /// The environment variable that names the advisory database's folder.
 const DB_ENV: &str = "PDR_ADVISORY_DB";
@@ -270,20 +273,27 @@ fn locked_dependencies_have_no_known_vulnerability() {
         );
         return;
     };
-    let lock = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.lock"))
-        .expect("Cargo.lock reads");
-    let parsed: Lock = toml::from_str(&lock).expect("Cargo.lock parses");
-    let mut names: Vec<String> = parsed.package.into_iter().map(|p| p.name).collect();
-    names.sort();
-    names.dedup();
-    let advisories = advisories_of(&db, &names);
-    let found = audit(&lock, &advisories).unwrap();
-    println!(
-        "audit: {} locked crates against {} advisories of theirs in {}",
-        names.len(),
-        advisories.len(),
-        db.display()
-    );
+    let mut found: Vec<Finding> = Vec::new();
+    for file in LOCKS {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(file);
+        let lock = std::fs::read_to_string(&path).expect("the lock file reads");
+        let parsed: Lock = toml::from_str(&lock).expect("the lock file parses");
+        let mut names: Vec<String> = parsed.package.into_iter().map(|p| p.name).collect();
+        names.sort();
+        names.dedup();
+        let advisories = advisories_of(&db, &names);
+        println!(
+            "audit: {file}: {} locked crates against {} advisories of theirs in {}",
+            names.len(),
+            advisories.len(),
+            db.display()
+        );
+        for f in audit(&lock, &advisories).unwrap() {
+            if !found.contains(&f) {
+                found.push(f);
+            }
+        }
+    }
     match verdict(&found, NOTES) {
         Ok(listing) => print!("{listing}"),
         Err(listing) => panic!("dependency audit failed:\n{listing}"),
