@@ -247,13 +247,7 @@ mod tests {
             paint: &mut paint,
             shown: None,
         };
-        let view = crate::plot::FusionView {
-            truth: Some(&demo.truth),
-            fixes: &demo.fix_points,
-            pdr: &demo.pdr,
-            fused: &demo.fused,
-            smoothed: &demo.smoothed,
-        };
+        let view = crate::plot::fusion::view_of(&demo);
         crate::plot::draw_fusion(&area, &view, Some(&mut basemap), &Theme::LIGHT, 1.0).unwrap();
         let shown = basemap.shown.expect("a base map was drawn");
         // Within the plotting area only: the axis labels' margin keeps the background.

@@ -80,6 +80,18 @@ pub fn draw_fusion<DB: DrawingBackend>(
     credit_line(area, &chart, basemap.as_deref(), theme, scale)
 }
 
+/// The fusion demo's walk as [`draw_fusion`] draws it (the tests' and the pixel check's).
+#[cfg(test)]
+pub(crate) fn view_of(demo: &crate::demo::FusionDemoSummary) -> FusionView<'_> {
+    FusionView {
+        truth: Some(&demo.truth),
+        fixes: &demo.fix_points,
+        pdr: &demo.pdr,
+        fused: &demo.fused,
+        smoothed: &demo.smoothed,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -96,13 +108,7 @@ mod tests {
             px: px.clone(),
         }
         .into_drawing_area();
-        let view = FusionView {
-            truth: Some(&demo.truth),
-            fixes: &demo.fix_points,
-            pdr: &demo.pdr,
-            fused: &demo.fused,
-            smoothed: &demo.smoothed,
-        };
+        let view = view_of(&demo);
         draw_fusion(&area, &view, None, &Theme::LIGHT, 1.0).unwrap();
         let px = px.borrow();
         let count = |c: RGBColor| px.iter().filter(|p| **p == (c.0, c.1, c.2)).count();

@@ -141,6 +141,19 @@ fn entries(view: &LiveView<'_>, theme: &Theme) -> Vec<(&'static str, Mark)> {
     entries
 }
 
+/// The live map's view of a session's map data (the tests' and the pixel check's).
+#[cfg(test)]
+pub(crate) fn view_of(d: &crate::live::MapData) -> LiveView<'_> {
+    LiveView {
+        pdr: &d.pdr,
+        fused: &d.fused,
+        smoothed: &d.smoothed,
+        fixes: &d.fixes,
+        gaps: &d.gaps,
+        heading_rad: d.heading_rad,
+    }
+}
+
 /// A live session fed a simulated straight walk's browser events, with 4 s without motion
 /// events (a gap) in it: the live map and scope to draw, here and in the pixel check.
 #[cfg(test)]
@@ -191,14 +204,7 @@ mod tests {
         let d = live.map_data();
         assert_eq!(d.gaps.len(), 1, "the 4 s without events is a gap");
         let (r, px) = raster::new(400, 400);
-        let view = LiveView {
-            pdr: &d.pdr,
-            fused: &d.fused,
-            smoothed: &d.smoothed,
-            fixes: &d.fixes,
-            gaps: &d.gaps,
-            heading_rad: d.heading_rad,
-        };
+        let view = super::view_of(&d);
         draw_live(&r.into_drawing_area(), &view, None, &Theme::LIGHT, 1.0).unwrap();
         let t = Theme::LIGHT;
         let count = |c: RGBColor| raster::count(&px, c);

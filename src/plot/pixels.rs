@@ -266,14 +266,7 @@ mod tests {
     fn live() -> Vec<(String, u64)> {
         let mut live = crate::plot::live::simulated_session();
         let d = live.map_data();
-        let view = crate::plot::LiveView {
-            pdr: &d.pdr,
-            fused: &d.fused,
-            smoothed: &d.smoothed,
-            fixes: &d.fixes,
-            gaps: &d.gaps,
-            heading_rad: d.heading_rad,
-        };
+        let view = crate::plot::live::view_of(&d);
         let scope = live.scope_data();
         let mut out = Vec::new();
         for (theme_name, theme) in THEMES {
@@ -306,13 +299,7 @@ mod tests {
         let demo = crate::demo::run_fusion_demo();
         let track = crate::demo::run_demo();
         let template = TileTemplate::parse("https://tiles.test/{z}/{x}/{y}.png", "").unwrap();
-        let view = crate::plot::FusionView {
-            truth: Some(&demo.truth),
-            fixes: &demo.fix_points,
-            pdr: &demo.pdr,
-            fused: &demo.fused,
-            smoothed: &demo.smoothed,
-        };
+        let view = crate::plot::fusion::view_of(&demo);
         let fits = [
             crate::engine::calibration::fit_band(&[
                 (1.5, 0.65),
