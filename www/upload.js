@@ -3,7 +3,7 @@
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
 import {
   AnalysisView, Gesture, cancelled_text, compare_settings, config_label, engine_progress, loaded_text, map_box,
-  profile_options, read_progress, reading_text, result_card, upload_banners, upload_config,
+  profile_options, read_progress, reading_text, result_card, upload_config,
 } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
@@ -132,7 +132,7 @@ function onWorker(m) {
   } else if (m.type === 'parsed') {
     Object.assign(test.upload, { parse_ms: m.parse_ms, bytes: m.bytes });
     test.upload.errors.push(...m.parsed.errors);
-    for (const [kind, text] of upload_banners(m.parsed)) banner(text, kind);
+    for (const [kind, text] of m.parsed.banners) banner(text, kind);
     for (const info of m.parsed.logs) logs[info.index] = { info, views: {}, card: card(info) };
   } else if (m.type === 'analysis') {
     const l = logs[m.index];

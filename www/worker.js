@@ -33,14 +33,13 @@ onmessage = async ({ data }) => {
     await ready;
     if (data.type === 'load') {
       upload = new Upload();
-      const recipeErrors = upload.set_recipes(data.recipes ?? []);
+      upload.set_recipes(data.recipes ?? []);
       // The files stay where they are: the parser reads them a slice at a time.
       const total = data.files.reduce((s, f) => s + f.file.size, 0);
       for (const { name, file } of data.files) upload.add_file(name, file);
       postMessage({ type: 'progress', phase: 'read', done: 0, total });
       const t0 = performance.now();
       const parsed = upload.parse((read) => postMessage({ type: 'progress', phase: 'read', done: Math.min(read, total), total }));
-      parsed.recipe_errors = recipeErrors;
       postMessage({ type: 'parsed', parsed, parse_ms: performance.now() - t0, bytes: total });
       // Nothing recognised: the files described for the recipe form.
       if (!parsed.logs.length) postMessage({ type: 'describe', description: upload.describe(() => {}) });

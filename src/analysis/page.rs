@@ -72,36 +72,56 @@ pub fn loaded_text(logs: usize, bytes: f64, seconds: f64, refused: usize) -> Str
 pub const CANCELLED: &str =
     "Cancelled: nothing more will be read or run. Choose the files again, or Re-run, to start over.";
 
-/// What reading the files found, for the banners: each file refused, each saved recipe left out,
-/// and each check a recipe's reading failed.
-#[derive(Debug, Default, serde::Deserialize)]
+/// What reading the files found, as the worker hands it to the page: each log read, each file
+/// refused, each saved recipe left out, and the banners they make ([`banners`]).
+#[derive(Debug, Default, serde::Serialize)]
 pub struct Parsed {
     /// The logs read.
     pub logs: Vec<ParsedLog>,
     /// The files refused.
     pub errors: Vec<ParsedError>,
     /// Why saved recipes were left out.
-    #[serde(default)]
     pub recipe_errors: Vec<String>,
+    /// The banners the page shows, `(kind, text)`, once [`banners`] made them.
+    pub banners: Vec<(&'static str, String)>,
 }
 
-/// One log read: its name, the recipe that read it (if one did) and what that recipe's checks
-/// said.
-#[derive(Debug, Default, serde::Deserialize)]
+/// One log read.
+#[derive(Debug, Default, serde::Serialize)]
 pub struct ParsedLog {
+    /// Its place among the logs read (the analyses name it).
+    pub index: usize,
     /// Its name (the file, or the folder).
     pub source: String,
+    /// Its format's name.
+    pub format: &'static str,
+    /// Its motion samples.
+    pub samples: usize,
+    /// From its first to its last record, s.
+    pub duration_s: f64,
+    /// Lines skipped as unreadable.
+    pub warnings: usize,
     /// The recipe that read it, if one did.
-    #[serde(default)]
     pub recipe: Option<String>,
     /// What the recipe's checks said.
-    #[serde(default)]
     pub checks: Vec<String>,
+    /// What it is, for people.
+    pub hint: String,
 }
 
-/// A file refused, as people read it.
-#[derive(Debug, Default, serde::Deserialize)]
+/// A file refused: where and why, and the same in words.
+#[derive(Debug, Default, serde::Serialize)]
 pub struct ParsedError {
+    /// The file.
+    pub file: String,
+    /// The line (1-based; 0: the file as a whole).
+    pub line: u64,
+    /// The column, when known.
+    pub column: Option<usize>,
+    /// The field, when known.
+    pub field: Option<String>,
+    /// Why.
+    pub message: String,
     /// The refusal in words.
     pub text: String,
 }
@@ -279,11 +299,14 @@ mod tests {
                 source: "a/b".into(),
                 recipe: Some("mine".into()),
                 checks: vec!["the clock goes back".into()],
+                ..Default::default()
             }],
             errors: vec![ParsedError {
                 text: "x.csv: bad".into(),
+                ..Default::default()
             }],
             recipe_errors: vec!["old: unreadable".into()],
+            ..Default::default()
         };
         assert_eq!(
             banners(&p),

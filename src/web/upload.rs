@@ -4,6 +4,7 @@
 
 use super::blobs;
 use super::{settings_from, to_js, to_json_value, to_value};
+use crate::analysis::page;
 use crate::io::import::recipe::{self, Recipe};
 use crate::io::import::FileSet as _;
 use wasm_bindgen::prelude::*;
@@ -17,6 +18,8 @@ pub struct Upload {
     engine_ms: f64,
     /// The user's saved recipes, tried on every folder before the formats are sniffed.
     recipes: Vec<Recipe>,
+    /// Why saved recipes were left out (they do not read), for the banners.
+    recipe_errors: Vec<String>,
 }
 
 #[wasm_bindgen]
@@ -29,6 +32,7 @@ impl Upload {
             logs: Vec::new(),
             engine_ms: 0.0,
             recipes: Vec::new(),
+            recipe_errors: Vec::new(),
         }
     }
 
@@ -47,46 +51,21 @@ impl Upload {
     }
 
     /// Reads every log in the files: `{logs: [{index, source, format, samples, duration_s,
-    /// warnings, recipe, checks, hint}], errors: [{file, line, column, field, message, text}]}`
-    /// (`hint` and `text` for people: [`log_hint`], [`error_text`]). A file that fails is an
+    /// warnings, recipe, checks, hint}], errors: [{file, line, column, field, message, text}],
+    /// recipe_errors, banners: [[kind, text]]}` ([`page::Parsed`]; `hint` and `text` for people:
+    /// [`log_hint`], [`error_text`]; the banners as [`page::banners`] words them). A file that fails is an
     /// error; the others still load. `progress(bytes_read)` is called as reading goes on.
     /// Workers only (it reads with `FileReaderSync`).
     pub fn parse(&mut self, progress: js_sys::Function) -> Result<JsValue, JsError> {
-        #[derive(serde::Serialize)]
-        struct Info {
-            index: usize,
-            source: String,
-            format: &'static str,
-            samples: usize,
-            duration_s: f64,
-            warnings: usize,
-            recipe: Option<String>,
-            checks: Vec<String>,
-            hint: String,
-        }
-        #[derive(serde::Serialize)]
-        struct Error {
-            file: String,
-            line: u64,
-            column: Option<usize>,
-            field: Option<String>,
-            message: String,
-            text: String,
-        }
-        #[derive(serde::Serialize)]
-        struct Parsed {
-            logs: Vec<Info>,
-            errors: Vec<Error>,
-        }
         let mut set = self.blob_set(progress)?;
-        let mut out = Parsed {
-            logs: Vec::new(),
-            errors: Vec::new(),
+        let mut out = page::Parsed {
+            recipe_errors: self.recipe_errors.clone(),
+            ..Default::default()
         };
         for r in crate::io::import::import_with(&mut set, &self.recipes) {
             match r {
                 Ok(log) => {
-                    out.logs.push(Info {
+                    out.logs.push(page::ParsedLog {
                         index: self.logs.len(),
                         source: log.source.clone(),
                         format: log.format.as_str(),
@@ -99,7 +78,7 @@ impl Upload {
                     });
                     self.logs.push(log);
                 }
-                Err(e) => out.errors.push(Error {
+                Err(e) => out.errors.push(page::ParsedError {
                     text: error_text(&e),
                     file: e.file,
                     line: e.line,
@@ -109,6 +88,7 @@ impl Upload {
                 }),
             }
         }
+        out.banners = page::banners(&out);
         to_value(&out)
     }
 
@@ -140,19 +120,18 @@ impl Upload {
     }
 
     /// Sets the recipes (JSON texts, as the page saved them) that [`Upload::parse`] tries on every
-    /// folder before sniffing formats. Returns the errors of those that do not read (each left
-    /// out).
-    pub fn set_recipes(&mut self, recipes: Vec<String>) -> Vec<String> {
-        let mut errors = Vec::new();
+    /// folder before sniffing formats. Those that do not read are left out, and
+    /// [`Upload::parse`] says why in its banners.
+    pub fn set_recipes(&mut self, recipes: Vec<String>) {
+        self.recipe_errors.clear();
         self.recipes = recipes
             .iter()
             .filter_map(|t| {
                 Recipe::from_json(t)
-                    .map_err(|e| errors.push(e.to_string()))
+                    .map_err(|e| self.recipe_errors.push(e.to_string()))
                     .ok()
             })
             .collect();
-        errors
     }
 
     /// The files as the recipe form shows them: `{files: [{name, delimiter, header, columns,

@@ -3,7 +3,7 @@
 //! May import: `analysis`.
 
 use super::analysis_view::plot_list;
-use super::{to_js, to_json_value};
+use super::to_json_value;
 use crate::analysis::page;
 use wasm_bindgen::prelude::*;
 
@@ -50,15 +50,6 @@ pub fn loaded_text(logs: usize, bytes: f64, seconds: f64, refused: usize) -> Str
 #[wasm_bindgen]
 pub fn cancelled_text() -> String {
     page::CANCELLED.to_string()
-}
-
-/// The banners after reading, `[[kind, text]]`, from what `Upload.parse` answered (with the
-/// saved recipes' errors as `recipe_errors`).
-#[wasm_bindgen]
-pub fn upload_banners(parsed: JsValue) -> Result<JsValue, JsError> {
-    let p: page::Parsed =
-        serde_wasm_bindgen::from_value(parsed).map_err(|e| to_js(format!("parsed: {e}")))?;
-    to_json_value(&page::banners(&p))
 }
 
 /// The result card of log `index` (`source`, `hint`) as a view tree.
