@@ -11,7 +11,6 @@ import { $, dark, download, fill, fit, note, test } from './util.js';
 
 // The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
-const DRAW_MS = 100; // at most ten redraws a second
 const HOLD_MS = 2000; // press-and-hold to unlock the pocket guard
 
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
@@ -38,10 +37,6 @@ class Session {
     this.onTick = onTick;
     this.ios = ios;
     this.ended = false;
-    this.dirty = true;
-    this.lastDraw = -Infinity;
-    this.lastSampleAt = performance.now();
-    this.hiddenAt = null;
     this.source = 'events';
     this.sensors = [];
     this.geoWatch = null;
@@ -61,16 +56,11 @@ class Session {
     message('engine', true, 'warn', String(err?.message ?? err));
   }
 
-  sample() {
-    this.lastSampleAt = performance.now();
-    this.dirty = true;
-  }
-
   // --- sensors -------------------------------------------------------------------------
   listenEvents() {
     this.on(window, 'devicemotion', (e) => {
       try {
-        if (this.live.push_motion(e) !== undefined) this.sample();
+        this.live.push_motion(e);
       } catch (err) { this.refused(err); }
     });
     this.listenOrientation();
@@ -106,10 +96,7 @@ class Session {
     });
     if (!ok || this.ended) { acc.stop(); gyr.stop(); return false; }
     acc.addEventListener('reading', () => {
-      try {
-        this.live.push_sensor(acc, gyr);
-        this.sample();
-      } catch (err) { this.refused(err); }
+      try { this.live.push_sensor(acc, gyr); } catch (err) { this.refused(err); }
     });
     this.sensors.push(acc, gyr);
     if ('AbsoluteOrientationSensor' in window) {
@@ -131,7 +118,6 @@ class Session {
     if (this.ended) return;
     if (this.source === 'devicemotion events') this.listenEvents();
     document.documentElement.dataset.source = this.source === 'Generic Sensor API' ? 'sensors' : 'events';
-    this.lastSampleAt = performance.now();
   }
 
   // --- GNSS ----------------------------------------------------------------------------
@@ -141,28 +127,18 @@ class Session {
       try {
         this.live.push_fix(performance.now(), p);
         message('locationUnavailable', false);
-        this.dirty = true;
       } catch (err) { this.refused(err); }
     }, (err) => {
-      if (err.code === err.PERMISSION_DENIED) {
-        message('locationDenied', true);
-        this.geoOff();
-        this.geoRefused = true;
-      } else {
-        message('locationUnavailable', true);
-      }
+      // Refused: the watch stops, and the engine does not start it again. Else fixes may still come.
+      const denied = err.code === err.PERMISSION_DENIED;
+      message(this.live.location_failed(denied), true);
+      if (denied) this.geoOff();
     }, { enableHighAccuracy: true, maximumAge: 0, timeout: 60_000 });
   }
 
   geoOff() {
     if (this.geoWatch != null) navigator.geolocation.clearWatch(this.geoWatch);
     this.geoWatch = null;
-  }
-
-  /** Energy saving: the watch is really stopped while the engine does not want fixes. */
-  followGnssSchedule(r) {
-    if (this.gnssMode === 'off' || this.geoRefused || !navigator.geolocation) return;
-    if (r.gnss_wanted) this.geoOn(); else this.geoOff();
   }
 
   // --- screen ----------------------------------------------------------------------------
@@ -176,17 +152,11 @@ class Session {
     }
   }
 
+  /** Events stop while the page is hidden: the engine marks the gap when it comes back. */
   onVisibility() {
-    if (document.visibilityState === 'hidden') {
-      this.hiddenAt = performance.now();
-      this.flush();
-    } else if (this.hiddenAt != null) {
-      // Events stopped while hidden: tell the engine, so that nothing bridges the gap.
-      this.live.mark_gap(this.hiddenAt, performance.now());
-      this.hiddenAt = null;
-      this.dirty = true;
-      this.keepAwake();
-    }
+    const hidden = document.visibilityState === 'hidden';
+    if (this.live.visibility(hidden, performance.now())) this.keepAwake();
+    else if (hidden) this.flush();
   }
 
   // --- recording -----------------------------------------------------------------------
@@ -249,20 +219,19 @@ class Session {
   }
 
   // --- display -------------------------------------------------------------------------
+  /** A display tick: the engine decides what to do now (src/live/display.rs). Energy saving's
+   * watch is really stopped while the engine does not want fixes; the words are the engine's. */
   tick(now) {
-    if (this.ended && !this.dirty) return;
-    if (now - this.lastDraw < DRAW_MS) return;
-    this.lastDraw = now;
-    const r = this.live.readouts();
-    this.followGnssSchedule(r);
-    message('noSensor', !this.ended && this.live.no_motion(this.startedAt, now), 'error');
-    message('noCompass', r.samples > 0 && !r.absolute_heading);
-    show(r, this);
-    this.onTick?.(r, this);
-    if (!this.dirty || !this.rec) return;
-    this.dirty = false;
-    if (!$('guard').hidden) return; // nobody sees the plots
-    this.draw();
+    const t = this.live.tick(now, this.source, $('guard').hidden);
+    if (!t) return;
+    if (t.gnss === 'on') this.geoOn(); else if (t.gnss === 'off') this.geoOff();
+    for (const [key, show, kind] of t.messages) message(key, show, kind);
+    fill(t.texts);
+    for (const [id, title] of t.titles) $(id).title = title;
+    $('gnss-notice').hidden = !t.notice;
+    $('gnss-notice').dataset.verdict = t.verdict ?? '';
+    this.onTick?.(t.readouts, this);
+    if (t.draw) this.draw();
   }
 
   /** Draws the map and the scope. */
@@ -274,8 +243,7 @@ class Session {
   }
 
   async start(gnssMode) {
-    this.gnssMode = gnssMode;
-    this.startedAt = performance.now();
+    this.live.start(performance.now(), gnssMode, !!this.rec, !!navigator.geolocation);
     this.on(document, 'visibilitychange', () => this.onVisibility());
     this.on(window, 'pagehide', () => this.onPageHide());
     this.flushTimer = setInterval(() => this.flush(), FLUSH_MS);
@@ -300,21 +268,10 @@ class Session {
     this.flush();
     await this.save(true);
     if (this.rec && !this.recorder.unsaved_count()) await store.setState(this.rec.id, 'done').catch(() => {});
-    message('noSensor', false);
-    this.dirty = true;
-    this.lastDraw = -Infinity;
+    this.live.redraw(); // the last tick: the final figures, the messages about motion cleared
     this.tick(performance.now());
     this.stopped = true;
   }
-}
-
-/** Writes the readouts into the page and the pocket guard (the words are the engine's). */
-function show(r, s) {
-  const t = s.live.readout_texts(s.source, s.gnssMode ?? '');
-  fill(t.texts);
-  for (const [id, title] of t.titles) $(id).title = title;
-  $('gnss-notice').hidden = !r.gnss_notice;
-  $('gnss-notice').dataset.verdict = r.gnss_verdict ?? '';
 }
 
 // --- pocket guard ------------------------------------------------------------------------
@@ -326,7 +283,7 @@ function lock() {
 function unlock() {
   $('guard').hidden = true;
   document.documentElement.dataset.guard = 'off';
-  if (current) { current.dirty = true; current.lastDraw = -Infinity; }
+  current?.live.redraw();
 }
 
 function setupGuard() {
@@ -550,7 +507,7 @@ export function setupLive() {
   $('download').addEventListener('click', async () => {
     if (lastFinished) download((await lastFinished.recording()).text, fileName(lastFinished.rec.started));
   });
-  const redraw = () => { if (current) { current.dirty = true; current.lastDraw = -Infinity; current.tick(performance.now()); } };
+  const redraw = () => { current?.live.redraw(); current?.tick(performance.now()); };
   new ResizeObserver(redraw).observe($('live-map'));
   dark.addEventListener('change', redraw);
   window.addEventListener('pdr-basemap', redraw);
