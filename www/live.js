@@ -7,7 +7,7 @@ import {
 } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, fill, fit, note, test } from './util.js';
+import { $, dark, download, fill, note, paint, test } from './util.js';
 
 // The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
@@ -230,16 +230,14 @@ class Session {
     for (const [id, title] of t.titles) $(id).title = title;
     $('gnss-notice').hidden = !t.notice;
     $('gnss-notice').dataset.verdict = t.verdict ?? '';
-    this.onTick?.(t.readouts, this);
+    this.onTick?.(this);
     if (t.draw) this.draw();
   }
 
   /** Draws the map and the scope. */
   draw() {
-    const dpr = fit($('live-map'));
-    if (dpr) this.live.draw($('live-map'), dark.matches, dpr);
-    const dpr2 = fit($('live-scope'));
-    if (dpr2) this.live.draw_scope($('live-scope'), dark.matches, dpr2);
+    paint($('live-map'), (...a) => this.live.draw(...a));
+    paint($('live-scope'), (...a) => this.live.draw_scope(...a));
   }
 
   async start(gnssMode) {
@@ -271,6 +269,7 @@ class Session {
     this.live.redraw(); // the last tick: the final figures, the messages about motion cleared
     this.tick(performance.now());
     this.stopped = true;
+    unlock();
   }
 }
 
@@ -343,7 +342,7 @@ async function askMotionPermission() {
 
 /**
  * Starts a session: permissions, the engine, the guard, the sensors. `rec` is the recording
- * (null: none, a calibration walk); `opts.onTick(readouts, session)` runs at each display tick,
+ * (null: none, a calibration walk); `opts.onTick(session)` runs at each display tick,
  * `opts.messages` is the message list's id, `opts.title` the guard's title.
  */
 async function begin(makeLive, rec, opts = {}) {
@@ -352,20 +351,18 @@ async function begin(makeLive, rec, opts = {}) {
   messageList = opts.messages ?? 'live-messages';
   $('guard-title').textContent = opts.title ?? live_message('guardTitle');
   const ios = is_ios(navigator.userAgent, navigator.maxTouchPoints); // motion events follow iOS's conventions
-  if (!(await askMotionPermission())) {
-    message('motionDenied', true, 'error');
+  const refuse = (key, detail = '') => {
+    message(key, true, 'error', detail);
     if (live) controls('idle');
     return false;
-  }
-  message('motionDenied', false);
+  };
+  if (!(await askMotionPermission())) return refuse('motionDenied');
   for (const key of live_messages_cleared()) message(key, false);
   let engine;
   try {
     engine = makeLive(ios);
   } catch (err) {
-    message('cannotStart', true, 'error', String(err?.message ?? err));
-    if (live) controls('idle');
-    return false;
+    return refuse('cannotStart', String(err?.message ?? err));
   }
   current = new Session(engine, rec, ios, opts.onTick);
   const session = current;
@@ -396,7 +393,7 @@ async function begin(makeLive, rec, opts = {}) {
 
 /**
  * A calibration walk: the live mode's sensors, pocket guard and wake lock, without recording.
- * `onTick(readouts, session)` runs at each display tick. Returns the session, or null when it
+ * `onTick(session)` runs at each display tick. Returns the session, or null when it
  * could not start (the reason is in the list `messages`).
  */
 export async function startWalk({ onTick, gnss, messages, title }) {
@@ -408,9 +405,7 @@ export async function startWalk({ onTick, gnss, messages, title }) {
 
 /** Ends a calibration walk. */
 export async function stopWalk(session) {
-  if (session.ended) return;
-  await session.stop();
-  unlock();
+  if (!session.ended) await session.stop();
 }
 
 /** Whether a live recording or a calibration walk is running. */
@@ -420,7 +415,6 @@ async function stop() {
   const s = current;
   if (!s) return;
   await s.stop();
-  unlock();
   if (s.rec) {
     lastFinished = s;
     controls('stopped');

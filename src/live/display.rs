@@ -54,8 +54,6 @@ impl Default for Display {
 /// What the page does at a display tick.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Tick {
-    /// The readouts now (for a calibration walk's progress).
-    pub readouts: Readouts,
     /// `(element id, text)` of the readouts (see [`readout_texts`]).
     pub texts: Vec<(&'static str, String)>,
     /// `(element id, tooltip)`.
@@ -156,7 +154,6 @@ impl Display {
             ],
             gnss: (watch && !self.ended).then_some(if r.gnss_wanted { "on" } else { "off" }),
             draw: draw && guard_hidden,
-            readouts: r.clone(),
         })
     }
 }

@@ -174,26 +174,10 @@ impl Live {
         Ok(())
     }
 
-    /// The frequencies of the steps counted so far (a calibration walk's f_k), Hz.
-    pub fn step_freqs(&self) -> Vec<f64> {
-        self.session.step_freqs()
-    }
-
-    /// The leg pitch amplitude of each step counted so far, degrees, NaN without one (a
-    /// calibration walk's Δθ_k for `pitch_calibration`).
-    pub fn pitch_amplitudes(&self) -> Vec<f64> {
-        self.session.pitch_amplitudes()
-    }
-
-    /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m
-    /// (a calibration walk's L_k for the fuzzy scale), whatever model the session runs.
-    pub fn fuzzy_lengths(&self) -> Vec<f64> {
-        self.session.fuzzy_lengths().to_vec()
-    }
-
-    /// The distance along the fixes no worse than `max_accuracy_m`, m.
-    pub fn fix_path_m(&self, max_accuracy_m: f64) -> f64 {
-        self.session.fix_path_m(max_accuracy_m)
+    /// A calibration walk toward `target_m`, measured by GNSS when `gnss` (see
+    /// `live::wizard::walk_state`): `{text, distance_m, done}`.
+    pub fn calibration_walk(&self, target_m: f64, gnss: bool) -> Result<JsValue, JsError> {
+        to_value(&self.walk_state(target_m, gnss))
     }
 
     /// What the walk says about the user's step length (for `refine_profile`): `{fixes,
@@ -230,9 +214,9 @@ impl Live {
         self.display.redraw();
     }
 
-    /// What the page does at a display tick at `now_ms` (see `live::display::Tick`): `{readouts,
-    /// texts, titles, notice, verdict, messages: [[key, shown, kind]], gnss: "on" | "off" |
-    /// undefined, draw}`, or `undefined` when there is nothing to do. `source` names the motion
+    /// What the page does at a display tick at `now_ms` (see `live::display::Tick`): `{texts,
+    /// titles, notice, verdict, messages: [[key, shown, kind]], gnss: "on" | "off" | undefined,
+    /// draw}`, or `undefined` when there is nothing to do. `source` names the motion
     /// source; `guard_hidden`: the pocket guard is off (the plots can be seen).
     pub fn tick(
         &mut self,
@@ -315,6 +299,25 @@ impl Live {
     }
 }
 
+impl Live {
+    /// The session (for the calibration wizard, which reads a walk's steps).
+    pub(super) fn session(&self) -> &LiveSession {
+        &self.session
+    }
+
+    /// A calibration walk toward `target_m`; with `gnss`, its distance is the path of the fixes
+    /// no worse than the wizard's limit (`engine::calibration::GNSS_MAX_ACCURACY_M`).
+    pub(super) fn walk_state(
+        &self,
+        target_m: f64,
+        gnss: bool,
+    ) -> crate::live::wizard::WalkProgress {
+        let limit_m = crate::engine::calibration::GNSS_MAX_ACCURACY_M;
+        let path = gnss.then(|| self.session.fix_path_m(limit_m));
+        crate::live::wizard::walk_state(self.session.readouts().steps, path, target_m)
+    }
+}
+
 /// Live mode's message for `key` (see `live::messages`), or an error for an unknown key.
 #[wasm_bindgen]
 pub fn live_message(key: &str) -> Result<String, JsError> {
@@ -346,6 +349,13 @@ pub fn stored_unreadable(what: &str, kept: Vec<String>) -> String {
     } else {
         crate::live::messages::kept_aside(what, &kept)
     }
+}
+
+/// Why a change to the page's stored list of `what` is refused: it can neither be read nor
+/// kept aside.
+#[wasm_bindgen]
+pub fn stored_not_saved(what: &str) -> String {
+    crate::live::messages::not_saved(what)
 }
 
 /// Whether the browser follows iOS's conventions for motion events (see `live::is_ios`), from
