@@ -7,7 +7,7 @@ import {
 } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, fill, note, paint, test } from './util.js';
+import { $, dark, download, fill, note, paint, test, values } from './util.js';
 
 // The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
@@ -21,13 +21,7 @@ function message(key, show, kind = 'warn', extra = '') {
 
 /** The settings of live mode's controls: each enabled control named by its setting's path, and
  * the selected step-length profile. */
-function settings() {
-  const set = {};
-  for (const el of $('live-settings').querySelectorAll('[name]:enabled')) {
-    set[el.name] = el.type === 'number' ? el.valueAsNumber : el.value;
-  }
-  return { set, profile: profiles.selected() };
-}
+const settings = () => ({ set: values($('live-settings'), '[name]:enabled'), profile: profiles.selected() });
 
 /** The live session with everything around it. One at a time. */
 class Session {
@@ -245,16 +239,16 @@ class Session {
     this.on(document, 'visibilitychange', () => this.onVisibility());
     this.on(window, 'pagehide', () => this.onPageHide());
     this.flushTimer = setInterval(() => this.flush(), FLUSH_MS);
-    const loop = (t) => { this.tick(t); if (!this.stopped) this.raf = requestAnimationFrame(loop); };
-    this.raf = requestAnimationFrame(loop);
-    if (gnssMode !== 'off') {
-      if (navigator.geolocation) this.geoOn(); else message('noGeolocation', true);
-    }
+    // Ticks until the end (then the last one comes from stop()); the first starts the watch.
+    const loop = (t) => { this.tick(t); if (!this.ended) requestAnimationFrame(loop); };
+    requestAnimationFrame(loop);
     this.keepAwake();
     await this.startSensors();
   }
 
+  /** Ends the session (a recording or a calibration walk; once) and unlocks the pocket guard. */
   async stop() {
+    if (this.ended) return;
     this.ended = true;
     for (const off of this.handlers) off();
     for (const s of this.sensors) s.stop();
@@ -268,7 +262,6 @@ class Session {
     if (this.rec && !this.recorder.unsaved_count()) await store.setState(this.rec.id, 'done').catch(() => {});
     this.live.redraw(); // the last tick: the final figures, the messages about motion cleared
     this.tick(performance.now());
-    this.stopped = true;
     unlock();
   }
 }
@@ -401,11 +394,6 @@ export async function startWalk({ onTick, gnss, messages, title }) {
   const ok = await begin((ios) => new Live({ set: { 'fusion.mode.kind': gnss } }, ios, performance.timeOrigin), null,
     { onTick, gnss, messages, title });
   return ok ? current : null;
-}
-
-/** Ends a calibration walk. */
-export async function stopWalk(session) {
-  if (!session.ended) await session.stop();
 }
 
 /** Whether a live recording or a calibration walk is running. */

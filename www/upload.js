@@ -7,7 +7,7 @@ import {
 } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
-import { $, dark, download, el, paint, render, safeName, test } from './util.js';
+import { $, dark, download, el, paint, render, safeName, test, values } from './util.js';
 
 let worker = null;
 let logs = []; // [{info, card, views: {a, b}, step, bounds}]
@@ -23,10 +23,8 @@ function banner(text, kind = 'error') {
  * decides whether the chosen profile applies to the chosen step-length model). */
 function config(tag) {
   const row = document.querySelector(`.config[data-config="${tag}"]`);
-  const set = {};
-  for (const sel of row.querySelectorAll('select[data-choice]')) set[sel.name] = sel.value;
   const profile = row.querySelector('[name=profile]').value;
-  return upload_config(set, profile ? profiles.all()[profile] : undefined);
+  return upload_config(values(row, 'select[data-choice]'), profile ? profiles.all()[profile] : undefined);
 }
 
 function configs() {
@@ -119,7 +117,7 @@ function finish(cancelled = false) {
     $('upload-status').textContent = loaded_text(n, u?.bytes ?? 0, ms / 1000, u?.errors.length ?? 0);
   }
   $('upload-cancel').hidden = true;
-  $('rerun').disabled = !logs.length;
+  $('rerun').disabled = cancelled ? !lastFiles : !logs.length;
   document.documentElement.dataset.upload = 'done';
   if (u) u.done_ms = ms;
 }
@@ -353,7 +351,6 @@ export function setupUpload() {
     worker = null;
     banner(cancelled_text(), 'warn');
     finish(true);
-    $('rerun').disabled = !lastFiles;
   });
   for (const [key, value] of Object.entries(compare_settings().set)) {
     document.querySelector(`.config[data-config="b"] [name="${key}"]`).value = value;

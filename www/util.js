@@ -58,6 +58,15 @@ export function el(tag, props = {}, ...children) {
   return e;
 }
 
+/** A small button saying `text` that calls `onclick`. */
+export const smallButton = (text, onclick) =>
+  el('button', { type: 'button', className: 'small', textContent: text, onclick });
+
+/** The values of the controls `selector` finds in `root`, by name (a setting's path); numbers as
+ * numbers. */
+export const values = (root, selector) => Object.fromEntries([...root.querySelectorAll(selector)]
+  .map((c) => [c.name, c.type === 'number' ? c.valueAsNumber : c.value]));
+
 /** The elements a view tree from the engine describes (src/view.rs): `[tag, {attribute: value},
  * [children]]`, a child being a tree or text. */
 export function render(node) {
@@ -117,11 +126,9 @@ function showAside(key, what) {
   const kept = Object.keys(localStorage).filter((k) => k.startsWith(`${key}-unreadable-`)).sort();
   if (!kept.length) { storageNote(key, null); return; }
   const li = storageNote(key, stored_unreadable(what, kept));
-  const download_ = el('button', { type: 'button', className: 'small', textContent: 'Download it' });
-  download_.addEventListener('click', () => { for (const k of kept) download(localStorage.getItem(k), `${safeName(k)}.json`, 'application/json'); });
-  const forget = el('button', { type: 'button', className: 'small', textContent: 'Delete it' });
-  forget.addEventListener('click', () => { for (const k of kept) localStorage.removeItem(k); storageNote(key, null); });
-  li.append(download_, ' ', forget);
+  const save = () => { for (const k of kept) download(localStorage.getItem(k), `${safeName(k)}.json`, 'application/json'); };
+  const forget = () => { for (const k of kept) localStorage.removeItem(k); storageNote(key, null); };
+  li.append(smallButton('Download it', save), ' ', smallButton('Delete it', forget));
 }
 
 function storageNote(key, text) {

@@ -7,9 +7,9 @@ import {
   CalibrationWizard, gnss_state, import_profile, profile_summary, profiles_view, refine_profile, walk_title,
   wizard_message,
 } from './pkg/pdr.js';
-import { startWalk, stopWalk } from './live.js';
+import { startWalk } from './live.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, el, note, paint, render, safeName, test } from './util.js';
+import { $, dark, download, note, paint, render, safeName, smallButton, test } from './util.js';
 
 let wizard; // made in setupWizard, once the engine is loaded
 let walking = null; // { session, row, button, result, pace, band, target, gnss }
@@ -58,7 +58,7 @@ async function finish() {
   const w = walking;
   if (!w || w.finishing) return;
   w.finishing = true;
-  await stopWalk(w.session);
+  await w.session.stop();
   walking = null;
   w.button.textContent = 'Walk again';
   w.button.classList.remove('running');
@@ -153,9 +153,7 @@ function refineAfterWalk(e) {
   profiles.save(name, r.json);
   showProfiles();
   const li = note('profile-messages', 'refined', r.text, 'ok');
-  const undo = el('button', { type: 'button', className: 'small', textContent: 'Undo' });
-  undo.addEventListener('click', () => { profiles.save(name, json); showProfiles(); li.remove(); });
-  li.append(undo);
+  li.append(smallButton('Undo', () => { profiles.save(name, json); showProfiles(); li.remove(); }));
 }
 
 export function setupWizard() {

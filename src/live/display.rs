@@ -1,7 +1,7 @@
 //! Live mode's display tick: whether the page redraws now (at most ten times a second, only
 //! after something changed, never behind the pocket guard), what it writes (the readouts in
-//! words, the GNSS notice, the messages about a missing sensor or compass), and whether the
-//! geolocation watch should run (energy saving stops it between its windows). Also the page's
+//! words, the GNSS notice, the messages about a missing sensor, compass or geolocation), and
+//! whether the geolocation watch should run (energy saving stops it between its windows). Also the page's
 //! bookkeeping around it: when it was hidden (a gap in the input), and a refused location.
 //! May import: [`super::session`], [`super::readout_text`].
 
@@ -63,7 +63,7 @@ pub struct Tick {
     /// The filter's verdict on the GNSS, the notice's `data-verdict` (none: empty).
     pub verdict: Option<GnssVerdict>,
     /// `(message key, shown, kind)` of the messages a tick decides (see `super::messages`).
-    pub messages: [(&'static str, bool, &'static str); 2],
+    pub messages: [(&'static str, bool, &'static str); 3],
     /// `on` or `off`: where the geolocation watch should be now; none: leave it as it is (GNSS
     /// off, refused, missing, or the session has ended).
     pub gnss: Option<&'static str>,
@@ -136,7 +136,8 @@ impl Display {
             return None;
         }
         self.last_draw_ms = now_ms;
-        let watch = self.gnss_mode != "off" && self.geolocation && !self.location_refused;
+        let gnss = self.gnss_mode != "off";
+        let watch = gnss && self.geolocation && !self.location_refused;
         let no_motion = !self.ended && r.samples == 0 && now_ms - self.started_ms > NO_MOTION_MS;
         let draw = self.dirty && self.recorded;
         if draw {
@@ -151,6 +152,7 @@ impl Display {
             messages: [
                 ("noSensor", no_motion, "error"),
                 ("noCompass", r.samples > 0 && !r.absolute_heading, "warn"),
+                ("noGeolocation", gnss && !self.geolocation, "warn"),
             ],
             gnss: (watch && !self.ended).then_some(if r.gnss_wanted { "on" } else { "off" }),
             draw: draw && guard_hidden,
@@ -231,7 +233,7 @@ mod tests {
     }
 
     #[test]
-    fn messages_about_motion_and_compass() {
+    fn messages_about_motion_compass_and_geolocation() {
         let mut d = recorded("off");
         let none = readouts(0, false, true);
         let t = d
@@ -239,7 +241,11 @@ mod tests {
             .unwrap();
         assert_eq!(
             t.messages,
-            [("noSensor", false, "error"), ("noCompass", false, "warn")]
+            [
+                ("noSensor", false, "error"),
+                ("noCompass", false, "warn"),
+                ("noGeolocation", false, "warn")
+            ]
         );
         let t = d
             .tick(1001.0 + NO_MOTION_MS + DRAW_MS, &none, "events", true)
@@ -251,10 +257,7 @@ mod tests {
         );
         let relative = readouts(5, false, true);
         let t = d.tick(9000.0, &relative, "events", true).unwrap();
-        assert_eq!(
-            t.messages,
-            [("noSensor", false, "error"), ("noCompass", true, "warn")]
-        );
+        assert_eq!(t.messages.map(|m| m.1), [false, true, false]);
         assert_eq!(t.texts[0], ("r-steps", "0".to_string()));
     }
 
@@ -287,10 +290,9 @@ mod tests {
         );
         let mut no_geo = Display::default();
         no_geo.start(0.0, "best_performance", true, false);
-        assert_eq!(
-            no_geo.tick(0.0, &wanted, "events", true).unwrap().gnss,
-            None
-        );
+        let t = no_geo.tick(0.0, &wanted, "events", true).unwrap();
+        assert_eq!(t.gnss, None);
+        assert_eq!(t.messages[2], ("noGeolocation", true, "warn"));
     }
 
     #[test]
