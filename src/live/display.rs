@@ -3,7 +3,7 @@
 //! words, the GNSS notice, the messages about a missing sensor, compass or geolocation), and
 //! whether the geolocation watch should run (energy saving stops it between its windows). Also the page's
 //! bookkeeping around it: when it was hidden (a gap in the input), and a refused location.
-//! May import: [`super::session`], [`super::readout_text`].
+//! May import: `engine` (the GNSS verdict), [`super::session`], [`super::readout_text`].
 
 use super::readout_text::readout_texts;
 use super::session::{Readouts, NO_MOTION_MS};
