@@ -5,7 +5,7 @@ import { setupLive } from './live.js';
 import { setupWizard } from './wizard.js';
 import { setupUpload } from './upload.js';
 import { setupBasemap } from './basemap.js';
-import { $, dark, fill, fit, test } from './util.js';
+import { $, dark, fill, paint, test } from './util.js';
 
 /** Fills every select marked `data-choice` with the options of the setting it is named after. */
 function fillChoices() {
@@ -52,10 +52,7 @@ async function main() {
 /** Draws `what` on `canvas` at the device pixel ratio, again on resize, scheme change and base
  * map change (see basemap.js). */
 function keepDrawn(canvas, what) {
-  const draw = () => {
-    const dpr = fit(canvas);
-    if (dpr) what.draw(canvas, dark.matches, dpr);
-  };
+  const draw = () => paint(canvas, (...a) => what.draw(...a));
   draw();
   new ResizeObserver(draw).observe(canvas);
   dark.addEventListener('change', draw);

@@ -7,11 +7,10 @@ import {
 } from './pkg/pdr.js';
 import * as store from './store.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, fill, fit, note, test } from './util.js';
+import { $, dark, download, fill, note, paint, test, values } from './util.js';
 
 // The page's own timers (browser plumbing, not engine rules).
 const FLUSH_MS = 250; // recording batches: a crash loses at most this much
-const DRAW_MS = 100; // at most ten redraws a second
 const HOLD_MS = 2000; // press-and-hold to unlock the pocket guard
 
 /** Shows or clears a message; `kind` is 'error' or 'warn'. */
@@ -22,13 +21,7 @@ function message(key, show, kind = 'warn', extra = '') {
 
 /** The settings of live mode's controls: each enabled control named by its setting's path, and
  * the selected step-length profile. */
-function settings() {
-  const set = {};
-  for (const el of $('live-settings').querySelectorAll('[name]:enabled')) {
-    set[el.name] = el.type === 'number' ? el.valueAsNumber : el.value;
-  }
-  return { set, profile: profiles.selected() };
-}
+const settings = () => ({ set: values($('live-settings'), '[name]:enabled'), profile: profiles.selected() });
 
 /** The live session with everything around it. One at a time. */
 class Session {
@@ -38,10 +31,6 @@ class Session {
     this.onTick = onTick;
     this.ios = ios;
     this.ended = false;
-    this.dirty = true;
-    this.lastDraw = -Infinity;
-    this.lastSampleAt = performance.now();
-    this.hiddenAt = null;
     this.source = 'events';
     this.sensors = [];
     this.geoWatch = null;
@@ -61,16 +50,11 @@ class Session {
     message('engine', true, 'warn', String(err?.message ?? err));
   }
 
-  sample() {
-    this.lastSampleAt = performance.now();
-    this.dirty = true;
-  }
-
   // --- sensors -------------------------------------------------------------------------
   listenEvents() {
     this.on(window, 'devicemotion', (e) => {
       try {
-        if (this.live.push_motion(e) !== undefined) this.sample();
+        this.live.push_motion(e);
       } catch (err) { this.refused(err); }
     });
     this.listenOrientation();
@@ -106,10 +90,7 @@ class Session {
     });
     if (!ok || this.ended) { acc.stop(); gyr.stop(); return false; }
     acc.addEventListener('reading', () => {
-      try {
-        this.live.push_sensor(acc, gyr);
-        this.sample();
-      } catch (err) { this.refused(err); }
+      try { this.live.push_sensor(acc, gyr); } catch (err) { this.refused(err); }
     });
     this.sensors.push(acc, gyr);
     if ('AbsoluteOrientationSensor' in window) {
@@ -131,7 +112,6 @@ class Session {
     if (this.ended) return;
     if (this.source === 'devicemotion events') this.listenEvents();
     document.documentElement.dataset.source = this.source === 'Generic Sensor API' ? 'sensors' : 'events';
-    this.lastSampleAt = performance.now();
   }
 
   // --- GNSS ----------------------------------------------------------------------------
@@ -141,28 +121,18 @@ class Session {
       try {
         this.live.push_fix(performance.now(), p);
         message('locationUnavailable', false);
-        this.dirty = true;
       } catch (err) { this.refused(err); }
     }, (err) => {
-      if (err.code === err.PERMISSION_DENIED) {
-        message('locationDenied', true);
-        this.geoOff();
-        this.geoRefused = true;
-      } else {
-        message('locationUnavailable', true);
-      }
+      // Refused: the watch stops, and the engine does not start it again. Else fixes may still come.
+      const denied = err.code === err.PERMISSION_DENIED;
+      message(this.live.location_failed(denied), true);
+      if (denied) this.geoOff();
     }, { enableHighAccuracy: true, maximumAge: 0, timeout: 60_000 });
   }
 
   geoOff() {
     if (this.geoWatch != null) navigator.geolocation.clearWatch(this.geoWatch);
     this.geoWatch = null;
-  }
-
-  /** Energy saving: the watch is really stopped while the engine does not want fixes. */
-  followGnssSchedule(r) {
-    if (this.gnssMode === 'off' || this.geoRefused || !navigator.geolocation) return;
-    if (r.gnss_wanted) this.geoOn(); else this.geoOff();
   }
 
   // --- screen ----------------------------------------------------------------------------
@@ -176,17 +146,11 @@ class Session {
     }
   }
 
+  /** Events stop while the page is hidden: the engine marks the gap when it comes back. */
   onVisibility() {
-    if (document.visibilityState === 'hidden') {
-      this.hiddenAt = performance.now();
-      this.flush();
-    } else if (this.hiddenAt != null) {
-      // Events stopped while hidden: tell the engine, so that nothing bridges the gap.
-      this.live.mark_gap(this.hiddenAt, performance.now());
-      this.hiddenAt = null;
-      this.dirty = true;
-      this.keepAwake();
-    }
+    const hidden = document.visibilityState === 'hidden';
+    if (this.live.visibility(hidden, performance.now())) this.keepAwake();
+    else if (hidden) this.flush();
   }
 
   // --- recording -----------------------------------------------------------------------
@@ -249,46 +213,42 @@ class Session {
   }
 
   // --- display -------------------------------------------------------------------------
+  /** A display tick: the engine decides what to do now (src/live/display.rs). Energy saving's
+   * watch is really stopped while the engine does not want fixes; the words are the engine's. */
   tick(now) {
-    if (this.ended && !this.dirty) return;
-    if (now - this.lastDraw < DRAW_MS) return;
-    this.lastDraw = now;
-    const r = this.live.readouts();
-    this.followGnssSchedule(r);
-    message('noSensor', !this.ended && this.live.no_motion(this.startedAt, now), 'error');
-    message('noCompass', r.samples > 0 && !r.absolute_heading);
-    show(r, this);
-    this.onTick?.(r, this);
-    if (!this.dirty || !this.rec) return;
-    this.dirty = false;
-    if (!$('guard').hidden) return; // nobody sees the plots
-    this.draw();
+    const t = this.live.tick(now, this.source, $('guard').hidden);
+    if (!t) return;
+    if (t.gnss === 'on') this.geoOn(); else if (t.gnss === 'off') this.geoOff();
+    for (const [key, show, kind] of t.messages) message(key, show, kind);
+    fill(t.texts);
+    for (const [id, title] of t.titles) $(id).title = title;
+    $('gnss-notice').hidden = !t.notice;
+    $('gnss-notice').dataset.verdict = t.verdict ?? '';
+    this.onTick?.(this);
+    if (t.draw) this.draw();
   }
 
   /** Draws the map and the scope. */
   draw() {
-    const dpr = fit($('live-map'));
-    if (dpr) this.live.draw($('live-map'), dark.matches, dpr);
-    const dpr2 = fit($('live-scope'));
-    if (dpr2) this.live.draw_scope($('live-scope'), dark.matches, dpr2);
+    paint($('live-map'), (...a) => this.live.draw(...a));
+    paint($('live-scope'), (...a) => this.live.draw_scope(...a));
   }
 
   async start(gnssMode) {
-    this.gnssMode = gnssMode;
-    this.startedAt = performance.now();
+    this.live.start(performance.now(), gnssMode, !!this.rec, !!navigator.geolocation);
     this.on(document, 'visibilitychange', () => this.onVisibility());
     this.on(window, 'pagehide', () => this.onPageHide());
     this.flushTimer = setInterval(() => this.flush(), FLUSH_MS);
-    const loop = (t) => { this.tick(t); if (!this.stopped) this.raf = requestAnimationFrame(loop); };
-    this.raf = requestAnimationFrame(loop);
-    if (gnssMode !== 'off') {
-      if (navigator.geolocation) this.geoOn(); else message('noGeolocation', true);
-    }
+    // Ticks until the end (then the last one comes from stop()); the first starts the watch.
+    const loop = (t) => { this.tick(t); if (!this.ended) requestAnimationFrame(loop); };
+    requestAnimationFrame(loop);
     this.keepAwake();
     await this.startSensors();
   }
 
+  /** Ends the session (a recording or a calibration walk; once) and unlocks the pocket guard. */
   async stop() {
+    if (this.ended) return;
     this.ended = true;
     for (const off of this.handlers) off();
     for (const s of this.sensors) s.stop();
@@ -300,21 +260,10 @@ class Session {
     this.flush();
     await this.save(true);
     if (this.rec && !this.recorder.unsaved_count()) await store.setState(this.rec.id, 'done').catch(() => {});
-    message('noSensor', false);
-    this.dirty = true;
-    this.lastDraw = -Infinity;
+    this.live.redraw(); // the last tick: the final figures, the messages about motion cleared
     this.tick(performance.now());
-    this.stopped = true;
+    unlock();
   }
-}
-
-/** Writes the readouts into the page and the pocket guard (the words are the engine's). */
-function show(r, s) {
-  const t = s.live.readout_texts(s.source, s.gnssMode ?? '');
-  fill(t.texts);
-  for (const [id, title] of t.titles) $(id).title = title;
-  $('gnss-notice').hidden = !r.gnss_notice;
-  $('gnss-notice').dataset.verdict = r.gnss_verdict ?? '';
 }
 
 // --- pocket guard ------------------------------------------------------------------------
@@ -326,7 +275,7 @@ function lock() {
 function unlock() {
   $('guard').hidden = true;
   document.documentElement.dataset.guard = 'off';
-  if (current) { current.dirty = true; current.lastDraw = -Infinity; }
+  current?.live.redraw();
 }
 
 function setupGuard() {
@@ -386,7 +335,7 @@ async function askMotionPermission() {
 
 /**
  * Starts a session: permissions, the engine, the guard, the sensors. `rec` is the recording
- * (null: none, a calibration walk); `opts.onTick(readouts, session)` runs at each display tick,
+ * (null: none, a calibration walk); `opts.onTick(session)` runs at each display tick,
  * `opts.messages` is the message list's id, `opts.title` the guard's title.
  */
 async function begin(makeLive, rec, opts = {}) {
@@ -395,20 +344,18 @@ async function begin(makeLive, rec, opts = {}) {
   messageList = opts.messages ?? 'live-messages';
   $('guard-title').textContent = opts.title ?? live_message('guardTitle');
   const ios = is_ios(navigator.userAgent, navigator.maxTouchPoints); // motion events follow iOS's conventions
-  if (!(await askMotionPermission())) {
-    message('motionDenied', true, 'error');
+  const refuse = (key, detail = '') => {
+    message(key, true, 'error', detail);
     if (live) controls('idle');
     return false;
-  }
-  message('motionDenied', false);
+  };
+  if (!(await askMotionPermission())) return refuse('motionDenied');
   for (const key of live_messages_cleared()) message(key, false);
   let engine;
   try {
     engine = makeLive(ios);
   } catch (err) {
-    message('cannotStart', true, 'error', String(err?.message ?? err));
-    if (live) controls('idle');
-    return false;
+    return refuse('cannotStart', String(err?.message ?? err));
   }
   current = new Session(engine, rec, ios, opts.onTick);
   const session = current;
@@ -439,7 +386,7 @@ async function begin(makeLive, rec, opts = {}) {
 
 /**
  * A calibration walk: the live mode's sensors, pocket guard and wake lock, without recording.
- * `onTick(readouts, session)` runs at each display tick. Returns the session, or null when it
+ * `onTick(session)` runs at each display tick. Returns the session, or null when it
  * could not start (the reason is in the list `messages`).
  */
 export async function startWalk({ onTick, gnss, messages, title }) {
@@ -449,13 +396,6 @@ export async function startWalk({ onTick, gnss, messages, title }) {
   return ok ? current : null;
 }
 
-/** Ends a calibration walk. */
-export async function stopWalk(session) {
-  if (session.ended) return;
-  await session.stop();
-  unlock();
-}
-
 /** Whether a live recording or a calibration walk is running. */
 export const busy = () => !!current && !current.ended;
 
@@ -463,7 +403,6 @@ async function stop() {
   const s = current;
   if (!s) return;
   await s.stop();
-  unlock();
   if (s.rec) {
     lastFinished = s;
     controls('stopped');
@@ -550,7 +489,7 @@ export function setupLive() {
   $('download').addEventListener('click', async () => {
     if (lastFinished) download((await lastFinished.recording()).text, fileName(lastFinished.rec.started));
   });
-  const redraw = () => { if (current) { current.dirty = true; current.lastDraw = -Infinity; current.tick(performance.now()); } };
+  const redraw = () => { current?.live.redraw(); current?.tick(performance.now()); };
   new ResizeObserver(redraw).observe($('live-map'));
   dark.addEventListener('change', redraw);
   window.addEventListener('pdr-basemap', redraw);

@@ -4,7 +4,7 @@
 // form, its preview and the recipe its values make (form_view.rs); this file only wires the
 // form's events, keeps the saved recipes and hands the recipe JSON around.
 import { RecipeForm, recipe_in, recipe_normalise } from './pkg/pdr.js';
-import { $, download, readStored, render, safeName } from './util.js';
+import { $, download, editStored, readStored, render, safeName } from './util.js';
 
 const LIST = 'pdr-recipes';
 
@@ -15,10 +15,7 @@ export const saved = () => readStored(LIST, 'recipes') ?? {};
  * stored recipes cannot be read. */
 export function save(json) {
   const text = recipe_normalise(json);
-  const all = readStored(LIST, 'recipes');
-  if (!all) throw new Error('The stored recipes cannot be read and cannot be kept aside: nothing was saved.');
-  all[JSON.parse(text).name] = text;
-  localStorage.setItem(LIST, JSON.stringify(all));
+  editStored(LIST, 'recipes', (all) => { all[JSON.parse(text).name] = text; });
 }
 
 /**

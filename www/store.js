@@ -1,5 +1,7 @@
 // The live recording in IndexedDB: one row per recording, its pdr-log text in small chunks
 // appended in order, so that a reload or a crash loses at most the last batch.
+import { pieces_in_order, tail_missing } from './pkg/pdr.js';
+
 const DB = 'pdr';
 
 function request(r) {
@@ -61,16 +63,18 @@ export async function append(id, chunks) {
   const last = chunks.at(-1);
   await tx(['recordings', 'chunks'], 'readwrite', (rec, store) => {
     for (const c of chunks) store.add({ rec: id, ...c });
-    const g = rec.get(id);
-    g.onsuccess = () => { if (g.result) rec.put({ ...g.result, samples: last.samples, updated: Date.now() }); };
+    update(rec, id, { samples: last.samples, updated: Date.now() });
   });
 }
 
 export async function setState(id, state) {
-  await tx(['recordings'], 'readwrite', (rec) => {
-    const g = rec.get(id);
-    g.onsuccess = () => { if (g.result) rec.put({ ...g.result, state }); };
-  });
+  await tx(['recordings'], 'readwrite', (rec) => update(rec, id, { state }));
+}
+
+/** Sets `fields` of the recording `id` in the store `rec` (in its transaction), if it exists. */
+function update(rec, id, fields) {
+  const g = rec.get(id);
+  g.onsuccess = () => { if (g.result) rec.put({ ...g.result, ...fields }); };
 }
 
 export async function list() {
@@ -84,18 +88,14 @@ export const tailKey = (id) => `pdr-tail-${id}`;
 /**
  * The stored pieces of a recording, `[{seq, text, samples, steps}]` in order of `seq` (each seq
  * once), with the pieces `extra` (those not yet written) and those saved in localStorage at page
- * close; and the next piece number. What they hold, damaged or not, is for the engine to read
- * (`recover_recording`).
+ * close (`tail_missing`); and the next piece number (`pieces_in_order`). What they hold, damaged
+ * or not, is for the engine to read (`recover_recording`).
  */
 export async function pieces(id, extra = []) {
   const d = await open();
   const get = async () => request(d.transaction('chunks').objectStore('chunks').index('rec').getAll(id));
   let chunks = await get();
-  let tail = [];
-  try { tail = JSON.parse(localStorage.getItem(tailKey(id)) ?? '[]'); } catch { /* damaged: ignored */ }
-  if (!Array.isArray(tail)) tail = [];
-  const have = new Set(chunks.map((c) => c?.seq));
-  const missing = tail.filter((c) => !have.has(c?.seq));
+  const missing = tail_missing(localStorage.getItem(tailKey(id)), chunks);
   let saved = true;
   if (missing.length) {
     try {
@@ -107,11 +107,7 @@ export async function pieces(id, extra = []) {
     }
   }
   if (saved) localStorage.removeItem(tailKey(id));
-  const bySeq = new Map();
-  for (const c of [...chunks, ...extra]) if (c && !bySeq.has(c.seq)) bySeq.set(c.seq, c);
-  const all = [...bySeq.values()].sort((a, b) => (a.seq > b.seq) - (a.seq < b.seq));
-  const seqs = all.map((c) => c.seq).filter(Number.isFinite);
-  return { pieces: all, nextSeq: seqs.reduce((m, s) => Math.max(m, s + 1), 0) };
+  return pieces_in_order([...chunks, ...extra]);
 }
 
 export async function remove(id) {

@@ -7,7 +7,7 @@ import {
 } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
-import { $, dark, download, el, fit, render, safeName, test } from './util.js';
+import { $, dark, download, el, paint, render, safeName, test, values } from './util.js';
 
 let worker = null;
 let logs = []; // [{info, card, views: {a, b}, step, bounds}]
@@ -23,10 +23,8 @@ function banner(text, kind = 'error') {
  * decides whether the chosen profile applies to the chosen step-length model). */
 function config(tag) {
   const row = document.querySelector(`.config[data-config="${tag}"]`);
-  const set = {};
-  for (const sel of row.querySelectorAll('select[data-choice]')) set[sel.name] = sel.value;
   const profile = row.querySelector('[name=profile]').value;
-  return upload_config(set, profile ? profiles.all()[profile] : undefined);
+  return upload_config(values(row, 'select[data-choice]'), profile ? profiles.all()[profile] : undefined);
 }
 
 function configs() {
@@ -119,7 +117,7 @@ function finish(cancelled = false) {
     $('upload-status').textContent = loaded_text(n, u?.bytes ?? 0, ms / 1000, u?.errors.length ?? 0);
   }
   $('upload-cancel').hidden = true;
-  $('rerun').disabled = !logs.length;
+  $('rerun').disabled = cancelled ? !lastFiles : !logs.length;
   document.documentElement.dataset.upload = 'done';
   if (u) u.done_ms = ms;
 }
@@ -233,8 +231,7 @@ function drawAll(l) {
 function drawMaps(l) {
   for (const [tag, v] of Object.entries(l.views)) {
     const cv = l.card.querySelector(`.mapbox[data-tag="${tag}"] canvas`);
-    const dpr = fit(cv);
-    if (dpr) v.draw_map(cv, dark.matches, dpr, l.bounds ?? [], l.step ?? undefined);
+    paint(cv, (...a) => v.draw_map(...a, l.bounds ?? [], l.step ?? undefined));
   }
 }
 
@@ -243,16 +240,15 @@ function drawPlots(l) {
   if (!v) return;
   const cursor = l.step != null ? v.step_info(l.step).t : undefined;
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
-    const dpr = fit(cv);
-    if (!dpr) continue;
-    // [left, right, top, bottom] of the plot area in canvas pixels (for the legibility test).
-    cv.area = v.draw_plot(cv, dark.matches, dpr, cv.dataset.kind, cursor);
-    // Where the time axis lies, canvas pixels → CSS pixels, for pointer → time.
-    cv.axis = cv.area.slice(0, 2).map((x) => x / dpr);
+    paint(cv, (c, dk, dpr) => {
+      // [left, right, top, bottom] of the plot area in canvas pixels (for the legibility test).
+      cv.area = v.draw_plot(c, dk, dpr, cv.dataset.kind, cursor);
+      // Where the time axis lies, canvas pixels → CSS pixels, for pointer → time.
+      cv.axis = cv.area.slice(0, 2).map((x) => x / dpr);
+    });
   }
   const ell = l.card.querySelector('canvas.ellipse');
-  const dpr = fit(ell);
-  if (dpr) v.draw_ellipse(ell, dark.matches, dpr, l.step ?? Math.floor(v.summary().steps / 2));
+  paint(ell, (...a) => v.draw_ellipse(...a, l.step ?? Math.floor(v.summary().steps / 2)));
 }
 
 function select(l, i, view) {
@@ -355,7 +351,6 @@ export function setupUpload() {
     worker = null;
     banner(cancelled_text(), 'warn');
     finish(true);
-    $('rerun').disabled = !lastFiles;
   });
   for (const [key, value] of Object.entries(compare_settings().set)) {
     document.querySelector(`.config[data-config="b"] [name="${key}"]`).value = value;
@@ -381,12 +376,8 @@ export function setupUpload() {
     test.upload.started = performance.now();
     test.upload.progress_max = 0;
     progress('running the engine again…', 0.35);
-    for (const l of logs) {
-      for (const [tag, config] of Object.entries(c)) {
-        pending += 1;
-        worker.postMessage({ type: 'rerun', index: l.info.index, config, tag });
-      }
-    }
+    pending += 1;
+    worker.postMessage({ type: 'rerun', indices: logs.map((l) => l.info.index), configs: c });
   });
   $('upload-results').addEventListener('click', (e) => {
     const what = e.target.dataset?.export;

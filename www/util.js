@@ -1,27 +1,28 @@
 // What the page's modules share: element lookup, the colour scheme, canvas sizing, downloads,
 // and the lists of messages. Browser APIs only; the words are the engine's.
-import { stored_unreadable } from './pkg/pdr.js';
+import { stored_not_saved, stored_unreadable } from './pkg/pdr.js';
 
 export const $ = (id) => document.getElementById(id);
+
+/** The colour scheme; `dark.matches` is true in dark mode, `change` fires when it changes. */
+export const dark = window.matchMedia('(prefers-color-scheme: dark)');
 
 /** Writes texts from the engine, `[[element id, text]]`, into the page (only those that changed). */
 export function fill(texts) {
   for (const [id, text] of texts) { const e = $(id); if (e.textContent !== text) e.textContent = text; }
 }
 
-/** The colour scheme; `dark.matches` is true in dark mode, `change` fires when it changes. */
-export const dark = window.matchMedia('(prefers-color-scheme: dark)');
-
 /** Sizes a canvas's backing store to its CSS size × the device pixel ratio (only when it
- * changed); returns the ratio, or 0 while the canvas has no size. */
-export function fit(canvas) {
+ * changed), then calls `draw(canvas, dark, ratio)` and returns what it returns; nothing while
+ * the canvas has no size. */
+export function paint(canvas, draw) {
   const dpr = window.devicePixelRatio || 1;
   const r = canvas.getBoundingClientRect();
   const w = Math.round(r.width * dpr);
   const h = Math.round(r.height * dpr);
-  if (w === 0 || h === 0) return 0;
+  if (w === 0 || h === 0) return undefined;
   if (canvas.width !== w || canvas.height !== h) { canvas.width = w; canvas.height = h; }
-  return dpr;
+  return draw(canvas, dark.matches, dpr);
 }
 
 /** Saves `data` (text or a Blob) as a file named `name`. */
@@ -56,6 +57,15 @@ export function el(tag, props = {}, ...children) {
   e.append(...children);
   return e;
 }
+
+/** A small button saying `text` that calls `onclick`. */
+export const smallButton = (text, onclick) =>
+  el('button', { type: 'button', className: 'small', textContent: text, onclick });
+
+/** The values of the controls `selector` finds in `root`, by name (a setting's path); numbers as
+ * numbers. */
+export const values = (root, selector) => Object.fromEntries([...root.querySelectorAll(selector)]
+  .map((c) => [c.name, c.type === 'number' ? c.valueAsNumber : c.value]));
 
 /** The elements a view tree from the engine describes (src/view.rs): `[tag, {attribute: value},
  * [children]]`, a child being a tree or text. */
@@ -102,16 +112,23 @@ export function readStored(key, what) {
   return {};
 }
 
+/** Changes the object stored as JSON under `key` (see `readStored`) with `edit(object)`;
+ * refused while the stored text can be neither read nor kept aside. */
+export function editStored(key, what, edit) {
+  const value = readStored(key, what);
+  if (!value) throw new Error(stored_not_saved(what));
+  edit(value);
+  localStorage.setItem(key, JSON.stringify(value));
+}
+
 /** The message about the unreadable texts kept aside for `key`, with a download and a delete. */
 function showAside(key, what) {
   const kept = Object.keys(localStorage).filter((k) => k.startsWith(`${key}-unreadable-`)).sort();
   if (!kept.length) { storageNote(key, null); return; }
   const li = storageNote(key, stored_unreadable(what, kept));
-  const download_ = el('button', { type: 'button', className: 'small', textContent: 'Download it' });
-  download_.addEventListener('click', () => { for (const k of kept) download(localStorage.getItem(k), `${safeName(k)}.json`, 'application/json'); });
-  const forget = el('button', { type: 'button', className: 'small', textContent: 'Delete it' });
-  forget.addEventListener('click', () => { for (const k of kept) localStorage.removeItem(k); storageNote(key, null); });
-  li.append(download_, ' ', forget);
+  const save = () => { for (const k of kept) download(localStorage.getItem(k), `${safeName(k)}.json`, 'application/json'); };
+  const forget = () => { for (const k of kept) localStorage.removeItem(k); storageNote(key, null); };
+  li.append(smallButton('Download it', save), ' ', smallButton('Delete it', forget));
 }
 
 function storageNote(key, text) {

@@ -4,12 +4,12 @@
 // refinement — comes from the engine (CalibrationWizard, profile_summary, refine_profile in
 // src/web/calibration.rs), and so do the words and the fits box (src/live/wizard.rs).
 import {
-  CalibrationWizard, gnss_limit_m, gnss_state, import_profile, profile_summary, profiles_view, refine_profile,
-  walk_progress, walk_title, wizard_message,
+  CalibrationWizard, gnss_state, import_profile, profile_summary, profiles_view, refine_profile, walk_title,
+  wizard_message,
 } from './pkg/pdr.js';
-import { startWalk, stopWalk } from './live.js';
+import { startWalk } from './live.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, el, fit, note, render, safeName, test } from './util.js';
+import { $, dark, download, note, paint, render, safeName, smallButton, test } from './util.js';
 
 let wizard; // made in setupWizard, once the engine is loaded
 let walking = null; // { session, row, button, result, pace, band, target, gnss }
@@ -34,11 +34,11 @@ async function paceClicked(row) {
     gnss: gnss ? 'best_performance' : 'off',
     messages: 'cal-messages',
     title,
-    onTick: (r, s) => {
+    onTick: (s) => {
       if (walking?.session !== s) return;
-      const path = gnss ? s.live.fix_path_m(gnss_limit_m()) : undefined;
-      result.textContent = walk_progress(r.steps, path, target);
-      if (gnss && path >= target) finish();
+      const walk = s.live.calibration_walk(target, gnss);
+      result.textContent = walk.text;
+      if (walk.done) finish();
     },
   });
   if (!session) {
@@ -58,13 +58,11 @@ async function finish() {
   const w = walking;
   if (!w || w.finishing) return;
   w.finishing = true;
-  await stopWalk(w.session);
+  await w.session.stop();
   walking = null;
   w.button.textContent = 'Walk again';
   w.button.classList.remove('running');
-  const live = w.session.live;
-  const distance = w.gnss ? live.fix_path_m(gnss_limit_m()) : w.target;
-  const r = wizard.walked(w.band, w.pace, distance, live.step_freqs(), live.fuzzy_lengths(), live.pitch_amplitudes());
+  const r = wizard.walked(w.band, w.pace, w.session.live, w.target, w.gnss);
   w.result.textContent = r.text;
   w.result.classList.toggle('error', r.error);
   if (r.pitch) { // what the normal walk gave the leg-pitch step length, or why it gave nothing
@@ -90,8 +88,7 @@ function refresh() {
 /** Draws the fits' charts (canvases `cal-chart-<band>`) at their sizes on the page. */
 function redraw() {
   for (const canvas of $('cal-fits').querySelectorAll('canvas')) {
-    const dpr = fit(canvas);
-    if (dpr) wizard.draw(canvas, dark.matches, dpr, canvas.id.replace('cal-chart-', ''));
+    paint(canvas, (...a) => wizard.draw(...a, canvas.id.replace('cal-chart-', '')));
   }
 }
 
@@ -156,9 +153,7 @@ function refineAfterWalk(e) {
   profiles.save(name, r.json);
   showProfiles();
   const li = note('profile-messages', 'refined', r.text, 'ok');
-  const undo = el('button', { type: 'button', className: 'small', textContent: 'Undo' });
-  undo.addEventListener('click', () => { profiles.save(name, json); showProfiles(); li.remove(); });
-  li.append(undo);
+  li.append(smallButton('Undo', () => { profiles.save(name, json); showProfiles(); li.remove(); }));
 }
 
 export function setupWizard() {

@@ -1,6 +1,6 @@
 // Upload mode's worker: the files are read, parsed and run through the engine here, off the
 // page's thread. Messages in: {type: 'load', files: [{name, file}], configs: {a, b}} and
-// {type: 'rerun', index, config, tag} and {type: 'pdrlog', index}, a config being
+// {type: 'rerun', indices, configs} and {type: 'pdrlog', index}, a config being
 // {settings, label}; 'load' may carry recipes: [json], and {type: 'preview', recipe} asks what a
 // recipe makes of the loaded files. Out: 'progress', 'parsed', 'describe' (when nothing was
 // recognised), 'preview', 'analysis' (bytes, transferred), 'pdrlog', 'done', 'failed'.
@@ -28,6 +28,12 @@ function analyse(index, config, tag) {
   postMessage({ type: 'analysis', index, tag, label: config.label, bytes, analyse_ms: totalMs, engine_ms: upload.engine_ms, memory_mb: memoryMb() }, [bytes.buffer]);
 }
 
+/** Runs the logs `indices` with each configuration of `configs` (`{a, b}`), then says it is done. */
+function analyseAll(indices, configs) {
+  for (const index of indices) for (const [tag, config] of Object.entries(configs)) analyse(index, config, tag);
+  postMessage({ type: 'done' });
+}
+
 onmessage = async ({ data }) => {
   try {
     await ready;
@@ -43,13 +49,9 @@ onmessage = async ({ data }) => {
       postMessage({ type: 'parsed', parsed, parse_ms: performance.now() - t0, bytes: total });
       // Nothing recognised: the files described for the recipe form.
       if (!parsed.logs.length) postMessage({ type: 'describe', description: upload.describe(() => {}) });
-      for (const log of parsed.logs) {
-        for (const [tag, config] of Object.entries(data.configs)) analyse(log.index, config, tag);
-      }
-      postMessage({ type: 'done' });
+      analyseAll(parsed.logs.map((log) => log.index), data.configs);
     } else if (data.type === 'rerun') {
-      analyse(data.index, data.config, data.tag);
-      postMessage({ type: 'done' });
+      analyseAll(data.indices, data.configs);
     } else if (data.type === 'preview') {
       postMessage({ type: 'preview', result: upload.preview(data.recipe, () => {}) });
     } else if (data.type === 'pdrlog') {

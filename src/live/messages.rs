@@ -24,9 +24,11 @@ pub fn message(key: &str) -> Option<&'static str> {
     })
 }
 
-/// The messages a new start (a recording, a resumed one, a calibration walk) clears: those
-/// about the previous session's sensors, engine, storage and location.
-pub const CLEARED_AT_START: [&str; 7] = [
+/// The messages a new start (a recording, a resumed one, a calibration walk) clears once motion
+/// access is granted: that it was refused, and those about the previous session's sensors,
+/// engine, storage and location.
+pub const CLEARED_AT_START: [&str; 8] = [
+    "motionDenied",
     "noSensor",
     "noCompass",
     "engine",
@@ -91,6 +93,11 @@ pub fn stored_unreadable(what: &str) -> String {
     )
 }
 
+/// A change to the page's list of `what` is refused: the list cannot be read, nor moved aside.
+pub fn not_saved(what: &str) -> String {
+    format!("The stored {what} cannot be read and cannot be kept aside: nothing was saved.")
+}
+
 /// The page's list of `what` could not be read: its text is kept under the storage keys
 /// `kept`. The page adds a download and a delete button after it.
 pub fn kept_aside(what: &str, kept: &[String]) -> String {
@@ -136,6 +143,10 @@ mod tests {
         assert_eq!(
             stored_unreadable("recipes"),
             "The recipes stored on this device cannot be read, and there is no room to keep them aside: nothing is saved over them. Free some storage and reload the page."
+        );
+        assert_eq!(
+            not_saved("recipes"),
+            "The stored recipes cannot be read and cannot be kept aside: nothing was saved."
         );
         assert_eq!(
             kept_aside("step-length profiles", &["a-unreadable-1".into(), "a-unreadable-2".into()]),

@@ -29,6 +29,7 @@
 //! gives the absolute `alpha` ([`ios_compass_alpha`]), and wins over `alpha` when present.
 
 pub mod controls;
+pub mod display;
 pub mod events;
 pub mod messages;
 pub mod readout_text;

@@ -185,9 +185,84 @@ pub fn file_name(started_ms: f64) -> Option<String> {
     ))
 }
 
+/// The pieces a closing page saved (`tail`: the JSON text of a list of `{seq, text, samples,
+/// steps}`) whose numbers are not among those of the stored pieces, `have`; none without a tail,
+/// or when its text is damaged or not a list.
+pub fn tail_missing(tail: Option<&str>, have: &[Option<f64>]) -> Vec<serde_json::Value> {
+    let Some(Ok(serde_json::Value::Array(pieces))) = tail.map(serde_json::from_str) else {
+        return Vec::new();
+    };
+    pieces
+        .into_iter()
+        .filter(|p| !have.contains(&p.get("seq").and_then(serde_json::Value::as_f64)))
+        .collect()
+}
+
+/// The reading order of a recording's stored pieces, given the number of each (`None`: it has
+/// none, or not a whole number: damaged): the index of the first piece with each number (the
+/// storage's pieces come before those still held in memory, so a written piece wins), by
+/// ascending number, then the first piece without one (the reader notes it and skips it); and
+/// the next piece's number, one past the largest.
+pub fn piece_order(seqs: &[Option<f64>]) -> (Vec<usize>, u64) {
+    let whole = |s: &f64| *s >= 0.0 && s.fract() == 0.0 && *s < 9e15;
+    let mut numbered: Vec<(u64, usize)> = Vec::new();
+    let mut unnumbered = None;
+    for (i, s) in seqs.iter().enumerate() {
+        match s.filter(whole) {
+            Some(s) => numbered.push((s as u64, i)),
+            None => unnumbered = unnumbered.or(Some(i)),
+        }
+    }
+    // Stable: of the pieces with one number, the first given stays first.
+    numbered.sort_by_key(|&(s, _)| s);
+    numbered.dedup_by_key(|&mut (s, _)| s);
+    let next = numbered.last().map_or(0, |&(s, _)| s + 1);
+    let order = numbered
+        .into_iter()
+        .map(|(_, i)| i)
+        .chain(unnumbered)
+        .collect();
+    (order, next)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_tail_adds_the_pieces_the_storage_lacks() {
+        let tail = r#"[{"seq": 3, "text": "a"}, {"seq": 4, "text": "b"}, null]"#;
+        let missing = tail_missing(Some(tail), &[Some(2.0), Some(3.0)]);
+        assert_eq!(
+            missing,
+            [
+                serde_json::json!({"seq": 4, "text": "b"}),
+                serde_json::Value::Null
+            ]
+        );
+        assert!(tail_missing(Some(tail), &[Some(3.0), Some(4.0), None]).is_empty());
+        for damaged in [None, Some("[{"), Some("{}"), Some("3")] {
+            assert!(tail_missing(damaged, &[]).is_empty(), "{damaged:?}");
+        }
+    }
+
+    #[test]
+    fn pieces_are_read_once_each_in_order_written_ones_first() {
+        assert_eq!(piece_order(&[]), (vec![], 0));
+        let (order, next) = piece_order(&[Some(2.0), Some(0.0), None, Some(2.0), Some(1.0), None]);
+        assert_eq!(
+            order,
+            [1, 4, 0, 2],
+            "each number once, the first given; one damaged piece"
+        );
+        assert_eq!(next, 3);
+        let (order, next) = piece_order(&[Some(-1.0), Some(0.5), Some(f64::NAN), Some(7.0)]);
+        assert_eq!(
+            (order, next),
+            (vec![3, 0], 8),
+            "numbers that are no count are damage"
+        );
+    }
 
     fn rec(n: usize) -> Recorder {
         let mut r = Recorder::new(5);

@@ -54,6 +54,27 @@ pub fn walk_progress(steps: usize, gnss_path_m: Option<f64>, target_m: f64) -> S
     }
 }
 
+/// Where a calibration walk toward its target stands.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct WalkProgress {
+    /// Its progress in words ([`walk_progress`]).
+    pub text: String,
+    /// The walk's distance, m: the path the fixes measured with GNSS, else the typed target.
+    pub distance_m: f64,
+    /// A GNSS walk has reached its target: the wizard stops it.
+    pub done: bool,
+}
+
+/// A walk toward `target_m` with `steps` counted and, measured by GNSS, the path of its good
+/// fixes so far, m.
+pub fn walk_state(steps: usize, gnss_path_m: Option<f64>, target_m: f64) -> WalkProgress {
+    WalkProgress {
+        text: walk_progress(steps, gnss_path_m, target_m),
+        distance_m: gnss_path_m.unwrap_or(target_m),
+        done: gnss_path_m.is_some_and(|p| p >= target_m),
+    }
+}
+
 /// A walk's figures as its row shows them once it is added: its steps, distance, mean
 /// frequency (eq. 1) and step length (eq. 2), the point it gives `band_name`'s line, and the
 /// sum of its fuzzy lengths when measured.
@@ -358,6 +379,21 @@ mod tests {
             "52 steps · 31 of 150 m by GNSS"
         );
         assert_eq!(walk_progress(52, None, 40.0), "52 steps");
+        let typed = walk_state(52, None, 40.0);
+        assert_eq!(
+            (typed.distance_m, typed.done),
+            (40.0, false),
+            "the walker stops it"
+        );
+        let short = walk_state(52, Some(149.9), 150.0);
+        assert_eq!((short.distance_m, short.done), (149.9, false));
+        let there = walk_state(60, Some(150.2), 150.0);
+        assert_eq!(
+            (there.distance_m, there.done),
+            (150.2, true),
+            "the wizard stops it"
+        );
+        assert_eq!(there.text, "60 steps · 150 of 150 m by GNSS");
         assert_eq!(
             message("saved", "me").unwrap(),
             "Saved “me” and selected it: live mode now uses it."

@@ -42,26 +42,28 @@ impl CalibrationWizard {
         }
     }
 
-    /// A walk ended: adds the walk of `distance_m` whose steps had the frequencies
-    /// `step_freqs_hz` and, when given (`Live.fuzzy_lengths()`), the unscaled fuzzy lengths
-    /// `fuzzy_lengths_m`; for the comfortable (normal) pace, also calibrates the leg-pitch step
-    /// length from the steps' leg pitch amplitudes (`Live.pitch_amplitudes()`; Munoz Diaz 2015
-    /// §5.1), kept for the profile. Returns `{text, error, pitch}`: the walk's figures for
-    /// people (eq. 1 and 2), or why it was not added (`error` true), and the leg-pitch
-    /// calibration (`null` for the other paces).
+    /// A walk ended: adds the walk `live` made toward `target_m` (measured by GNSS when
+    /// `gnss`: see `live::wizard::walk_state`), its steps' frequencies and unscaled fuzzy
+    /// lengths; for the comfortable (normal) pace, also calibrates the leg-pitch step length
+    /// from the steps' leg pitch amplitudes (Munoz Diaz 2015 §5.1), kept for the profile.
+    /// Returns `{text, error, pitch}`: the walk's figures for people (eq. 1 and 2), or why it
+    /// was not added (`error` true), and the leg-pitch calibration (`null` for the other
+    /// paces).
     pub fn walked(
         &mut self,
         band_name: &str,
         pace: &str,
-        distance_m: f64,
-        step_freqs_hz: Vec<f64>,
-        fuzzy_lengths_m: Option<Vec<f64>>,
-        pitch_amplitudes_deg: Vec<f64>,
+        live: &super::live::Live,
+        target_m: f64,
+        gnss: bool,
     ) -> Result<JsValue, JsError> {
+        let distance_m = live.walk_state(target_m, gnss).distance_m;
+        let session = live.session();
+        let pitch_amplitudes_deg = session.pitch_amplitudes();
         let walk = crate::engine::calibration::CalibrationWalk {
             distance_m,
-            step_freqs_hz,
-            fuzzy_lengths_m: fuzzy_lengths_m.unwrap_or_default(),
+            step_freqs_hz: session.step_freqs(),
+            fuzzy_lengths_m: session.fuzzy_lengths().to_vec(),
         };
         let added = band_of(band_name).and_then(|b| {
             let w = self.wizard.add(b, pace, &walk).map_err(|e| e.to_string())?;
@@ -318,12 +320,6 @@ pub fn walk_title(pace: &str, target_m: f64, gnss: bool) -> Result<Option<String
     crate::live::wizard::walk_title(pace, target_m, gnss).map_err(to_js)
 }
 
-/// A walk's progress in its row: the steps, and the path GNSS measured, m, when given.
-#[wasm_bindgen]
-pub fn walk_progress(steps: usize, gnss_path_m: Option<f64>, target_m: f64) -> String {
-    crate::live::wizard::walk_progress(steps, gnss_path_m, target_m)
-}
-
 /// The wizard's message `key` (`distance`, `busy`, `saved`, `import`), naming the profile `name`.
 #[wasm_bindgen]
 pub fn wizard_message(key: &str, name: &str) -> Result<String, JsError> {
@@ -331,7 +327,8 @@ pub fn wizard_message(key: &str, name: &str) -> Result<String, JsError> {
 }
 
 /// What the GNSS check says in `state` (`missing`, `waiting`, `fix` with `accuracy_m`,
-/// `refused`, `failed`): `{text, good}`, `good` when a fix is within [`gnss_limit_m`].
+/// `refused`, `failed`): `{text, good}`, `good` when a fix is within
+/// `engine::calibration::GNSS_MAX_ACCURACY_M`.
 #[wasm_bindgen]
 pub fn gnss_state(state: &str, accuracy_m: Option<f64>) -> Result<JsValue, JsError> {
     let (text, good) = crate::live::wizard::gnss_state(
@@ -381,11 +378,4 @@ pub fn profile_with_pitch_offset(text: &str, offset_m: f64) -> Result<String, Js
     }
     p.pitch_offset_m = Some(offset_m);
     p.to_json().map_err(to_js)
-}
-
-/// The wizard offers GNSS as a walk's distance while the reported accuracy is this good or
-/// better, m; the walk's distance counts fixes this good only.
-#[wasm_bindgen]
-pub fn gnss_limit_m() -> f64 {
-    crate::engine::calibration::GNSS_MAX_ACCURACY_M
 }

@@ -4,6 +4,7 @@
 
 use super::canvas::on_canvas;
 use super::{settings_from, to_js, to_json_value, to_value};
+use crate::live::display::Display;
 use crate::live::{LiveSession, MotionEvent, OrientationEvent, Platform, SensorReading};
 use crate::plot::{draw_live, draw_scope, LiveView};
 use wasm_bindgen::prelude::*;
@@ -15,6 +16,7 @@ use web_sys::HtmlCanvasElement;
 #[wasm_bindgen]
 pub struct Live {
     session: LiveSession,
+    display: Display,
 }
 
 fn platform(ios: bool) -> Platform {
@@ -50,7 +52,10 @@ impl Live {
     pub fn new(settings: JsValue, ios: bool, time_origin_ms: f64) -> Result<Live, JsError> {
         let cfg = settings_from(settings)?.config().map_err(to_js)?;
         LiveSession::new(cfg, platform(ios), time_origin_ms)
-            .map(|session| Live { session })
+            .map(|session| Live {
+                session,
+                display: Display::default(),
+            })
             .map_err(to_js)
     }
 
@@ -64,7 +69,10 @@ impl Live {
     ) -> Result<Live, JsError> {
         let cfg = settings_from(settings)?.config().map_err(to_js)?;
         LiveSession::resume(cfg, platform(ios), time_origin_ms, recorded)
-            .map(|session| Live { session })
+            .map(|session| Live {
+                session,
+                display: Display::default(),
+            })
             .map_err(to_js)
     }
 
@@ -88,7 +96,9 @@ impl Live {
                 .rotation_rate()
                 .and_then(|r| Some([r.alpha()?, r.beta()?, r.gamma()?])),
         };
-        self.session.push_motion(&ev).map(Some).map_err(to_js)
+        let steps = self.session.push_motion(&ev).map_err(to_js)?;
+        self.display.changed();
+        Ok(Some(steps))
     }
 
     /// A Generic Sensor API `Accelerometer` reading (m/s²) with the latest `Gyroscope` one
@@ -100,7 +110,9 @@ impl Live {
             accel: fields3(acc, ["x", "y", "z"]).unwrap_or([f64::NAN; 3]),
             gyro_rad_s: fields3(gyr, ["x", "y", "z"]),
         };
-        self.session.push_sensor(&r).map_err(to_js)
+        let steps = self.session.push_sensor(&r).map_err(to_js)?;
+        self.display.changed();
+        Ok(steps)
     }
 
     /// A `deviceorientationabsolute` event (`absolute_stream`) or a `deviceorientation` one,
@@ -157,29 +169,15 @@ impl Live {
             speed_mps: field(&c, "speed"),
             bearing_deg: field(&c, "heading").filter(|h| h.is_finite()),
         };
-        self.session.push_fix(&f).map_err(to_js)
+        self.session.push_fix(&f).map_err(to_js)?;
+        self.display.changed();
+        Ok(())
     }
 
-    /// The frequencies of the steps counted so far (a calibration walk's f_k), Hz.
-    pub fn step_freqs(&self) -> Vec<f64> {
-        self.session.step_freqs()
-    }
-
-    /// The leg pitch amplitude of each step counted so far, degrees, NaN without one (a
-    /// calibration walk's Δθ_k for `pitch_calibration`).
-    pub fn pitch_amplitudes(&self) -> Vec<f64> {
-        self.session.pitch_amplitudes()
-    }
-
-    /// The unscaled fuzzy step length (Ibarra 2015, scale 1) of each step counted so far, m
-    /// (a calibration walk's L_k for the fuzzy scale), whatever model the session runs.
-    pub fn fuzzy_lengths(&self) -> Vec<f64> {
-        self.session.fuzzy_lengths().to_vec()
-    }
-
-    /// The distance along the fixes no worse than `max_accuracy_m`, m.
-    pub fn fix_path_m(&self, max_accuracy_m: f64) -> f64 {
-        self.session.fix_path_m(max_accuracy_m)
+    /// A calibration walk toward `target_m`, measured by GNSS when `gnss` (see
+    /// `live::wizard::walk_state`): `{text, distance_m, done}`.
+    pub fn calibration_walk(&self, target_m: f64, gnss: bool) -> Result<JsValue, JsError> {
+        to_value(&self.walk_state(target_m, gnss))
     }
 
     /// What the walk says about the user's step length (for `refine_profile`): `{fixes,
@@ -189,20 +187,52 @@ impl Live {
         to_value(&self.session.walk_evidence())
     }
 
-    /// Whether to tell the user that no motion data has come: none `started_ms` + 3 s after the
-    /// start (`now_ms`, both on the page's clock).
-    pub fn no_motion(&self, started_ms: f64, now_ms: f64) -> bool {
-        self.session.readouts().samples == 0 && now_ms - started_ms > crate::live::NO_MOTION_MS
+    /// The session starts at `now_ms` (the page's clock), running the fusion mode `gnss_mode`,
+    /// `recorded` or not (a calibration walk), in a browser with or without `geolocation`.
+    pub fn start(&mut self, now_ms: f64, gnss_mode: &str, recorded: bool, geolocation: bool) {
+        self.display.start(now_ms, gnss_mode, recorded, geolocation);
     }
 
-    /// The page was hidden between two times (ms, page clock).
-    pub fn mark_gap(&mut self, t0_ms: f64, t1_ms: f64) {
-        self.session.mark_gap(t0_ms, t1_ms);
+    /// The page was hidden (`hidden`) or shown at `now_ms`; returns whether it came back from
+    /// hidden: the span it was hidden is marked as a gap, so that nothing bridges it.
+    pub fn visibility(&mut self, hidden: bool, now_ms: f64) -> bool {
+        let span = self.display.visibility(hidden, now_ms);
+        if let Some((t0, t1)) = span {
+            self.session.mark_gap(t0, t1);
+        }
+        span.is_some()
+    }
+
+    /// The geolocation watch failed, `denied` by the user or not: the key of the message to
+    /// show (see `live::display::Display::location_failed`).
+    pub fn location_failed(&mut self, denied: bool) -> String {
+        self.display.location_failed(denied).to_string()
+    }
+
+    /// Draw at the next tick, however recent the last draw (a resize, the guard unlocked).
+    pub fn redraw(&mut self) {
+        self.display.redraw();
+    }
+
+    /// What the page does at a display tick at `now_ms` (see `live::display::Tick`): `{texts,
+    /// titles, notice, verdict, messages: [[key, shown, kind]], gnss: "on" | "off" | undefined,
+    /// draw}`, or `undefined` when there is nothing to do. `source` names the motion
+    /// source; `guard_hidden`: the pocket guard is off (the plots can be seen).
+    pub fn tick(
+        &mut self,
+        now_ms: f64,
+        source: &str,
+        guard_hidden: bool,
+    ) -> Result<JsValue, JsError> {
+        let r = self.session.readouts();
+        to_value(&self.display.tick(now_ms, &r, source, guard_hidden))
     }
 
     /// The recording has stopped: places the steps still held at a bout's opening (see
-    /// `live::LiveSession::finish`); returns how many.
+    /// `live::LiveSession::finish`); returns how many. The display ticks only for a change from
+    /// now on.
     pub fn finish(&mut self) -> usize {
+        self.display.end();
         self.session.finish()
     }
 
@@ -222,17 +252,6 @@ impl Live {
     /// The readouts (see `live::Readouts`).
     pub fn readouts(&self) -> Result<JsValue, JsError> {
         to_value(&self.session.readouts())
-    }
-
-    /// The readouts in words for the page's elements (see `live::readout_text`): `{texts:
-    /// [[id, text]], titles: [[id, tooltip]]}`. `source` names the motion source; `gnss_mode`
-    /// is the fusion mode the walk runs.
-    pub fn readout_texts(&self, source: &str, gnss_mode: &str) -> Result<JsValue, JsError> {
-        to_value(&crate::live::readout_text::readout_texts(
-            &self.session.readouts(),
-            source,
-            gnss_mode,
-        ))
     }
 
     /// Draws the map (over the base map when it is on and a fix has placed the walk).
@@ -280,6 +299,25 @@ impl Live {
     }
 }
 
+impl Live {
+    /// The session (for the calibration wizard, which reads a walk's steps).
+    pub(super) fn session(&self) -> &LiveSession {
+        &self.session
+    }
+
+    /// A calibration walk toward `target_m`; with `gnss`, its distance is the path of the fixes
+    /// no worse than the wizard's limit (`engine::calibration::GNSS_MAX_ACCURACY_M`).
+    pub(super) fn walk_state(
+        &self,
+        target_m: f64,
+        gnss: bool,
+    ) -> crate::live::wizard::WalkProgress {
+        let limit_m = crate::engine::calibration::GNSS_MAX_ACCURACY_M;
+        let path = gnss.then(|| self.session.fix_path_m(limit_m));
+        crate::live::wizard::walk_state(self.session.readouts().steps, path, target_m)
+    }
+}
+
 /// Live mode's message for `key` (see `live::messages`), or an error for an unknown key.
 #[wasm_bindgen]
 pub fn live_message(key: &str) -> Result<String, JsError> {
@@ -311,6 +349,13 @@ pub fn stored_unreadable(what: &str, kept: Vec<String>) -> String {
     } else {
         crate::live::messages::kept_aside(what, &kept)
     }
+}
+
+/// Why a change to the page's stored list of `what` is refused: it can neither be read nor
+/// kept aside.
+#[wasm_bindgen]
+pub fn stored_not_saved(what: &str) -> String {
+    crate::live::messages::not_saved(what)
 }
 
 /// Whether the browser follows iOS's conventions for motion events (see `live::is_ios`), from

@@ -2,7 +2,7 @@
 //! batches it is handed to IndexedDB and says how each went.
 //! May import: `live`.
 
-use super::{to_js, to_value};
+use super::{to_js, to_json_value, to_value};
 use wasm_bindgen::prelude::*;
 
 /// The unsaved chunks of a live recording and the schedule of their writes.
@@ -81,4 +81,37 @@ impl Recorder {
 pub fn recording_file_name(started_ms: f64) -> Result<String, JsError> {
     crate::live::recorder::file_name(started_ms)
         .ok_or_else(|| to_js(format!("the start {started_ms} is not a date")))
+}
+
+/// A stored piece's number (`None`: none, or not a number).
+fn seq_of(piece: &JsValue) -> Option<f64> {
+    js_sys::Reflect::get(piece, &JsValue::from_str("seq"))
+        .ok()?
+        .as_f64()
+}
+
+/// The pieces a closing page saved in localStorage (`tail`: their JSON text, or `null`) that
+/// the stored pieces `stored` (`[{seq, …}]`) lack, `[{seq, text, samples, steps}]` (see
+/// `live::recorder::tail_missing`); none when the text is damaged.
+#[wasm_bindgen]
+pub fn tail_missing(tail: Option<String>, stored: Vec<JsValue>) -> Result<JsValue, JsError> {
+    let have: Vec<Option<f64>> = stored.iter().map(seq_of).collect();
+    to_json_value(&crate::live::recorder::tail_missing(tail.as_deref(), &have))
+}
+
+/// A recording's stored pieces (`[{seq, …}]`: the storage's, then those not yet written) in
+/// reading order, `{pieces, nextSeq}`: each number once, the storage's first, ascending, then
+/// one piece without a number if any (`recover_recording` notes it), and the next piece's
+/// number (see `live::recorder::piece_order`). Pieces that are not objects are dropped.
+#[wasm_bindgen]
+pub fn pieces_in_order(pieces: Vec<JsValue>) -> Result<JsValue, JsError> {
+    let pieces: Vec<JsValue> = pieces.into_iter().filter(JsValue::is_object).collect();
+    let seqs: Vec<Option<f64>> = pieces.iter().map(seq_of).collect();
+    let (order, next) = crate::live::recorder::piece_order(&seqs);
+    let ordered: js_sys::Array = order.into_iter().map(|i| pieces[i].clone()).collect();
+    let out = js_sys::Object::new();
+    let set = |k: &str, v: &JsValue| js_sys::Reflect::set(&out, &JsValue::from_str(k), v);
+    set("pieces", &ordered).map_err(|_| to_js("cannot set the pieces"))?;
+    set("nextSeq", &JsValue::from_f64(next as f64)).map_err(|_| to_js("cannot set nextSeq"))?;
+    Ok(out.into())
 }
