@@ -222,11 +222,34 @@ struct Slot {
     nw: f64,
 }
 
+/// A complete slot in the window: its means, taken once when it closes.
+#[derive(Debug, Clone, Copy)]
+struct Closed {
+    t0: f64,
+    /// Mean specific force, m/s².
+    a: Vector3<f64>,
+    /// Mean vertical acceleration in the navigation frame, m/s².
+    up: f64,
+    /// Mean rate, rad/s, when the slot had a gyroscope.
+    w: Option<Vector3<f64>>,
+}
+
+impl Closed {
+    fn of(s: &Slot) -> Self {
+        Closed {
+            t0: s.t0,
+            a: s.a / s.n,
+            up: s.up / s.n,
+            w: (s.nw > 0.0).then(|| s.w / s.nw),
+        }
+    }
+}
+
 /// The running detector.
 #[derive(Debug, Clone)]
 pub struct Carry {
     cfg: CarryConfig,
-    slots: VecDeque<Slot>,
+    slots: VecDeque<Closed>,
     filling: Option<Slot>,
     next_eval_t: f64,
     votes: VecDeque<CarryMode>,
@@ -267,7 +290,7 @@ impl Carry {
                 t0: t,
                 ..Slot::default()
             };
-            self.slots.push_back(done);
+            self.slots.push_back(Closed::of(&done));
             while self
                 .slots
                 .front()
@@ -340,7 +363,7 @@ impl Carry {
     }
 
     fn features(&self) -> Option<CarryFeatures> {
-        let a: Vec<Vector3<f64>> = self.slots.iter().map(|s| s.a / s.n).collect();
+        let a: Vec<Vector3<f64>> = self.slots.iter().map(|s| s.a).collect();
         let n = a.len() as f64;
         let m = a.iter().sum::<Vector3<f64>>() / n;
         let g = m.norm();
@@ -369,7 +392,7 @@ impl Carry {
                 .sum();
             c / (a.len() - k) as f64 / var.max(1e-12)
         };
-        let up: Vec<f64> = self.slots.iter().map(|s| s.up / s.n).collect();
+        let up: Vec<f64> = self.slots.iter().map(|s| s.up).collect();
         let mu = up.iter().sum::<f64>() / n;
         let v: Vec<f64> = up.iter().map(|x| x - mu).collect();
         let var_v: f64 = v.iter().map(|x| x * x).sum::<f64>() / n;
@@ -407,12 +430,7 @@ impl Carry {
         let e = SymmetricEigen::new(h);
         let forward_z = libm::fabs(e.eigenvectors.column(e.eigenvalues.imax())[2]);
         let rate = {
-            let w: Vec<Vector3<f64>> = self
-                .slots
-                .iter()
-                .filter(|s| s.nw > 0.0)
-                .map(|s| s.w / s.nw)
-                .collect();
+            let w: Vec<Vector3<f64>> = self.slots.iter().filter_map(|s| s.w).collect();
             (w.len() * 2 >= a.len()).then(|| {
                 let k = w.len() as f64;
                 let mw = w.iter().sum::<Vector3<f64>>() / k;
