@@ -493,9 +493,8 @@ impl Pipeline {
                 pitch: x.pitch_deg,
                 axis_tilt: x.axis_tilt_deg,
                 yaw: p.heading.pose().yaw,
-                device_up: nav.attitude.map_or([0.0; 3], |q| {
-                    q.inverse_transform_vector(&nalgebra::Vector3::z()).into()
-                }),
+                // q⁻¹·ẑ of this sample's attitude: the leg pitch has just taken it.
+                device_up: p.pocket.leg.device_up().map_or([0.0; 3], Into::into),
             })
         });
         self.detect_steps(&x);
