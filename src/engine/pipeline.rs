@@ -437,6 +437,9 @@ impl Pipeline {
         if let Err(e) = self.timed(Stage::Check, |p| p.check(s)) {
             return Err(self.refused(e));
         }
+        if let Some(c) = self.clock.as_mut() {
+            c.own_lap();
+        }
         let first = self.track.len();
         if self.bout.stalled(s.t) {
             // A bout whose opening is held and has had no step for two strides has ended.

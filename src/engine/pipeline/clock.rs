@@ -4,8 +4,10 @@
 //! Off by default: the pipeline then only tests, once per stage call, that it has none, so
 //! nobody pays for the timing who does not ask for it. The engine has no clock of its own (a
 //! WebAssembly build has none in `std`): the caller hands it one, a function that reads a
-//! monotonic time in nanoseconds. Each stage call costs two readings when it is on; the caller
-//! measures that cost and subtracts it ([`StageClock::laps`] says how many to subtract).
+//! monotonic time in nanoseconds. Each stage call costs two readings when it is on. Once a
+//! sample the clock also times nothing at all, in the same place and the same state of the
+//! caches as the stages: [`StageClock::own_ns`], what each stage's time holds of the clock
+//! itself, for the caller to subtract ([`StageClock::laps`] says how many times).
 
 /// A stage of the pipeline's work on one IMU sample, in the order it runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,17 +81,21 @@ pub type Now = fn() -> u64;
 #[derive(Debug, Clone)]
 pub struct StageClock {
     now: Now,
-    ns: [u64; Stage::ALL.len()],
-    laps: [u64; Stage::ALL.len()],
+    // Per stage, and last the clock's own empty laps.
+    ns: [u64; Stage::ALL.len() + 1],
+    laps: [u64; Stage::ALL.len() + 1],
 }
+
+/// The index of the clock's own empty laps.
+const OWN: usize = Stage::ALL.len();
 
 impl StageClock {
     /// A clock reading `now`, with nothing timed yet.
     pub fn new(now: Now) -> Self {
         StageClock {
             now,
-            ns: [0; Stage::ALL.len()],
-            laps: [0; Stage::ALL.len()],
+            ns: [0; Stage::ALL.len() + 1],
+            laps: [0; Stage::ALL.len() + 1],
         }
     }
 
@@ -100,9 +106,19 @@ impl StageClock {
 
     /// Adds the time since `start` (ns, from [`Self::read`]) to `stage`.
     pub(super) fn lap(&mut self, stage: Stage, start: u64) {
+        self.add(stage as usize, start);
+    }
+
+    /// Times an empty lap: the clock's own cost.
+    pub(super) fn own_lap(&mut self) {
+        let start = self.read();
+        self.add(OWN, start);
+    }
+
+    fn add(&mut self, i: usize, start: u64) {
         let end = (self.now)();
-        self.ns[stage as usize] += end.saturating_sub(start);
-        self.laps[stage as usize] += 1;
+        self.ns[i] += end.saturating_sub(start);
+        self.laps[i] += 1;
     }
 
     /// Time spent in `stage` so far, ns, with the clock's own readings in it.
@@ -113,5 +129,10 @@ impl StageClock {
     /// Calls of `stage` timed so far.
     pub fn laps(&self, stage: Stage) -> u64 {
         self.laps[stage as usize]
+    }
+
+    /// The mean time of an empty lap, ns: what each stage call's time holds of the clock.
+    pub fn own_ns(&self) -> f64 {
+        self.ns[OWN] as f64 / self.laps[OWN].max(1) as f64
     }
 }
