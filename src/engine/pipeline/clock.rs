@@ -2,7 +2,8 @@
 //! May import: the rest of `engine`.
 //!
 //! Off by default: the pipeline then only tests, once per stage call, that it has none, so
-//! nobody pays for the timing who does not ask for it. The engine has no clock of its own (a
+//! nobody pays for the timing who does not ask for it; a WebAssembly build (the phone's) has
+//! not even the tests. The engine has no clock of its own (a
 //! WebAssembly build has none in `std`): the caller hands it one, a function that reads a
 //! monotonic time in nanoseconds. Each stage call costs two readings when it is on. Once a
 //! sample the clock also times nothing at all, in the same place and the same state of the
@@ -80,6 +81,8 @@ pub type Now = fn() -> u64;
 /// The time spent in each stage and the number of calls timed.
 #[derive(Debug, Clone)]
 pub struct StageClock {
+    // A WebAssembly build times nothing (see the module notes).
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     now: Now,
     // Per stage, and last the clock's own empty laps.
     ns: [u64; Stage::ALL.len() + 1],
@@ -100,21 +103,25 @@ impl StageClock {
     }
 
     /// The time now, ns.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     pub(super) fn read(&self) -> u64 {
         (self.now)()
     }
 
     /// Adds the time since `start` (ns, from [`Self::read`]) to `stage`.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     pub(super) fn lap(&mut self, stage: Stage, start: u64) {
         self.add(stage as usize, start);
     }
 
     /// Times an empty lap: the clock's own cost.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     pub(super) fn own_lap(&mut self) {
         let start = self.read();
         self.add(OWN, start);
     }
 
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     fn add(&mut self, i: usize, start: u64) {
         let end = (self.now)();
         self.ns[i] += end.saturating_sub(start);
