@@ -222,11 +222,34 @@ struct Slot {
     nw: f64,
 }
 
+/// A complete slot in the window: its means, taken once when it closes.
+#[derive(Debug, Clone, Copy)]
+struct Closed {
+    t0: f64,
+    /// Mean specific force, m/s².
+    a: Vector3<f64>,
+    /// Mean vertical acceleration in the navigation frame, m/s².
+    up: f64,
+    /// Mean rate, rad/s, when the slot had a gyroscope.
+    w: Option<Vector3<f64>>,
+}
+
+impl Closed {
+    fn of(s: &Slot) -> Self {
+        Closed {
+            t0: s.t0,
+            a: s.a / s.n,
+            up: s.up / s.n,
+            w: (s.nw > 0.0).then(|| s.w / s.nw),
+        }
+    }
+}
+
 /// The running detector.
 #[derive(Debug, Clone)]
 pub struct Carry {
     cfg: CarryConfig,
-    slots: VecDeque<Slot>,
+    slots: VecDeque<Closed>,
     filling: Option<Slot>,
     next_eval_t: f64,
     votes: VecDeque<CarryMode>,
@@ -267,7 +290,7 @@ impl Carry {
                 t0: t,
                 ..Slot::default()
             };
-            self.slots.push_back(done);
+            self.slots.push_back(Closed::of(&done));
             while self
                 .slots
                 .front()
@@ -340,11 +363,12 @@ impl Carry {
     }
 
     fn features(&self) -> Option<CarryFeatures> {
-        let a: Vec<Vector3<f64>> = self.slots.iter().map(|s| s.a / s.n).collect();
+        let a: Vec<Vector3<f64>> = self.slots.iter().map(|s| s.a).collect();
         let n = a.len() as f64;
         let m = a.iter().sum::<Vector3<f64>>() / n;
         let g = m.norm();
-        let rms = libm::sqrt(a.iter().map(|v| (v - m).norm_squared()).sum::<f64>() / n);
+        let var: f64 = a.iter().map(|v| (v - m).norm_squared()).sum::<f64>() / n;
+        let rms = libm::sqrt(var);
         if !(g > 1.0) || rms < self.cfg.accel_rms_min {
             return None;
         }
@@ -359,7 +383,6 @@ impl Carry {
         .to_degrees();
         // Autocorrelations at a lag in slots (the slots are SLOT_S apart within a few percent),
         // each over the pairs it has: a stride's lag has half the window's.
-        let var: f64 = a.iter().map(|v| (v - m).norm_squared()).sum::<f64>() / n;
         let corr = |k: usize| {
             if k == 0 || k >= a.len() {
                 return 0.0;
@@ -369,26 +392,28 @@ impl Carry {
                 .sum();
             c / (a.len() - k) as f64 / var.max(1e-12)
         };
-        let up: Vec<f64> = self.slots.iter().map(|s| s.up / s.n).collect();
+        let up: Vec<f64> = self.slots.iter().map(|s| s.up).collect();
         let mu = up.iter().sum::<f64>() / n;
         let v: Vec<f64> = up.iter().map(|x| x - mu).collect();
         let var_v: f64 = v.iter().map(|x| x * x).sum::<f64>() / n;
         let corr_v = |k: usize| -> f64 {
             let m = v.len().saturating_sub(k).max(1);
-            (0..v.len().saturating_sub(k))
-                .map(|i| v[i] * v[i + k])
-                .sum::<f64>()
-                / m as f64
-                / var_v.max(1e-12)
+            lag_sum(&v, k) / m as f64 / var_v.max(1e-12)
         };
         // Every other lag, then the best one's neighbours: a third of the work of every lag.
-        let score = |k: usize| (k, 0.5 * (corr_v(k) + corr_v(2 * k)));
-        let best = |b: (usize, f64), x: (usize, f64)| if x.1 > b.1 { x } else { b };
+        // The coarse lags' products (k and 2k, with the lags they share) are summed in one pass.
         let lags = libm::round(0.28 / SLOT_S) as usize..=libm::round(0.85 / SLOT_S) as usize;
+        let coarse_sums = CoarseSums::new(&v, lags.clone());
+        let coarse_v = |k: usize| -> f64 {
+            let m = v.len().saturating_sub(k).max(1);
+            coarse_sums.get(k) / m as f64 / var_v.max(1e-12)
+        };
+        let best = |b: (usize, f64), x: (usize, f64)| if x.1 > b.1 { x } else { b };
         let coarse = lags
             .step_by(2)
-            .map(score)
+            .map(|k| (k, 0.5 * (coarse_v(k) + coarse_v(2 * k))))
             .fold((0, f64::NEG_INFINITY), best);
+        let score = |k: usize| (k, 0.5 * (corr_v(k) + corr_v(2 * k)));
         let (step, periodicity) = [coarse.0.saturating_sub(1), coarse.0 + 1]
             .into_iter()
             .map(score)
@@ -405,12 +430,7 @@ impl Carry {
         let e = SymmetricEigen::new(h);
         let forward_z = libm::fabs(e.eigenvectors.column(e.eigenvalues.imax())[2]);
         let rate = {
-            let w: Vec<Vector3<f64>> = self
-                .slots
-                .iter()
-                .filter(|s| s.nw > 0.0)
-                .map(|s| s.w / s.nw)
-                .collect();
+            let w: Vec<Vector3<f64>> = self.slots.iter().filter_map(|s| s.w).collect();
             (w.len() * 2 >= a.len()).then(|| {
                 let k = w.len() as f64;
                 let mw = w.iter().sum::<Vector3<f64>>() / k;
@@ -448,9 +468,93 @@ impl Carry {
     }
 }
 
+/// Σ v[i]·v[i + k] over the pairs the window has, summed in order of i (0 without a pair).
+fn lag_sum(v: &[f64], k: usize) -> f64 {
+    (0..v.len().saturating_sub(k))
+        .map(|i| v[i] * v[i + k])
+        .sum::<f64>()
+}
+
+/// [`lag_sum`] at four ascending lags, side by side: the pairs all four have in one loop (four
+/// independent sums), then each lag's remaining pairs, so each sum adds its products in order of
+/// i and is the same number.
+fn four_lag_sums(v: &[f64], k: [usize; 4]) -> [f64; 4] {
+    // `Iterator::sum` of f64 starts from −0.0; so do these.
+    let mut acc = [-0.0; 4];
+    let n = v.len();
+    let common = n.saturating_sub(k[3]);
+    let head = &v[..common];
+    let at = |j: usize| &v[k[j].min(n)..(k[j] + common).min(n)];
+    // Each exactly `common` long, so the loop needs no bounds checks.
+    let (b0, b1, b2, b3) = (
+        &at(0)[..common],
+        &at(1)[..common],
+        &at(2)[..common],
+        &at(3)[..common],
+    );
+    for (i, &x) in head.iter().enumerate() {
+        acc[0] += x * b0[i];
+        acc[1] += x * b1[i];
+        acc[2] += x * b2[i];
+        acc[3] += x * b3[i];
+    }
+    for (a, &kj) in acc.iter_mut().zip(&k) {
+        for i in common..n.saturating_sub(kj) {
+            *a += v[i] * v[i + kj];
+        }
+    }
+    acc
+}
+
+/// The lag sums [`lag_sum`] of every other lag in a range and of twice each, found in one pass
+/// over the window: each sum still adds its products in order of i, so it is the same number,
+/// but the lags' sums run side by side instead of one after another.
+struct CoarseSums {
+    lags: Vec<usize>,
+    sums: Vec<f64>,
+}
+
+impl CoarseSums {
+    fn new(v: &[f64], range: std::ops::RangeInclusive<usize>) -> Self {
+        let mut lags: Vec<usize> = range.clone().step_by(2).collect();
+        lags.extend(range.step_by(2).map(|k| 2 * k));
+        lags.sort_unstable();
+        lags.dedup();
+        let mut sums = Vec::with_capacity(lags.len() + 3);
+        for chunk in lags.chunks(4) {
+            // A short last chunk repeats its last lag; the repeats' sums are dropped.
+            let k: [usize; 4] = std::array::from_fn(|j| chunk[j.min(chunk.len() - 1)]);
+            sums.extend_from_slice(&four_lag_sums(v, k)[..chunk.len()]);
+        }
+        CoarseSums { lags, sums }
+    }
+
+    /// The sum at lag `k`, one of the lags it was made for.
+    fn get(&self, k: usize) -> f64 {
+        self.lags.binary_search(&k).map_or(0.0, |j| self.sums[j])
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_coarse_sums_are_the_lag_sums_bit_for_bit() {
+        for n in [0usize, 1, 20, 90, 151] {
+            let v: Vec<f64> = (0..n)
+                .map(|i| libm::sin(i as f64 * 0.37) * 1.7 + libm::cos(i as f64 * 1.3) * 0.2)
+                .collect();
+            let c = CoarseSums::new(&v, 14..=43);
+            for k in (14..=43).step_by(2).flat_map(|k| [k, 2 * k]) {
+                assert_eq!(
+                    c.get(k).to_bits(),
+                    lag_sum(&v, k).to_bits(),
+                    "n {n} lag {k}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn a_phone_at_rest_or_a_tiny_window_decides_nothing_and_never_panics() {

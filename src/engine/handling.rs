@@ -216,19 +216,21 @@ impl Handling {
                 _ => self.new_block(t, x),
             }
         }
-        let span = self
-            .blocks
-            .iter()
-            .find(|(t0, _)| *t0 + BLOCK_S >= t - self.cfg.window_s)
-            .map_or(0.0, |(t0, _)| t - t0);
+        // The span of the blocks in the window: the blocks are in time order, so the first in
+        // it is found by bisection, and only when the rate asks.
+        let span = || {
+            let w = self.cfg.window_s;
+            let first = self.blocks.partition_point(|(t0, _)| *t0 + BLOCK_S < t - w);
+            self.blocks.get(first).map_or(0.0, |(t0, _)| t - t0)
+        };
         self.diag.rate = if self.total.n > 0.0 {
             self.total.rate / self.total.n
         } else {
             0.0
         };
         // The eigenvalues only when the rate calls for them: they cost more than the rest.
-        if span >= 0.5 * self.cfg.window_s
-            && self.diag.rate >= self.cfg.rate_min
+        if self.diag.rate >= self.cfg.rate_min
+            && span() >= 0.5 * self.cfg.window_s
             && motion != Motion::Running
             && main_axis(&self.total).share < self.cfg.axis_share_max
             // Until a whole window lies before the last one (the input's first seconds), the

@@ -484,6 +484,12 @@ impl LegPitch {
         self.vote_axis = None;
     }
 
+    /// The up direction in the device frame of the last sample, q⁻¹·ẑ, when it had an
+    /// attitude.
+    pub fn device_up(&self) -> Option<Vector3<f64>> {
+        self.up
+    }
+
     /// How far the swing axis is tilted from the horizontal now, degrees, while the phone rides
     /// on a thigh ([`Self::on_thigh`]): asin |a·u| for the axis a and the up direction u in
     /// the device, both unit vectors. The axis is learnt from the horizontal rotation of the last seconds

@@ -138,12 +138,20 @@ impl Histogram {
     }
 
     fn add(&mut self, v: f64) {
-        let i = ((v - self.lo) / self.bin).floor();
-        if i.is_finite() {
-            let i = (i.max(0.0) as usize).min(self.counts.len() - 1);
+        if let Some(i) = self.bin_of(v) {
             self.counts[i] = self.counts[i].saturating_add(1);
             self.total += 1;
         }
+    }
+
+    /// The bin of `v`: ⌊(v − lo)/bin⌋, the first below it and the last above it; none for a
+    /// value that is not finite. For a finite x, `x.max(0.0) as usize` is
+    /// `x.floor().max(0.0) as usize` (a cast truncates, and above 0 truncation is the floor),
+    /// without the floor, which x86-64's baseline computes in software.
+    fn bin_of(&self, v: f64) -> Option<usize> {
+        let x = (v - self.lo) / self.bin;
+        x.is_finite()
+            .then(|| (x.max(0.0) as usize).min(self.counts.len() - 1))
     }
 
     fn median(&self) -> Option<f64> {
@@ -418,6 +426,21 @@ mod tests {
             .iter()
             .filter(|x| x.0 > 5.0)
             .all(|&(_, e, _)| (e - 0.5).abs() < 1e-9));
+    }
+
+    #[test]
+    fn a_value_takes_the_bin_of_its_floor() {
+        let h = Histogram::new(-1.0, 0.005, 400);
+        for v in [
+            -5.0, -1.0, -0.9999, -0.0, 0.0, 0.0049, 0.005, 0.3, 0.99, 0.995, 1.0, 7.0, 1e300,
+        ] {
+            let x = (v - h.lo) / h.bin;
+            let floor = (x.floor().max(0.0) as usize).min(h.counts.len() - 1);
+            assert_eq!(h.bin_of(v), Some(floor), "{v}");
+        }
+        for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(h.bin_of(v), None);
+        }
     }
 
     #[test]

@@ -92,7 +92,9 @@ pub use activity::Activity;
 pub use heading::{HeadingConfig, HeadingMethod};
 pub use motion::{Motion, MotionConfig};
 pub use orientation::OrientationSource;
-pub use pipeline::{Diagnostics, Pipeline, PipelineConfig, StepDetectorConfig, StepRecord};
+pub use pipeline::{
+    Diagnostics, Now, Pipeline, PipelineConfig, Stage, StageClock, StepDetectorConfig, StepRecord,
+};
 pub use replay::{replay, Replay};
 pub use step_length::{StepLengthModel, StepLengthProfile};
 pub use types::{ConfigError, GnssFix, ImuSample, InputError, PressureSample, Record};

@@ -45,6 +45,7 @@ use super::types::{positive, time_in_range, ConfigError, ImuSample, InputError, 
 use super::vertical::VerticalConfig;
 
 mod bout;
+mod clock;
 mod foot;
 mod gnss;
 mod pocket;
@@ -54,6 +55,7 @@ mod track;
 mod two_sensor;
 mod window;
 
+pub use clock::{Now, Stage, StageClock};
 use step_detector::Detector;
 pub use step_detector::StepDetectorConfig;
 
@@ -351,6 +353,8 @@ pub struct Pipeline {
     // Whether a sample with a gyroscope has come.
     gyro_seen: bool,
     diag: Diagnostics,
+    // The stage clock, when someone times the stages (`pdr bench`).
+    clock: Option<Box<StageClock>>,
 }
 
 impl Pipeline {
@@ -384,6 +388,7 @@ impl Pipeline {
             attitude: None,
             gyro_seen: false,
             diag: Diagnostics::default(),
+            clock: None,
         })
     }
 
@@ -429,8 +434,12 @@ impl Pipeline {
 
     /// Feeds one IMU sample. Returns the steps it placed on the track (see [`Self::push`]).
     fn push_imu(&mut self, s: &ImuSample) -> Result<&[StepRecord], InputError> {
-        if let Err(e) = self.check(s) {
+        if let Err(e) = self.timed(Stage::Check, |p| p.check(s)) {
             return Err(self.refused(e));
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        if let Some(c) = self.clock.as_mut() {
+            c.own_lap();
         }
         let first = self.track.len();
         if self.bout.stalled(s.t) {
@@ -438,24 +447,30 @@ impl Pipeline {
             self.release_opening();
         }
         let dt = self.advance(s.t);
-        let nav = self.orientation.push(s, dt)?;
+        let nav = self.timed(Stage::Orientation, |p| p.orientation.push(s, dt))?;
         self.diag.orientation = Some(self.orientation.source_now());
         if self.orientation.switched() {
             // The yaw of the new source is not the old one's: the guard's reference restarts.
             self.magnetic.reset();
         }
-        let nav = self.magnetic.push(s, dt, nav);
+        let nav = self.timed(Stage::Magnetic, |p| p.magnetic.push(s, dt, nav));
         self.pitch_detector_fallback(s);
-        self.heading.push_attitude(nav.attitude);
-        self.push_trunk_attitude(s.t, nav.attitude);
+        self.timed(Stage::Attitude, |p| {
+            p.heading.push_attitude(nav.attitude);
+            p.push_trunk_attitude(s.t, nav.attitude);
+        });
         self.attitude = nav.attitude;
-        let state = self.motion.push(s.t, nav.up);
+        let state = self.timed(Stage::Motion, |p| p.motion.push(s.t, nav.up));
         // The phone turned over in the hand walks nowhere.
-        let handled = self.handling.push(s.t, s.gyro.as_ref(), state);
+        let handled = self.timed(Stage::Handling, |p| {
+            p.handling.push(s.t, s.gyro.as_ref(), state)
+        });
         let state = if handled { Motion::Still } else { state };
         let m = self.motion.diagnostics();
-        self.carry
-            .push(s.t, &s.accel, nav.up, s.gyro.as_ref(), handled);
+        self.timed(Stage::Carry, |p| {
+            p.carry
+                .push(s.t, &s.accel, nav.up, s.gyro.as_ref(), handled)
+        });
         let mut x = DetectorInput {
             t: s.t,
             dt,
@@ -467,26 +482,62 @@ impl Pipeline {
             pitch_deg: None,
             axis_tilt_deg: None,
         };
-        self.pocket_sample(s, dt, state, &x);
-        x.pitch_deg = self.pocket.pitch;
-        x.axis_tilt_deg = self.pocket.leg.axis_tilt_deg();
+        self.timed(Stage::LegPitch, |p| {
+            p.pocket_sample(s, dt, state, &x);
+            x.pitch_deg = p.pocket.pitch;
+            x.axis_tilt_deg = p.pocket.leg.axis_tilt_deg();
+        });
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
-        self.window.push(NavSample {
-            t: s.t,
-            e,
-            n,
-            up: nav.up,
-            pitch: x.pitch_deg,
-            axis_tilt: x.axis_tilt_deg,
-            yaw: self.heading.pose().yaw,
-            device_up: nav.attitude.map_or([0.0; 3], |q| {
-                q.inverse_transform_vector(&nalgebra::Vector3::z()).into()
-            }),
+        self.timed(Stage::Window, |p| {
+            p.window.push(NavSample {
+                t: s.t,
+                e,
+                n,
+                up: nav.up,
+                pitch: x.pitch_deg,
+                axis_tilt: x.axis_tilt_deg,
+                yaw: p.heading.pose().yaw,
+                // q⁻¹·ẑ of this sample's attitude: the leg pitch has just taken it.
+                device_up: p.pocket.leg.device_up().map_or([0.0; 3], Into::into),
+            })
         });
         self.detect_steps(&x);
         // Recognising a foot replaces the steps so far by the strides: all are new then.
-        let first = if self.push_foot(s, dt) { 0 } else { first };
+        let on_foot = self.timed(Stage::Foot, |p| p.push_foot(s, dt));
+        let first = if on_foot { 0 } else { first };
         Ok(&self.track.steps()[first..])
+    }
+
+    /// Runs `f` on the pipeline, adding its time to `stage` when a stage clock is on (natively:
+    /// a WebAssembly build, the phone's, times nothing and pays nothing for it).
+    #[inline(always)]
+    fn timed<R>(&mut self, stage: Stage, f: impl FnOnce(&mut Self) -> R) -> R {
+        #[cfg(target_arch = "wasm32")]
+        {
+            let _ = stage;
+            f(self)
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            // One call of `f`, so that it is inlined as the stage was before the clock came.
+            let start = self.clock.as_ref().map(|c| c.read());
+            let r = f(self);
+            if let (Some(start), Some(c)) = (start, self.clock.as_mut()) {
+                c.lap(stage, start);
+            }
+            r
+        }
+    }
+
+    /// Times each stage from now on with `clock` (`None`: no timing, the default). Native
+    /// builds only: a WebAssembly build keeps the clock but times nothing.
+    pub fn set_stage_clock(&mut self, clock: Option<StageClock>) {
+        self.clock = clock.map(Box::new);
+    }
+
+    /// The stage clock, when one is on.
+    pub fn stage_clock(&self) -> Option<&StageClock> {
+        self.clock.as_deref()
     }
 
     /// The time of the next accepted sample, `t`, s: a gap before it is counted and ends the
@@ -508,7 +559,7 @@ impl Pipeline {
     /// emits strides instead.
     fn detect_steps(&mut self, x: &DetectorInput) {
         let state = x.motion;
-        let cand = self.detector.push(x);
+        let cand = self.timed(Stage::StepDetector, |p| p.detector.push(x));
         // A step the PLL decided only now, earlier than `cand`, with the pose at which it was
         // held for the next cycle, if it was.
         let late = self.detector.take_late_step();
@@ -526,17 +577,18 @@ impl Pipeline {
                 }
                 if self.bout.is_new(&c) {
                     self.track.count_onset();
-                    self.emit(c, state, None);
+                    self.timed(Stage::Emission, |p| p.emit(c, state, None));
                 }
             }
         } else if !self.foot.on_foot() {
             // A step held while a gait was seen counts even when the motion detector has
             // stopped seeing it since.
             if let Some(c) = late {
-                self.emit(c, self.last_gait, late_pose);
+                let gait = self.last_gait;
+                self.timed(Stage::Emission, |p| p.emit(c, gait, late_pose));
             }
             if let Some(c) = cand.filter(|_| state.is_moving()) {
-                self.emit(c, state, None);
+                self.timed(Stage::Emission, |p| p.emit(c, state, None));
             }
         }
         if state.is_moving() {

@@ -1,12 +1,16 @@
 //! `pdr bench`: the full pipeline's throughput on a long simulated walk, per configuration, and
-//! the import's throughput on a large pdr-log.
+//! the default pipeline's cost per stage, and the import's throughput on a large pdr-log.
 //! May import: the `pdr` library; nothing of the other subcommands.
 
 use pdr::engine::heading::HeadingMethod;
 use pdr::engine::OrientationSource;
-use pdr::engine::{replay, PipelineConfig, Record, StepDetectorConfig};
+use pdr::engine::{
+    replay, Pipeline, PipelineConfig, Record, Stage, StageClock, StepDetectorConfig,
+};
 use pdr::io::pdrlog;
 use pdr::sim::scenarios;
+use std::hint::black_box;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 pub fn bench(minutes: f64, repeats: usize) {
@@ -67,7 +71,109 @@ pub fn bench(minutes: f64, repeats: usize) {
             n as f64 / best / 1e6
         );
     }
+    print_stages(&stage_costs(&imu, repeats));
     bench_parse(&imu, repeats);
+}
+
+/// The default pipeline's cost per sample, stage by stage.
+#[derive(Debug, Clone, PartialEq)]
+struct StageCosts {
+    /// Each stage's time per sample, ns, the clock's own readings subtracted.
+    stages: Vec<(Stage, f64)>,
+    /// The whole replay's time per sample without the clock, ns.
+    total_ns: f64,
+    /// Samples per second without the clock and with it.
+    rate: (f64, f64),
+    /// The clock's own cost per stage call, ns, subtracted from each (the least of the runs).
+    lap_ns: f64,
+}
+
+impl StageCosts {
+    /// What no stage accounts for: the pipeline's routing between them, the replay loop, the
+    /// bouts and the onset look-back, ns per sample.
+    fn rest_ns(&self) -> f64 {
+        self.total_ns - self.stages.iter().map(|s| s.1).sum::<f64>()
+    }
+}
+
+/// A monotonic time, ns, for the stage clock.
+fn now_ns() -> u64 {
+    static START: OnceLock<Instant> = OnceLock::new();
+    START.get_or_init(Instant::now).elapsed().as_nanos() as u64
+}
+
+/// Replays `imu` through the default pipeline `repeats` times with the stage clock and
+/// without it, alternately (a shared machine's load then falls on both alike), and keeps the
+/// fastest run of each, and each stage's least time, less the clock's own cost measured in
+/// the same runs ([`StageClock::own_ns`]).
+fn stage_costs(imu: &[Record], repeats: usize) -> StageCosts {
+    let n = imu.len().max(1) as f64;
+    let mut best_off = f64::INFINITY;
+    let mut best_on = f64::INFINITY;
+    // Per stage, the least time of the runs, ns per sample; and the clock's own cost then.
+    let mut stages: Vec<(Stage, f64)> = Stage::ALL.iter().map(|&s| (s, f64::INFINITY)).collect();
+    let mut lap_ns = f64::INFINITY;
+    for _ in 0..repeats.max(1) {
+        let t = Instant::now();
+        black_box(replay(PipelineConfig::default(), imu).unwrap());
+        best_off = best_off.min(t.elapsed().as_secs_f64());
+        let mut p = Pipeline::new(PipelineConfig::default()).unwrap();
+        p.set_stage_clock(Some(StageClock::new(now_ns)));
+        let t = Instant::now();
+        for r in imu {
+            // A refused record is counted by the pipeline; the bench's walk has none.
+            let _ = p.push(r);
+        }
+        p.finish();
+        best_on = best_on.min(t.elapsed().as_secs_f64());
+        let Some(clock) = p.stage_clock() else {
+            continue;
+        };
+        let own = clock.own_ns();
+        lap_ns = lap_ns.min(own);
+        for (st, best) in &mut stages {
+            let ns = clock.ns(*st) as f64 - own * clock.laps(*st) as f64;
+            *best = best.min(ns.max(0.0) / n);
+        }
+    }
+    StageCosts {
+        stages,
+        total_ns: best_off * 1e9 / n,
+        rate: (n / best_off, n / best_on),
+        lap_ns,
+    }
+}
+
+fn print_stages(c: &StageCosts) {
+    out!(
+        "default pipeline per stage, ns per sample (least of the runs; the clock's own {:.0} ns per call subtracted):",
+        c.lap_ns
+    );
+    let share = |ns: f64| 100.0 * ns / c.total_ns;
+    for &(st, ns) in &c.stages {
+        if ns > 0.0 {
+            out!("{:>9.1} ns  {:>5.1} %  {}", ns, share(ns), st.name());
+        } else {
+            // Less than the clock's own cost varies by: callgrind resolves these.
+            out!(
+                "{:>12}  {:>7}  {} (within the clock's noise)",
+                "-",
+                "-",
+                st.name()
+            );
+        }
+    }
+    let rest = c.rest_ns();
+    out!(
+        "{rest:>9.1} ns  {:>5.1} %  routing and the rest",
+        share(rest)
+    );
+    out!(
+        "{:>9.1} ns  100.0 %  total: {:.2} M samples/s without the clock, {:.2} M with it",
+        c.total_ns,
+        c.rate.0 / 1e6,
+        c.rate.1 / 1e6
+    );
 }
 
 /// Import throughput: a pdr-log of at least 60 MB, built from the simulated walk, read through
@@ -113,4 +219,24 @@ fn bench_parse(records: &[Record], repeats: usize) {
         best,
         mb / best
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stage_table_has_every_stage_and_sums_to_the_total() {
+        let imu = scenarios::long_walk(0.5).generate().records;
+        let c = stage_costs(&imu, 1);
+        let names: Vec<Stage> = c.stages.iter().map(|s| s.0).collect();
+        assert_eq!(names, Stage::ALL.to_vec());
+        assert!(c.stages.iter().all(|s| s.1.is_finite() && s.1 >= 0.0));
+        // Timed stages were called: every sample goes through the check and the carry.
+        let clocked = |st: Stage| c.stages.iter().find(|s| s.0 == st).unwrap().1;
+        assert!(clocked(Stage::Check) > 0.0 || clocked(Stage::Carry) > 0.0);
+        let sum: f64 = c.stages.iter().map(|s| s.1).sum::<f64>() + c.rest_ns();
+        assert!((sum - c.total_ns).abs() <= 1e-9 * c.total_ns.max(1.0));
+        assert!(c.total_ns > 0.0 && c.rate.0 > 0.0 && c.rate.1 > 0.0);
+    }
 }
