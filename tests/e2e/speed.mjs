@@ -7,22 +7,24 @@
 // - GNSS demo engine: one `new FusionDemo()` (the city walk with fixes, fused), ms;
 // - live session: 100 000 motion events pushed through `Live` (as in page.test.mjs), events/s.
 // It compares builds of the page (for instance opt-levels of the wasm): serve each build's
-// `dist/` and run this against each.
+// `dist/` and give their addresses; the loads alternate between them, so that a machine busy
+// with other work slows every build alike.
 //
-// Usage: node tests/e2e/speed.mjs [--loads 9]   (PDR_E2E_URL as for the tests)
+// Usage: node tests/e2e/speed.mjs [--loads 9] [URL ...]   (default: PDR_E2E_URL as for the tests)
 import { chromium } from 'playwright-core';
 
-const URL_HTTP = process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/';
 const i = process.argv.indexOf('--loads');
 const LOADS = i > 0 ? Number(process.argv[i + 1]) : 9;
+const given = process.argv.slice(2).filter((a, k, all) => a !== '--loads' && all[k - 1] !== '--loads');
+const URLS = given.length > 0 ? given : [process.env.PDR_E2E_URL ?? 'http://127.0.0.1:8080/'];
 
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 
 /** One fresh load: the first-track mark, then the engine timed in the loaded page. */
-async function once(browser) {
+async function once(browser, url) {
   const context = await browser.newContext({ viewport: { width: 1100, height: 900 } });
   const page = await context.newPage();
-  await page.goto(URL_HTTP);
+  await page.goto(url);
   await page.waitForFunction(() => document.documentElement.dataset.state === 'ready', null, { timeout: 60_000 });
   const r = await page.evaluate(async () => {
     const { Demo, FusionDemo, Live } = await import('./www/pkg/pdr.js');
@@ -61,14 +63,18 @@ async function main() {
     args: ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
       '--disable-component-update', '--disable-sync'],
   });
-  const runs = [];
-  for (let k = 0; k < LOADS; k++) runs.push(await once(browser));
+  const runs = URLS.map(() => []);
+  for (let k = 0; k < LOADS; k++) {
+    for (const [u, url] of URLS.entries()) runs[u].push(await once(browser, url));
+  }
   await browser.close();
-  const m = (key) => median(runs.map((r) => r[key]));
-  console.log(`${URL_HTTP} (${LOADS} loads, medians)`);
-  console.log(`  first drawn track: ${m('ready').toFixed(0)} ms after navigation`);
-  console.log(`  demo engine (new Demo): ${m('demo').toFixed(1)} ms; GNSS demo (new FusionDemo): ${m('fusion').toFixed(1)} ms`);
-  console.log(`  live session: ${Math.round(m('rate'))} motion events/s`);
+  for (const [u, url] of URLS.entries()) {
+    const m = (key) => median(runs[u].map((r) => r[key]));
+    console.log(`${url} (${LOADS} loads, medians)`);
+    console.log(`  first drawn track: ${m('ready').toFixed(0)} ms after navigation`);
+    console.log(`  demo engine (new Demo): ${m('demo').toFixed(1)} ms; GNSS demo (new FusionDemo): ${m('fusion').toFixed(1)} ms`);
+    console.log(`  live session: ${Math.round(m('rate'))} motion events/s`);
+  }
 }
 
 main().catch((e) => { console.error(e); process.exit(1); });
