@@ -111,7 +111,7 @@ pub struct FusionDemoSummary {
 }
 
 fn p75(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut v, f64::total_cmp);
     crate::eval::percentile(&v, 75.0)
 }
 

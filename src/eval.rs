@@ -583,7 +583,7 @@ pub fn percentile(v: &[f64], q: f64) -> f64 {
         return 0.0;
     }
     let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut s, f64::total_cmp);
     let pos = q / 100.0 * (s.len() - 1) as f64;
     let i = pos.floor() as usize;
     let frac = pos - i as f64;

@@ -127,7 +127,9 @@ impl Settings {
         let mut cfg = PipelineConfig::default();
         let mut keys: Vec<&String> = self.set.keys().collect();
         // Kinds first and outer paths before inner ones: setting a kind resets its group.
-        keys.sort_by_key(|k| (k.split('.').count(), !k.ends_with("kind"), k.as_str()));
+        crate::engine::sort::sort_by_key(&mut keys, |k| {
+            (k.split('.').count(), !k.ends_with("kind"), k.as_str())
+        });
         for key in keys {
             cfg = set(&cfg, key, &self.set[key])?;
         }

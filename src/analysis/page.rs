@@ -230,7 +230,7 @@ pub fn config_label(tag: &str, label: &str, two: bool) -> El {
 /// profile by name, sorted.
 pub fn profile_options(names: &[String]) -> Vec<El> {
     let mut names: Vec<&String> = names.iter().collect();
-    names.sort();
+    crate::engine::sort::sort(&mut names);
     let builtin = El::new("option")
         .attr("value", "")
         .text("built-in step length");

@@ -45,7 +45,7 @@ pub fn carry_text(steps: &[StepRecord]) -> Option<String> {
         })
         .filter(|(k, _)| *k > 0)
         .collect();
-    shares.sort_by_key(|s| std::cmp::Reverse(s.0));
+    crate::engine::sort::sort_by_key(&mut shares, |s| std::cmp::Reverse(s.0));
     Some(
         shares
             .iter()

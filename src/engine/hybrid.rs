@@ -411,7 +411,7 @@ impl Hybrid {
         let hi = (lo + n).min(self.trunk.len());
         let lo = hi.saturating_sub(n);
         let mut v: Vec<f64> = self.trunk.range(lo..hi).map(|s| s.1).collect();
-        v.sort_by(f64::total_cmp);
+        crate::engine::sort::sort_by(&mut v, f64::total_cmp);
         let m = v.len();
         match m {
             0 => None,

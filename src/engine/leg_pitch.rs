@@ -458,7 +458,7 @@ impl LegPitch {
         }
         self.amplitudes.push_back(amplitude_deg);
         let mut a: Vec<f64> = self.amplitudes.iter().copied().collect();
-        a.sort_by(f64::total_cmp);
+        crate::engine::sort::sort_by(&mut a, f64::total_cmp);
         let median = a[a.len() / 2];
         let spread = a[a.len() - 1] - a[0];
         self.thigh_like = a.len() >= EARLY_STRIDES

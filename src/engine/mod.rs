@@ -25,6 +25,7 @@
 //! - [`hybrid`]: Strozzi 2017 §4's hybrid: each foot stride's length with the trunk's heading,
 //!   sampled at mid-swing (eq. 3) or where it crosses its FIR-filtered self.
 //! - [`geo`]: WGS84 ↔ local ENU, haversine.
+//! - [`sort`]: the crate's one stable sort, compiled once for every element type.
 //!
 //! # The stage shape
 //! Every stage has settings with `Default` and `validate()` (the fields of [`PipelineConfig`]),
@@ -83,6 +84,7 @@ pub mod pitch_step_length;
 pub mod pll;
 pub mod refinement;
 pub mod replay;
+pub mod sort;
 pub mod step_length;
 pub mod types;
 pub mod vertical;

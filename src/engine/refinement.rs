@@ -154,7 +154,7 @@ pub fn refinable(walk: &WalkEvidence) -> Result<(f64, f64), NotRefined> {
 pub fn refine(file: &ProfileFile, walk: &WalkEvidence) -> Result<Refinement, NotRefined> {
     let (k, _) = refinable(walk)?;
     let mut f = walk.step_freqs_hz.clone();
-    f.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut f, f64::total_cmp);
     let cadence_hz = f[f.len() / 2];
     if !(cadence_hz.is_finite() && cadence_hz > 0.0) {
         return Err(NotRefined::Implausible(k));

@@ -44,7 +44,7 @@ pub fn end_errors(found: &[f64], truth: &[f64], window_s: f64) -> Option<EndErro
             }
         })
         .collect();
-    lags.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut lags, f64::total_cmp);
     let lag_s = lags.get(lags.len() / 2).copied().unwrap_or(0.0);
     let below = |v: &[f64], shift: f64, b: f64| v.iter().filter(|&&t| t - shift < b).count() as i64;
     // Halfway between the true steps on either side of `t`.

@@ -118,7 +118,7 @@ pub fn energy_report(logs: &[Log], cfg: &PipelineConfig) -> EnergyReport {
     let results = [run(GnssMode::BestPerformance), run(saving)];
     let groups: Vec<String> = logs.iter().map(group_of).collect();
     let mut names: Vec<&String> = groups.iter().collect();
-    names.sort();
+    crate::engine::sort::sort(&mut names);
     names.dedup();
     let row = |name: &str, keep: &dyn Fn(usize) -> bool| {
         let pick = |r: &[LogResult]| -> Vec<LogResult> {

@@ -83,7 +83,7 @@ pub fn turn_shifts(
             continue;
         }
         let mut before: Vec<f64> = steps[start - 10..start - 1].iter().map(|s| s.0).collect();
-        before.sort_by(f64::total_cmp);
+        crate::engine::sort::sort_by(&mut before, f64::total_cmp);
         let base = before[before.len() / 2];
         shifts.push(
             steps[start..(i + AFTER).min(steps.len())]

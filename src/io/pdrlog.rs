@@ -317,7 +317,7 @@ fn put_in_time_order(out: &mut Parsed, file: &str) {
         latest = latest.max(t);
     }
     if late > 0 {
-        out.records.sort_by(|a, b| a.t().total_cmp(&b.t()));
+        crate::engine::sort::sort_by(&mut out.records, |a, b| a.t().total_cmp(&b.t()));
         // A notice, not a skipped line: nothing is lost.
         out.errors.push(err(
             file,
@@ -361,7 +361,7 @@ pub fn recover(pieces: &[(u64, Option<&str>)]) -> Recovered {
         ..Recovered::default()
     };
     let mut order: Vec<usize> = (0..pieces.len()).collect();
-    order.sort_by_key(|&i| pieces[i].0);
+    crate::engine::sort::sort_by_key(&mut order, |&i| pieces[i].0);
     if order.iter().enumerate().any(|(k, &i)| k != i) {
         out.whole = false; // the text was joined out of order
     }
@@ -474,7 +474,7 @@ impl Recovered {
             .filter(|w| w[1].t() < w[0].t())
             .count();
         if late > 0 {
-            self.records.sort_by(|a, b| a.t().total_cmp(&b.t()));
+            crate::engine::sort::sort_by(&mut self.records, |a, b| a.t().total_cmp(&b.t()));
             self.note(format!(
                 "{late} record(s) earlier than a record before them, put back in time order"
             ));

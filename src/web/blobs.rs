@@ -174,7 +174,7 @@ impl BlobSet {
         mut files: Vec<(String, Blob)>,
         progress: js_sys::Function,
     ) -> Result<Self, JsValue> {
-        files.sort_by(|a, b| a.0.cmp(&b.0));
+        crate::engine::sort::sort_by(&mut files, |a, b| a.0.cmp(&b.0));
         Ok(BlobSet {
             names: files.iter().map(|f| f.0.clone()).collect(),
             files,

@@ -99,7 +99,7 @@ impl DirSet {
                 }
             }
         }
-        names.sort();
+        crate::engine::sort::sort(&mut names);
         Ok(DirSet {
             root: path.to_path_buf(),
             single: false,
@@ -168,7 +168,7 @@ impl<R: Read + Seek> ZipSet<R> {
             .filter(|n| !n.ends_with('/') && !n.starts_with("__MACOSX/"))
             .map(str::to_string)
             .collect();
-        names.sort();
+        crate::engine::sort::sort(&mut names);
         Ok(ZipSet {
             label: label.to_string(),
             archive,
@@ -218,7 +218,7 @@ pub struct MemSet {
 impl MemSet {
     /// A set from `(name, bytes)` pairs.
     pub fn new(mut files: Vec<(String, Vec<u8>)>) -> Self {
-        files.sort_by(|a, b| a.0.cmp(&b.0));
+        crate::engine::sort::sort_by(&mut files, |a, b| a.0.cmp(&b.0));
         let names = files.iter().map(|f| f.0.clone()).collect();
         MemSet { files, names }
     }

@@ -94,7 +94,7 @@ fn to_app_clock<T: Copy>(samples: &Dual<T>) -> (Vec<(f64, T)>, Mapping) {
         return (Vec::new(), Mapping::Offset(0.0, 0));
     }
     let mut d: Vec<f64> = samples.iter().map(|(a, s, _)| a - s).collect();
-    d.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut d, f64::total_cmp);
     let median = d[d.len() / 2];
     let q = |p: f64| d[((d.len() - 1) as f64 * p) as usize];
     if !(q(0.95) - q(0.05) <= OUTLIER_S) {
@@ -386,7 +386,7 @@ fn waypoints(posi: &[(f64, f64, f64, Option<i32>)]) -> Vec<Waypoint> {
         })
         .filter(|w| w.t.is_finite() && w.x_m.is_finite() && w.y_m.is_finite())
         .collect();
-    w.sort_by(|a, b| a.t.total_cmp(&b.t));
+    crate::engine::sort::sort_by(&mut w, |a, b| a.t.total_cmp(&b.t));
     w
 }
 

@@ -265,7 +265,7 @@ impl Truth {
                 t.windows(2).map(|w| w[1] - w[0]).collect::<Vec<_>>()
             })
             .collect();
-        strides.sort_by(f64::total_cmp);
+        crate::engine::sort::sort_by(&mut strides, f64::total_cmp);
         let Some(&median) = strides.get(strides.len() / 2) else {
             return Some(ev.iter().map(|e| e.t).collect());
         };
@@ -424,12 +424,12 @@ impl Streams {
     /// write a few samples out of order.
     pub fn into_records(mut self) -> Vec<Record> {
         let by_t = |a: &(f64, Vector3<f64>), b: &(f64, Vector3<f64>)| a.0.total_cmp(&b.0);
-        self.accel.sort_by(by_t);
-        self.gyro.sort_by(by_t);
-        self.mag.sort_by(by_t);
-        self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
-        self.fixes.sort_by(|a, b| a.t.total_cmp(&b.t));
-        self.pressure.sort_by(|a, b| a.t.total_cmp(&b.t));
+        crate::engine::sort::sort_by(&mut self.accel, by_t);
+        crate::engine::sort::sort_by(&mut self.gyro, by_t);
+        crate::engine::sort::sort_by(&mut self.mag, by_t);
+        crate::engine::sort::sort_by(&mut self.orientation, |a, b| a.0.total_cmp(&b.0));
+        crate::engine::sort::sort_by(&mut self.fixes, |a, b| a.t.total_cmp(&b.t));
+        crate::engine::sort::sort_by(&mut self.pressure, |a, b| a.t.total_cmp(&b.t));
         let mut gyro = Hold {
             items: &self.gyro,
             next: 0,
@@ -472,7 +472,7 @@ impl Streams {
             .map(|f| Record::Gnss(*f))
             .chain(pressure.map(|p| Record::Pressure(*p)))
             .collect();
-        rest.sort_by(|a, b| a.t().total_cmp(&b.t()));
+        crate::engine::sort::sort_by(&mut rest, |a, b| a.t().total_cmp(&b.t()));
         out.extend(rest);
         out
     }

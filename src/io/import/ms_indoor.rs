@@ -101,7 +101,7 @@ pub fn read_ms_indoor(r: impl BufRead, label: &str) -> Result<Log, ParseError> {
             "no TYPE_ACCELEROMETER samples: not a readable trace",
         ));
     }
-    waypoints.sort_by(|a, b| a.t.total_cmp(&b.t));
+    crate::engine::sort::sort_by(&mut waypoints, |a, b| a.t.total_cmp(&b.t));
     log.truth.waypoints = waypoints;
     set_records(&mut log, s, label);
     add_warnings(&mut log, warnings);

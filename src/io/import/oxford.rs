@@ -63,7 +63,7 @@ pub fn read_oxford(set: &mut dyn FileSet, dir: &str) -> Result<Log, ParseError> 
         prev = Some(c);
         Ok(())
     })?;
-    events.sort_by(|a, b| a.t.total_cmp(&b.t));
+    crate::engine::sort::sort_by(&mut events, |a, b| a.t.total_cmp(&b.t));
     log.truth.steps = Some(events.len() as u64);
     log.truth.step_events = events;
     set_records(&mut log, streams, &label);

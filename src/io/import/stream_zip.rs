@@ -378,7 +378,7 @@ impl<'a> StreamZipSet<'a> {
             .map(|e| e.name.clone())
             .filter(|n| !n.ends_with('/') && !n.starts_with("__MACOSX/"))
             .collect();
-        names.sort();
+        crate::engine::sort::sort(&mut names);
         names.dedup();
         Ok(StreamZipSet {
             outer,

@@ -354,7 +354,7 @@ pub(crate) fn read_truth(
         }
     })?;
     warnings.extend(bad);
-    out.trajectory.sort_by(|a, b| a.t.total_cmp(&b.t));
+    crate::engine::sort::sort_by(&mut out.trajectory, |a, b| a.t.total_cmp(&b.t));
     Ok(out)
 }
 

@@ -213,7 +213,7 @@ fn read_steps(
         }
     })?;
     warnings.extend(bad);
-    out.sort_by(|a, b| a.t.total_cmp(&b.t));
+    crate::engine::sort::sort_by(&mut out, |a, b| a.t.total_cmp(&b.t));
     Ok(out)
 }
 
@@ -254,6 +254,6 @@ fn read_turns(
         }
     })?;
     warnings.extend(bad);
-    out.sort_by(|a, b| a.t_start.total_cmp(&b.t_start));
+    crate::engine::sort::sort_by(&mut out, |a, b| a.t_start.total_cmp(&b.t_start));
     Ok(out)
 }

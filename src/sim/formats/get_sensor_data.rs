@@ -21,7 +21,7 @@ impl Walk<'_> {
         lines.extend(self.gsd_pressure_lines());
         lines.extend(self.gsd_landmark_lines(sim));
         // Stable: lines of the same `AppTimestamp` keep the order above.
-        lines.sort_by_key(|l| l.0);
+        crate::engine::sort::sort_by_key(&mut lines, |l| l.0);
         let mut out = self.gsd_header();
         for (_, l) in lines {
             out.push_str(&l);

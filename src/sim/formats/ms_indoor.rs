@@ -52,7 +52,7 @@ impl Walk<'_> {
                 format!("{ms}\tTYPE_WAYPOINT\t{}\t{}", java_float(e), java_float(n)),
             ));
         }
-        lines.sort_by_key(|l| l.0);
+        crate::engine::sort::sort_by_key(&mut lines, |l| l.0);
         let start_ms = self.unix_start_ns.div_euclid(1_000_000);
         let end_ms = lines.last().map_or(start_ms, |l| l.0);
         let id = format!("5d{:022x}", start_ms);

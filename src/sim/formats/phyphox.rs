@@ -55,7 +55,7 @@ impl Walk<'_> {
             format!("{dir}/meta/time.csv"),
             self.phyphox_time().into_bytes(),
         ));
-        files.sort();
+        crate::engine::sort::sort(&mut files);
         files
     }
 

@@ -263,7 +263,7 @@ impl Walk<'_> {
         let (cols, values) = self.sl_metadata(&imu, platform, &sensors);
         let text = format!("{}\n{}\n", cols.join(","), values.join(","));
         files.push((format!("{dir}/Metadata.csv"), text.into_bytes()));
-        files.sort();
+        crate::engine::sort::sort(&mut files);
         files
     }
 

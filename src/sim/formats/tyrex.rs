@@ -133,7 +133,7 @@ impl Walk<'_> {
             ));
         }
         files.push(file("truth.csv", self.tyrex_truth(sim, &imu, &time)));
-        files.sort_by(|a, b| a.0.cmp(&b.0));
+        crate::engine::sort::sort_by(&mut files, |a, b| a.0.cmp(&b.0));
         files
     }
 

@@ -80,7 +80,7 @@ fn median(mut v: Vec<f64>) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
-    v.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut v, f64::total_cmp);
     Some(v[v.len() / 2])
 }
 
@@ -89,7 +89,7 @@ fn percentile(mut v: Vec<f64>, p: f64) -> Option<f64> {
     if v.is_empty() {
         return None;
     }
-    v.sort_by(f64::total_cmp);
+    crate::engine::sort::sort_by(&mut v, f64::total_cmp);
     let k = ((v.len() - 1) as f64 * p).round() as usize;
     Some(v[k])
 }

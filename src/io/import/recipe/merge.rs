@@ -131,14 +131,14 @@ fn build(
     }
     if s.accel.is_empty() && !linear.is_empty() {
         let by_t = |a: &(f64, Vector3<f64>), b: &(f64, Vector3<f64>)| a.0.total_cmp(&b.0);
-        linear.sort_by(by_t);
+        crate::engine::sort::sort_by(&mut linear, by_t);
         let (total, unpaired, with) = if !gravity.is_empty() {
-            gravity.sort_by(by_t);
+            crate::engine::sort::sort_by(&mut gravity, by_t);
             let (v, n) = pair_nearest(&linear, &gravity, HOLD_S, |a, g| a + g);
             (v, n, "gravity")
         } else {
             let mut q = s.orientation.clone();
-            q.sort_by(|a, b| a.0.total_cmp(&b.0));
+            crate::engine::sort::sort_by(&mut q, |a, b| a.0.total_cmp(&b.0));
             let up = Vector3::new(0.0, 0.0, G0);
             let (v, n) = pair_nearest(&linear, &q, HOLD_S, |a, q| a + q.inverse() * up);
             (v, n, "orientation")

@@ -73,9 +73,9 @@ impl Raw {
             &mut self.gyro,
             &mut self.mag,
         ] {
-            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            crate::engine::sort::sort_by(v, |a, b| a.0.total_cmp(&b.0));
         }
-        self.orientation.sort_by(|a, b| a.0.total_cmp(&b.0));
+        crate::engine::sort::sort_by(&mut self.orientation, |a, b| a.0.total_cmp(&b.0));
     }
 
     /// Whether the recording has acceleration with gravity, or the parts to make it; if not,
