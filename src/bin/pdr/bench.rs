@@ -164,10 +164,21 @@ fn print_stages(c: &StageCosts) {
         }
     }
     let rest = c.rest_ns();
-    out!(
-        "{rest:>9.1} ns  {:>5.1} %  routing and the rest",
-        share(rest)
-    );
+    if rest >= 0.0 {
+        out!(
+            "{rest:>9.1} ns  {:>5.1} %  routing and the rest",
+            share(rest)
+        );
+    } else {
+        // Timed, the stages run slower than untimed (the clock's readings disturb the caches and
+        // the pipelining): their sum then exceeds the untimed total, and the rest cannot be told.
+        out!(
+            "{:>12}  {:>7}  routing and the rest (the timed stages sum to {:.1} ns more than the untimed total)",
+            "-",
+            "-",
+            -rest
+        );
+    }
     out!(
         "{:>9.1} ns  100.0 %  total: {:.2} M samples/s without the clock, {:.2} M with it",
         c.total_ns,
@@ -226,7 +237,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_stage_table_has_every_stage_and_sums_to_the_total() {
+    fn the_stage_table_has_every_stage_timed() {
         let imu = scenarios::long_walk(0.5).generate().records;
         let c = stage_costs(&imu, 1);
         let names: Vec<Stage> = c.stages.iter().map(|s| s.0).collect();
@@ -235,8 +246,6 @@ mod tests {
         // Timed stages were called: every sample goes through the check and the carry.
         let clocked = |st: Stage| c.stages.iter().find(|s| s.0 == st).unwrap().1;
         assert!(clocked(Stage::Check) > 0.0 || clocked(Stage::Carry) > 0.0);
-        let sum: f64 = c.stages.iter().map(|s| s.1).sum::<f64>() + c.rest_ns();
-        assert!((sum - c.total_ns).abs() <= 1e-9 * c.total_ns.max(1.0));
         assert!(c.total_ns > 0.0 && c.rate.0 > 0.0 && c.rate.1 > 0.0);
     }
 }
