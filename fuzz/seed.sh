@@ -3,12 +3,17 @@
 # fixtures (tests/fixtures/import) and from short simulated walks (`pdr simulate --format …`),
 # each seed cut to at most 64 KiB at a line end. Reproducible: the simulator is deterministic.
 #   fuzz/seed.sh            (re)builds every corpus; files the fuzzer added are kept
+#   PDR=path/to/pdr fuzz/seed.sh   the same with that pdr (a relative path is from the repository)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ROOT=$(pwd)
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$ROOT/target}"
-cargo build --release --bin pdr -q
-PDR="$CARGO_TARGET_DIR/release/pdr"
+# The simulator's pdr: $PDR when given (`./dev test` hands it the tests profile's, already built),
+# else the release build.
+if [ -z "${PDR:-}" ]; then
+  cargo build --release --bin pdr -q
+  PDR="$CARGO_TARGET_DIR/release/pdr"
+fi
 SIM=$(mktemp -d)
 trap 'rm -rf "$SIM"' EXIT
 for scenario in straight gnss-city; do
