@@ -21,6 +21,8 @@
 //! - **Floors**: where the truth's landmarks have floors (GetSensorData `POSI`), the share of
 //!   landmarks at which the track's floor relative to the first landmark is the truth's
 //!   ([`floors`]); the height error where the truth has heights.
+//! - **Fusion yardsticks**: for a log with geodetic landmarks and fixes, how close the true
+//!   walk shape gets when only the fixes place it, offline and causally ([`yardstick`]).
 //! - Percentiles interpolate linearly between order statistics (the common "linear" definition,
 //!   as numpy's default).
 //!
@@ -39,6 +41,7 @@ pub mod floors;
 pub mod trajectory;
 pub mod turn_angles;
 pub mod turns;
+pub mod yardstick;
 
 pub use floors::FloorResult;
 pub use trajectory::{TrajectoryGroup, TrajectoryResult};
@@ -174,6 +177,13 @@ pub struct LogResult {
     pub fused_error_m: Option<ErrorSummary>,
     /// Absolute error of the smoothed track at those times, m.
     pub smoothed_error_m: Option<ErrorSummary>,
+    /// The offline fusion yardstick's p75, m: the true walk shape placed by the fixes alone
+    /// ([`yardstick`]); `null` without landmarks and usable fixes.
+    #[serde(default)]
+    pub yardstick_p75_m: Option<f64>,
+    /// The causal yardstick's p75, m: each landmark placed with the fixes up to its time.
+    #[serde(default)]
+    pub causal_yardstick_p75_m: Option<f64>,
     /// What the fusion filter learnt and how sure it is, for a log with fixes.
     pub fusion: Option<FusionResult>,
     /// The magnetic declination applied to the headings, degrees (positive east), once a fix
@@ -246,6 +256,8 @@ impl LogResult {
             gnss_error_m: None,
             fused_error_m: None,
             smoothed_error_m: None,
+            yardstick_p75_m: None,
+            causal_yardstick_p75_m: None,
             fusion: None,
             declination_deg: None,
             declination_note: None,
@@ -290,6 +302,14 @@ pub struct Summary {
     pub fused_p75_m: Option<f64>,
     /// The same for the smoothed track, m.
     pub smoothed_p75_m: Option<f64>,
+    /// Median over the logs of [`LogResult::yardstick_p75_m`], m.
+    pub yardstick_p75_m: Option<f64>,
+    /// Median over the logs of [`LogResult::causal_yardstick_p75_m`], m.
+    pub causal_yardstick_p75_m: Option<f64>,
+    /// Logs whose smoothed p75 is within 1 m of their yardstick, of the logs with both.
+    pub smoothed_near_yardstick: [u64; 2],
+    /// Logs whose fused p75 is within 1 m of their causal yardstick, of the logs with both.
+    pub fused_near_causal_yardstick: [u64; 2],
     /// 75th percentile of all absolute errors of GNSS alone of all logs, pooled, m.
     pub gnss_pooled_p75_m: Option<f64>,
     /// The same for the fused track, m.
@@ -475,6 +495,10 @@ fn absolute_errors(p: &Pipeline, wps: &[Waypoint], res: &mut LogResult) {
     res.gnss_error_m = ErrorSummary::of(g);
     res.fused_error_m = ErrorSummary::of(f);
     res.smoothed_error_m = ErrorSummary::of(sm);
+    if let Some((offline, causal)) = yardstick::yardsticks(frame, p.fixes(), wps) {
+        res.yardstick_p75_m = Some(offline);
+        res.causal_yardstick_p75_m = Some(causal);
+    }
 }
 
 /// Position at `t` on a time-ordered list of (t, east, north): linear between the points around
@@ -610,6 +634,16 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         let v: Vec<f64> = logs.iter().filter_map(|l| get(l).map(|e| e.p75)).collect();
         (!v.is_empty()).then(|| percentile(&v, 50.0))
     };
+    let median_of = |get: fn(&LogResult) -> Option<f64>| {
+        let v: Vec<f64> = logs.iter().filter_map(get).collect();
+        (!v.is_empty()).then(|| percentile(&v, 50.0))
+    };
+    // (logs within 1 m of their yardstick, logs with both figures)
+    let near = |get: fn(&LogResult) -> Option<(f64, f64)>| {
+        let pairs: Vec<(f64, f64)> = logs.iter().filter_map(get).collect();
+        let within = pairs.iter().filter(|(p75, y)| *p75 <= y + 1.0).count();
+        [within as u64, pairs.len() as u64]
+    };
     let pooled = |k: usize| {
         let v: Vec<f64> = logs
             .iter()
@@ -675,6 +709,12 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         gnss_p75_m: median_p75(|l| l.gnss_error_m),
         fused_p75_m: median_p75(|l| l.fused_error_m),
         smoothed_p75_m: median_p75(|l| l.smoothed_error_m),
+        yardstick_p75_m: median_of(|l| l.yardstick_p75_m),
+        causal_yardstick_p75_m: median_of(|l| l.causal_yardstick_p75_m),
+        smoothed_near_yardstick: near(|l| Some((l.smoothed_error_m?.p75, l.yardstick_p75_m?))),
+        fused_near_causal_yardstick: near(|l| {
+            Some((l.fused_error_m?.p75, l.causal_yardstick_p75_m?))
+        }),
         gnss_pooled_p75_m: pooled(0),
         fused_pooled_p75_m: pooled(1),
         smoothed_pooled_p75_m: pooled(2),

@@ -125,4 +125,19 @@ fn ipin_phone_fixes() {
     );
     assert!(sm <= 5.0, "smoothed {sm:.2} m");
     assert!(s.fused_worse_than_gnss <= 2);
+    // Every log with usable fixes has both yardsticks (one route-21 log has no fix at all), and
+    // they sit where the fixes' biases put them: about 4.8 m offline, 6.4 m causal.
+    let with = |get: fn(&pdr::eval::LogResult) -> Option<f64>| {
+        results.iter().filter(|r| get(r).is_some()).count()
+    };
+    assert_eq!(with(|r| r.yardstick_p75_m), 24);
+    assert_eq!(with(|r| r.causal_yardstick_p75_m), 24);
+    let (y, cy) = (
+        s.yardstick_p75_m.unwrap(),
+        s.causal_yardstick_p75_m.unwrap(),
+    );
+    assert!(
+        (4.0..6.0).contains(&y) && (5.0..8.0).contains(&cy),
+        "{y} {cy}"
+    );
 }

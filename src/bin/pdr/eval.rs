@@ -187,11 +187,13 @@ fn print_fusion(l: &pdr::eval::LogResult) {
         .as_ref()
         .map_or(String::new(), |n| format!("; {n}"));
     out!(
-        "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m{on}{note}",
+        "fusion {:<37} GNSS p75 {} m, fused p75 {} m, smoothed p75 {} m; yardstick {} m, causal {} m{on}{note}",
         base_name(&l.path),
         opt(l.gnss_error_m.map(|e| e.p75), 2),
         opt(l.fused_error_m.map(|e| e.p75), 2),
-        opt(l.smoothed_error_m.map(|e| e.p75), 2)
+        opt(l.smoothed_error_m.map(|e| e.p75), 2),
+        opt(l.yardstick_p75_m, 2),
+        opt(l.causal_yardstick_p75_m, 2)
     );
 }
 
@@ -284,6 +286,7 @@ fn print_summary(s: &pdr::eval::Summary) {
         opt(s.waypoint_p75_m, 2),
         opt(s.waypoint_p75_pct, 1)
     );
+    print_fusion_summary(s);
     if s.floor_logs > 0 {
         out!(
             "floors: {} % of {} landmarks on the right relative floor, over {} logs{}",
@@ -294,6 +297,28 @@ fn print_summary(s: &pdr::eval::Summary) {
                 .map_or(String::new(), |h| format!("; height error p75 {h:.2} m"))
         );
     }
+}
+
+/// The medians over the logs with fixes of GNSS alone, the fused and smoothed tracks and the
+/// yardsticks, and how many logs come near their yardstick.
+fn print_fusion_summary(s: &pdr::eval::Summary) {
+    if s.gnss_p75_m.is_none() {
+        return;
+    }
+    out!(
+        "fusion: median p75 GNSS {} m, fused {} m, smoothed {} m; yardstick {} m, causal {} m",
+        opt(s.gnss_p75_m, 2),
+        opt(s.fused_p75_m, 2),
+        opt(s.smoothed_p75_m, 2),
+        opt(s.yardstick_p75_m, 2),
+        opt(s.causal_yardstick_p75_m, 2)
+    );
+    let [sn, sl] = s.smoothed_near_yardstick;
+    let [fn_, fl] = s.fused_near_causal_yardstick;
+    out!(
+        "fusion: smoothed within 1 m of the yardstick on {sn} of {sl} logs, fused within 1 m of the causal one on {fn_} of {fl}; fused worse than 1.1 × GNSS alone on {}",
+        s.fused_worse_than_gnss
+    );
 }
 
 /// `pdr eval --compare`: each path is a data set; every method on each, as one table.
