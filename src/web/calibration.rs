@@ -159,19 +159,11 @@ impl CalibrationWizard {
     /// The profile file (JSON) the walks make, named `name`, with the leg-pitch step length's
     /// offset when the normal walk gave one.
     pub fn profile_json(&self, name: &str) -> Result<String, JsError> {
-        use crate::engine::calibration::{Band, ProfileFile, PROFILE_VERSION};
-        let (profile, _) = self.wizard.profile(&Default::default());
-        ProfileFile {
-            version: PROFILE_VERSION,
-            name: name.to_string(),
-            profile,
-            walking_points: self.wizard.points(Band::Walking),
-            running_points: self.wizard.points(Band::Running),
-            fuzzy_scale: self.wizard.fuzzy_scale(),
-            pitch_offset_m: self.pitch.as_ref().and_then(|p| p.offset_m),
-        }
-        .to_json()
-        .map_err(to_js)
+        let pitch = self.pitch.as_ref().and_then(|p| p.offset_m);
+        self.wizard
+            .profile_file(name, pitch)
+            .to_json()
+            .map_err(to_js)
     }
 
     /// Draws a band's points, line and residuals.

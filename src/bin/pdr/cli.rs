@@ -1,9 +1,10 @@
 //! The command line: clap's definitions of `pdr` and its subcommands, and `main`, which hands each
-//! subcommand to its own module (`run`, `eval`, `simulate`, `simcheck`, `bench`, `demo`, `serve`).
+//! subcommand to its own module (`run`, `calibrate`, `eval`, `simulate`, `simcheck`, `bench`,
+//! `demo`, `serve`).
 //! May import: clap, the `pdr` library and the subcommands' modules.
 
 use crate::settings_args::SettingsArgs;
-use crate::{bench, demo, eval, run, serve, simcheck, simulate};
+use crate::{bench, calibrate, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
 use pdr::sim::scenarios;
 use std::path::{Path, PathBuf};
@@ -121,6 +122,29 @@ enum Cmd {
         fused: Option<PathBuf>,
         /// Read the log with a recipe (column mapping, JSON; see docs/recipes.md): the files it
         /// matches are read by it, whatever their format.
+        #[arg(long)]
+        recipe: Option<PathBuf>,
+        #[command(flatten)]
+        settings: SettingsArgs,
+    },
+    /// Fit your step-length profile (the calibration wizard's line; quick mode with one walk) to
+    /// recordings of walks of known distance, and write it for `pdr run --profile` and the
+    /// page's profile import: `pdr calibrate WALK --metres 85 [WALK2 --metres 60 …] --out FILE`.
+    Calibrate {
+        /// The recordings (anything `pdr run` reads: file, folder or zip), each followed by its
+        /// `--metres`.
+        #[arg(required = true, value_name = "RECORDING")]
+        files: Vec<PathBuf>,
+        /// The true distance walked in each recording, m, one per recording in their order.
+        #[arg(long, value_name = "M", allow_negative_numbers = true)]
+        metres: Vec<f64>,
+        /// Where to write the profile file (JSON).
+        #[arg(long)]
+        out: PathBuf,
+        /// The profile's name.
+        #[arg(long, default_value = "me")]
+        name: String,
+        /// Read the recordings with a recipe (column mapping, JSON; see docs/recipes.md).
         #[arg(long)]
         recipe: Option<PathBuf>,
         #[command(flatten)]
@@ -255,6 +279,24 @@ pub fn main() -> ExitCode {
                 &s,
                 recipe.as_ref(),
             )
+        }),
+        Cmd::Calibrate {
+            files,
+            metres,
+            out,
+            name,
+            recipe,
+            settings,
+        } => settings.settings().and_then(|s| {
+            let recipe = load_recipe(recipe.as_deref())?;
+            let req = calibrate::Request {
+                files: &files,
+                metres: &metres,
+                out: &out,
+                name: &name,
+                recipe: recipe.as_ref(),
+            };
+            calibrate::calibrate(&req, &s)
         }),
         Cmd::Demo { json } => demo::demo(json),
         Cmd::Simulate {
