@@ -1,10 +1,10 @@
 //! The command line: clap's definitions of `pdr` and its subcommands, and `main`, which hands each
-//! subcommand to its own module (`run`, `calibrate`, `eval`, `simulate`, `simcheck`, `bench`,
-//! `demo`, `serve`).
+//! subcommand to its own module (`run`, `calibrate`, `eval` and `calibrate_loo`, `simulate`,
+//! `simcheck`, `bench`, `demo`, `serve`).
 //! May import: clap, the `pdr` library and the subcommands' modules.
 
 use crate::settings_args::SettingsArgs;
-use crate::{bench, calibrate, demo, eval, run, serve, simcheck, simulate};
+use crate::{bench, calibrate, calibrate_loo, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
 use pdr::sim::scenarios;
 use std::path::{Path, PathBuf};
@@ -239,6 +239,13 @@ enum Cmd {
         /// (Markdown, or JSON with `--json`).
         #[arg(long, conflicts_with_all = ["show_config", "compare"])]
         energy: bool,
+        /// Leave one walk out: for each walker (the folder name's first part, TyrEx's naming),
+        /// calibrate on each walking walk alone (its truth's path length as the distance) and run
+        /// the walker's other walking walks with that profile; print the median distance ratios,
+        /// uncalibrated and calibrated, per carrying mode and overall (Markdown, or JSON with
+        /// `--json`).
+        #[arg(long, conflicts_with_all = ["show_config", "compare", "energy"])]
+        calibrate_loo: bool,
     },
     /// Serve the built web app: HTTP on localhost and HTTPS (self-signed) on all interfaces.
     Serve {
@@ -340,10 +347,13 @@ pub fn main() -> ExitCode {
             show_config,
             recipe,
             energy,
+            calibrate_loo,
             ..
         } => settings.settings().and_then(|s| {
             let recipe = load_recipe(recipe.as_deref())?;
-            if energy {
+            if calibrate_loo {
+                calibrate_loo::calibrate_loo(&paths, json, &s, recipe.as_ref())
+            } else if energy {
                 eval::energy(&paths, json, &s, recipe.as_ref())
             } else {
                 eval::eval(&paths, json, &s, show_config, recipe.as_ref())
