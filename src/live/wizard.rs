@@ -101,6 +101,39 @@ pub fn message(key: &str, name: &str) -> Result<String, String> {
     })
 }
 
+/// The pace a walk from a recording is filed under among the wizard's walks (a walking walk;
+/// its leg pitch calibrates the pitch step length as the normal walk's does).
+pub const RECORDING_PACE: &str = "recording";
+
+/// The one log of a recording the wizard was given (`file_name`, its logs as the import read
+/// them), or what is wrong with it, naming the file: not a recording the app reads, or one that
+/// holds several logs.
+pub fn recording_log(
+    file_name: &str,
+    mut logs: Vec<Result<crate::io::import::Log, crate::io::ParseError>>,
+) -> Result<crate::io::import::Log, String> {
+    match logs.len() {
+        0 => Err(format!(
+            "{file_name}: no recording the app reads (live mode's pdr-log, Sensor Logger, phyphox, …; \
+             see Open a recording)"
+        )),
+        // The import's error names the file, its line and column.
+        1 => logs.pop().expect("one log").map_err(|e| e.to_string()),
+        n => Err(format!(
+            "{file_name} holds {n} recordings: give the one of the walk"
+        )),
+    }
+}
+
+/// A walk from a recording as its line shows it once added: the file and the walk's figures
+/// ([`walk_text`]), and the distance the engine measured over it before calibration.
+pub fn recording_text(file_name: &str, w: &WizardWalk, engine_distance_m: f64) -> String {
+    format!(
+        "{file_name}: {} · the engine measured {engine_distance_m:.1} m before calibration",
+        walk_text(w, "walking")
+    )
+}
+
 /// What the GNSS check says, and whether GNSS may measure a walk: `state` is `missing` (no
 /// geolocation), `waiting`, `fix` (with its `accuracy_m`, good at `limit_m` or better),
 /// `refused` (permission denied) or `failed`.
