@@ -461,6 +461,30 @@ mod tests {
     }
 
     #[test]
+    fn a_recording_is_one_log_and_its_line_names_the_file() {
+        use crate::io::import::{import_all, MemSet};
+        let read = |name: &str, text: &str| {
+            let mut set = MemSet::new(vec![(name.to_string(), text.as_bytes().to_vec())]);
+            recording_log(name, import_all(&mut set))
+        };
+        let none = read("notes.txt", "shopping list\n").unwrap_err();
+        assert!(
+            none.starts_with("notes.txt: no recording the app reads"),
+            "{none}"
+        );
+        let log = read("walk.pdrlog", "# pdr-log 1\nimu,0,0,9.8,0,0,0,0,,,,,,,\n").unwrap();
+        assert_eq!(log.records.len(), 1);
+        let mut w = Wizard::default();
+        walk(&mut w, RECORDING_PACE, 40.0, 1.8, 60);
+        let text = recording_text("walk.pdrlog", &w.walks[0], 37.26);
+        assert!(
+            text.starts_with("walk.pdrlog: N = 60 steps over 40.0 m"),
+            "{text}"
+        );
+        assert!(text.ends_with("the engine measured 37.3 m before calibration"));
+    }
+
+    #[test]
     fn the_gnss_check_says_when_a_fix_is_good_enough() {
         assert_eq!(
             gnss_state("fix", 7.6, 10.0).unwrap(),
