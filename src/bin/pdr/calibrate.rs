@@ -13,10 +13,15 @@ use std::path::{Path, PathBuf};
 
 /// What `pdr calibrate` was asked: the recordings, each with its true distance, m.
 pub struct Request<'a> {
+    /// The recordings, in the order given.
     pub files: &'a [PathBuf],
+    /// Their true distances, m, in the same order.
     pub metres: &'a [f64],
+    /// Where the profile file goes.
     pub out: &'a Path,
+    /// The profile's name (empty: "me").
     pub name: &'a str,
+    /// The recipe that reads the recordings, when given.
     pub recipe: Option<&'a Recipe>,
 }
 
