@@ -44,7 +44,9 @@ struct Applied {
     after: f64,
 }
 
-/// A group's medians: walks (or pairs) and the median distance ratio before and after.
+/// A group's figures (a mode, a walker, or all): its walks and their median distance ratio
+/// uncalibrated; its applied pairs and their median ratio calibrated, with its quartiles; and
+/// the median over the pairs whose two walks share a mode, when there are such pairs.
 #[derive(serde::Serialize)]
 struct Row {
     group: String,
@@ -52,13 +54,14 @@ struct Row {
     before: f64,
     pairs: usize,
     after: f64,
-    /// The calibrated ratios' quartiles.
     after_p25: f64,
     after_p75: f64,
     same_mode_pairs: usize,
     after_same_mode: Option<f64>,
 }
 
+/// Runs the leave-one-walk-out comparison on the logs under `paths` with `settings`, and prints
+/// its table (Markdown) or, with `json`, `{rows, applied}` (every pair's ratios).
 pub fn calibrate_loo(
     paths: &[PathBuf],
     json: bool,
