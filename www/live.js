@@ -21,7 +21,7 @@ function message(key, show, kind = 'warn', extra = '') {
 
 /** The settings of live mode's controls: each enabled control named by its setting's path, and
  * the selected step-length profile. */
-const settings = () => ({ set: values($('live-settings'), '[name]:enabled'), profile: profiles.selected() });
+export const settings = () => ({ set: values($('live-settings'), '[name]:enabled'), profile: profiles.selected() });
 
 /** The live session with everything around it. One at a time. */
 class Session {

@@ -1,5 +1,6 @@
 // The step-length calibration wizard and the profiles panel. This only drives the steps: the
-// walks run through live mode's session (sensors, pocket guard, wake lock), and every figure —
+// walks run through live mode's session (sensors, pocket guard, wake lock) or come from a
+// recording the engine reads (CalibrationWizard.recorded), and every figure —
 // eq. 1 and 2, the fits, their warnings, the fuzzy scale, the profile, its chart, the
 // refinement — comes from the engine (CalibrationWizard, profile_summary, refine_profile in
 // src/web/calibration.rs), and so do the words and the fits box (src/live/wizard.rs).
@@ -7,7 +8,7 @@ import {
   CalibrationWizard, gnss_state, import_profile, profile_summary, profiles_view, refine_profile, walk_title,
   wizard_message,
 } from './pkg/pdr.js';
-import { startWalk } from './live.js';
+import { settings as liveSettings, startWalk } from './live.js';
 import * as profiles from './profiles.js';
 import { $, dark, download, note, paint, render, safeName, smallButton, test } from './util.js';
 
@@ -65,10 +66,26 @@ async function finish() {
   const r = wizard.walked(w.band, w.pace, w.session.live, w.target, w.gnss);
   w.result.textContent = r.text;
   w.result.classList.toggle('error', r.error);
-  if (r.pitch) { // what the normal walk gave the leg-pitch step length, or why it gave nothing
-    $('cal-pitch').textContent = r.pitch.text;
-    $('cal-pitch').dataset.pitch = r.pitch.ok ? 'ok' : 'refused';
-  }
+  showPitch(r.pitch);
+  document.documentElement.dataset.calibration = 'walked';
+  refresh();
+}
+
+/** What the normal walk (or a recording) gave the leg-pitch step length, or why it gave nothing. */
+function showPitch(pitch) {
+  if (!pitch) return;
+  $('cal-pitch').textContent = pitch.text;
+  $('cal-pitch').dataset.pitch = pitch.ok ? 'ok' : 'refused';
+}
+
+/** Adds a recording of a walk over the typed distance as a walking walk: the engine reads the
+ * file and runs it with live mode's settings (CalibrationWizard.recorded). */
+async function recordingChosen(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  const r = wizard.recorded(file.name, bytes, Number($('cal-distance').value), liveSettings());
+  $('cal-recording-result').textContent = r.text;
+  $('cal-recording-result').classList.toggle('error', r.error);
+  showPitch(r.pitch);
   document.documentElement.dataset.calibration = 'walked';
   refresh();
 }
@@ -167,6 +184,10 @@ export function setupWizard() {
     row.querySelector('button').addEventListener('click', () => paceClicked(row));
   }
   $('cal-save').addEventListener('click', save);
+  $('cal-recording').addEventListener('change', (e) => {
+    if (e.target.files[0]) recordingChosen(e.target.files[0]);
+    e.target.value = '';
+  });
   $('cal-gnss-check').addEventListener('click', checkGnss);
   $('profile-select').addEventListener('change', (e) => { profiles.select(e.target.value); showProfiles(); });
   $('profile-export').addEventListener('click', () => {

@@ -499,6 +499,23 @@ impl Wizard {
         Ok(&self.walks[self.walks.len() - 1])
     }
 
+    /// The profile file the walks make ([`Self::profile`] from the built-in lines, the bands'
+    /// points, the fuzzy scale when walks measured one), named `name`, with the leg-pitch step
+    /// length's offset `pitch_offset_m` (m per stride) when a walk gave one: the file the wizard
+    /// saves and `pdr calibrate` writes.
+    pub fn profile_file(&self, name: &str, pitch_offset_m: Option<f64>) -> ProfileFile {
+        let (profile, _) = self.profile(&Default::default());
+        ProfileFile {
+            version: PROFILE_VERSION,
+            name: name.to_string(),
+            profile,
+            walking_points: self.points(Band::Walking),
+            running_points: self.points(Band::Running),
+            fuzzy_scale: self.fuzzy_scale(),
+            pitch_offset_m,
+        }
+    }
+
     /// The points (f̄, SL̄) of a band.
     pub fn points(&self, band: Band) -> Vec<(f64, f64)> {
         self.walks

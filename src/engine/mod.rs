@@ -14,6 +14,7 @@
 //! - [`step_length`]: Basso 2016 §II.D and eqs. 1–2; Weinberg; [`fuzzy_step_length`]: Ibarra
 //!   2015 §4.4.2's fuzzy system.
 //! - [`calibration`]: fitting a user's profile (Basso 2016 §II.D), quick mode, profile files.
+//! - [`recorded_walk`]: a recorded walk of known distance as a calibration walk.
 //! - [`refinement`]: when a live walk's GNSS may refine a profile (the filter's verdict and
 //!   scale), and the refined profile.
 //! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24); [`replay`]: the one
@@ -82,6 +83,7 @@ pub mod pipeline;
 pub mod pitch_detector;
 pub mod pitch_step_length;
 pub mod pll;
+pub mod recorded_walk;
 pub mod refinement;
 pub mod replay;
 pub mod sort;

@@ -7,10 +7,9 @@ use super::events::{
     SensorReading,
 };
 use crate::engine::fusion::GnssVerdict;
-use crate::engine::fuzzy_step_length::{FuzzyConfig, FuzzyStepLength};
 use crate::engine::orientation::{OrientationSource, HOLD_S};
+use crate::engine::recorded_walk::FuzzyLengths;
 use crate::engine::replay::feed;
-use crate::engine::step_length::fuzzy_step;
 use crate::engine::types::{time_in_range, ConfigError, GnssFix, ImuSample, InputError, Record};
 use crate::engine::{Pipeline, PipelineConfig};
 use crate::io::fusion_words;
@@ -248,40 +247,6 @@ pub struct LiveSession {
     // The calibration wizard's fuzzy lengths: the fuzzy model (scale 1) asked about each step
     // the pipeline emits, one per step of the track.
     fuzzy: FuzzyLengths,
-}
-
-/// The unscaled fuzzy step length (Ibarra 2015, [`crate::engine::fuzzy_step_length`], scale 1)
-/// of every step of a pipeline's track, whatever its own step-length model: computed as each
-/// step is emitted, from the same buffer and span the step-length stage had
-/// ([`Pipeline::step_length_input`], [`crate::engine::step_length::fuzzy_step`]).
-#[derive(Debug, Clone)]
-struct FuzzyLengths {
-    model: FuzzyStepLength,
-    lengths: Vec<f64>,
-}
-
-impl FuzzyLengths {
-    fn new() -> Self {
-        FuzzyLengths {
-            model: FuzzyStepLength::new(FuzzyConfig::default()),
-            lengths: Vec::new(),
-        }
-    }
-
-    /// Catches up with the steps the pipeline emitted since the last call (call it after every
-    /// record, before the next one moves the buffer), those a bout's opening holds too: they
-    /// follow the track in this order.
-    fn observe(&mut self, p: &Pipeline) {
-        for step in p
-            .track()
-            .iter()
-            .chain(p.held_steps())
-            .skip(self.lengths.len())
-        {
-            let l = fuzzy_step(&self.model, &p.step_length_input(step)).centroid_m;
-            self.lengths.push(l);
-        }
-    }
 }
 
 impl LiveSession {

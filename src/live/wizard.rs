@@ -101,6 +101,39 @@ pub fn message(key: &str, name: &str) -> Result<String, String> {
     })
 }
 
+/// The pace a walk from a recording is filed under among the wizard's walks (a walking walk;
+/// its leg pitch calibrates the pitch step length as the normal walk's does).
+pub const RECORDING_PACE: &str = "recording";
+
+/// The one log of a recording the wizard was given (`file_name`, its logs as the import read
+/// them), or what is wrong with it, naming the file: not a recording the app reads, or one that
+/// holds several logs.
+pub fn recording_log(
+    file_name: &str,
+    mut logs: Vec<Result<crate::io::import::Log, crate::io::ParseError>>,
+) -> Result<crate::io::import::Log, String> {
+    match logs.len() {
+        0 => Err(format!(
+            "{file_name}: no recording the app reads (live mode's pdr-log, Sensor Logger, phyphox, …; \
+             see Open a recording)"
+        )),
+        // The import's error names the file, its line and column.
+        1 => logs.pop().expect("one log").map_err(|e| e.to_string()),
+        n => Err(format!(
+            "{file_name} holds {n} recordings: give the one of the walk"
+        )),
+    }
+}
+
+/// A walk from a recording as its line shows it once added: the file and the walk's figures
+/// ([`walk_text`]), and the distance the engine measured over it before calibration.
+pub fn recording_text(file_name: &str, w: &WizardWalk, engine_distance_m: f64) -> String {
+    format!(
+        "{file_name}: {} · the engine measured {engine_distance_m:.1} m before calibration",
+        walk_text(w, "walking")
+    )
+}
+
 /// What the GNSS check says, and whether GNSS may measure a walk: `state` is `missing` (no
 /// geolocation), `waiting`, `fix` (with its `accuracy_m`, good at `limit_m` or better),
 /// `refused` (permission denied) or `failed`.
@@ -425,6 +458,30 @@ mod tests {
             .contains("b = 0.170 m per stride (60 steps with a leg pitch)"));
         let json = serde_json::to_value(&p).unwrap();
         assert!(json.get("why").is_none() && json["slope_m_per_deg"] == PITCH_SLOPE_M_PER_DEG);
+    }
+
+    #[test]
+    fn a_recording_is_one_log_and_its_line_names_the_file() {
+        use crate::io::import::{import_all, MemSet};
+        let read = |name: &str, text: &str| {
+            let mut set = MemSet::new(vec![(name.to_string(), text.as_bytes().to_vec())]);
+            recording_log(name, import_all(&mut set))
+        };
+        let none = read("notes.txt", "shopping list\n").unwrap_err();
+        assert!(
+            none.starts_with("notes.txt: no recording the app reads"),
+            "{none}"
+        );
+        let log = read("walk.pdrlog", "# pdr-log 1\nimu,0,0,9.8,0,0,0,0,,,,,,,\n").unwrap();
+        assert_eq!(log.records.len(), 1);
+        let mut w = Wizard::default();
+        walk(&mut w, RECORDING_PACE, 40.0, 1.8, 60);
+        let text = recording_text("walk.pdrlog", &w.walks[0], 37.26);
+        assert!(
+            text.starts_with("walk.pdrlog: N = 60 steps over 40.0 m"),
+            "{text}"
+        );
+        assert!(text.ends_with("the engine measured 37.3 m before calibration"));
     }
 
     #[test]

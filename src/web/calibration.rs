@@ -1,5 +1,5 @@
 //! The calibration wizard's class and the profile files' functions.
-//! May import: `engine`, `live`, `plot`.
+//! May import: `engine`, `io`, `live`, `plot`, `settings`.
 
 use super::canvas::on_canvas;
 use super::{to_js, to_value};
@@ -59,7 +59,6 @@ impl CalibrationWizard {
     ) -> Result<JsValue, JsError> {
         let distance_m = live.walk_state(target_m, gnss).distance_m;
         let session = live.session();
-        let pitch_amplitudes_deg = session.pitch_amplitudes();
         let walk = crate::engine::calibration::CalibrationWalk {
             distance_m,
             step_freqs_hz: session.step_freqs(),
@@ -69,12 +68,72 @@ impl CalibrationWizard {
             let w = self.wizard.add(b, pace, &walk).map_err(|e| e.to_string())?;
             Ok(crate::live::wizard::walk_text(w, band_name))
         });
+        let pitch = (pace == "normal").then(|| session.pitch_amplitudes());
+        self.outcome(added, distance_m, pitch)
+    }
+
+    /// A recording of a walk of `distance_m` metres (the file `file_name` and its `bytes`, read
+    /// as upload mode reads a file) through the engine with `settings` (`{set, profile}`, as
+    /// for `Live`), added as a walking walk as a live walk is ([`crate::engine::recorded_walk`]);
+    /// its leg pitch calibrates the pitch step length as the normal walk's does. Returns
+    /// `{text, error, pitch}` as [`Self::walked`] does; `error` with the reason, naming the
+    /// file, when the distance is missing, the file is not one recording or the walk has too
+    /// few steps.
+    pub fn recorded(
+        &mut self,
+        file_name: &str,
+        bytes: Vec<u8>,
+        distance_m: f64,
+        settings: JsValue,
+    ) -> Result<JsValue, JsError> {
+        use crate::live::wizard::{message, recording_log, recording_text, RECORDING_PACE};
+        if !(distance_m.is_finite() && distance_m > 0.0) {
+            let text = message("distance", "").map_err(to_js)?;
+            return self.outcome(Err(text), distance_m, None);
+        }
+        let cfg = super::settings_from(settings)?.config().map_err(to_js)?;
+        let mut set = crate::io::import::MemSet::new(vec![(file_name.to_string(), bytes)]);
+        let read =
+            recording_log(file_name, crate::io::import::import_all(&mut set)).and_then(|log| {
+                crate::engine::recorded_walk::recorded_walk(
+                    log.dated(&cfg),
+                    &log.records,
+                    distance_m,
+                )
+                .map_err(|e| format!("{file_name}: {e}"))
+            });
+        let r = match read {
+            Ok(r) => r,
+            Err(text) => return self.outcome(Err(text), distance_m, None),
+        };
+        let added = self
+            .wizard
+            .add(
+                crate::engine::calibration::Band::Walking,
+                RECORDING_PACE,
+                &r.walk,
+            )
+            .map(|w| recording_text(file_name, w, r.engine_distance_m))
+            .map_err(|e| format!("{file_name}: {e}"));
+        let pitch = added.is_ok().then_some(r.pitch_amplitudes_deg);
+        self.outcome(added, distance_m, pitch)
+    }
+
+    /// A walk's outcome for the page, `{text, error, pitch}`: the walk's figures or why it was
+    /// not added, and, for a walk whose leg pitch amplitudes are given, the leg-pitch
+    /// calibration, kept for the profile.
+    fn outcome(
+        &mut self,
+        added: Result<String, String>,
+        distance_m: f64,
+        pitch_amplitudes_deg: Option<Vec<f64>>,
+    ) -> Result<JsValue, JsError> {
         let (text, error) = match added {
             Ok(text) => (text, false),
             Err(why) => (why, true),
         };
-        let pitch = (pace == "normal")
-            .then(|| crate::live::wizard::pitch_calibration(distance_m, &pitch_amplitudes_deg));
+        let pitch =
+            pitch_amplitudes_deg.map(|a| crate::live::wizard::pitch_calibration(distance_m, &a));
         if pitch.is_some() {
             self.pitch = pitch.clone();
         }
@@ -159,19 +218,11 @@ impl CalibrationWizard {
     /// The profile file (JSON) the walks make, named `name`, with the leg-pitch step length's
     /// offset when the normal walk gave one.
     pub fn profile_json(&self, name: &str) -> Result<String, JsError> {
-        use crate::engine::calibration::{Band, ProfileFile, PROFILE_VERSION};
-        let (profile, _) = self.wizard.profile(&Default::default());
-        ProfileFile {
-            version: PROFILE_VERSION,
-            name: name.to_string(),
-            profile,
-            walking_points: self.wizard.points(Band::Walking),
-            running_points: self.wizard.points(Band::Running),
-            fuzzy_scale: self.wizard.fuzzy_scale(),
-            pitch_offset_m: self.pitch.as_ref().and_then(|p| p.offset_m),
-        }
-        .to_json()
-        .map_err(to_js)
+        let pitch = self.pitch.as_ref().and_then(|p| p.offset_m);
+        self.wizard
+            .profile_file(name, pitch)
+            .to_json()
+            .map_err(to_js)
     }
 
     /// Draws a band's points, line and residuals.

@@ -1,9 +1,10 @@
 //! The command line: clap's definitions of `pdr` and its subcommands, and `main`, which hands each
-//! subcommand to its own module (`run`, `eval`, `simulate`, `simcheck`, `bench`, `demo`, `serve`).
+//! subcommand to its own module (`run`, `calibrate`, `eval` and `calibrate_loo`, `simulate`,
+//! `simcheck`, `bench`, `demo`, `serve`).
 //! May import: clap, the `pdr` library and the subcommands' modules.
 
 use crate::settings_args::SettingsArgs;
-use crate::{bench, demo, eval, run, serve, simcheck, simulate};
+use crate::{bench, calibrate, calibrate_loo, demo, eval, run, serve, simcheck, simulate};
 use clap::{Parser, Subcommand, ValueEnum};
 use pdr::sim::scenarios;
 use std::path::{Path, PathBuf};
@@ -126,6 +127,29 @@ enum Cmd {
         #[command(flatten)]
         settings: SettingsArgs,
     },
+    /// Fit your step-length profile (the calibration wizard's line; quick mode with one walk) to
+    /// recordings of walks of known distance, and write it for `pdr run --profile` and the
+    /// page's profile import: `pdr calibrate WALK --metres 85 [WALK2 --metres 60 …] --out FILE`.
+    Calibrate {
+        /// The recordings (anything `pdr run` reads: file, folder or zip), each followed by its
+        /// `--metres`.
+        #[arg(required = true, value_name = "RECORDING")]
+        files: Vec<PathBuf>,
+        /// The true distance walked in each recording, m, one per recording in their order.
+        #[arg(long, value_name = "M", allow_negative_numbers = true)]
+        metres: Vec<f64>,
+        /// Where to write the profile file (JSON).
+        #[arg(long)]
+        out: PathBuf,
+        /// The profile's name.
+        #[arg(long, default_value = "me")]
+        name: String,
+        /// Read the recordings with a recipe (column mapping, JSON; see docs/recipes.md).
+        #[arg(long)]
+        recipe: Option<PathBuf>,
+        #[command(flatten)]
+        settings: SettingsArgs,
+    },
     /// Run the embedded demo walk (the one the web page shows) and print its figures.
     Demo {
         /// Print JSON.
@@ -215,6 +239,13 @@ enum Cmd {
         /// (Markdown, or JSON with `--json`).
         #[arg(long, conflicts_with_all = ["show_config", "compare"])]
         energy: bool,
+        /// Leave one walk out: for each walker (the folder name's first part, TyrEx's naming),
+        /// calibrate on each walking walk alone (its truth's path length as the distance) and run
+        /// the walker's other walking walks with that profile; print the median distance ratios,
+        /// uncalibrated and calibrated, per carrying mode and overall (Markdown, or JSON with
+        /// `--json`).
+        #[arg(long, conflicts_with_all = ["show_config", "compare", "energy"])]
+        calibrate_loo: bool,
     },
     /// Serve the built web app: HTTP on localhost and HTTPS (self-signed) on all interfaces.
     Serve {
@@ -255,6 +286,24 @@ pub fn main() -> ExitCode {
                 &s,
                 recipe.as_ref(),
             )
+        }),
+        Cmd::Calibrate {
+            files,
+            metres,
+            out,
+            name,
+            recipe,
+            settings,
+        } => settings.settings().and_then(|s| {
+            let recipe = load_recipe(recipe.as_deref())?;
+            let req = calibrate::Request {
+                files: &files,
+                metres: &metres,
+                out: &out,
+                name: &name,
+                recipe: recipe.as_ref(),
+            };
+            calibrate::calibrate(&req, &s)
         }),
         Cmd::Demo { json } => demo::demo(json),
         Cmd::Simulate {
@@ -298,10 +347,13 @@ pub fn main() -> ExitCode {
             show_config,
             recipe,
             energy,
+            calibrate_loo,
             ..
         } => settings.settings().and_then(|s| {
             let recipe = load_recipe(recipe.as_deref())?;
-            if energy {
+            if calibrate_loo {
+                calibrate_loo::calibrate_loo(&paths, json, &s, recipe.as_ref())
+            } else if energy {
                 eval::energy(&paths, json, &s, recipe.as_ref())
             } else {
                 eval::eval(&paths, json, &s, show_config, recipe.as_ref())

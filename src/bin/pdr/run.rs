@@ -1,6 +1,7 @@
 //! `pdr run`: replays one log of any format, prints a summary and writes the track files.
-//! May import: the `pdr` library; nothing of the other subcommands.
+//! May import: the `pdr` library and `read`; nothing of the other subcommands.
 
+use crate::read::read_one;
 use pdr::engine::foot::placement::Placement;
 use pdr::engine::{replay, Diagnostics, Pipeline, Replay, StepRecord};
 use pdr::io::export;
@@ -41,48 +42,6 @@ pub fn run(
     print_sensors(p, &d);
     print_fusion(p, &d);
     write_outputs(&outputs, &name, p)
-}
-
-/// The one log that `file` holds, read as usual or, with `recipe`, by the recipe (whose checks'
-/// warnings and notes go to standard error). An error when it holds none or several.
-fn read_one(file: &Path, name: &str, recipe: Option<&Recipe>) -> Result<Log, String> {
-    let mut set = pdr::io::import::DirSet::new(file).map_err(|e| format!("{name}: {e}"))?;
-    let mut logs = match recipe {
-        Some(r) => {
-            let read = pdr::io::import::recipe::read_set(&mut set, r);
-            if read.is_empty() {
-                return Err(format!(
-                    "{name}: recipe {:?} matches no folder: {}",
-                    r.name,
-                    pdr::io::import::recipe::why_not(&set, r)
-                ));
-            }
-            read.into_iter()
-                .map(|r| {
-                    r.map(|(log, report)| {
-                        for w in &report.warnings {
-                            eprintln!("check: {w}");
-                        }
-                        for n in &report.notes {
-                            eprintln!("note: {n}");
-                        }
-                        log
-                    })
-                })
-                .collect()
-        }
-        None => pdr::io::import::import_all(&mut set),
-    };
-    match logs.len() {
-        0 => Err(format!(
-            "{name}: no recognisable log (see README, Import; for another recorder's files, \
-             describe them with `--recipe FILE`, see docs/recipes.md)"
-        )),
-        1 => logs.pop().expect("one log").map_err(|e| e.to_string()),
-        n => Err(format!(
-            "{name} holds {n} logs; give one of them, or use `pdr eval`"
-        )),
-    }
 }
 
 /// The summary's first part: the log, the orientation source, the steps and their activities,
