@@ -105,7 +105,9 @@ async function walkUntil(page, xyz, until) {
     const ax = round1(0.5 * Math.sin(2 * Math.PI * 0.9 * t));
     await xyz('gyroscope', 0.01 * (k % 3), 0.02, 0.03 + 0.01 * (k++ % 2));
     await xyz('accelerometer', ax, 0.2, az);
-    for (const t0 = Date.now(); Date.now() - t0 < 300;) {
+    // Wait for the reading to be counted (a few ms; seconds on a loaded machine): a reading still
+    // in flight when the next is set would be counted with the next one's values.
+    for (const t0 = Date.now(); Date.now() - t0 < 3000;) {
       const r = await look(page);
       if (r.samples > counted) {
         for (let i = counted; i < r.samples; i++) fed.push({ at: Date.now(), az, ax, shown: r.shown, steps: r.steps });
