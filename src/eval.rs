@@ -18,6 +18,8 @@
 //!   the smoothed truth, free of the truth frame's direction ([`trajectory`]).
 //! - **Turns**: the track's heading change across each true turn against its angle
 //!   ([`turn_angles`]).
+//! - **Carrying mode**: where the truth says how the phone was carried, the share of steps
+//!   whose carrying mode is that one ([`carry`]).
 //! - **Floors**: where the truth's landmarks have floors (GetSensorData `POSI`), the share of
 //!   landmarks at which the track's floor relative to the first landmark is the truth's
 //!   ([`floors`]); the height error where the truth has heights.
@@ -29,12 +31,13 @@
 //! The estimated position between two steps is interpolated linearly in time; before the first
 //! step it is the origin, after the last step the last position.
 
-use crate::engine::fusion::FusedStep;
-use crate::engine::pipeline::{position_at, Pipeline, PipelineConfig, StepRecord};
+use crate::engine::pipeline::{position_at, PipelineConfig, StepRecord};
 use crate::engine::replay;
 use crate::io::import::{Log, Waypoint};
 use serde::{Deserialize, Serialize};
 
+pub mod absolute;
+pub mod carry;
 pub mod ends;
 pub mod energy;
 pub mod floors;
@@ -212,6 +215,10 @@ pub struct LogResult {
     /// The heading change across each true turn.
     #[serde(default)]
     pub turns: Option<TurnResult>,
+    /// Steps whose carrying mode is the truth's, and steps scored (those inside the truth's
+    /// step window when it has one), for a log whose truth says how the phone was carried.
+    #[serde(default)]
+    pub carry_steps: Option<[u64; 2]>,
     /// The pitch detector was chosen and the log has no gyroscope: the PLL counted the steps.
     pub detector_fallback: bool,
     /// Share of the steps whose leg pitch showed a thigh's swing (a phone in a trouser
@@ -267,6 +274,7 @@ impl LogResult {
             floors: None,
             trajectory: None,
             turns: None,
+            carry_steps: None,
             detector_fallback: false,
             thigh_share: 0.0,
             error: Some(error),
@@ -332,6 +340,9 @@ pub struct Summary {
     pub height_p75_m: Option<f64>,
     /// The logs with a trajectory truth, per group (the carrying mode), and `all` of them.
     pub trajectory_by_group: std::collections::BTreeMap<String, TrajectoryGroup>,
+    /// Per group (the carrying mode, the pocket) and `all`: the share of the scored steps whose
+    /// carrying mode is the truth's ([`LogResult::carry_steps`], pooled).
+    pub carry_share_by_group: std::collections::BTreeMap<String, f64>,
     /// True turns scored, over all logs.
     pub turns_scored: u64,
     /// Median absolute turn error over every scored turn of every log, pooled, degrees.
@@ -429,10 +440,11 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
         res.waypoint_errors_m = m;
         res.waypoint_errors_pct = pct;
     }
-    absolute_errors(p, &log.truth.waypoints, &mut res);
+    absolute::absolute_errors(p, &log.truth.waypoints, &mut res);
     res.floors = floors::score_floors(track, wps);
     res.trajectory = trajectory::score_trajectory(track, &log.truth.trajectory);
     res.turns = turn_angles::score_turns(track, &log.truth.turns);
+    res.carry_steps = carry::score_carry(track, &log.truth);
     res.fusion = p.fusion().and_then(|f| {
         let d = f.diagnostics();
         let last = d.last?;
@@ -457,69 +469,6 @@ pub fn score(log: &Log, run: &crate::engine::Replay) -> LogResult {
         res.loop_closure_m = Some(libm::hypot(e, n));
     }
     res
-}
-
-/// Errors of GNSS alone, the fused and the smoothed track at the times of geodetic truth
-/// waypoints, in the pipeline's local frame (absolute: nothing is aligned).
-fn absolute_errors(p: &Pipeline, wps: &[Waypoint], res: &mut LogResult) {
-    let Some(frame) = p.frame() else {
-        return;
-    };
-    let fixes: Vec<(f64, f64, f64)> = p
-        .fixes()
-        .iter()
-        .map(|f| {
-            let (e, n) = frame.en_of_fix(f);
-            (f.t, e, n)
-        })
-        .collect();
-    let as_points = |s: &[FusedStep]| -> Vec<(f64, f64, f64)> {
-        s.iter().map(|x| (x.t, x.east_m, x.north_m)).collect()
-    };
-    let tracks = [fixes, as_points(p.fused()), as_points(&p.smoothed())];
-    // A fix is only good for the truth within a few seconds of it; a step track holds between
-    // steps and until the next one.
-    let reach = [2.0, f64::INFINITY, f64::INFINITY];
-    for w in wps {
-        let Some((lat, lon)) = w.geo else {
-            continue;
-        };
-        let [te, tn, _] = frame.to_enu(lat, lon, frame.h0_m);
-        for (k, track) in tracks.iter().enumerate() {
-            if let Some((e, n)) = interpolate(track, w.t, reach[k]) {
-                res.absolute_errors_m[k].push(libm::hypot(e - te, n - tn));
-            }
-        }
-    }
-    let [g, f, sm] = &res.absolute_errors_m;
-    res.gnss_error_m = ErrorSummary::of(g);
-    res.fused_error_m = ErrorSummary::of(f);
-    res.smoothed_error_m = ErrorSummary::of(sm);
-    if let Some((offline, causal)) = yardstick::yardsticks(frame, p.fixes(), wps) {
-        res.yardstick_p75_m = Some(offline);
-        res.causal_yardstick_p75_m = Some(causal);
-    }
-}
-
-/// Position at `t` on a time-ordered list of (t, east, north): linear between the points around
-/// it, or the nearest point when it lies within `reach` s of `t` (before the first point: none).
-fn interpolate(points: &[(f64, f64, f64)], t: f64, reach: f64) -> Option<(f64, f64)> {
-    let i = points.partition_point(|p| p.0 <= t);
-    let prev = i.checked_sub(1).map(|k| points[k]);
-    let next = points.get(i).copied();
-    match (prev, next) {
-        (Some(a), Some(b)) if b.0 - a.0 <= 2.0 * reach.min(5.0) || reach.is_infinite() => {
-            let w = if b.0 > a.0 {
-                (t - a.0) / (b.0 - a.0)
-            } else {
-                0.0
-            };
-            Some((a.1 + w * (b.1 - a.1), a.2 + w * (b.2 - a.2)))
-        }
-        (Some(a), _) if t - a.0 <= reach => Some((a.1, a.2)),
-        (_, Some(b)) if b.0 - t <= reach && prev.is_some() => Some((b.1, b.2)),
-        _ => None,
-    }
 }
 
 /// For each waypoint after the first: the aligned error in metres, and the error as a
@@ -692,6 +641,7 @@ pub fn summarise(logs: &[LogResult]) -> Summary {
         .flat_map(|t| t.scored.iter().map(|s| s[2].abs()))
         .collect();
     Summary {
+        carry_share_by_group: carry::pool(logs),
         trajectory_by_group: trajectories
             .iter()
             .map(|(g, v)| (g.clone(), TrajectoryGroup::of(v)))

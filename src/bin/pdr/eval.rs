@@ -263,6 +263,14 @@ fn print_summary(s: &pdr::eval::Summary) {
             );
         }
     }
+    if !s.carry_share_by_group.is_empty() {
+        let shares: Vec<String> = s
+            .carry_share_by_group
+            .iter()
+            .map(|(g, v)| format!("{g} {:.1} %", 100.0 * v))
+            .collect();
+        out!("carrying mode right on: {} of the steps", shares.join(", "));
+    }
     if let Some(e) = s.turn_error_median_deg {
         out!("turns: median error {e:.1}° over {} turns", s.turns_scored);
     }

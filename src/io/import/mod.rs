@@ -231,6 +231,10 @@ pub struct Truth {
     pub trajectory: Vec<TruePosition>,
     /// The turns of the path, in time order.
     pub turns: Vec<TrueTurn>,
+    /// How the phone was carried through the whole recording, when the data set says
+    /// (TyrEx's folder names; the pocket sets'); `pdr eval` scores the carrying mode of every
+    /// step against it.
+    pub carry: Option<crate::engine::carry::CarryMode>,
 }
 
 impl Truth {

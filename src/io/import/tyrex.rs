@@ -58,6 +58,7 @@ use super::common::{
     rotation_vector, set_records, unit_quaternion, Table, Warnings,
 };
 use super::{field_error, file_error, FileSet, Format, Log, Platform, Streams, TruePosition, G0};
+use crate::engine::carry::CarryMode;
 use crate::io::ParseError;
 use nalgebra::{UnitQuaternion, Vector3};
 use std::io::BufRead;
@@ -163,6 +164,7 @@ fn read(
     let mut log = Log::new(source, Format::Tyrex);
     log.platform = Some(platform);
     log.group = carrying_mode(&folder_name(set, dir));
+    log.truth.carry = log.group.as_deref().and_then(carry_of);
     let ios = platform == Platform::Ios;
     let mut s = Streams::default();
     let mut warnings = Warnings::default();
@@ -286,6 +288,18 @@ fn carrying_mode(name: &str) -> Option<String> {
         {
             Some(mode.to_string())
         }
+        _ => None,
+    }
+}
+
+/// The engine's carrying mode for a TyrEx mode: the trouser pockets (walking or running) are
+/// the pocket, `Swinging` the swinging hand, `Phoning` the ear, `Texting` the hand.
+fn carry_of(mode: &str) -> Option<CarryMode> {
+    match mode {
+        "FrontPocket" | "BackPocket" | "RunningPocket" => Some(CarryMode::Pocket),
+        "Swinging" => Some(CarryMode::Swinging),
+        "Phoning" => Some(CarryMode::Ear),
+        "Texting" => Some(CarryMode::Hand),
         _ => None,
     }
 }

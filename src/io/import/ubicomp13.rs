@@ -73,6 +73,8 @@ fn read(
     log.truth.steps = truth.steps;
     log.truth.step_window = Some((truth.walk_start_s, truth.walk_end_s));
     log.group = truth.placement.as_deref().and_then(camel_case);
+    // Every walk of the set is in a trouser pocket, front or back.
+    log.truth.carry = Some(crate::engine::carry::CarryMode::Pocket);
     let Some(acc) = file_in(names, dir, "acc.csv") else {
         return Err(file_error(
             &set.label(&acc_name),

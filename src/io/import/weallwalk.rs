@@ -115,6 +115,8 @@ fn read(set: &mut dyn FileSet, names: &[String], dir: &str) -> Result<Log, Parse
     } else {
         None
     };
+    // The set's phones are in trouser pockets, left or right.
+    log.truth.carry = Some(crate::engine::carry::CarryMode::Pocket);
     let Some(sensors) = file_in(names, dir, "sensors.csv") else {
         return Err(file_error(
             &set.label(&sensors_name),
