@@ -10,9 +10,10 @@
 //   samples through the same engine, so every step, the distance within 1 % (exactly once Stop
 //   has placed the steps a bout's opening held) and the track's end.
 // - Printed, not asserted: `pdr run` of the original folder (~200 Hz, with the magnetometer),
-//   the same walk resampled in the test the way the browser delivers it (60 Hz sample-and-hold,
-//   Chromium's rounding, no magnetometer) to show where the differences come from, and the
-//   motion-capture truth's distance (`pdr eval`).
+//   the same walk rewritten in the test the way the browser delivers it (no magnetometer; at a
+//   steady 60 Hz, sample-and-hold, with and without Chromium's rounding; and cut to exactly the
+//   samples the page received) to show where the differences come from, the holes in what the
+//   page received, and the motion-capture truth's distance (`pdr eval`). See docs/live-mode.md.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
@@ -155,7 +156,8 @@ function pdrRun(file) {
  * linear acceleration, gravity), deviceorientationabsolute the absolute orientation. Only these
  * are set at each sample (fewer CDP messages: the replay's timing is real).
  */
-const SENSORS = ['accelerometer', 'gyroscope', 'linear-acceleration', 'gravity', 'absolute-orientation', 'relative-orientation'];
+const SENSORS = ['accelerometer', 'gyroscope', 'linear-acceleration', 'gravity',
+  'absolute-orientation', 'relative-orientation'];
 const READ = EVENTS
   ? ['gyroscope', 'gravity', 'linear-acceleration', 'accelerometer', 'absolute-orientation']
   : ['gyroscope', 'accelerometer', 'absolute-orientation'];
@@ -164,7 +166,9 @@ const READ = EVENTS
 function setReadings(cdp, s, types = READ) {
   return Promise.all(types.map((type) => cdp.send('Emulation.setSensorOverrideReadings', {
     type,
-    reading: type.endsWith('orientation') ? { quaternion: s.quaternion } : { xyz: { x: s[type][0], y: s[type][1], z: s[type][2] } },
+    reading: type.endsWith('orientation')
+      ? { quaternion: s.quaternion }
+      : { xyz: { x: s[type][0], y: s[type][1], z: s[type][2] } },
   })));
 }
 
@@ -199,7 +203,9 @@ test('a real pocket walk (TyrEx) through live mode: the page\'s steps, distance 
     const samples = walkSamples();
     const { context, page, errors } = await openPage(browser(), URL_HTTP, {
       // At one device pixel: the map's redraws cost the shared machine less (the test's timing is real).
-      options: { ...PHONE, deviceScaleFactor: 1, acceptDownloads: true, permissions: ['accelerometer', 'gyroscope', 'magnetometer'] },
+      options: {
+        ...PHONE, deviceScaleFactor: 1, acceptDownloads: true, permissions: ['accelerometer', 'gyroscope', 'magnetometer'],
+      },
       init: EVENTS ? [noGenericSensors] : [],
     });
     const cdp = await context.newCDPSession(page);
@@ -254,7 +260,8 @@ test('a real pocket walk (TyrEx) through live mode: the page\'s steps, distance 
     const ev = JSON.parse(execFileSync(BIN, ['eval', '--json', WALK], { encoding: 'utf8' })).logs[0].trajectory;
     const pct = (a, b) => `${(100 * (a - b) / b).toFixed(1)} %`;
     const seconds = (performance.now() - began) / 1000;
-    console.log(`TyrEx replay (${path.basename(WALK)}), ${sets.length} readings set on the virtual sensors, source ${source}, `
+    console.log(`TyrEx replay (${path.basename(WALK)}), ${sets.length} readings set on the virtual sensors, `
+      + `source ${source}, `
       + `${live.samples} samples at ${live.sample_rate_hz.toFixed(1)} Hz; ${holes.length} holes over 50 ms between them `
       + `(${holes.reduce((a, d) => a + d, 0).toFixed(1)} s in all, the longest ${(1000 * Math.max(...dt)).toFixed(0)} ms); `
       + `${got.matched} of them found among the readings set by value; the test's own setting had ${setHoles.length} holes `
@@ -279,7 +286,8 @@ test('a real pocket walk (TyrEx) through live mode: the page\'s steps, distance 
     // (devicemotion fires on after the walk, the last readings held, until Stop.)
     assert.equal(imu.length, stopped.samples, 'the recording is not the samples the page used');
     assert.ok(live.sample_rate_hz > 30, `the page received ${live.sample_rate_hz} Hz`);
-    assert.equal(stopped.steps, recorded.steps, `stopped ${stopped.steps} steps, pdr run of its recording ${recorded.steps}`);
+    assert.equal(stopped.steps, recorded.steps,
+      `stopped ${stopped.steps} steps, pdr run of its recording ${recorded.steps}`);
     assert.ok(Math.abs(stopped.distance_m - recorded.distance_m) < 1e-6,
       `stopped ${stopped.distance_m} m, pdr run of its recording ${recorded.distance_m} m`);
     // The track: where its last step ended (the CSV's metres have three decimals).
