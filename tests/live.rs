@@ -79,6 +79,8 @@ fn live_events_count_like_the_log_and_both_platforms_agree() {
     );
     let r = android.readouts();
     assert_eq!(r.steps, a.len());
+    // The track's current position, as `pdr run --track`'s last row.
+    assert_eq!(r.end_m, Some([end.east_m, end.north_m]));
     assert!(
         (r.sample_rate_hz - 100.0).abs() < 2.0,
         "{}",
@@ -118,7 +120,10 @@ fn the_steps_held_at_a_walks_opening_are_counted_and_shown_as_held() {
     let mut live = feed(&cut, Platform::Android);
     let r = live.readouts();
     assert!(
-        r.held_steps >= 3 && r.steps == r.held_steps && r.heading_deg.is_none(),
+        r.held_steps >= 3
+            && r.steps == r.held_steps
+            && r.heading_deg.is_none()
+            && r.end_m.is_none(),
         "{r:?}"
     );
     // Stop: they are placed.
@@ -127,6 +132,8 @@ fn the_steps_held_at_a_walks_opening_are_counted_and_shown_as_held() {
     assert_eq!(r.held_steps, 0);
     assert_eq!(live.pipeline().track().len(), r.steps);
     assert!(r.heading_deg.is_some());
+    let last = live.pipeline().track().last().unwrap();
+    assert_eq!(r.end_m, Some([last.east_m, last.north_m]));
 }
 
 #[wasm_bindgen_test(unsupported = test)]

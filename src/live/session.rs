@@ -150,6 +150,9 @@ pub struct Readouts {
     pub cadence_hz: Option<f64>,
     /// Heading of the last step, degrees from north.
     pub heading_deg: Option<f64>,
+    /// Where the last step on the track ended, [east, north] of the start in m: the PDR
+    /// track's current position (`pdr run --track`'s last row).
+    pub end_m: Option<[f64; 2]>,
     /// Steps counted but not yet on the track: a walk's first steps wait until something
     /// knows which way is forward ([`crate::engine::heading::opening`]).
     pub held_steps: usize,
@@ -571,6 +574,7 @@ impl LiveSession {
             distance_m: d.distance_m,
             cadence_hz: last.map(|s| s.freq_hz),
             heading_deg: last.and_then(|s| s.heading_rad).map(f64::to_degrees),
+            end_m: last.map(|s| [s.east_m, s.north_m]),
             held_steps: self.pipeline.held_steps().count(),
             motion: d.motion.map(|m| m.as_str()),
             activity: activity_now(&d).map(crate::io::export::activity_words),
