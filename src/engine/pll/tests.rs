@@ -185,9 +185,9 @@ fn the_cycle_in_which_the_phone_leaves_the_thigh_is_no_step() {
 #[test]
 fn a_quiet_first_step_counts_when_the_limb_swung_over_it() {
     let f = 1.8;
-    // The first judged cycle, around the peak at 1/f, at 0.3 of the walk's amplitude: its
-    // RMS is 0.3 σ, below the σ-relative gate's 0.5.
-    let amplitude = |t: f64| if t < 1.5 / f { 0.9 } else { 3.0 };
+    // The first judged cycle, around the peak at 1/f, at 0.2 of the walk's amplitude: its
+    // RMS is 0.2 σ (0.42 m/s², above the floor), below the σ-relative gate's 0.3.
+    let amplitude = |t: f64| if t < 1.5 / f { 0.6 } else { 3.0 };
     let thigh = |a: f64| move |t: f64| Some(a * (std::f64::consts::PI * f * t).sin());
     let (steps, first) = walk(6.0, amplitude, thigh(15.0), |_| Some(0.0));
     assert!(
