@@ -224,3 +224,50 @@ fn a_quiet_first_step_counts_when_the_limb_swung_over_it() {
         .1
         .is_empty());
 }
+
+#[test]
+fn a_far_legs_quiet_step_counts_between_two_counted_steps_on_a_thigh() {
+    let f = 1.8;
+    // The near leg's cycles (even peaks) at 3 m/s², the far leg's (odd) at 1.2 m/s²: RMS
+    // 0.85 m/s², 0.4 σ_z, under the σ-relative gate. The walk stops after the 19th peak, a far
+    // leg's, and the phone rests.
+    let run = |thigh: bool| {
+        let mut p = Pll::new(PllConfig::default());
+        let mut all = Vec::new();
+        for i in 1..1500 {
+            let t = i as f64 / 100.0;
+            let k = (t * f).round() as i64;
+            let a = match k {
+                k if k > 19 => 0.0,
+                k if k % 2 == 0 => 3.0,
+                _ => 1.2,
+            };
+            let c = p.push(&DetectorInput {
+                t,
+                dt: 0.01,
+                up: a * (TAU * f * t).cos(),
+                mean: 0.0,
+                sigma: 3.0 / 2f64.sqrt(),
+                motion: Motion::Walking,
+                cadence_hz: Some(f),
+                pitch_deg: None,
+                axis_tilt_deg: thigh.then_some(0.0),
+            });
+            all.extend(c.map(|c| c.t));
+            all.extend(p.take_late_step().map(|c| c.t));
+        }
+        all.sort_by(f64::total_cmp);
+        all
+    };
+    let has = |v: &[f64], k: i64| v.iter().any(|&t| (t - k as f64 / f).abs() < 0.1);
+    let (thigh, hand) = (run(true), run(false));
+    // On a thigh every step from the 4th to the 18th counts; off a limb only the near leg's.
+    for k in 4..=18 {
+        assert!(has(&thigh, k), "peak {k}: {thigh:?}");
+        assert_eq!(has(&hand, k), k % 2 == 0, "peak {k}: {hand:?}");
+    }
+    // The last step, a far leg's, counts by the same leg's share now that the one before it
+    // counted; the resting cycles after it do not.
+    assert!(has(&thigh, 19) && !has(&hand, 19), "{thigh:?}");
+    assert!(thigh.iter().all(|&t| t < 19.5 / f), "{thigh:?}");
+}
