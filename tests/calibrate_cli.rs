@@ -5,20 +5,10 @@
 //! Native only: it runs the `pdr` binary.
 #![cfg(not(target_arch = "wasm32"))]
 
-use std::path::{Path, PathBuf};
+mod common;
 
-/// Runs `pdr` with `args`: (success, stdout, stderr).
-fn pdr(args: &[&str]) -> (bool, String, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pdr"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use common::pdr;
+use std::path::{Path, PathBuf};
 
 /// A fresh folder for one test's files.
 fn folder(name: &str) -> PathBuf {

@@ -10,6 +10,7 @@ use pdr::sim::scenarios;
 
 mod common;
 use common::imu;
+use common::pdr;
 use common::recipe::read;
 
 /// The engine's step count and final position on records.
@@ -85,18 +86,6 @@ fn describe_guesses_a_recipe_for_the_form() {
 }
 
 // --- the command line -----------------------------------------------------------------------
-
-fn pdr(args: &[&str]) -> (bool, String, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pdr"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
 
 #[test]
 fn pdr_run_and_eval_take_a_recipe() {

@@ -16,6 +16,20 @@ use pdr::engine::{replay, Activity, PipelineConfig, Record, StepRecord};
 use pdr::live::{browser_events, BrowserEvent, LiveSession, MotionEvent, Platform};
 use pdr::sim::{Scenario, Segment, Simulation};
 
+/// Runs the `pdr` binary with `args`: (success, stdout, stderr). Native only.
+#[cfg(not(target_arch = "wasm32"))]
+pub fn pdr(args: &[&str]) -> (bool, String, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_pdr"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 /// Peak resident memory of this process, bytes (Linux only; `None` elsewhere).
 pub fn peak_rss() -> Option<u64> {
     let s = std::fs::read_to_string("/proc/self/status").ok()?;
