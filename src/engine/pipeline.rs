@@ -90,6 +90,12 @@ pub struct PipelineConfig {
     /// correlation; the first cycles of a walk follow the oscillator loosely, so a higher
     /// threshold refuses them.
     pub onset_coherence_min: f64,
+    /// With the phone in a pocket (the carrying mode at the onset), the gait began after the last
+    /// run of this many anti-correlated cycles in a row, not after the last one. Default 2: a
+    /// thigh's single cycles dip below 0 while it walks (the far leg's steps, a turn), and one
+    /// dip dropped every step before it; handling the phone before walking is not in a pocket.
+    /// 1 cuts at every anti-correlated cycle, as off a pocket.
+    pub onset_pocket_cycles: u32,
     /// GNSS/PDR fusion ([`crate::engine::fusion`]); its mode `off` keeps the fixes for display
     /// only.
     pub fusion: FusionConfig,
@@ -125,6 +131,7 @@ impl Default for PipelineConfig {
             step_length: StepLengthModel::default(),
             onset_lookback_s: 3.0,
             onset_coherence_min: 0.0,
+            onset_pocket_cycles: 2,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
             hybrid: HybridConfig::default(),
@@ -171,6 +178,12 @@ impl PipelineConfig {
         self.hybrid.validate()?;
         self.foot.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
+        if self.onset_pocket_cycles == 0 {
+            return Err(ConfigError::new(
+                "onset_pocket_cycles",
+                "must be at least 1",
+            ));
+        }
         positive("gap_s", self.gap_s)
     }
 }

@@ -4,6 +4,7 @@
 use super::bout::{BoutStep, Held};
 use super::{Pipeline, StepRecord};
 use crate::engine::activity::Activity;
+use crate::engine::carry::CarryMode;
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
 use crate::engine::heading::{self, NavSample, Pose};
@@ -43,11 +44,14 @@ impl Pipeline {
         }
         // A step held for a cycle the look-back has not reached is weighed with the rest.
         out.extend(self.detector.release_held());
-        // The gait began after the last step that does not follow its rhythm.
-        let first = out
-            .iter()
-            .rposition(|c| c.coherence < self.cfg.onset_coherence_min)
-            .map_or(0, |i| i + 1);
+        // The gait began after the last step that does not follow its rhythm: in a pocket, after
+        // the last run of `onset_pocket_cycles` such steps.
+        let run = if self.carry.mode() == Some(CarryMode::Pocket) {
+            self.cfg.onset_pocket_cycles
+        } else {
+            1
+        };
+        let first = gait_start(&out, self.cfg.onset_coherence_min, run as usize);
         out.split_off(first)
     }
 
@@ -179,5 +183,53 @@ impl Pipeline {
             t1: step.t,
             pitch_amplitude_deg: step.pitch_amplitude_deg,
         }
+    }
+}
+
+/// Where the gait began among the look-back's candidates `c`: after the last run of `run`
+/// candidates in a row whose coherence is below `min` (0 when there is none).
+fn gait_start(c: &[Candidate], min: f64, run: usize) -> usize {
+    let mut in_row = 0;
+    let mut start = 0;
+    for (i, x) in c.iter().enumerate() {
+        in_row = if x.coherence < min { in_row + 1 } else { 0 };
+        if in_row >= run {
+            start = i + 1;
+        }
+    }
+    start
+}
+
+#[cfg(test)]
+mod tests {
+    use super::gait_start;
+    use crate::engine::detector::Candidate;
+
+    fn cands(coherences: &[f64]) -> Vec<Candidate> {
+        coherences
+            .iter()
+            .enumerate()
+            .map(|(i, &coherence)| Candidate {
+                t: i as f64 * 0.5,
+                period_s: 0.5,
+                coherence,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn one_anti_correlated_cycle_cuts_before_it_when_one_is_enough() {
+        let c = cands(&[0.4, -0.2, 0.5, 0.6]);
+        assert_eq!(gait_start(&c, 0.0, 1), 2);
+        assert_eq!(gait_start(&c, 0.0, 2), 0);
+    }
+
+    #[test]
+    fn a_run_cuts_after_its_last_cycle() {
+        let c = cands(&[-0.3, -0.1, 0.5, -0.4, 0.7, 0.8]);
+        assert_eq!(gait_start(&c, 0.0, 2), 2);
+        assert_eq!(gait_start(&c, 0.0, 1), 4);
+        assert_eq!(gait_start(&c, 0.0, 3), 0);
+        assert_eq!(gait_start(&[], 0.0, 2), 0);
     }
 }
