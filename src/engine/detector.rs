@@ -30,6 +30,8 @@ pub struct DetectorInput {
     /// degrees, when the leg pitch knows it is on a thigh
     /// ([`super::leg_pitch::LegPitch::axis_tilt_deg`]).
     pub axis_tilt_deg: Option<f64>,
+    /// Whether the carrying mode says the phone is in a pocket ([`super::carry::CarryMode::Pocket`]).
+    pub pocket: bool,
 }
 
 /// A step candidate from a detector: its time, and the detector's period estimate for it.

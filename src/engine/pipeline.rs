@@ -494,6 +494,7 @@ impl Pipeline {
             cadence_hz: m.cadence_hz,
             pitch_deg: None,
             axis_tilt_deg: None,
+            pocket: self.carry.mode() == Some(CarryMode::Pocket),
         };
         self.timed(Stage::LegPitch, |p| {
             p.pocket_sample(s, dt, state, &x);

@@ -252,6 +252,7 @@ mod tests {
             cadence_hz: Some(1.8),
             pitch_deg: Some(pitch),
             axis_tilt_deg: None,
+            pocket: false,
         }
     }
 

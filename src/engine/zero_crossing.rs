@@ -307,6 +307,7 @@ mod tests {
             cadence_hz: None,
             pitch_deg: None,
             axis_tilt_deg: None,
+            pocket: false,
         }
     }
 

@@ -23,6 +23,7 @@ impl Pipeline {
         let m = self.motion.diagnostics();
         let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.up)).collect();
         self.detector.restart(m.cadence_hz, &ups, m.mean_z);
+        let pocket = self.carry.mode() == Some(CarryMode::Pocket);
         let mut out = Vec::new();
         let mut last = None;
         for s in samples {
@@ -38,6 +39,7 @@ impl Pipeline {
                 cadence_hz: m.cadence_hz,
                 pitch_deg: s.pitch,
                 axis_tilt_deg: s.axis_tilt,
+                pocket,
             });
             out.extend(self.detector.take_late_step());
             out.extend(c);
@@ -46,7 +48,7 @@ impl Pipeline {
         out.extend(self.detector.release_held());
         // The gait began after the last step that does not follow its rhythm: in a pocket, after
         // the last run of `onset_pocket_cycles` such steps.
-        let run = if self.carry.mode() == Some(CarryMode::Pocket) {
+        let run = if pocket {
             self.cfg.onset_pocket_cycles
         } else {
             1

@@ -19,6 +19,7 @@ fn count(f_in: f64, seconds: f64, rate: f64) -> (usize, f64) {
             cadence_hz: None,
             pitch_deg: None,
             axis_tilt_deg: None,
+            pocket: false,
         };
         if p.push(&x).is_some() {
             n += 1;
@@ -65,6 +66,7 @@ fn walk_with(
             cadence_hz: Some(f),
             pitch_deg: pitch(t),
             axis_tilt_deg: tilt(t),
+            pocket: false,
         });
         steps.extend(c.map(|c| c.t));
         late.extend(p.take_late_step().map(|c| c.t));
@@ -252,6 +254,7 @@ fn a_far_legs_quiet_step_counts_between_two_counted_steps_on_a_thigh() {
                 cadence_hz: Some(f),
                 pitch_deg: None,
                 axis_tilt_deg: thigh.then_some(0.0),
+                pocket: false,
             });
             all.extend(c.map(|c| c.t));
             all.extend(p.take_late_step().map(|c| c.t));
