@@ -8,18 +8,17 @@
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync, spawn } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import https from 'node:https';
 import net from 'node:net';
-import os from 'node:os';
 import path from 'node:path';
 import zlib from 'node:zlib';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, holdToUnlock, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, holdToUnlock, openPage, useBrowser, tempDir } from './util.mjs';
 
 // The tile server's certificate is self-signed: the whole browser (the service worker's fetches
 // too, which a context's ignoreHTTPSErrors does not cover) accepts it.
 const browser = useBrowser(['--ignore-certificate-errors']);
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-basemap-'));
+const tmp = tempDir('basemap');
 
 /** The two checker colours of the test tiles (even and odd x + y). */
 const EVEN = [0x4c, 0xb0, 0x50];

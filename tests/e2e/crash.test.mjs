@@ -17,16 +17,15 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync, spawn } from 'node:child_process';
-import { mkdtempSync, readFileSync } from 'node:fs';
-import os from 'node:os';
+import { readFileSync } from 'node:fs';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
-import { ARTIFACTS, BIN, URL_HTTP, loadPage } from './util.mjs';
+import { ARTIFACTS, BIN, URL_HTTP, loadPage, tempDir } from './util.mjs';
 
 const FLUSH_MS = 250; // live.js
 const WRITE_MS = 100; // an IndexedDB write in flight at the kill
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-crash-'));
-const profile = mkdtempSync(path.join(os.tmpdir(), 'pdr-crash-profile-'));
+const tmp = tempDir('crash');
+const profile = tempDir('crash-profile');
 const TRIALS = ['crash', 'kill-browser', 'close-tab', 'crash', 'kill-browser'];
 const seed = Number(process.env.PDR_CRASH_SEED ?? Date.now() % 1e6);
 /** Progress on stderr with PDR_DEBUG=1. */

@@ -4,12 +4,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync } from 'node:fs';
-import os from 'node:os';
+import { readFileSync } from 'node:fs';
 import path from 'node:path';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, dispatchRealTime, holdToUnlock, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, dispatchRealTime, holdToUnlock, openPage, useBrowser, tempDir } from './util.mjs';
 
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-live-'));
+const tmp = tempDir('live');
 const GEO = { latitude: 46.0037, longitude: 8.9511, accuracy: 12 }; // Lugano
 
 /** A simulated walk as browser events of a platform: {truth_steps, distance_m, events}. */

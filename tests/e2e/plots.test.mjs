@@ -7,15 +7,14 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdtempSync } from 'node:fs';
-import os from 'node:os';
+import { existsSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, openPage, useBrowser, tempDir } from './util.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const IPIN = path.join(here, '../../../shared/data/ipin2023/IPIN2023_T3_TrainingTrial01_repetition01.txt');
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-plots-'));
+const tmp = tempDir('plots');
 const MAX_DOMINANT_SHARE = 0.35;
 // The colours a plot may cover any amount of: grid lines and axes (src/plot/theme.rs).
 const NEUTRAL = {

@@ -7,12 +7,11 @@ import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, openPage, useBrowser, tempDir } from './util.mjs';
 
 const browser = useBrowser();
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-recipe-'));
+const tmp = tempDir('recipe');
 
 /** A simulated straight walk as a header-less folder (acc, gyr, mag, bar) and its recipe. */
 function plainFolder() {

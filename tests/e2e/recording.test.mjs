@@ -3,12 +3,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync } from 'node:fs';
-import os from 'node:os';
+import { readFileSync } from 'node:fs';
 import path from 'node:path';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, holdToUnlock, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, holdToUnlock, openPage, useBrowser, tempDir } from './util.mjs';
 
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-recording-'));
+const tmp = tempDir('recording');
 const browser = useBrowser();
 
 /** A simulated walk as browser events: {truth_steps, distance_m, events}. */

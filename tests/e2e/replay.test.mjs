@@ -17,14 +17,13 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import os from 'node:os';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import path from 'node:path';
 import { performance } from 'node:perf_hooks';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, holdToUnlock, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, holdToUnlock, openPage, useBrowser, tempDir } from './util.mjs';
 
 const WALK = path.resolve(import.meta.dirname, '../../../shared/data/tyrex-pocket/Guillaume_Nexus5_NoDist_FrontPocket');
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-replay-'));
+const tmp = tempDir('replay');
 const browser = useBrowser();
 // PDR_REPLAY_EVENTS=1: the page without the Generic Sensor API, so that it reads the same
 // virtual sensors as devicemotion and deviceorientationabsolute events (as a browser without it).

@@ -4,17 +4,16 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, statSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, readdirSync, writeFileSync, statSync } from 'node:fs';
 import { constants as zlibConstants, deflateRawSync } from 'node:zlib';
-import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { ARTIFACTS, BIN, URL_HTTP, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, URL_HTTP, openPage, useBrowser, tempDir } from './util.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const FIXTURES = path.join(here, '../fixtures/import');
 const SHARED = path.join(here, '../../../shared/data');
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-upload-'));
+const tmp = tempDir('upload');
 
 const browser = useBrowser();
 

@@ -2,7 +2,8 @@
 // browser; opening the page with its errors collected; and a simulated walk dispatched as the
 // browser's own motion and orientation events.
 import { before, after } from 'node:test';
-import { mkdirSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, rmSync } from 'node:fs';
+import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
@@ -15,6 +16,16 @@ export const BIN = process.env.PDR_BIN ?? path.join(here, '../../target/release/
 export const DIST = process.env.PDR_DIST ?? path.join(here, '../../dist');
 export const ARTIFACTS = path.join(here, 'artifacts');
 mkdirSync(ARTIFACTS, { recursive: true });
+
+/**
+ * A fresh directory `pdr-NAME-…` in the system's temporary folder for the file's tests, removed
+ * after them (some hold hundreds of MB: the one-hour log, browser profiles).
+ */
+export function tempDir(name) {
+  const dir = mkdtempSync(path.join(os.tmpdir(), `pdr-${name}-`));
+  after(() => rmSync(dir, { recursive: true, force: true }));
+  return dir;
+}
 
 /** A phone: 390×844 CSS px at three device pixels each, touch. */
 export const PHONE = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, isMobile: true, hasTouch: true };

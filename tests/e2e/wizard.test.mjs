@@ -4,12 +4,11 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, readFileSync } from 'node:fs';
-import os from 'node:os';
+import { readFileSync } from 'node:fs';
 import path from 'node:path';
-import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, holdToUnlock, openPage, useBrowser } from './util.mjs';
+import { ARTIFACTS, BIN, PHONE, URL_HTTP, dispatch, holdToUnlock, openPage, useBrowser, tempDir } from './util.mjs';
 
-const tmp = mkdtempSync(path.join(os.tmpdir(), 'pdr-wizard-'));
+const tmp = tempDir('wizard');
 // The walker: SL = 0.30·f + 0.20 m, longer steps than the built-in profile's 0.25·f + 0.17.
 const A = 0.30;
 const B = 0.20;
