@@ -101,7 +101,7 @@ pub struct PllConfig {
     /// the rule does nothing (applied to any phone it cost Oxford's counts 1.39 → 1.46 %). A back
     /// pocket rides on the buttock, which the leg pitch never takes for a thigh, so the carrying
     /// mode's pocket counts too: with it UbiComp's back pockets 3.96 → 2.70 %, Oxford 1.37 →
-    /// 1.39 % (docs/methods/basso2016.md, "The gates for every pocket").
+    /// 1.39 % (docs/methods/basso2016.md, "Every pocket, from its onset").
     ///
     /// Default 0.3. On WeAllWalk (pocket iPhones, heel strikes from shoe sensors) 90 of 7 035
     /// cycles within 0.3 s of a heel strike fall under 0.5 σ_z and 5 under 0.3 σ_z, against 53
