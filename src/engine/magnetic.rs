@@ -48,7 +48,7 @@
 use super::math::wrap_pi;
 use super::orientation::NavAccel;
 use super::types::{positive, ConfigError, ImuSample};
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Settings of the magnetic guard.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -167,6 +167,59 @@ impl Histogram {
     }
 }
 
+/// The rotation by the angle-axis vector `v` (rad): `UnitQuaternion::from_scaled_axis(v)`,
+/// the same operations in the same order (nalgebra's `Quaternion::exp` of v/2, whose real part
+/// is 0 so its e⁰ = 1 drops out) with one `sincos` of the half angle for its `sin` and `cos`.
+fn rotation_of(v: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let half = v / 2.0;
+    let nn = half.norm_squared();
+    if nn <= f64::EPSILON * f64::EPSILON {
+        return UnitQuaternion::identity();
+    }
+    let n = nn.sqrt();
+    let (s, c) = libm::sincos(n);
+    UnitQuaternion::new_unchecked(Quaternion::from_parts(c, half * (s / n)))
+}
+
+/// The real part and the `k` part of `p·q⁻¹` for unit quaternions: the two of the product's
+/// four components that the twist about up needs, each as nalgebra's product computes it.
+fn real_and_k_of_product_with_inverse(
+    p: &UnitQuaternion<f64>,
+    q: &UnitQuaternion<f64>,
+) -> (f64, f64) {
+    let (p0, p1, p2, p3) = (p.i, p.j, p.k, p.w);
+    let (r0, r1, r2, r3) = (-q.i, -q.j, -q.k, q.w);
+    let w = p3 * r3 - p0 * r0 - p1 * r1 - p2 * r2;
+    let k = p3 * r2 + p0 * r1 - p1 * r0 + p2 * r3;
+    (w, k)
+}
+
+/// The up (z) component of `q·b`, the vector `b` rotated by `q`, as nalgebra's rotation of a
+/// vector computes it (t = 2 v×b, then t·w + v×t + b), without its other two components.
+fn up_of_rotated(q: &UnitQuaternion<f64>, b: &Vector3<f64>) -> f64 {
+    let (vx, vy, vz, w) = (q.i, q.j, q.k, q.w);
+    let tx = (vy * b.z - vz * b.y) * 2.0;
+    let ty = (vz * b.x - vx * b.z) * 2.0;
+    let tz = (vx * b.y - vy * b.x) * 2.0;
+    tz * w + (vx * ty - vy * tx) + b.z
+}
+
+/// [`wrap_pi`] of an angle within ±2π: there `remainder(a, 2π)` is `a` itself or `a ∓ 2π`,
+/// both exact (Sterbenz), so the same value without the `remainder` call. −2π (whose remainder
+/// is −0) and anything else go to [`wrap_pi`].
+fn wrap_half_turns(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if a > -PI && a <= PI {
+        a
+    } else if a > PI && a <= TAU {
+        a - TAU
+    } else if a <= -PI && a > -TAU {
+        a + TAU
+    } else {
+        wrap_pi(a)
+    }
+}
+
 /// The magnetic guard stage.
 #[derive(Debug, Clone)]
 pub struct Magnetic {
@@ -229,9 +282,9 @@ impl Magnetic {
         };
         // 1. Predict: the guarded attitude turned by the body rate; keep only its yaw.
         if let Some(prev) = self.last.filter(|_| dt > 0.0) {
-            let predicted = prev * UnitQuaternion::from_scaled_axis(gyro * dt);
-            let d = predicted * q.inverse();
-            self.delta = wrap_pi(2.0 * libm::atan2(d.k, d.w));
+            let predicted = prev * rotation_of(&(gyro * dt));
+            let (w, k) = real_and_k_of_product_with_inverse(&predicted, &q);
+            self.delta = wrap_half_turns(2.0 * libm::atan2(k, w));
         }
         // 2. Test the field.
         let clean = self.clean(&q, &b, dt);
@@ -244,7 +297,7 @@ impl Magnetic {
         }
         // R_z(δ) from the half angle; the horizontal acceleration turns by δ alike.
         let (s2, c2) = libm::sincos(0.5 * self.delta);
-        let turn = UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(c2, 0.0, 0.0, s2));
+        let turn = UnitQuaternion::new_unchecked(Quaternion::new(c2, 0.0, 0.0, s2));
         let (sn, cs) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
         let guarded = turn * q;
         self.last = Some(guarded);
@@ -266,7 +319,7 @@ impl Magnetic {
         if !(size.is_finite() && size > 1e-6) {
             return true;
         }
-        let sin_dip = (-(q * b).z / size).clamp(-1.0, 1.0);
+        let sin_dip = (-up_of_rotated(q, b) / size).clamp(-1.0, 1.0);
         self.magnitude.add(size);
         self.sin_dip.add(sin_dip);
         self.learnt_s += dt;
@@ -454,5 +507,39 @@ mod tests {
         assert_eq!(h.total, 6);
         assert_eq!(h.median(), Some(30.25));
         assert_eq!(Histogram::new(0.0, 0.5, 4).median(), None);
+    }
+
+    #[test]
+    fn the_shortcuts_match_nalgebra_and_remainder_bit_for_bit() {
+        use std::f64::consts::{PI, TAU};
+        let mut x = 0.1234f64;
+        let mut next = || {
+            x = (x * 9301.0 + 49297.0) % 233280.0;
+            x / 233280.0 * 2.0 - 1.0
+        };
+        for i in 0..2000 {
+            let scale = [1e-9, 1e-3, 0.05, 1.0, 4.0][i % 5];
+            let v = Vector3::new(next(), next(), next()) * scale;
+            let p = UnitQuaternion::from_scaled_axis(Vector3::new(next(), next(), next()) * 3.0);
+            let q = UnitQuaternion::from_scaled_axis(Vector3::new(next(), next(), next()) * 3.0);
+            let b = Vector3::new(next(), next(), next()) * 50.0;
+            let r = rotation_of(&v);
+            let want = UnitQuaternion::from_scaled_axis(v);
+            assert_eq!(r.coords, want.coords, "{v:?}");
+            let d = p * q.inverse();
+            assert_eq!(real_and_k_of_product_with_inverse(&p, &q), (d.w, d.k));
+            assert_eq!(up_of_rotated(&q, &b).to_bits(), (q * b).z.to_bits());
+            let a = next() * 2.0 * TAU;
+            assert_eq!(wrap_half_turns(a).to_bits(), wrap_pi(a).to_bits(), "{a}");
+        }
+        for a in [0.0, -0.0, PI, -PI, TAU, -TAU, 2.0 * TAU, f64::NAN, 1e300] {
+            let (got, want) = (wrap_half_turns(a), wrap_pi(a));
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{a}"
+            );
+        }
+        let tiny = Vector3::new(1e-17, 0.0, 0.0);
+        assert_eq!(rotation_of(&tiny), UnitQuaternion::from_scaled_axis(tiny));
     }
 }
