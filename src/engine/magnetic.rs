@@ -118,13 +118,17 @@ const MAG_BINS: usize = 400; // 0–200 µT
 const SIN_DIP_BIN: f64 = 0.005;
 const SIN_DIP_BINS: usize = 400; // sin(dip) −1…1: about 0.3° near 0°, 1.3° near 65°
 
-/// A median over fixed bins.
+/// A median over fixed bins. The median's bin is followed as values come (`med`, with the count
+/// of the values below it), so a median moves it by the bins it moved, not a scan from the
+/// first bin.
 #[derive(Debug, Clone)]
 struct Histogram {
     counts: Vec<u32>,
     total: u64,
     lo: f64,
     bin: f64,
+    med: usize,
+    below: u64,
 }
 
 impl Histogram {
@@ -134,12 +138,20 @@ impl Histogram {
             total: 0,
             lo,
             bin,
+            med: 0,
+            below: 0,
         }
     }
 
     fn add(&mut self, v: f64) {
         if let Some(i) = self.bin_of(v) {
-            self.counts[i] = self.counts[i].saturating_add(1);
+            // A full bin stays full (and the median may then not be reached: none).
+            if self.counts[i] < u32::MAX {
+                self.counts[i] += 1;
+                if i < self.med {
+                    self.below += 1;
+                }
+            }
             self.total += 1;
         }
     }
@@ -154,16 +166,25 @@ impl Histogram {
             .then(|| (x.max(0.0) as usize).min(self.counts.len() - 1))
     }
 
-    fn median(&self) -> Option<f64> {
-        let half = self.total.div_ceil(2);
-        let mut acc = 0u64;
-        for (i, &c) in self.counts.iter().enumerate() {
-            acc += u64::from(c);
-            if acc >= half && self.total > 0 {
-                return Some(self.lo + (i as f64 + 0.5) * self.bin);
-            }
+    /// The centre of the first bin at which the count so far reaches half the values.
+    fn median(&mut self) -> Option<f64> {
+        if self.total == 0 {
+            return None;
         }
-        None
+        let half = self.total.div_ceil(2);
+        // The bins below the median hold fewer than half, with the median's bin at least half.
+        while self.med > 0 && self.below >= half {
+            self.med -= 1;
+            self.below -= u64::from(self.counts[self.med]);
+        }
+        while self.below + u64::from(self.counts[self.med]) < half {
+            if self.med + 1 == self.counts.len() {
+                return None;
+            }
+            self.below += u64::from(self.counts[self.med]);
+            self.med += 1;
+        }
+        Some(self.lo + (self.med as f64 + 0.5) * self.bin)
     }
 }
 
@@ -507,6 +528,38 @@ mod tests {
         assert_eq!(h.total, 6);
         assert_eq!(h.median(), Some(30.25));
         assert_eq!(Histogram::new(0.0, 0.5, 4).median(), None);
+    }
+
+    #[test]
+    fn the_followed_median_is_the_scanned_one() {
+        let scanned = |h: &Histogram| {
+            let half = h.total.div_ceil(2);
+            let mut acc = 0u64;
+            for (i, &c) in h.counts.iter().enumerate() {
+                acc += u64::from(c);
+                if acc >= half && h.total > 0 {
+                    return Some(h.lo + (i as f64 + 0.5) * h.bin);
+                }
+            }
+            None
+        };
+        let mut h = Histogram::new(0.0, 0.5, 400);
+        let mut x = 0.77f64;
+        for k in 0..5000 {
+            x = (x * 9301.0 + 49297.0) % 233280.0;
+            // Drifting up, then down, with outliers: the median walks both ways.
+            let centre = if k < 2500 {
+                20.0 + k as f64 * 0.02
+            } else {
+                120.0 - k as f64 * 0.03
+            };
+            let v = centre + (x / 233280.0 - 0.5) * 30.0 + if k % 97 == 0 { 150.0 } else { 0.0 };
+            h.add(v);
+            if k % 7 == 0 {
+                let want = scanned(&h);
+                assert_eq!(h.median(), want, "{k}");
+            }
+        }
     }
 
     #[test]
