@@ -221,6 +221,17 @@ const REMOUNT_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
 /// last stride (cos 15°): a phone being moved swings about no axis of its own.
 const STEADY_AXIS_COS: f64 = 0.966;
 
+/// `m ← m·decay + w wᵀ·dt` for the symmetric second moment `m`: each entry as
+/// `m * decay + w * w.transpose() * dt` computes it, `m_ij·decay + (w_i w_j)·dt`, the six
+/// distinct ones once and mirrored (w_i w_j and w_j w_i are the same product).
+fn add_outer(m: &mut Matrix3<f64>, decay: f64, w: &Vector3<f64>, dt: f64) {
+    let (x, y, z) = (w.x, w.y, w.z);
+    let e = |v: f64, p: f64| v * decay + p * dt;
+    let (xx, yy, zz) = (e(m.m11, x * x), e(m.m22, y * y), e(m.m33, z * z));
+    let (xy, xz, yz) = (e(m.m12, x * y), e(m.m13, x * z), e(m.m23, y * z));
+    *m = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
+}
+
 impl LegPitch {
     /// A stage with validated settings.
     pub fn new(cfg: LegPitchConfig) -> Self {
@@ -267,7 +278,7 @@ impl LegPitch {
                 };
                 // e^(−Δt/τ) to first order: Δt/τ is about 0.003.
                 let decay = (1.0 - x.dt / self.cfg.axis_tau_s).max(0.0);
-                self.moment = self.moment * decay + w * w.transpose() * x.dt;
+                add_outer(&mut self.moment, decay, &w, x.dt);
                 self.since_axis += 1;
                 if self.axis.is_none() || self.since_axis >= AXIS_EVERY {
                     self.since_axis = 0;
@@ -684,5 +695,19 @@ mod tests {
         assert!((tilt - 10.0).abs() < 0.5 && a.is_some(), "{tilt}");
         let (tilt, a) = turned(30.0);
         assert!((tilt - 30.0).abs() < 0.5 && a.is_none(), "{tilt}");
+    }
+
+    #[test]
+    fn the_moment_update_matches_the_matrix_form() {
+        let mut m = Matrix3::zeros();
+        let mut want = Matrix3::zeros();
+        for k in 0..50 {
+            let f = k as f64;
+            let w = Vector3::new(libm::sin(0.7 * f) * 3.0, libm::cos(1.3 * f), -0.2 * f + 1.0);
+            let (decay, dt) = (1.0 - 0.01 / 4.0, 0.01 + 1e-4 * libm::sin(f * 0.37));
+            add_outer(&mut m, decay, &w, dt);
+            want = want * decay + w * w.transpose() * dt;
+            assert_eq!(m, want);
+        }
     }
 }

@@ -48,7 +48,7 @@
 use super::math::wrap_pi;
 use super::orientation::NavAccel;
 use super::types::{positive, ConfigError, ImuSample};
-use nalgebra::{UnitQuaternion, Vector3};
+use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 
 /// Settings of the magnetic guard.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -118,13 +118,17 @@ const MAG_BINS: usize = 400; // 0–200 µT
 const SIN_DIP_BIN: f64 = 0.005;
 const SIN_DIP_BINS: usize = 400; // sin(dip) −1…1: about 0.3° near 0°, 1.3° near 65°
 
-/// A median over fixed bins.
+/// A median over fixed bins. The median's bin is followed as values come (`med`, with the count
+/// of the values below it), so a median moves it by the bins it moved, not a scan from the
+/// first bin.
 #[derive(Debug, Clone)]
 struct Histogram {
     counts: Vec<u32>,
     total: u64,
     lo: f64,
     bin: f64,
+    med: usize,
+    below: u64,
 }
 
 impl Histogram {
@@ -134,12 +138,20 @@ impl Histogram {
             total: 0,
             lo,
             bin,
+            med: 0,
+            below: 0,
         }
     }
 
     fn add(&mut self, v: f64) {
         if let Some(i) = self.bin_of(v) {
-            self.counts[i] = self.counts[i].saturating_add(1);
+            // A full bin stays full (and the median may then not be reached: none).
+            if self.counts[i] < u32::MAX {
+                self.counts[i] += 1;
+                if i < self.med {
+                    self.below += 1;
+                }
+            }
             self.total += 1;
         }
     }
@@ -154,16 +166,78 @@ impl Histogram {
             .then(|| (x.max(0.0) as usize).min(self.counts.len() - 1))
     }
 
-    fn median(&self) -> Option<f64> {
-        let half = self.total.div_ceil(2);
-        let mut acc = 0u64;
-        for (i, &c) in self.counts.iter().enumerate() {
-            acc += u64::from(c);
-            if acc >= half && self.total > 0 {
-                return Some(self.lo + (i as f64 + 0.5) * self.bin);
-            }
+    /// The centre of the first bin at which the count so far reaches half the values.
+    fn median(&mut self) -> Option<f64> {
+        if self.total == 0 {
+            return None;
         }
-        None
+        let half = self.total.div_ceil(2);
+        // The bins below the median hold fewer than half, with the median's bin at least half.
+        while self.med > 0 && self.below >= half {
+            self.med -= 1;
+            self.below -= u64::from(self.counts[self.med]);
+        }
+        while self.below + u64::from(self.counts[self.med]) < half {
+            if self.med + 1 == self.counts.len() {
+                return None;
+            }
+            self.below += u64::from(self.counts[self.med]);
+            self.med += 1;
+        }
+        Some(self.lo + (self.med as f64 + 0.5) * self.bin)
+    }
+}
+
+/// The rotation by the angle-axis vector `v` (rad): `UnitQuaternion::from_scaled_axis(v)`,
+/// the same operations in the same order (nalgebra's `Quaternion::exp` of v/2, whose real part
+/// is 0 so its e⁰ = 1 drops out) with one `sincos` of the half angle for its `sin` and `cos`.
+fn rotation_of(v: &Vector3<f64>) -> UnitQuaternion<f64> {
+    let half = v / 2.0;
+    let nn = half.norm_squared();
+    if nn <= f64::EPSILON * f64::EPSILON {
+        return UnitQuaternion::identity();
+    }
+    let n = nn.sqrt();
+    let (s, c) = libm::sincos(n);
+    UnitQuaternion::new_unchecked(Quaternion::from_parts(c, half * (s / n)))
+}
+
+/// The real part and the `k` part of `p·q⁻¹` for unit quaternions: the two of the product's
+/// four components that the twist about up needs, each as nalgebra's product computes it.
+fn real_and_k_of_product_with_inverse(
+    p: &UnitQuaternion<f64>,
+    q: &UnitQuaternion<f64>,
+) -> (f64, f64) {
+    let (p0, p1, p2, p3) = (p.i, p.j, p.k, p.w);
+    let (r0, r1, r2, r3) = (-q.i, -q.j, -q.k, q.w);
+    let w = p3 * r3 - p0 * r0 - p1 * r1 - p2 * r2;
+    let k = p3 * r2 + p0 * r1 - p1 * r0 + p2 * r3;
+    (w, k)
+}
+
+/// The up (z) component of `q·b`, the vector `b` rotated by `q`, as nalgebra's rotation of a
+/// vector computes it (t = 2 v×b, then t·w + v×t + b), without its other two components.
+fn up_of_rotated(q: &UnitQuaternion<f64>, b: &Vector3<f64>) -> f64 {
+    let (vx, vy, vz, w) = (q.i, q.j, q.k, q.w);
+    let tx = (vy * b.z - vz * b.y) * 2.0;
+    let ty = (vz * b.x - vx * b.z) * 2.0;
+    let tz = (vx * b.y - vy * b.x) * 2.0;
+    tz * w + (vx * ty - vy * tx) + b.z
+}
+
+/// [`wrap_pi`] of an angle within ±2π: there `remainder(a, 2π)` is `a` itself or `a ∓ 2π`,
+/// both exact (Sterbenz), so the same value without the `remainder` call. −2π (whose remainder
+/// is −0) and anything else go to [`wrap_pi`].
+fn wrap_half_turns(a: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    if a > -PI && a <= PI {
+        a
+    } else if a > PI && a <= TAU {
+        a - TAU
+    } else if a <= -PI && a > -TAU {
+        a + TAU
+    } else {
+        wrap_pi(a)
     }
 }
 
@@ -229,9 +303,9 @@ impl Magnetic {
         };
         // 1. Predict: the guarded attitude turned by the body rate; keep only its yaw.
         if let Some(prev) = self.last.filter(|_| dt > 0.0) {
-            let predicted = prev * UnitQuaternion::from_scaled_axis(gyro * dt);
-            let d = predicted * q.inverse();
-            self.delta = wrap_pi(2.0 * libm::atan2(d.k, d.w));
+            let predicted = prev * rotation_of(&(gyro * dt));
+            let (w, k) = real_and_k_of_product_with_inverse(&predicted, &q);
+            self.delta = wrap_half_turns(2.0 * libm::atan2(k, w));
         }
         // 2. Test the field.
         let clean = self.clean(&q, &b, dt);
@@ -244,7 +318,7 @@ impl Magnetic {
         }
         // R_z(δ) from the half angle; the horizontal acceleration turns by δ alike.
         let (s2, c2) = libm::sincos(0.5 * self.delta);
-        let turn = UnitQuaternion::new_unchecked(nalgebra::Quaternion::new(c2, 0.0, 0.0, s2));
+        let turn = UnitQuaternion::new_unchecked(Quaternion::new(c2, 0.0, 0.0, s2));
         let (sn, cs) = (2.0 * s2 * c2, c2 * c2 - s2 * s2);
         let guarded = turn * q;
         self.last = Some(guarded);
@@ -266,7 +340,7 @@ impl Magnetic {
         if !(size.is_finite() && size > 1e-6) {
             return true;
         }
-        let sin_dip = (-(q * b).z / size).clamp(-1.0, 1.0);
+        let sin_dip = (-up_of_rotated(q, b) / size).clamp(-1.0, 1.0);
         self.magnitude.add(size);
         self.sin_dip.add(sin_dip);
         self.learnt_s += dt;
@@ -454,5 +528,71 @@ mod tests {
         assert_eq!(h.total, 6);
         assert_eq!(h.median(), Some(30.25));
         assert_eq!(Histogram::new(0.0, 0.5, 4).median(), None);
+    }
+
+    #[test]
+    fn the_followed_median_is_the_scanned_one() {
+        let scanned = |h: &Histogram| {
+            let half = h.total.div_ceil(2);
+            let mut acc = 0u64;
+            for (i, &c) in h.counts.iter().enumerate() {
+                acc += u64::from(c);
+                if acc >= half && h.total > 0 {
+                    return Some(h.lo + (i as f64 + 0.5) * h.bin);
+                }
+            }
+            None
+        };
+        let mut h = Histogram::new(0.0, 0.5, 400);
+        let mut x = 0.77f64;
+        for k in 0..5000 {
+            x = (x * 9301.0 + 49297.0) % 233280.0;
+            // Drifting up, then down, with outliers: the median walks both ways.
+            let centre = if k < 2500 {
+                20.0 + k as f64 * 0.02
+            } else {
+                120.0 - k as f64 * 0.03
+            };
+            let v = centre + (x / 233280.0 - 0.5) * 30.0 + if k % 97 == 0 { 150.0 } else { 0.0 };
+            h.add(v);
+            if k % 7 == 0 {
+                let want = scanned(&h);
+                assert_eq!(h.median(), want, "{k}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_shortcuts_match_nalgebra_and_remainder_bit_for_bit() {
+        use std::f64::consts::{PI, TAU};
+        let mut x = 0.1234f64;
+        let mut next = || {
+            x = (x * 9301.0 + 49297.0) % 233280.0;
+            x / 233280.0 * 2.0 - 1.0
+        };
+        for i in 0..2000 {
+            let scale = [1e-9, 1e-3, 0.05, 1.0, 4.0][i % 5];
+            let v = Vector3::new(next(), next(), next()) * scale;
+            let p = UnitQuaternion::from_scaled_axis(Vector3::new(next(), next(), next()) * 3.0);
+            let q = UnitQuaternion::from_scaled_axis(Vector3::new(next(), next(), next()) * 3.0);
+            let b = Vector3::new(next(), next(), next()) * 50.0;
+            let r = rotation_of(&v);
+            let want = UnitQuaternion::from_scaled_axis(v);
+            assert_eq!(r.coords, want.coords, "{v:?}");
+            let d = p * q.inverse();
+            assert_eq!(real_and_k_of_product_with_inverse(&p, &q), (d.w, d.k));
+            assert_eq!(up_of_rotated(&q, &b).to_bits(), (q * b).z.to_bits());
+            let a = next() * 2.0 * TAU;
+            assert_eq!(wrap_half_turns(a).to_bits(), wrap_pi(a).to_bits(), "{a}");
+        }
+        for a in [0.0, -0.0, PI, -PI, TAU, -TAU, 2.0 * TAU, f64::NAN, 1e300] {
+            let (got, want) = (wrap_half_turns(a), wrap_pi(a));
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{a}"
+            );
+        }
+        let tiny = Vector3::new(1e-17, 0.0, 0.0);
+        assert_eq!(rotation_of(&tiny), UnitQuaternion::from_scaled_axis(tiny));
     }
 }

@@ -66,11 +66,14 @@ pub fn fourier_of(
         (c * dc - s * ds, s * dc + c * ds)
     };
     let (mut prev_t, mut cur) = (t0, p0);
-    for n in buf.range(start..end).chain(std::iter::once(&p1)) {
-        add(&cur, 0.5 * (n.t - prev_t), phasor);
-        phasor = rotate(phasor, n.t - cur.t);
-        prev_t = cur.t;
-        cur = *n;
+    let [head, tail] = super::runs(buf, start, end);
+    for run in [head, tail, std::slice::from_ref(&p1)] {
+        for n in run {
+            add(&cur, 0.5 * (n.t - prev_t), phasor);
+            phasor = rotate(phasor, n.t - cur.t);
+            prev_t = cur.t;
+            cur = *n;
+        }
     }
     add(&cur, 0.5 * (cur.t - prev_t), phasor);
     let scale = 2.0 / period;

@@ -80,6 +80,17 @@ pub struct NavSample {
     pub device_up: [f64; 3],
 }
 
+/// The samples `start..end` of `buf` as its contiguous runs, in order: loops over plain slices
+/// rather than the buffer's iterator (which checks for the wrap at every sample).
+pub(crate) fn runs(buf: &VecDeque<NavSample>, start: usize, end: usize) -> [&[NavSample]; 2] {
+    let (head, tail) = buf.as_slices();
+    let split = head.len();
+    [
+        &head[start.min(split)..end.min(split)],
+        &tail[start.max(split) - split..end.max(split) - split],
+    ]
+}
+
 impl NavSample {
     /// A sample at `t` with nothing in it: no acceleration, pitch, turn or attitude (tests
     /// set what they need over it).

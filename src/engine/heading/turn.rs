@@ -76,18 +76,24 @@ fn mean_over<const N: usize>(
     let last = (t1, at(&buf[end - 1], &buf[end], t1));
     let mut sum = [0.0; N];
     let mut prev = first;
-    for p in buf
-        .range(start..end)
-        .map(|s| (s.t, channel(s)))
-        .chain(std::iter::once(last))
-    {
-        let dt = p.0 - prev.0;
-        for ((s, a), b) in sum.iter_mut().zip(p.1).zip(prev.1) {
-            *s += 0.5 * (a + b) * dt;
+    for run in super::runs(buf, start, end) {
+        for s in run {
+            let p = (s.t, channel(s));
+            add_trapezoid(&mut sum, &prev, &p);
+            prev = p;
         }
-        prev = p;
     }
+    add_trapezoid(&mut sum, &prev, &last);
     Some(sum.map(|v| v / (t1 - t0)))
+}
+
+/// Adds the trapezoid from the point `a` to the point `b` (time, channels) to `sum`.
+#[inline]
+fn add_trapezoid<const N: usize>(sum: &mut [f64; N], a: &(f64, [f64; N]), b: &(f64, [f64; N])) {
+    let dt = b.0 - a.0;
+    for ((s, y), x) in sum.iter_mut().zip(b.1).zip(a.1) {
+        *s += 0.5 * (y + x) * dt;
+    }
 }
 
 /// The device over the stride around a time: its yaw, and where gravity sits in it.
@@ -299,5 +305,45 @@ mod tests {
         );
         lead.clear();
         assert!(!at(&mut lead, 7.2, true));
+    }
+
+    #[test]
+    fn a_wrapped_buffer_gives_the_same_bits_as_a_contiguous_one() {
+        let sample = |i: usize| {
+            let t = i as f64 * 0.0101 + 1e-4 * libm::sin(i as f64);
+            NavSample {
+                e: libm::sin(7.0 * t),
+                n: libm::cos(5.0 * t) + 0.1,
+                up: libm::sin(11.0 * t + 0.3),
+                yaw: 0.2 * t,
+                device_up: [libm::sin(t), 0.3, libm::cos(t)],
+                ..NavSample::empty(t)
+            }
+        };
+        // A ring buffer whose samples wrap around its end, and the same samples in one run.
+        let mut wrapped = VecDeque::with_capacity(256);
+        for i in 0..200 {
+            wrapped.push_back(sample(i));
+        }
+        for i in 200..300 {
+            wrapped.pop_front();
+            wrapped.push_back(sample(i));
+        }
+        assert!(!wrapped.as_slices().1.is_empty());
+        let mut flat = wrapped.clone();
+        flat.make_contiguous();
+        assert!(flat.as_slices().1.is_empty());
+        for (t0, t1) in [(1.2, 2.3), (1.05, 1.9), (2.2, 2.9), (1.7, 2.05)] {
+            let f = super::super::fourier(&wrapped, t0, t1).unwrap();
+            assert_eq!(f, super::super::fourier(&flat, t0, t1).unwrap());
+            let (a, b) = (
+                stride(&wrapped, t0, t1).unwrap(),
+                stride(&flat, t0, t1).unwrap(),
+            );
+            assert_eq!((a.yaw.to_bits(), a.up), (b.yaw.to_bits(), b.up));
+            let (start, end) = (40, 120);
+            let runs: Vec<NavSample> = super::super::runs(&wrapped, start, end).concat();
+            assert_eq!(runs, wrapped.range(start..end).copied().collect::<Vec<_>>());
+        }
     }
 }
