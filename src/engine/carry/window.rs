@@ -183,10 +183,28 @@ impl Window {
         // The newest first, as many as the window has: lag 0 is the slot itself.
         let n = (self.up.len() - self.first).min(len);
         let recent = &self.recent[self.pos..self.pos + n];
-        self.lags[0] += x * x;
         let lo = self.min_lag.min(n);
-        for (s, &o) in self.lags[lo..n].iter_mut().zip(&recent[lo..]) {
-            *s += x * o;
+        let leaves = |i: usize| self.slots.get(i).is_some_and(|f| f.t0 < t_min);
+        if n > 1 && leaves(self.first) && !leaves(self.first + 1) {
+            // One slot in, one out (the usual case): both in one pass over the lags.
+            let up = &self.up[self.first..self.first + n];
+            let x0 = up[0];
+            self.lags[0] += x * x - x0 * x0;
+            for ((s, &o), &u) in self.lags[lo..n]
+                .iter_mut()
+                .zip(&recent[lo..])
+                .zip(&up[lo..])
+            {
+                *s += x * o - x0 * u;
+            }
+            self.sums.sub(&self.terms[self.first]);
+            self.first += 1;
+            self.left += 1;
+        } else {
+            self.lags[0] += x * x;
+            for (s, &o) in self.lags[lo..n].iter_mut().zip(&recent[lo..]) {
+                *s += x * o;
+            }
         }
         while self.slots.get(self.first).is_some_and(|f| f.t0 < t_min) {
             let up = &self.up[self.first..];
