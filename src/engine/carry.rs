@@ -22,6 +22,11 @@
 //!   jacket, a neck pouch), near 0 when it faces sideways (the ear, an armband).
 //! - **Rate**: the rms of ω about its mean over the window, rad/s.
 //!
+//! The window's sums (of the specific force, its square and its direction, of ω and |ω|², and
+//! the vertical acceleration's lagged products) are kept as running sums, updated as 20 ms
+//! slots enter and leave it and summed afresh every 1024 slots; the means are taken out of
+//! them algebraically (Σ (x − x̄)² = Σ x² − n x̄²).
+//!
 //! # Rule (each [`CarryConfig::every_s`]; a vote of the last [`CarryConfig::votes`] decides)
 //! 1. The **hand**, screen up: u_z ≥ [`CarryConfig::screen_up_min`] and tilt <
 //!    [`CarryConfig::hand_tilt_deg`]. First: a turn while texting turns the phone fast, and
@@ -40,9 +45,13 @@
 //! `examples/carry_features.rs`) and the simulator's modes; `docs/methods/carrying-mode.md` has
 //! the confusion matrices.
 
+mod window;
+
 use super::types::{positive, ConfigError, DeviceVec};
-use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{Matrix3, SymmetricEigen};
 use std::collections::VecDeque;
+use std::ops::RangeInclusive;
+use window::{Slot, Window};
 
 /// Where the phone is carried.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -212,44 +221,16 @@ pub struct CarryDiagnostics {
 /// half as much, but blur a back pocket's steps.)
 const SLOT_S: f64 = 0.02;
 
-#[derive(Debug, Clone, Copy, Default)]
-struct Slot {
-    t0: f64,
-    n: f64,
-    up: f64,
-    a: Vector3<f64>,
-    w: Vector3<f64>,
-    nw: f64,
-}
-
-/// A complete slot in the window: its means, taken once when it closes.
-#[derive(Debug, Clone, Copy)]
-struct Closed {
-    t0: f64,
-    /// Mean specific force, m/s².
-    a: Vector3<f64>,
-    /// Mean vertical acceleration in the navigation frame, m/s².
-    up: f64,
-    /// Mean rate, rad/s, when the slot had a gyroscope.
-    w: Option<Vector3<f64>>,
-}
-
-impl Closed {
-    fn of(s: &Slot) -> Self {
-        Closed {
-            t0: s.t0,
-            a: s.a / s.n,
-            up: s.up / s.n,
-            w: (s.nw > 0.0).then(|| s.w / s.nw),
-        }
-    }
+/// The lags searched for the step period, slots: 0.28–0.85 s.
+fn step_lags() -> RangeInclusive<usize> {
+    libm::round(0.28 / SLOT_S) as usize..=libm::round(0.85 / SLOT_S) as usize
 }
 
 /// The running detector.
 #[derive(Debug, Clone)]
 pub struct Carry {
     cfg: CarryConfig,
-    slots: VecDeque<Closed>,
+    window: Window,
     filling: Option<Slot>,
     next_eval_t: f64,
     votes: VecDeque<CarryMode>,
@@ -261,7 +242,8 @@ impl Carry {
     pub fn new(cfg: CarryConfig) -> Self {
         Carry {
             cfg,
-            slots: VecDeque::new(),
+            // From the shortest step period searched's neighbour to the stride of the longest's.
+            window: Window::new(step_lags().start() - 1..=2 * (step_lags().end() + 1)),
             filling: None,
             next_eval_t: f64::NEG_INFINITY,
             votes: VecDeque::new(),
@@ -290,14 +272,7 @@ impl Carry {
                 t0: t,
                 ..Slot::default()
             };
-            self.slots.push_back(Closed::of(&done));
-            while self
-                .slots
-                .front()
-                .is_some_and(|f| f.t0 < t - self.cfg.window_s)
-            {
-                self.slots.pop_front();
-            }
+            self.window.push(&done, t - self.cfg.window_s);
         }
         s.n += 1.0;
         s.up += up;
@@ -317,7 +292,7 @@ impl Carry {
 
     /// Forgets the window and the votes (after a gap); the mode decided is kept.
     pub fn clear(&mut self) {
-        self.slots.clear();
+        self.window.clear();
         self.filling = None;
         self.votes.clear();
     }
@@ -333,7 +308,7 @@ impl Carry {
     }
 
     fn evaluate(&mut self, t: f64) {
-        let span = self.slots.front().map_or(0.0, |f| t - f.t0);
+        let span = self.window.slots().first().map_or(0.0, |f| t - f.t0);
         if span < 0.8 * self.cfg.window_s {
             return;
         }
@@ -362,25 +337,23 @@ impl Carry {
         }
     }
 
-    fn features(&self) -> Option<CarryFeatures> {
-        let a: Vec<Vector3<f64>> = self.slots.iter().map(|s| s.a).collect();
+    fn features(&mut self) -> Option<CarryFeatures> {
+        let mu = self.window.centre();
+        let w = &self.window;
+        let (a, s) = (w.slots(), w.sums());
         let n = a.len() as f64;
-        let m = a.iter().sum::<Vector3<f64>>() / n;
+        let m = s.a() / n;
         let g = m.norm();
-        let var: f64 = a.iter().map(|v| (v - m).norm_squared()).sum::<f64>() / n;
+        // Σ |a − m|² = Σ |a|² − n |m|².
+        let var = (s.aa_trace() / n - m.norm_squared()).max(0.0);
         let rms = libm::sqrt(var);
         if !(g > 1.0) || rms < self.cfg.accel_rms_min {
             return None;
         }
         let u = m / g;
-        let tilt = libm::sqrt(
-            a.iter()
-                // 2(1 − cos θ) = (2 sin(θ/2))², θ² within 0.7 % up to 30°, without an acos.
-                .map(|v| 2.0 * (1.0 - (v.dot(&u) / v.norm().max(1e-9)).clamp(-1.0, 1.0)))
-                .sum::<f64>()
-                / n,
-        )
-        .to_degrees();
+        // Σ 2(1 − cos θ) = 2(n − u·Σ a/|a|), where 2(1 − cos θ) = (2 sin(θ/2))², θ² within
+        // 0.7 % up to 30°, without an acos.
+        let tilt = libm::sqrt((2.0 * (n - u.dot(&s.dir()))).max(0.0) / n).to_degrees();
         // Autocorrelations at a lag in slots (the slots are SLOT_S apart within a few percent),
         // each over the pairs it has: a stride's lag has half the window's.
         let corr = |k: usize| {
@@ -388,32 +361,22 @@ impl Carry {
                 return 0.0;
             }
             let c: f64 = (0..a.len() - k)
-                .map(|i| (a[i] - m).dot(&(a[i + k] - m)))
+                .map(|i| (a[i].a - m).dot(&(a[i + k].a - m)))
                 .sum();
             c / (a.len() - k) as f64 / var.max(1e-12)
         };
-        let up: Vec<f64> = self.slots.iter().map(|s| s.up).collect();
-        let mu = up.iter().sum::<f64>() / n;
-        let v: Vec<f64> = up.iter().map(|x| x - mu).collect();
-        let var_v: f64 = v.iter().map(|x| x * x).sum::<f64>() / n;
+        let var_v = w.centred_lag_sum(0, mu) / n;
         let corr_v = |k: usize| -> f64 {
-            let m = v.len().saturating_sub(k).max(1);
-            lag_sum(&v, k) / m as f64 / var_v.max(1e-12)
+            let m = a.len().saturating_sub(k).max(1);
+            w.centred_lag_sum(k, mu) / m as f64 / var_v.max(1e-12)
         };
-        // Every other lag, then the best one's neighbours: a third of the work of every lag.
-        // The coarse lags' products (k and 2k, with the lags they share) are summed in one pass.
-        let lags = libm::round(0.28 / SLOT_S) as usize..=libm::round(0.85 / SLOT_S) as usize;
-        let coarse_sums = CoarseSums::new(&v, lags.clone());
-        let coarse_v = |k: usize| -> f64 {
-            let m = v.len().saturating_sub(k).max(1);
-            coarse_sums.get(k) / m as f64 / var_v.max(1e-12)
-        };
+        // Every other lag, then the best one's neighbours.
         let best = |b: (usize, f64), x: (usize, f64)| if x.1 > b.1 { x } else { b };
-        let coarse = lags
-            .step_by(2)
-            .map(|k| (k, 0.5 * (coarse_v(k) + coarse_v(2 * k))))
-            .fold((0, f64::NEG_INFINITY), best);
         let score = |k: usize| (k, 0.5 * (corr_v(k) + corr_v(2 * k)));
+        let coarse = step_lags()
+            .step_by(2)
+            .map(score)
+            .fold((0, f64::NEG_INFINITY), best);
         let (step, periodicity) = [coarse.0.saturating_sub(1), coarse.0 + 1]
             .into_iter()
             .map(score)
@@ -421,22 +384,17 @@ impl Carry {
         if periodicity < self.cfg.periodicity_min {
             return None;
         }
-        let mut h = Matrix3::zeros();
-        for v in &a {
-            let d = v - m;
-            let d = d - u * d.dot(&u);
-            h += d * d.transpose();
-        }
+        // The horizontal part of Σ (a − m)(a − m)ᵀ = Σ a aᵀ − m (Σ a)ᵀ.
+        let p = Matrix3::identity() - u * u.transpose();
+        let h = p * (s.aa() - m * s.a().transpose()) * p;
         let e = SymmetricEigen::new(h);
         let forward_z = libm::fabs(e.eigenvectors.column(e.eigenvalues.imax())[2]);
-        let rate = {
-            let w: Vec<Vector3<f64>> = self.slots.iter().filter_map(|s| s.w).collect();
-            (w.len() * 2 >= a.len()).then(|| {
-                let k = w.len() as f64;
-                let mw = w.iter().sum::<Vector3<f64>>() / k;
-                libm::sqrt(w.iter().map(|v| (v - mw).norm_squared()).sum::<f64>() / k)
-            })
-        };
+        // Σ |ω − ω̄|² = Σ |ω|² − k |ω̄|² over the k slots with a rate.
+        let (nw, sw, sww) = s.rate();
+        let rate = (nw * 2.0 >= n).then(|| {
+            let mw = sw / nw;
+            libm::sqrt((sww / nw - mw.norm_squared()).max(0.0))
+        });
         Some(CarryFeatures {
             up: [u.x, u.y, u.z],
             tilt_deg: tilt,
@@ -468,93 +426,10 @@ impl Carry {
     }
 }
 
-/// Σ v[i]·v[i + k] over the pairs the window has, summed in order of i (0 without a pair).
-fn lag_sum(v: &[f64], k: usize) -> f64 {
-    (0..v.len().saturating_sub(k))
-        .map(|i| v[i] * v[i + k])
-        .sum::<f64>()
-}
-
-/// [`lag_sum`] at four ascending lags, side by side: the pairs all four have in one loop (four
-/// independent sums), then each lag's remaining pairs, so each sum adds its products in order of
-/// i and is the same number.
-fn four_lag_sums(v: &[f64], k: [usize; 4]) -> [f64; 4] {
-    // `Iterator::sum` of f64 starts from −0.0; so do these.
-    let mut acc = [-0.0; 4];
-    let n = v.len();
-    let common = n.saturating_sub(k[3]);
-    let head = &v[..common];
-    let at = |j: usize| &v[k[j].min(n)..(k[j] + common).min(n)];
-    // Each exactly `common` long, so the loop needs no bounds checks.
-    let (b0, b1, b2, b3) = (
-        &at(0)[..common],
-        &at(1)[..common],
-        &at(2)[..common],
-        &at(3)[..common],
-    );
-    for (i, &x) in head.iter().enumerate() {
-        acc[0] += x * b0[i];
-        acc[1] += x * b1[i];
-        acc[2] += x * b2[i];
-        acc[3] += x * b3[i];
-    }
-    for (a, &kj) in acc.iter_mut().zip(&k) {
-        for i in common..n.saturating_sub(kj) {
-            *a += v[i] * v[i + kj];
-        }
-    }
-    acc
-}
-
-/// The lag sums [`lag_sum`] of every other lag in a range and of twice each, found in one pass
-/// over the window: each sum still adds its products in order of i, so it is the same number,
-/// but the lags' sums run side by side instead of one after another.
-struct CoarseSums {
-    lags: Vec<usize>,
-    sums: Vec<f64>,
-}
-
-impl CoarseSums {
-    fn new(v: &[f64], range: std::ops::RangeInclusive<usize>) -> Self {
-        let mut lags: Vec<usize> = range.clone().step_by(2).collect();
-        lags.extend(range.step_by(2).map(|k| 2 * k));
-        lags.sort_unstable();
-        lags.dedup();
-        let mut sums = Vec::with_capacity(lags.len() + 3);
-        for chunk in lags.chunks(4) {
-            // A short last chunk repeats its last lag; the repeats' sums are dropped.
-            let k: [usize; 4] = std::array::from_fn(|j| chunk[j.min(chunk.len() - 1)]);
-            sums.extend_from_slice(&four_lag_sums(v, k)[..chunk.len()]);
-        }
-        CoarseSums { lags, sums }
-    }
-
-    /// The sum at lag `k`, one of the lags it was made for.
-    fn get(&self, k: usize) -> f64 {
-        self.lags.binary_search(&k).map_or(0.0, |j| self.sums[j])
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_coarse_sums_are_the_lag_sums_bit_for_bit() {
-        for n in [0usize, 1, 20, 90, 151] {
-            let v: Vec<f64> = (0..n)
-                .map(|i| libm::sin(i as f64 * 0.37) * 1.7 + libm::cos(i as f64 * 1.3) * 0.2)
-                .collect();
-            let c = CoarseSums::new(&v, 14..=43);
-            for k in (14..=43).step_by(2).flat_map(|k| [k, 2 * k]) {
-                assert_eq!(
-                    c.get(k).to_bits(),
-                    lag_sum(&v, k).to_bits(),
-                    "n {n} lag {k}"
-                );
-            }
-        }
-    }
+    use nalgebra::Vector3;
 
     #[test]
     fn a_phone_at_rest_or_a_tiny_window_decides_nothing_and_never_panics() {

@@ -9,7 +9,6 @@
 
 use super::math::OnePole;
 use super::types::{positive, ConfigError};
-use std::collections::VecDeque;
 
 /// Motion state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -146,11 +145,18 @@ pub struct MotionDiagnostics {
     pub cadence_hz: Option<f64>,
 }
 
+/// Samples that have left the window are dropped from the front of its buffer once there are
+/// this many (and at least as many as are still in it): a move of the window, rarely.
+const DROP_AT: usize = 1024;
+
 /// The running detector.
 #[derive(Debug, Clone)]
 pub struct MotionDetector {
     cfg: MotionConfig,
-    buf: VecDeque<(f64, f64)>,
+    // The window's samples (t, a) are `buf[first..]`: a sample leaves by a step of `first`, and
+    // those gone are dropped now and then.
+    buf: Vec<(f64, f64)>,
+    first: usize,
     sum: f64,
     sum_sq: f64,
     pops: u32,
@@ -167,7 +173,8 @@ impl MotionDetector {
     pub fn new(cfg: MotionConfig) -> Self {
         MotionDetector {
             cfg,
-            buf: VecDeque::new(),
+            buf: Vec::new(),
+            first: 0,
             sum: 0.0,
             sum_sq: 0.0,
             pops: 0,
@@ -182,28 +189,33 @@ impl MotionDetector {
 
     /// Adds a vertical-acceleration sample (m/s², gravity removed) and returns the state.
     pub fn push(&mut self, t: f64, a: f64) -> Motion {
-        self.buf.push_back((t, a));
+        self.buf.push((t, a));
         self.sum += a;
         self.sum_sq += a * a;
-        while let Some(&(t0, a0)) = self.buf.front() {
+        while let Some(&(t0, a0)) = self.buf.get(self.first) {
             if t0 >= t - self.cfg.window_s {
                 break;
             }
-            self.buf.pop_front();
+            self.first += 1;
             self.sum -= a0;
             self.sum_sq -= a0 * a0;
             self.pops += 1;
         }
+        if self.first >= DROP_AT && 2 * self.first >= self.buf.len() {
+            self.buf.drain(..self.first);
+            self.first = 0;
+        }
+        let window = &self.buf[self.first..];
         // Re-sum now and then so rounding in the running sums cannot accumulate.
         if self.pops >= 4096 {
             self.pops = 0;
-            self.sum = self.buf.iter().map(|p| p.1).sum();
-            self.sum_sq = self.buf.iter().map(|p| p.1 * p.1).sum();
+            self.sum = window.iter().map(|p| p.1).sum();
+            self.sum_sq = window.iter().map(|p| p.1 * p.1).sum();
         }
-        let n = self.buf.len() as f64;
+        let n = window.len() as f64;
         self.mean = self.sum / n;
         self.sigma = (self.sum_sq / n - self.mean * self.mean).max(0.0).sqrt();
-        let span = t - self.buf.front().map_or(t, |p| p.0);
+        let span = t - window.first().map_or(t, |p| p.0);
         let dt = self.last_t.map_or(0.0, |l| t - l);
         self.last_t = Some(t);
         self.periodicity.push(t, dt, a);
@@ -257,6 +269,7 @@ impl MotionDetector {
     /// Drops the window (after a gap). The state is kept until the window refills.
     pub fn clear_window(&mut self) {
         self.buf.clear();
+        self.first = 0;
         self.sum = 0.0;
         self.sum_sq = 0.0;
         self.last_t = None;
@@ -323,6 +336,8 @@ const AC_STEP_MAX_S: f64 = 1.0 / 1.15;
 pub struct Periodicity {
     hp: OnePole,
     lp: [OnePole; 2],
+    // The last interval, s, and the high- and low-pass gains of a step of it.
+    gains: (f64, f64, f64),
     prev: Option<(f64, f64)>,
     next_t: f64,
     // History of the resampled signal, newest first, as a mirrored ring: every point is written
@@ -362,6 +377,7 @@ impl Periodicity {
         Periodicity {
             hp: OnePole::with_cutoff_hz(0.5),
             lp: [OnePole::with_cutoff_hz(5.0); 2],
+            gains: (f64::NAN, 0.0, 0.0),
             prev: None,
             next_t: 0.0,
             hist: [0.0; 2 * (AC_N + AC_L + 1)],
@@ -383,9 +399,13 @@ impl Periodicity {
 
     /// Adds a vertical-acceleration sample taken `dt` s after the previous one.
     pub fn push(&mut self, t: f64, dt: f64, a: f64) {
-        let slow = self.hp.update(a, dt);
+        // Computed again only when the interval changes.
+        if dt != self.gains.0 {
+            self.gains = (dt, self.hp.gain(dt), self.lp[0].gain(dt));
+        }
+        let slow = self.hp.update_with_gain(a, self.gains.1);
         // The two low-pass stages share one τ, so one gain.
-        let k = self.lp[0].gain(dt);
+        let k = self.gains.2;
         let y = self.lp[0].update_with_gain(a - slow, k);
         let y = self.lp[1].update_with_gain(y, k);
         let Some((t0, y0)) = self.prev else {

@@ -55,6 +55,10 @@ impl ImuSample {
     /// within ±[`MAX_TIME_S`] and every sensor component within [`IMU_LIMITS`]; names the
     /// first field that is not.
     pub fn check(&self) -> Result<(), InputError> {
+        if self.plausible() {
+            return Ok(());
+        }
+        // A sample refused: the tests one by one, to name the first field that fails.
         self.check_finite()?;
         let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
         if !time_in_range(self.t) {
@@ -70,6 +74,28 @@ impl ImuSample {
             return bad("mag");
         }
         Ok(())
+    }
+
+    /// Whether [`Self::check`] accepts the sample, all tests at once without naming a field:
+    /// |x| ≤ limit is false for NaN and ±∞, so the ranges imply finiteness.
+    fn plausible(&self) -> bool {
+        let within = |v: &DeviceVec, limit: f64| {
+            (v.x.abs() <= limit) & (v.y.abs() <= limit) & (v.z.abs() <= limit)
+        };
+        time_in_range(self.t)
+            & within(&self.accel, IMU_LIMITS.accel_m_s2)
+            & self
+                .gyro
+                .as_ref()
+                .map_or(true, |g| within(g, IMU_LIMITS.gyro_rad_s))
+            & self
+                .mag
+                .as_ref()
+                .map_or(true, |m| within(m, IMU_LIMITS.mag_ut))
+            & self
+                .orientation
+                .as_ref()
+                .map_or(true, |q| all_finite(q.coords.iter()))
     }
 
     /// Checks that every value present is finite; names the first field that is not.
@@ -318,5 +344,56 @@ pub(crate) fn positive(field: &'static str, v: f64) -> Result<(), ConfigError> {
             field,
             format!("must be a finite positive number, got {v}"),
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Quaternion, UnitQuaternion};
+
+    /// The tests one by one, as [`ImuSample::check`] runs them for a sample refused.
+    fn field_by_field(s: &ImuSample) -> Result<(), InputError> {
+        s.check_finite()?;
+        let bad = |field: &'static str| Err(InputError::NonFinite { t: s.t, field });
+        if !time_in_range(s.t) {
+            return bad("t");
+        }
+        if s.accel.amax() > IMU_LIMITS.accel_m_s2 {
+            return bad("accel");
+        }
+        if s.gyro.is_some_and(|g| g.amax() > IMU_LIMITS.gyro_rad_s) {
+            return bad("gyro");
+        }
+        if s.mag.is_some_and(|m| m.amax() > IMU_LIMITS.mag_ut) {
+            return bad("mag");
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn the_check_at_once_accepts_what_the_tests_one_by_one_do() {
+        let values = [0.0, -3.5, 9e2, 2e3, 5e4, 2e5, 2e12, f64::NAN, f64::INFINITY];
+        let q = UnitQuaternion::identity();
+        let odd = UnitQuaternion::new_unchecked(Quaternion::new(f64::NAN, 0.0, 0.0, 0.0));
+        for (i, &x) in values.iter().enumerate() {
+            for field in 0..5 {
+                let v = |f: usize| DeviceVec::new(1.0, if f == field { x } else { 2.0 }, -1.0);
+                let s = ImuSample {
+                    t: if field == 0 { x } else { 1.0 },
+                    accel: v(1),
+                    gyro: (i % 2 == 0).then(|| v(2)),
+                    mag: (i % 3 != 0).then(|| v(3)),
+                    orientation: Some(if field == 4 && x.is_nan() { odd } else { q }),
+                };
+                // Debug text: a NaN time is not equal to itself.
+                let (fast, slow) = (s.check(), field_by_field(&s));
+                assert_eq!(
+                    format!("{fast:?}"),
+                    format!("{slow:?}"),
+                    "field {field} value {x}"
+                );
+            }
+        }
     }
 }
