@@ -78,11 +78,22 @@ function showPitch(pitch) {
   $('cal-pitch').dataset.pitch = pitch.ok ? 'ok' : 'refused';
 }
 
+/** The upload worker's wasm module (it holds the importers; the page's does not), loaded and
+ * started the first time a recording is read, here on the page's thread. */
+let reader = null;
+function recordingReader() {
+  reader ??= import('./pkg-worker/pdr.js').then(async (m) => { await m.default(); return m; });
+  return reader;
+}
+
 /** Adds a recording of a walk over the typed distance as a walking walk: the engine reads the
- * file and runs it with live mode's settings (CalibrationWizard.recorded). */
+ * file and runs it with live mode's settings (read_recorded_walk, in the worker's module), and
+ * the wizard adds the walk (CalibrationWizard.recorded). */
 async function recordingChosen(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
-  const r = wizard.recorded(file.name, bytes, Number($('cal-distance').value), liveSettings());
+  const { read_recorded_walk } = await recordingReader();
+  const read = read_recorded_walk(file.name, bytes, Number($('cal-distance').value), liveSettings());
+  const r = wizard.recorded(file.name, read);
   $('cal-recording-result').textContent = r.text;
   $('cal-recording-result').classList.toggle('error', r.error);
   showPitch(r.pitch);

@@ -53,8 +53,9 @@ impl FuzzyLengths {
     }
 }
 
-/// What one recorded walk of known distance gives the calibration.
-#[derive(Debug, Clone, PartialEq)]
+/// What one recorded walk of known distance gives the calibration (serialisable: the upload
+/// worker's module reads the recording and the page's module adds the walk).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RecordedWalk {
     /// The walk as the wizard takes it: the distance, the steps' frequencies, Hz, and their
     /// unscaled fuzzy lengths, m.
