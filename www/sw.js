@@ -11,7 +11,7 @@ const TILES_MAX = 2000;
 const SHELL = [
   './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/recipes.js', 'www/worker.js', 'www/util.js', 'www/style.css',
   'www/basemap.js',
-  'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/pkg-worker/pdr.js', 'www/pkg-worker/pdr_bg.wasm',
+  'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/pkg-upload/pdr.js', 'www/pkg-upload/pdr_bg.wasm',
   'www/manifest.webmanifest', 'www/icon.svg',
 ];
 

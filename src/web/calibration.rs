@@ -72,8 +72,8 @@ impl CalibrationWizard {
         self.outcome(added, distance_m, pitch)
     }
 
-    /// A recording of a walk added as a walking walk as a live walk is: `read`, what the upload
-    /// worker's module made of the file `file_name` with live mode's settings
+    /// A recording of a walk added as a walking walk as a live walk is: `read`, what upload
+    /// mode's module made of the file `file_name` with live mode's settings
     /// (`read_recorded_walk`, [`crate::engine::recorded_walk`]); its leg pitch calibrates the
     /// pitch step length as the normal walk's does. Returns `{text, error, pitch}` as
     /// [`Self::walked`] does; `error` with the reason, naming the file, when the distance is

@@ -3,23 +3,20 @@
 //! May import: everything below it (`engine`, `io`, `plot`, `settings`, `live`, `analysis`,
 //! `eval`, `demo`); nothing imports it.
 
-// The page's module (feature `page`): what the page's thread calls.
-#[cfg(feature = "page")]
-mod analysis_view;
-#[cfg(feature = "page")]
+// Both modules draw on canvases, and both draw maps (upload mode's on its analyses' maps), each
+// module with its own base map setting.
+#[cfg(any(feature = "page", feature = "upload"))]
 mod basemap;
+#[cfg(any(feature = "page", feature = "upload"))]
+mod canvas;
+
+// The page's module (feature `page`): what the page's thread calls before upload mode is used.
 #[cfg(feature = "page")]
 mod calibration;
 #[cfg(feature = "page")]
-mod canvas;
-#[cfg(feature = "page")]
 mod demo;
 #[cfg(feature = "page")]
-mod gesture;
-#[cfg(feature = "page")]
 mod live;
-#[cfg(feature = "page")]
-mod recipe_form;
 #[cfg(feature = "page")]
 mod recorder;
 #[cfg(feature = "page")]
@@ -27,12 +24,20 @@ mod settings;
 #[cfg(feature = "page")]
 mod upload_page;
 
-// The upload worker's module (feature `worker`): the files read and analysed.
-#[cfg(feature = "worker")]
+// Upload mode's module (feature `upload`): the files read and analysed (in the upload worker),
+// and the analyses' views, their gestures and the recipe form (on the page, loaded when files
+// are opened).
+#[cfg(feature = "upload")]
+mod analysis_view;
+#[cfg(feature = "upload")]
 mod blobs;
-#[cfg(feature = "worker")]
+#[cfg(feature = "upload")]
+mod gesture;
+#[cfg(feature = "upload")]
+mod recipe_form;
+#[cfg(feature = "upload")]
 mod recording;
-#[cfg(feature = "worker")]
+#[cfg(feature = "upload")]
 mod upload;
 
 use wasm_bindgen::prelude::*;

@@ -1,5 +1,5 @@
-//! A recording of a calibration walk, read for the wizard in the upload worker's module (the
-//! module with the importers); the page's module adds the walk
+//! A recording of a calibration walk, read for the wizard with upload mode's module (the module
+//! with the importers); the page's module adds the walk
 //! ([`CalibrationWizard::recorded`](super::calibration::CalibrationWizard::recorded)).
 //! May import: `engine`, `io`, `live`, `settings`.
 
