@@ -3,7 +3,7 @@
 // screen and draws them under the maps. Maps redraw on the window event `pdr-basemap`: when the
 // setting changes, and once a frame while tiles arrive (the engine fires `pdr-tile` for each).
 import { basemap_default, basemap_form, basemap_message, basemap_stored, set_basemap } from './pkg/pdr.js';
-import { $, note } from './util.js';
+import { $, note, onUploadWasm, uploadExports } from './util.js';
 
 const KEY = 'pdr-basemap';
 /** The service worker's tile cache (see sw.js). */
@@ -18,13 +18,21 @@ function save(s) {
 
 const redraw = () => window.dispatchEvent(new Event('pdr-basemap'));
 
+/** The template and attribution the engine has; upload mode's module (its maps) gets them too. */
+let handed = ['', ''];
+function hand(template, attribution) {
+  set_basemap(template, attribution);
+  handed = [template, attribution];
+  uploadExports?.set_basemap(template, attribution);
+}
+
 /** Hands the setting to the engine; a template it refuses leaves the map off, with the reason. */
 function apply(s) {
   try {
-    set_basemap(s.on ? s.template : '', s.attribution);
+    hand(s.on ? s.template : '', s.attribution);
     note('basemap-messages', 'template', null);
   } catch (err) {
-    set_basemap('', '');
+    hand('', '');
     note('basemap-messages', 'template', basemap_message('off', String(err.message ?? err)), 'error');
   }
   $('basemap').dataset.on = s.on ? 'yes' : 'no';
@@ -38,6 +46,7 @@ export function setupBasemap() {
   $('basemap-template').value = s.template;
   $('basemap-attribution').value = s.attribution;
   apply(s);
+  onUploadWasm((m) => m.set_basemap(...handed));
   const fromForm = () => basemap_form($('basemap-on').checked, $('basemap-template').value,
     $('basemap-attribution').value);
   const changed = () => { const n = fromForm(); save(n); apply(n); };

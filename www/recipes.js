@@ -3,8 +3,11 @@
 // the sanity checks are the engine's (src/io/import/recipe, through the worker), and so are the
 // form, its preview and the recipe its values make (form_view.rs); this file only wires the
 // form's events, keeps the saved recipes and hands the recipe JSON around.
-import { RecipeForm, recipe_in, recipe_normalise } from './pkg/pdr.js';
-import { $, download, editStored, readStored, render, safeName } from './util.js';
+// The recipes' functions are upload mode's wasm module's (loaded when files are opened, before
+// the form shows).
+import {
+  $, download, editStored, readStored, render, safeName, uploadExports as wasm, uploadWasm,
+} from './util.js';
 
 const LIST = 'pdr-recipes';
 
@@ -14,7 +17,7 @@ export const saved = () => readStored(LIST, 'recipes') ?? {};
 /** Saves a recipe (its JSON, checked by the engine) under its own name; refused while the
  * stored recipes cannot be read. */
 export function save(json) {
-  const text = recipe_normalise(json);
+  const text = wasm.recipe_normalise(json);
   editStored(LIST, 'recipes', (all) => { all[JSON.parse(text).name] = text; });
 }
 
@@ -28,6 +31,7 @@ export function mayHoldRecipes(files) {
 
 /** See [`mayHoldRecipes`]: the recipes among the files, and the other files. */
 export async function splitUploaded(files) {
+  const { recipe_in } = await uploadWasm();
   const recipes = [];
   const rest = [];
   for (const f of files) {
@@ -100,7 +104,7 @@ function saveClicked() {
 export function showForm(description, { preview, run }) {
   const box = $('recipe-form');
   form?.engine.free();
-  form = { engine: new RecipeForm(description), preview, run };
+  form = { engine: new wasm.RecipeForm(description), preview, run };
   box.replaceChildren(...form.engine.view().map(render));
   box.querySelector('.recipe-files').addEventListener('change', fileChanged);
   box.querySelector('.recipe-files').addEventListener('click', moreClicked);
@@ -108,7 +112,7 @@ export function showForm(description, { preview, run }) {
   $('recipe-save').addEventListener('click', saveClicked);
   $('recipe-download').addEventListener('click', () => {
     try {
-      const text = recipe_normalise(current());
+      const text = wasm.recipe_normalise(current());
       download(text, `${safeName(JSON.parse(text).name)}.recipe.json`, 'application/json');
     } catch (err) { $('recipe-saved').textContent = String(err?.message ?? err); }
   });

@@ -5,13 +5,14 @@
 // Base map tiles (the only images the page loads from another origin, and only when the user
 // turned the base map on) are kept in their own cache for offline reuse: cache first, at most
 // TILES_MAX of them, the oldest stored evicted first.
-const CACHE = 'pdr-shell-v5';
+const CACHE = 'pdr-shell-v6';
 const TILES = 'pdr-tiles-v1';
 const TILES_MAX = 2000;
 const SHELL = [
   './', 'index.html', 'www/app.js', 'www/live.js', 'www/store.js', 'www/wizard.js', 'www/profiles.js', 'www/upload.js', 'www/recipes.js', 'www/worker.js', 'www/util.js', 'www/style.css',
   'www/basemap.js',
-  'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/manifest.webmanifest', 'www/icon.svg',
+  'www/pkg/pdr.js', 'www/pkg/pdr_bg.wasm', 'www/pkg-upload/pdr.js', 'www/pkg-upload/pdr_bg.wasm',
+  'www/manifest.webmanifest', 'www/icon.svg',
 ];
 
 self.addEventListener('install', (event) => {

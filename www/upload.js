@@ -2,12 +2,14 @@
 // the page draws each analysis (AnalysisView, in wasm) and lets the user zoom, pan, hover,
 // compare two configurations and export. Event plumbing only: the figures come from the engine.
 import {
-  AnalysisView, Gesture, cancelled_text, compare_settings, config_label, engine_progress, loaded_text, map_box,
+  cancelled_text, compare_settings, config_label, engine_progress, loaded_text, map_box,
   profile_options, read_progress, reading_text, result_card, upload_config,
 } from './pkg/pdr.js';
 import * as profiles from './profiles.js';
 import * as recipes from './recipes.js';
-import { $, dark, download, el, paint, render, safeName, test, values } from './util.js';
+import {
+  $, dark, download, el, paint, render, safeName, test, uploadExports as wasm, uploadWasm, values,
+} from './util.js';
 
 let worker = null;
 let logs = []; // [{info, card, views: {a, b}, step, bounds}]
@@ -58,8 +60,15 @@ function progress(text, fraction) {
 
 function startWorker() {
   worker?.terminate();
-  worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
-  worker.onmessage = ({ data }) => onWorker(data);
+  const w = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+  worker = w;
+  // The analyses' views are upload mode's module's, loaded beside the worker: a message that
+  // comes first waits for it (in order), unless this worker has been replaced meanwhile.
+  uploadWasm();
+  w.onmessage = ({ data }) => {
+    if (wasm) onWorker(data);
+    else uploadWasm().then(() => { if (worker === w) onWorker(data); });
+  };
   worker.onerror = (e) => { banner(`The worker failed: ${e.message}`); finish(); };
 }
 
@@ -135,7 +144,7 @@ function onWorker(m) {
   } else if (m.type === 'analysis') {
     const l = logs[m.index];
     l.views[m.tag]?.free();
-    l.views[m.tag] = AnalysisView.from_bytes(new Uint8Array(m.bytes));
+    l.views[m.tag] = wasm.AnalysisView.from_bytes(new Uint8Array(m.bytes));
     show(l, m.tag, m.label);
     Object.assign(test.upload.logs[m.index], { engine_ms: m.engine_ms, analyse_ms: m.analyse_ms, memory_mb: m.memory_mb });
   } else if (m.type === 'describe') {
@@ -286,7 +295,7 @@ function answered(l, view, { step, bounds, redraw }) {
 /** Hover or tap picks a step; wheel and pinch zoom; drag pans; double-click resets (the map's
  * bounds are the log's, shared by its maps). In canvas pixels. */
 function wireMap(l, tag, cv) {
-  const g = new Gesture('map');
+  const g = new wasm.Gesture('map');
   forward(cv, (r) => cv.width / r.width, (ev) => {
     const v = l.views[tag];
     answered(l, v, v.map_gesture(g, ev, l.step ?? undefined));
@@ -299,7 +308,7 @@ function wirePlots(l) {
   for (const cv of l.card.querySelectorAll('canvas.plot')) {
     if (cv.dataset.wired) continue;
     cv.dataset.wired = '1';
-    const g = new Gesture('plot');
+    const g = new wasm.Gesture('plot');
     // Where the engine drew the time axis (CSS pixels from the canvas's left edge).
     const axis = () => cv.axis ?? [0, cv.getBoundingClientRect().width];
     forward(cv, () => 1, (ev) => answered(l, l.views.a, l.views.a.plot_gesture(g, ev, axis())));

@@ -82,6 +82,28 @@ export function render(node) {
  * `keep`, `.-` by default) becomes one `_`. */
 export const safeName = (name, keep = '.-') => name.replace(new RegExp(`[^\\w${keep}]+`, 'g'), '_');
 
+/** Upload mode's wasm module (`pkg-upload/`: the importers, the analyses' views and their gestures,
+ * the recipe form), which the page's own module leaves out so that the page starts sooner:
+ * loaded and started at the first call; its exports once loaded, `null` before. */
+export let uploadExports = null;
+const uploadLoaded = []; // called with the exports once they are loaded
+let uploadLoading = null;
+export function uploadWasm() {
+  uploadLoading ??= import('./pkg-upload/pdr.js').then(async (m) => {
+    await m.default();
+    uploadExports = m;
+    for (const f of uploadLoaded) f(m);
+    return m;
+  });
+  return uploadLoading;
+}
+
+/** Calls `f(exports)` once upload mode's module is loaded (at once when it is). */
+export function onUploadWasm(f) {
+  if (uploadExports) f(uploadExports);
+  else uploadLoaded.push(f);
+}
+
 /** The page's state for the end-to-end tests and the curious, in one place: `demo`, `upload`,
  * `live`, `recovery`, `calibration`, `storage` (each set by the part it describes). */
 export const test = (window.__pdrTest ??= {});

@@ -10,7 +10,7 @@ import {
 } from './pkg/pdr.js';
 import { settings as liveSettings, startWalk } from './live.js';
 import * as profiles from './profiles.js';
-import { $, dark, download, note, paint, render, safeName, smallButton, test } from './util.js';
+import { $, dark, download, note, paint, render, safeName, smallButton, test, uploadWasm } from './util.js';
 
 let wizard; // made in setupWizard, once the engine is loaded
 let walking = null; // { session, row, button, result, pace, band, target, gnss }
@@ -79,10 +79,13 @@ function showPitch(pitch) {
 }
 
 /** Adds a recording of a walk over the typed distance as a walking walk: the engine reads the
- * file and runs it with live mode's settings (CalibrationWizard.recorded). */
+ * file and runs it with live mode's settings (read_recorded_walk, in upload mode's module), and
+ * the wizard adds the walk (CalibrationWizard.recorded). */
 async function recordingChosen(file) {
   const bytes = new Uint8Array(await file.arrayBuffer());
-  const r = wizard.recorded(file.name, bytes, Number($('cal-distance').value), liveSettings());
+  const { read_recorded_walk } = await uploadWasm();
+  const read = read_recorded_walk(file.name, bytes, Number($('cal-distance').value), liveSettings());
+  const r = wizard.recorded(file.name, read);
   $('cal-recording-result').textContent = r.text;
   $('cal-recording-result').classList.toggle('error', r.error);
   showPitch(r.pitch);

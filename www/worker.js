@@ -4,7 +4,8 @@
 // {settings, label}; 'load' may carry recipes: [json], and {type: 'preview', recipe} asks what a
 // recipe makes of the loaded files. Out: 'progress', 'parsed', 'describe' (when nothing was
 // recognised), 'preview', 'analysis' (bytes, transferred), 'pdrlog', 'done', 'failed'.
-import init, { Upload } from './pkg/pdr.js';
+// Upload mode's wasm module (the importers, zip, csv, the analysis), not the page's.
+import init, { Upload } from './pkg-upload/pdr.js';
 
 let upload = null;
 const ready = init();

@@ -53,8 +53,9 @@ impl FuzzyLengths {
     }
 }
 
-/// What one recorded walk of known distance gives the calibration.
-#[derive(Debug, Clone, PartialEq)]
+/// What one recorded walk of known distance gives the calibration (serialisable: the upload
+/// worker's module reads the recording and the page's module adds the walk).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RecordedWalk {
     /// The walk as the wizard takes it: the distance, the steps' frequencies, Hz, and their
     /// unscaled fuzzy lengths, m.
@@ -101,4 +102,37 @@ pub fn recorded_walk(
             .collect(),
         engine_distance_m: p.diagnostics().distance_m,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The walk crosses from upload mode's wasm module to the page's as postcard bytes of
+    /// `Result<RecordedWalk, String>`: every figure comes back bit for bit, a step's NaN pitch
+    /// amplitude too, and so does a reason.
+    #[test]
+    fn a_recorded_walk_and_a_reason_cross_as_bytes() {
+        let walk = RecordedWalk {
+            walk: CalibrationWalk {
+                distance_m: 60.0,
+                step_freqs_hz: vec![1.8, 1.81],
+                fuzzy_lengths_m: vec![0.7, 0.71],
+            },
+            pitch_amplitudes_deg: vec![31.5, f64::NAN],
+            engine_distance_m: 58.25,
+        };
+        let ok: Result<RecordedWalk, String> = Ok(walk.clone());
+        let back: Result<RecordedWalk, String> =
+            postcard::from_bytes(&postcard::to_stdvec(&ok).unwrap()).unwrap();
+        let back = back.unwrap();
+        assert_eq!(back.walk, walk.walk);
+        assert_eq!(back.engine_distance_m, walk.engine_distance_m);
+        assert_eq!(back.pitch_amplitudes_deg[0], 31.5);
+        assert!(back.pitch_amplitudes_deg[1].is_nan());
+        let why: Result<RecordedWalk, String> = Err("walk.csv: too few steps".into());
+        let back: Result<RecordedWalk, String> =
+            postcard::from_bytes(&postcard::to_stdvec(&why).unwrap()).unwrap();
+        assert_eq!(back, why);
+    }
 }

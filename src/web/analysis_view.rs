@@ -327,24 +327,3 @@ impl AnalysisView {
         })
     }
 }
-
-/// The diagnostics plots in the page's order, `(kind, title)`: the kind
-/// [`AnalysisView::draw_plot`] takes and the title people read (the canvas's label).
-pub(super) fn plot_list() -> Vec<(&'static str, &'static str)> {
-    use crate::plot::upload::Plot;
-    Plot::ALL
-        .iter()
-        .map(|p| match p {
-            Plot::Accel => ("accel", "Vertical acceleration, PLL output and steps"),
-            Plot::Sigma => ("sigma", "σ of vertical acceleration and activity"),
-            Plot::Height => ("height", "Height above the start and floor"),
-            Plot::Heading => ("heading", "Heading per step"),
-            Plot::Steps => ("steps", "Step frequency and length"),
-            Plot::Gnss => ("gnss", "GNSS accuracy and innovations"),
-            Plot::Fusion => (
-                "fusion",
-                "Fusion: estimated step-length scale and heading correction",
-            ),
-        })
-        .collect()
-}

@@ -72,39 +72,19 @@ impl CalibrationWizard {
         self.outcome(added, distance_m, pitch)
     }
 
-    /// A recording of a walk of `distance_m` metres (the file `file_name` and its `bytes`, read
-    /// as upload mode reads a file) through the engine with `settings` (`{set, profile}`, as
-    /// for `Live`), added as a walking walk as a live walk is ([`crate::engine::recorded_walk`]);
-    /// its leg pitch calibrates the pitch step length as the normal walk's does. Returns
-    /// `{text, error, pitch}` as [`Self::walked`] does; `error` with the reason, naming the
-    /// file, when the distance is missing, the file is not one recording or the walk has too
-    /// few steps.
-    pub fn recorded(
-        &mut self,
-        file_name: &str,
-        bytes: Vec<u8>,
-        distance_m: f64,
-        settings: JsValue,
-    ) -> Result<JsValue, JsError> {
-        use crate::live::wizard::{message, recording_log, recording_text, RECORDING_PACE};
-        if !(distance_m.is_finite() && distance_m > 0.0) {
-            let text = message("distance", "").map_err(to_js)?;
-            return self.outcome(Err(text), distance_m, None);
-        }
-        let cfg = super::settings_from(settings)?.config().map_err(to_js)?;
-        let mut set = crate::io::import::MemSet::new(vec![(file_name.to_string(), bytes)]);
-        let read =
-            recording_log(file_name, crate::io::import::import_all(&mut set)).and_then(|log| {
-                crate::engine::recorded_walk::recorded_walk(
-                    log.dated(&cfg),
-                    &log.records,
-                    distance_m,
-                )
-                .map_err(|e| format!("{file_name}: {e}"))
-            });
+    /// A recording of a walk added as a walking walk as a live walk is: `read`, what upload
+    /// mode's module made of the file `file_name` with live mode's settings
+    /// (`read_recorded_walk`, [`crate::engine::recorded_walk`]); its leg pitch calibrates the
+    /// pitch step length as the normal walk's does. Returns `{text, error, pitch}` as
+    /// [`Self::walked`] does; `error` with the reason, naming the file, when the distance is
+    /// missing, the file is not one recording or the walk has too few steps.
+    pub fn recorded(&mut self, file_name: &str, read: &[u8]) -> Result<JsValue, JsError> {
+        use crate::live::wizard::{recording_text, RECORDING_PACE};
+        let read: Result<crate::engine::recorded_walk::RecordedWalk, String> =
+            postcard::from_bytes(read).map_err(to_js)?;
         let r = match read {
             Ok(r) => r,
-            Err(text) => return self.outcome(Err(text), distance_m, None),
+            Err(text) => return self.outcome(Err(text), f64::NAN, None),
         };
         let added = self
             .wizard
@@ -116,7 +96,7 @@ impl CalibrationWizard {
             .map(|w| recording_text(file_name, w, r.engine_distance_m))
             .map_err(|e| format!("{file_name}: {e}"));
         let pitch = added.is_ok().then_some(r.pitch_amplitudes_deg);
-        self.outcome(added, distance_m, pitch)
+        self.outcome(added, r.walk.distance_m, pitch)
     }
 
     /// A walk's outcome for the page, `{text, error, pitch}`: the walk's figures or why it was
@@ -316,8 +296,7 @@ pub fn profile_summary(text: Option<String>) -> Result<JsValue, JsError> {
 #[wasm_bindgen]
 pub fn refine_profile(text: &str, evidence: JsValue, name: &str) -> Result<JsValue, JsError> {
     let p = read_profile(text)?;
-    let walk: crate::engine::refinement::WalkEvidence =
-        serde_wasm_bindgen::from_value(evidence).map_err(to_js)?;
+    let walk: crate::engine::refinement::WalkEvidence = super::from_js(&evidence).map_err(to_js)?;
     let r = match crate::engine::refinement::refine(&p, &walk) {
         Ok(r) => r,
         Err(why) => {
@@ -397,7 +376,7 @@ pub fn gnss_state(state: &str, accuracy_m: Option<f64>) -> Result<JsValue, JsErr
 #[wasm_bindgen]
 pub fn import_profile(file_name: &str, text: &str, profiles: JsValue) -> Result<JsValue, JsError> {
     let existing: std::collections::BTreeMap<String, String> =
-        serde_wasm_bindgen::from_value(profiles).map_err(to_js)?;
+        super::from_js(&profiles).map_err(to_js)?;
     super::to_json_value(
         &match crate::live::wizard::import_profile(file_name, text, &existing) {
             Ok((name, text)) => serde_json::json!({ "name": name, "text": text }),

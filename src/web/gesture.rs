@@ -52,8 +52,7 @@ fn one() -> f64 {
 
 impl Event {
     fn read(v: JsValue) -> Result<(Event, Input), JsError> {
-        let e: Event =
-            serde_wasm_bindgen::from_value(v).map_err(|e| to_js(format!("event: {e}")))?;
+        let e: Event = super::from_js(&v).map_err(|e| to_js(format!("event: {e}")))?;
         let (id, at) = (e.id, (e.x, e.y));
         let input = match e.kind.as_str() {
             "pointerdown" => Input::Down { id, at },

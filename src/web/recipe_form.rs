@@ -1,5 +1,6 @@
 //! The recipe form's engine side: the form, a sensor row and its fields as view trees, and the
-//! recipe the form's values make ([`crate::io::import::recipe::form_view`]).
+//! recipe the form's values make ([`crate::io::import::recipe::form_view`]), and a recipe
+//! file's check ([`recipe_in`], [`recipe_normalise`]).
 //! May import: `io`.
 
 use super::{to_js, to_json_value};
@@ -23,10 +24,9 @@ impl RecipeForm {
             files: Vec<FileGuess>,
             draft: Option<serde_json::Value>,
         }
-        let v: serde_json::Value = serde_wasm_bindgen::from_value(description).map_err(to_js)?;
-        let d: Description = serde_json::from_value(v).map_err(to_js)?;
+        let d: Description = super::from_js(&description).map_err(to_js)?;
         let draft = match d.draft {
-            Some(r) => Some(serde_json::from_value::<Recipe>(r).map_err(to_js)?),
+            Some(r) => Some(serde_json::from_str::<Recipe>(&r.to_string()).map_err(to_js)?),
             None => None,
         };
         Ok(RecipeForm {
@@ -52,7 +52,24 @@ impl RecipeForm {
     /// The recipe (JSON) the form's values make: the name field's `name` and each sensor row's
     /// `{file, selects: [{k or col, value}]}`.
     pub fn recipe(&self, name: &str, rows: JsValue) -> Result<String, JsError> {
-        let rows: Vec<RowValues> = serde_wasm_bindgen::from_value(rows).map_err(to_js)?;
+        let rows: Vec<RowValues> = super::from_js(&rows).map_err(to_js)?;
         self.form.recipe(name, &rows).map_err(to_js)
     }
+}
+
+/// A file's text as a recipe, normalised ([`recipe_normalise`]), or `undefined` when it is not
+/// one (a recording's JSON uploaded beside the recipes): a recipe uploaded with its files is
+/// applied to them.
+#[wasm_bindgen]
+pub fn recipe_in(text: &str) -> Option<String> {
+    Recipe::from_json(text).ok()?.to_json().ok()
+}
+
+/// Checks a recipe's JSON and returns it normalised (pretty, as the CLI reads it), or the error.
+#[wasm_bindgen]
+pub fn recipe_normalise(json: &str) -> Result<String, JsError> {
+    Recipe::from_json(json)
+        .map_err(to_js)?
+        .to_json()
+        .map_err(to_js)
 }

@@ -29,7 +29,7 @@ pub fn upload_config(set: JsValue, profile: Option<String>) -> Result<JsValue, J
     use crate::engine::calibration::ProfileFile;
     use crate::engine::StepLengthModel;
     let mut settings = crate::settings::Settings {
-        set: serde_wasm_bindgen::from_value(set).map_err(|e| to_js(format!("settings: {e}")))?,
+        set: super::from_js(&set).map_err(|e| to_js(format!("settings: {e}")))?,
         profile: None,
     };
     let takes_profile = match settings.config().map(|c| c.step_length) {

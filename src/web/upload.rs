@@ -267,23 +267,6 @@ impl Upload {
     }
 }
 
-/// A file's text as a recipe, normalised ([`recipe_normalise`]), or `undefined` when it is not
-/// one (a recording's JSON uploaded beside the recipes): a recipe uploaded with its files is
-/// applied to them.
-#[wasm_bindgen]
-pub fn recipe_in(text: &str) -> Option<String> {
-    Recipe::from_json(text).ok()?.to_json().ok()
-}
-
-/// Checks a recipe's JSON and returns it normalised (pretty, as the CLI reads it), or the error.
-#[wasm_bindgen]
-pub fn recipe_normalise(json: &str) -> Result<String, JsError> {
-    Recipe::from_json(json)
-        .map_err(to_js)?
-        .to_json()
-        .map_err(to_js)
-}
-
 impl Default for Upload {
     fn default() -> Self {
         Self::new()

@@ -2,7 +2,6 @@
 //! sentences, the banners after reading, and the result card and map box as view trees.
 //! May import: `analysis`.
 
-use super::analysis_view::plot_list;
 use super::to_json_value;
 use crate::analysis::page;
 use wasm_bindgen::prelude::*;
@@ -76,4 +75,25 @@ pub fn config_label(tag: &str, label: &str, two: bool) -> Result<JsValue, JsErro
 #[wasm_bindgen]
 pub fn profile_options(names: Vec<String>) -> Result<JsValue, JsError> {
     to_json_value(&page::profile_options(&names))
+}
+
+/// The diagnostics plots in the page's order, `(kind, title)`: the kind
+/// `AnalysisView.draw_plot` takes and the title people read (the canvas's label).
+pub(super) fn plot_list() -> Vec<(&'static str, &'static str)> {
+    use crate::plot::upload::Plot;
+    Plot::ALL
+        .iter()
+        .map(|p| match p {
+            Plot::Accel => ("accel", "Vertical acceleration, PLL output and steps"),
+            Plot::Sigma => ("sigma", "σ of vertical acceleration and activity"),
+            Plot::Height => ("height", "Height above the start and floor"),
+            Plot::Heading => ("heading", "Heading per step"),
+            Plot::Steps => ("steps", "Step frequency and length"),
+            Plot::Gnss => ("gnss", "GNSS accuracy and innovations"),
+            Plot::Fusion => (
+                "fusion",
+                "Fusion: estimated step-length scale and heading correction",
+            ),
+        })
+        .collect()
 }
