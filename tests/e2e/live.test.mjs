@@ -72,8 +72,12 @@ async function liveWalk({ ios }) {
   for (; i < half && !opening; i += 100) {
     await dispatch(page, w.events, { base, ios, from: i, to: Math.min(i + 100, half) });
     await page.waitForTimeout(150); // a redraw
-    const r = await readouts(page);
-    if (r.held_steps > 0) {
+    if ((await readouts(page)).held_steps > 0) {
+      // The card follows at the next drawing tick (at most ten a second, later on a loaded
+      // machine), not at the events: wait for it, then read the count and the card together.
+      await page.waitForFunction(() => /waiting$/.test(document.getElementById('r-heading-ref').textContent),
+        null, { timeout: 3000 }).catch(() => {});
+      const r = await readouts(page);
       opening = { held: r.held_steps, steps: r.steps, ref: await page.textContent('#r-heading-ref') };
       await page.screenshot({ path: path.join(ARTIFACTS, `live-opening-${ios ? 'ios' : 'android'}.png`) });
     }
