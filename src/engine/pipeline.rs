@@ -96,6 +96,13 @@ pub struct PipelineConfig {
     /// dip dropped every step before it; handling the phone before walking is not in a pocket.
     /// 1 cuts at every anti-correlated cycle, as off a pocket.
     pub onset_pocket_cycles: u32,
+    /// How far back the step detector looks when a gait is confirmed with the phone in a pocket
+    /// (the carrying mode at the onset), s; the PLL's phase is fitted to the last
+    /// [`Self::onset_lookback_s`] of it alone. Default 3 s, as elsewhere: in a pocket the motion
+    /// detector confirms some gaits more than 3 s after they start, and 3.5 s counts more of
+    /// their first steps (docs/methods/basso2016.md, "Every pocket, from its onset"), but its
+    /// steps at a walk's end are not all the walk's.
+    pub onset_pocket_lookback_s: f64,
     /// GNSS/PDR fusion ([`crate::engine::fusion`]); its mode `off` keeps the fixes for display
     /// only.
     pub fusion: FusionConfig,
@@ -132,6 +139,7 @@ impl Default for PipelineConfig {
             onset_lookback_s: 3.0,
             onset_coherence_min: 0.0,
             onset_pocket_cycles: 2,
+            onset_pocket_lookback_s: 3.0,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
             hybrid: HybridConfig::default(),
@@ -178,6 +186,7 @@ impl PipelineConfig {
         self.hybrid.validate()?;
         self.foot.validate()?;
         positive("onset_lookback_s", self.onset_lookback_s)?;
+        positive("onset_pocket_lookback_s", self.onset_pocket_lookback_s)?;
         if self.onset_pocket_cycles == 0 {
             return Err(ConfigError::new(
                 "onset_pocket_cycles",
@@ -383,7 +392,7 @@ impl Pipeline {
                 cfg.heading
                     .history_s()
                     .max(cfg.motion.window_s + 2.0)
-                    .max(cfg.onset_lookback_s + 0.5),
+                    .max(cfg.onset_lookback_s.max(cfg.onset_pocket_lookback_s) + 0.5),
             ),
             detector: Detector::new(cfg.detector),
             heading: Heading::new(cfg.heading),

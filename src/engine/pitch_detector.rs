@@ -23,6 +23,8 @@
 //! Each stride's θ_max, θ_min (the minimum before the maximum) and Δθ = θ_max − θ_min (eq. 4)
 //! are kept for the activities, the step length and the height ([`PitchStride`]).
 
+use std::collections::VecDeque;
+
 use super::detector::{Candidate, DetectorInput};
 use super::types::{positive, ConfigError};
 
@@ -92,6 +94,8 @@ pub struct PitchDetector {
     last_max_t: Option<f64>,
     pending: Option<Candidate>,
     stride: Option<PitchStride>,
+    /// The last [`RECENT_STRIDES`] strides, oldest first.
+    recent: VecDeque<PitchStride>,
     /// The amplitude of the last stride that continued a bout, degrees.
     ref_amp: f64,
     /// The bout's last stride period, s, until its closing step is given.
@@ -105,6 +109,11 @@ const FIRST_AMPLITUDE_DEG: f64 = 35.0;
 /// A bout's first rise from a minimum this share of a stride's amplitude or more began behind
 /// the standing position: the other leg stepped first.
 const FULL_RISE: f64 = 0.85;
+
+/// How many of the last strides are kept ([`PitchDetector::strides_after`]): the steps an
+/// onset's look-back gives at once span the look-back's 3–3.5 s, 2–3 strides at a walk's
+/// cadence, 4 at a run's.
+const RECENT_STRIDES: usize = 8;
 
 /// No maximum for this many stride periods after the last: the walk stopped.
 const STOP_PERIODS: f64 = 1.25;
@@ -120,6 +129,7 @@ impl PitchDetector {
             last_max_t: None,
             pending: None,
             stride: None,
+            recent: VecDeque::new(),
             ref_amp: FIRST_AMPLITUDE_DEG,
             open_period: None,
         }
@@ -186,14 +196,19 @@ impl PitchDetector {
         let period_s = prev
             .map(|l| t_max - l)
             .filter(|&p| p > 0.0 && p <= self.cfg.max_stride_s);
-        self.stride = Some(PitchStride {
+        let stride = PitchStride {
             t_max,
             max_deg,
             min_deg,
             t_min,
             amplitude_deg: max_deg - min_deg,
             period_s,
-        });
+        };
+        self.stride = Some(stride);
+        if self.recent.len() == RECENT_STRIDES {
+            self.recent.pop_front();
+        }
+        self.recent.push_back(stride);
         let step = |t: f64, period_s: f64| Candidate {
             t,
             period_s,
@@ -225,6 +240,14 @@ impl PitchDetector {
     /// The stride of the last maximum.
     pub fn last_stride(&self) -> Option<PitchStride> {
         self.stride
+    }
+
+    /// The strides whose maximum came after `t_max` (every one kept, [`RECENT_STRIDES`], for
+    /// `None`), oldest first.
+    pub fn strides_after(&self, t_max: Option<f64>) -> impl Iterator<Item = &PitchStride> {
+        self.recent
+            .iter()
+            .filter(move |s| t_max.map_or(true, |t| s.t_max > t))
     }
 
     /// Starts afresh (the onset look-back replays the samples since the gait began).

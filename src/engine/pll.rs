@@ -406,14 +406,15 @@ impl Pll {
     /// cadence estimate), phase fitted to `samples` (time s, vertical acceleration m/s², with
     /// window mean `mu`) that are about to be fed to [`Pll::push`], so that the oscillator peaks
     /// fall on the acceleration peaks from the first cycle. The phase is that of the Fourier
-    /// coefficient of the samples at `freq_hz` (trapezoidal sums; computed once per start).
-    pub fn start_on(&mut self, freq_hz: f64, samples: &[(f64, f64)], mu: f64) {
+    /// coefficient at `freq_hz` of the samples from `fit_from` s on (trapezoidal sums; computed
+    /// once per start): the samples before it are fed to the loop but not fitted.
+    pub fn start_on(&mut self, freq_hz: f64, samples: &[(f64, f64)], mu: f64, fit_from: f64) {
         let Some(&(t0, _)) = samples.first() else {
             return;
         };
         let w = TAU * freq_hz;
         let (mut c, mut s) = (0.0, 0.0);
-        for p in samples.windows(2) {
+        for p in samples.windows(2).filter(|p| p[0].0 >= fit_from) {
             let ((ta, a), (tb, b)) = (p[0], p[1]);
             let (sa, ca) = libm::sincos(w * (ta - t0));
             let (sb, cb) = libm::sincos(w * (tb - t0));

@@ -131,65 +131,76 @@ impl Pipeline {
         }
     }
 
-    fn newest_stride(&self) -> Option<PitchStride> {
-        match (&self.detector, &self.pocket.strides) {
-            (Detector::Pitch(d), _) => d.last_stride(),
-            (_, Some(d)) => d.last_stride(),
-            _ => None,
+    /// The strides the stride finder found since the last one classified, oldest first; before
+    /// any was, the newest alone (the leg pitch's sign is voted from the walk's strides, not
+    /// from the standing and handling before the first step).
+    fn new_strides(&self) -> Vec<PitchStride> {
+        let d = match (&self.detector, &self.pocket.strides) {
+            (Detector::Pitch(d), _) => d,
+            (_, Some(d)) => d,
+            _ => return Vec::new(),
+        };
+        match self.pocket.last {
+            Some(l) => d.strides_after(Some(l.stride.t_max)).copied().collect(),
+            None => d.last_stride().into_iter().collect(),
         }
     }
 
-    /// The activity and stride amplitude of a step at `t`: a stride found since the last step
-    /// is classified (Munoz Diaz 2015 §4.3), its height change given to the height stage and
-    /// its mean attitude, if level, to the leg pitch's reference.
+    /// Classifies stride `st` (Munoz Diaz 2015 §4.3), gives its height change to the height
+    /// stage and its mean attitude, if level, to the leg pitch's reference.
+    fn classify_stride(&mut self, st: PitchStride, state: Motion) {
+        let p = &mut self.pocket;
+        // Which strides vote on the thigh's sign. Not a swinging hand's: it passes for a
+        // thigh (one axis, a leg's amplitude) but its swing is symmetric, and its votes,
+        // near zero, diluted the thigh's below clearness for 12 s after the phone was
+        // pocketed. Nor, while the mode says a hand, the ear or a bag, a stride that
+        // swings less than a thigh: a bag's did the same after a move into the pocket.
+        // (Votes only in the pocket or before a mode: the pocket walks' own flickers
+        // into the bag or the ear then cost them 12.9 → 13.6°.)
+        let votes = match self.carry.mode() {
+            Some(CarryMode::Swinging) => false,
+            None | Some(CarryMode::Pocket) => true,
+            Some(_) => st.amplitude_deg >= self.cfg.leg_pitch.thigh_min_amplitude_deg,
+        };
+        let thigh = p.leg.push_stride(&st, votes);
+        let sign = p.leg.sign();
+        if p.sign.replace(sign).is_some_and(|s| s != sign) {
+            p.activity.reset();
+        }
+        let activity = if !thigh {
+            // Not a thigh's swing (a phone in the hand): the motion state's word.
+            p.activity.push_step(state == Motion::Running)
+        } else if state == Motion::Running {
+            p.activity.push_step(true)
+        } else {
+            let (max, min) = p.leg.signed_extremes(st.max_deg, st.min_deg);
+            p.activity.push_stride(max, min, st.amplitude_deg)
+        };
+        if activity == Activity::Walking {
+            p.leg.commit_level_stride();
+        } else {
+            p.leg.skip_stride();
+        }
+        if thigh {
+            let dz = self
+                .cfg
+                .vertical
+                .stride_height_m(activity, st.amplitude_deg);
+            p.vertical.push_step(StepHeight::Pitch(dz));
+        }
+        p.last = Some(ClassifiedStride {
+            stride: st,
+            activity,
+            thigh,
+        });
+    }
+
+    /// The activity and stride amplitude of a step at `t`: every stride found since the last
+    /// step is classified ([`Self::classify_stride`]), not only the newest: the steps of an
+    /// onset's look-back come at once, and each stride they span changes the height.
     pub(super) fn step_pocket(&mut self, t: f64, state: Motion) -> StepPocket {
-        if let Some(st) = self.newest_stride() {
-            if self.pocket.last.map_or(true, |l| l.stride.t_max < st.t_max) {
-                let p = &mut self.pocket;
-                // Which strides vote on the thigh's sign. Not a swinging hand's: it passes for a
-                // thigh (one axis, a leg's amplitude) but its swing is symmetric, and its votes,
-                // near zero, diluted the thigh's below clearness for 12 s after the phone was
-                // pocketed. Nor, while the mode says a hand, the ear or a bag, a stride that
-                // swings less than a thigh: a bag's did the same after a move into the pocket.
-                // (Votes only in the pocket or before a mode: the pocket walks' own flickers
-                // into the bag or the ear then cost them 12.9 → 13.6°.)
-                let votes = match self.carry.mode() {
-                    Some(CarryMode::Swinging) => false,
-                    None | Some(CarryMode::Pocket) => true,
-                    Some(_) => st.amplitude_deg >= self.cfg.leg_pitch.thigh_min_amplitude_deg,
-                };
-                let thigh = p.leg.push_stride(&st, votes);
-                let sign = p.leg.sign();
-                if p.sign.replace(sign).is_some_and(|s| s != sign) {
-                    p.activity.reset();
-                }
-                let activity = if !thigh {
-                    // Not a thigh's swing (a phone in the hand): the motion state's word.
-                    p.activity.push_step(state == Motion::Running)
-                } else if state == Motion::Running {
-                    p.activity.push_step(true)
-                } else {
-                    let (max, min) = p.leg.signed_extremes(st.max_deg, st.min_deg);
-                    p.activity.push_stride(max, min, st.amplitude_deg)
-                };
-                if activity == Activity::Walking {
-                    p.leg.commit_level_stride();
-                } else {
-                    p.leg.skip_stride();
-                }
-                if thigh {
-                    let dz = self
-                        .cfg
-                        .vertical
-                        .stride_height_m(activity, st.amplitude_deg);
-                    p.vertical.push_step(StepHeight::Pitch(dz));
-                }
-                p.last = Some(ClassifiedStride {
-                    stride: st,
-                    activity,
-                    thigh,
-                });
-            }
+        for st in self.new_strides() {
+            self.classify_stride(st, state);
         }
         match self
             .pocket

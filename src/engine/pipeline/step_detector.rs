@@ -84,14 +84,20 @@ impl Detector {
     }
 
     /// Starts afresh on a gait already under way: the PLL at the motion detector's cadence with
-    /// its phase fitted to `samples` (time, vertical acceleration) about their mean `mean`; the
-    /// peak detector empty.
-    pub(super) fn restart(&mut self, cadence_hz: Option<f64>, samples: &[(f64, f64)], mean: f64) {
+    /// its phase fitted to the `samples` (time, vertical acceleration) from `fit_from` s on,
+    /// about their mean `mean`; the peak detector empty.
+    pub(super) fn restart(
+        &mut self,
+        cadence_hz: Option<f64>,
+        samples: &[(f64, f64)],
+        mean: f64,
+        fit_from: f64,
+    ) {
         match self {
             Detector::Pll(p) => {
                 p.restart();
                 if let Some(f) = cadence_hz {
-                    p.start_on(f, samples, mean);
+                    p.start_on(f, samples, mean, fit_from);
                 }
             }
             Detector::Peak(p) => p.restart(),

@@ -13,17 +13,27 @@ use crate::engine::step_length::StepLengthInput;
 
 impl Pipeline {
     /// Restarts the step detector at time `t` on the samples of the last
-    /// [`PipelineConfig::onset_lookback_s`] and returns the steps it finds in them. The PLL
+    /// [`PipelineConfig::onset_lookback_s`] (in a pocket
+    /// [`PipelineConfig::onset_pocket_lookback_s`]) and returns the steps it finds in them. The PLL
     /// starts at the motion detector's cadence with its phase fitted to those samples (and
     /// gives back the steps it decides a cycle late, [`crate::engine::pll::Pll::take_late_step`]);
     /// the peak detector starts empty.
     pub(super) fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
-        let since = t - self.cfg.onset_lookback_s;
+        let pocket = self.carry.mode() == Some(CarryMode::Pocket);
+        let span = if pocket {
+            self.cfg.onset_pocket_lookback_s
+        } else {
+            self.cfg.onset_lookback_s
+        };
+        let since = t - span;
         let samples: Vec<&NavSample> = self.window.buf.iter().filter(|x| x.t >= since).collect();
         let m = self.motion.diagnostics();
         let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.up)).collect();
-        self.detector.restart(m.cadence_hz, &ups, m.mean_z);
-        let pocket = self.carry.mode() == Some(CarryMode::Pocket);
+        // The phase is fitted to the last `onset_lookback_s` alone: a longer look-back reaches
+        // the standing or handling before the gait, whose phase is not the gait's.
+        let fit_from = t - self.cfg.onset_lookback_s.min(span);
+        self.detector
+            .restart(m.cadence_hz, &ups, m.mean_z, fit_from);
         let mut out = Vec::new();
         let mut last = None;
         for s in samples {
