@@ -58,7 +58,12 @@ impl ImuSample {
         if self.plausible() {
             return Ok(());
         }
-        // A sample refused: the tests one by one, to name the first field that fails.
+        self.field_by_field()
+    }
+
+    /// [`Self::check`]'s tests one by one, for a sample refused: names the first field that
+    /// fails.
+    fn field_by_field(&self) -> Result<(), InputError> {
         self.check_finite()?;
         let bad = |field: &'static str| Err(InputError::NonFinite { t: self.t, field });
         if !time_in_range(self.t) {
@@ -352,25 +357,6 @@ mod tests {
     use super::*;
     use nalgebra::{Quaternion, UnitQuaternion};
 
-    /// The tests one by one, as [`ImuSample::check`] runs them for a sample refused.
-    fn field_by_field(s: &ImuSample) -> Result<(), InputError> {
-        s.check_finite()?;
-        let bad = |field: &'static str| Err(InputError::NonFinite { t: s.t, field });
-        if !time_in_range(s.t) {
-            return bad("t");
-        }
-        if s.accel.amax() > IMU_LIMITS.accel_m_s2 {
-            return bad("accel");
-        }
-        if s.gyro.is_some_and(|g| g.amax() > IMU_LIMITS.gyro_rad_s) {
-            return bad("gyro");
-        }
-        if s.mag.is_some_and(|m| m.amax() > IMU_LIMITS.mag_ut) {
-            return bad("mag");
-        }
-        Ok(())
-    }
-
     #[test]
     fn the_check_at_once_accepts_what_the_tests_one_by_one_do() {
         let values = [0.0, -3.5, 9e2, 2e3, 5e4, 2e5, 2e12, f64::NAN, f64::INFINITY];
@@ -387,7 +373,7 @@ mod tests {
                     orientation: Some(if field == 4 && x.is_nan() { odd } else { q }),
                 };
                 // Debug text: a NaN time is not equal to itself.
-                let (fast, slow) = (s.check(), field_by_field(&s));
+                let (fast, slow) = (s.check(), s.field_by_field());
                 assert_eq!(
                     format!("{fast:?}"),
                     format!("{slow:?}"),
