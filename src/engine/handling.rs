@@ -34,6 +34,7 @@
 //! slower turns between two fast ones do not count as steps. Without a gyroscope the rule never
 //! fires.
 
+use super::math::outer_entries;
 use super::motion::Motion;
 use super::types::{positive, ConfigError, DeviceVec};
 use nalgebra::{Matrix3, SymmetricEigen};
@@ -137,14 +138,7 @@ impl Sums {
         Sums {
             n: 1.0,
             rate: libm::sqrt(w.x * w.x + w.y * w.y + w.z * w.z),
-            moment: [
-                w.x * w.x,
-                w.y * w.y,
-                w.z * w.z,
-                w.x * w.y,
-                w.x * w.z,
-                w.y * w.z,
-            ],
+            moment: outer_entries(w),
         }
     }
 }

@@ -6,6 +6,18 @@
 
 use std::f64::consts::{PI, TAU};
 
+/// The six distinct entries of the outer product v·vᵀ: xx, yy, zz, xy, xz, yz.
+pub fn outer_entries(v: &nalgebra::Vector3<f64>) -> [f64; 6] {
+    [
+        v.x * v.x,
+        v.y * v.y,
+        v.z * v.z,
+        v.x * v.y,
+        v.x * v.z,
+        v.y * v.z,
+    ]
+}
+
 /// Wraps an angle to (−π, π].
 pub fn wrap_pi(a: f64) -> f64 {
     let mut x = libm::remainder(a, TAU);

@@ -8,6 +8,7 @@
 //! window's length per lag. Every [`RESUM_SLOTS`] slots that left, the sums are summed afresh
 //! so that rounding in them cannot accumulate.
 
+use crate::engine::math::outer_entries;
 use nalgebra::{Matrix3, Vector3};
 use std::ops::RangeInclusive;
 
@@ -46,14 +47,7 @@ impl Closed {
         let dir = a / a.norm().max(1e-9);
         let mut t = [0.0; TERMS];
         t[..3].copy_from_slice(a.as_slice());
-        t[3..9].copy_from_slice(&[
-            a.x * a.x,
-            a.y * a.y,
-            a.z * a.z,
-            a.x * a.y,
-            a.x * a.z,
-            a.y * a.z,
-        ]);
+        t[3..9].copy_from_slice(&outer_entries(&a));
         t[9..12].copy_from_slice(dir.as_slice());
         if s.nw > 0.0 {
             let w = s.w / s.nw;
