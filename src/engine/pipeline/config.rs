@@ -57,10 +57,10 @@ pub struct PipelineConfig {
     pub onset_pocket_cycles: u32,
     /// How far back the step detector looks when a gait is confirmed with the phone in a pocket
     /// (the carrying mode at the onset), s; the PLL's phase is fitted to the last
-    /// [`Self::onset_lookback_s`] of it alone. Default 3 s, as elsewhere: in a pocket the motion
-    /// detector confirms some gaits more than 3 s after they start, and 3.5 s counts more of
-    /// their first steps (docs/methods/basso2016.md, "Every pocket, from its onset"), but its
-    /// steps at a walk's end are not all the walk's.
+    /// [`Self::onset_lookback_s`] of it alone, and a sample of a walk that has ended since is
+    /// judged against that walk's σ_z. Default 3.5 s: in a pocket the motion detector confirms
+    /// some gaits more than 3 s after they start (docs/methods/basso2016.md, "Every pocket,
+    /// from its onset").
     pub onset_pocket_lookback_s: f64,
     /// GNSS/PDR fusion ([`crate::engine::fusion`]); its mode `off` keeps the fixes for display
     /// only.
@@ -98,7 +98,7 @@ impl Default for PipelineConfig {
             onset_lookback_s: 3.0,
             onset_coherence_min: 0.0,
             onset_pocket_cycles: 2,
-            onset_pocket_lookback_s: 3.0,
+            onset_pocket_lookback_s: 3.5,
             fusion: FusionConfig::default(),
             gap_s: 0.5,
             hybrid: HybridConfig::default(),

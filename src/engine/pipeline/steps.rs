@@ -26,9 +26,12 @@ impl Pipeline {
             self.cfg.onset_lookback_s
         };
         let since = t - span;
-        let samples: Vec<&NavSample> = self.window.buf.iter().filter(|x| x.t >= since).collect();
+        let samples: Vec<(&NavSample, f64)> = (self.window.buf.iter())
+            .zip(self.window.sigma_z.iter().copied())
+            .filter(|(x, _)| x.t >= since)
+            .collect();
         let m = self.motion.diagnostics();
-        let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.up)).collect();
+        let ups: Vec<(f64, f64)> = samples.iter().map(|(s, _)| (s.t, s.up)).collect();
         // The phase is fitted to the last `onset_lookback_s` alone: a longer look-back reaches
         // the standing or handling before the gait, whose phase is not the gait's.
         let fit_from = t - self.cfg.onset_lookback_s.min(span);
@@ -36,7 +39,7 @@ impl Pipeline {
             .restart(m.cadence_hz, &ups, m.mean_z, fit_from);
         let mut out = Vec::new();
         let mut last = None;
-        for s in samples {
+        for (s, sigma_then) in samples {
             let dt = last.map_or(0.0, |l| s.t - l);
             last = Some(s.t);
             let c = self.detector.push(&DetectorInput {
@@ -44,7 +47,15 @@ impl Pipeline {
                 dt,
                 up: s.up,
                 mean: m.mean_z,
-                sigma: m.sigma_z,
+                // In a pocket, each sample is judged against the larger of the σ_z now and when
+                // it came, never more leniently than the live loop judged it: a walk's quiet
+                // settling cycle, replayed by a gait confirmed soon after the stop, keeps the
+                // walk's σ_z, not the stop's smaller one.
+                sigma: if pocket {
+                    m.sigma_z.max(sigma_then)
+                } else {
+                    m.sigma_z
+                },
                 motion: state,
                 cadence_hz: m.cadence_hz,
                 pitch_deg: s.pitch,
