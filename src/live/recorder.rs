@@ -35,6 +35,8 @@ pub struct Saved {
     pub chunks: u64,
     /// Their text's length.
     pub chars: u64,
+    /// The motion samples in them: the last written chunk's count.
+    pub samples: u64,
     /// The length of the text not yet written.
     #[serde(rename = "unsavedChars")]
     pub unsaved_chars: u64,
@@ -58,6 +60,7 @@ pub struct Recorder {
     retry_ms: f64,
     saved_chunks: u64,
     saved_chars: u64,
+    saved_samples: u64,
 }
 
 impl Recorder {
@@ -75,6 +78,7 @@ impl Recorder {
             retry_ms: RETRY_FIRST_MS,
             saved_chunks: 0,
             saved_chars: 0,
+            saved_samples: 0,
         }
     }
 
@@ -124,6 +128,7 @@ impl Recorder {
         for c in self.unsaved.drain(..self.handed) {
             self.saved_chunks += 1;
             self.saved_chars += utf16_len(&c.text);
+            self.saved_samples = self.saved_samples.max(c.samples);
         }
         self.handed = 0;
     }
@@ -161,6 +166,7 @@ impl Recorder {
         Saved {
             chunks: self.saved_chunks,
             chars: self.saved_chars,
+            samples: self.saved_samples,
             unsaved_chars: self.unsaved.iter().map(|c| utf16_len(&c.text)).sum(),
         }
     }
@@ -297,6 +303,7 @@ mod tests {
         r.written();
         assert_eq!(r.unsaved_count(), 51);
         assert_eq!(r.saved().chunks, 40);
+        assert_eq!(r.saved().samples, 390);
         assert_eq!(r.batch().len(), 40);
         r.written();
         let last = r.batch();
@@ -308,7 +315,7 @@ mod tests {
         assert!(r.batch().is_empty());
         assert!(!r.succeeded());
         let s = r.saved();
-        assert_eq!((s.chunks, s.unsaved_chars), (91, 0));
+        assert_eq!((s.chunks, s.samples, s.unsaved_chars), (91, 1000, 0));
         assert_eq!(
             s.chars,
             (0..90)
