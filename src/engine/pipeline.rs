@@ -374,20 +374,18 @@ impl Pipeline {
         });
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
         self.timed(Stage::Window, |p| {
-            p.window.push(
-                NavSample {
-                    t: s.t,
-                    e,
-                    n,
-                    up: nav.up,
-                    pitch: x.pitch_deg,
-                    axis_tilt: x.axis_tilt_deg,
-                    yaw: p.heading.pose().yaw,
-                    // q⁻¹·ẑ of this sample's attitude: the leg pitch has just taken it.
-                    device_up: p.pocket.leg.device_up().map_or([0.0; 3], Into::into),
-                },
-                m.sigma_z,
-            )
+            p.window.push(NavSample {
+                t: s.t,
+                e,
+                n,
+                up: nav.up,
+                pitch: x.pitch_deg,
+                axis_tilt: x.axis_tilt_deg,
+                yaw: p.heading.pose().yaw,
+                // q⁻¹·ẑ of this sample's attitude: the leg pitch has just taken it.
+                device_up: p.pocket.leg.device_up().map_or([0.0; 3], Into::into),
+                sigma_z: m.sigma_z,
+            })
         });
         self.detect_steps(&x);
         // Recognising a foot replaces the steps so far by the strides: all are new then.

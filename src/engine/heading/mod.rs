@@ -78,6 +78,9 @@ pub struct NavSample {
     /// Up in the device frame, unit, from the attitude (zero without one): where gravity sits
     /// in the device.
     pub device_up: [f64; 3],
+    /// The motion detector's σ_z when the sample came, m/s² ([`crate::engine::motion`]): the
+    /// onset look-back in a pocket never judges a sample more leniently than the live loop did.
+    pub sigma_z: f64,
 }
 
 /// The samples `start..end` of `buf` as its contiguous runs, in order: loops over plain slices
@@ -105,6 +108,7 @@ impl NavSample {
             axis_tilt: None,
             yaw: 0.0,
             device_up: [0.0; 3],
+            sigma_z: 0.0,
         }
     }
 
@@ -123,6 +127,7 @@ impl NavSample {
             axis_tilt: a.axis_tilt,
             yaw: a.yaw + w * (b.yaw - a.yaw),
             device_up: a.device_up,
+            sigma_z: a.sigma_z,
         }
     }
 }

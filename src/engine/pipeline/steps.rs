@@ -26,12 +26,9 @@ impl Pipeline {
             self.cfg.onset_lookback_s
         };
         let since = t - span;
-        let samples: Vec<(&NavSample, f64)> = (self.window.buf.iter())
-            .zip(self.window.sigma_z.iter().copied())
-            .filter(|(x, _)| x.t >= since)
-            .collect();
+        let samples: Vec<&NavSample> = self.window.buf.iter().filter(|x| x.t >= since).collect();
         let m = self.motion.diagnostics();
-        let ups: Vec<(f64, f64)> = samples.iter().map(|(s, _)| (s.t, s.up)).collect();
+        let ups: Vec<(f64, f64)> = samples.iter().map(|s| (s.t, s.up)).collect();
         // The phase is fitted to the last `onset_lookback_s` alone: a longer look-back reaches
         // the standing or handling before the gait, whose phase is not the gait's.
         let fit_from = t - self.cfg.onset_lookback_s.min(span);
@@ -39,7 +36,7 @@ impl Pipeline {
             .restart(m.cadence_hz, &ups, m.mean_z, fit_from);
         let mut out = Vec::new();
         let mut last = None;
-        for (s, sigma_then) in samples {
+        for s in samples {
             let dt = last.map_or(0.0, |l| s.t - l);
             last = Some(s.t);
             let c = self.detector.push(&DetectorInput {
@@ -52,7 +49,7 @@ impl Pipeline {
                 // settling cycle, replayed by a gait confirmed soon after the stop, keeps the
                 // walk's σ_z, not the stop's smaller one.
                 sigma: if pocket {
-                    m.sigma_z.max(sigma_then)
+                    m.sigma_z.max(s.sigma_z)
                 } else {
                     m.sigma_z
                 },
