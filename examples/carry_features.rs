@@ -3,7 +3,8 @@
 //!
 //! Truth: TyrEx's folder names and the pocket sets' placement ([`pdr::io::import::Truth::carry`]),
 //! the Oxford placements (the armband has no mode), the hand for the Microsoft and IPIN walks,
-//! and the simulator's five modes (seeds 1–8). Each evaluation of the detector inside the
+//! the simulator's five modes (seeds 1–8) and its demo walk (the pocket, upright, screen out of
+//! the thigh). Each evaluation of the detector inside the
 //! truth's step window counts once, with the mode the vote decided (a step-weighted figure is
 //! `pdr eval`'s `carry_share_by_group`). WeAllWalk's left phone (`1L`), which does not move as
 //! a thigh does, is shown but the thresholds are not chosen for it.
@@ -225,6 +226,17 @@ fn collect() -> Vec<Vec<Row>> {
             ));
         }
     }
+    let demo = Row {
+        group: "sim:demo walk (pocket)".into(),
+        walker: "sim:demo".into(),
+        truth: Some(CarryMode::Pocket),
+        inside: true,
+        scored: true,
+        t: 0.0,
+        f: CarryFeatures::default(),
+    };
+    let sim = scenarios::demo_walk().generate();
+    logs.push(rows(&demo, PipelineConfig::default(), None, &sim.records));
     for carry in Carry::ALL {
         for seed in 1..=8 {
             let sim = scenarios::carried_walk(carry, seed).generate();

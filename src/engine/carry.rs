@@ -33,7 +33,12 @@
 //! slots enter and leave it and summed afresh every 1024 slots; the means are taken out of
 //! them algebraically (Σ (x − x̄)² = Σ x² − n x̄²).
 //!
+//! - **Drift**: the angle between the mean specific force of the window's first half and of
+//!   its second, degrees: a phone being moved to another place turns over within the window.
+//!
 //! # Rule (each [`CarryConfig::every_s`]; a vote of the last [`CarryConfig::votes`] decides)
+//! 0. A window whose drift exceeds [`CarryConfig::drift_max_deg`] does not vote: its features
+//!    mix two places. The votes start afresh ([`Ballot::reopen`]).
 //! 1. The **hand**, screen up: u_z ≥ [`CarryConfig::screen_up_min`] and tilt <
 //!    [`CarryConfig::hand_tilt_deg`]. First: a turn while texting turns the phone fast, and
 //!    a hand-held step can look like a limb's.
@@ -165,7 +170,7 @@ pub struct CarryConfig {
     /// With a gyroscope: the largest tilt per swing rate of a swinging hand, degrees per rad/s.
     /// A phone turned by an angle A at the stride frequency f, the specific force staying put
     /// in the world, tilts by A in the device at a rate 2πf·A: 57.3°/(2πf) ≈ 10°/(rad/s) at
-    /// 0.9 Hz. A thigh comes near that (real pockets ≥ 10.6 at p5, the simulated one ≥ 9.4);
+    /// 0.9 Hz. A thigh comes near that (real pockets ≥ 10.6 at p5, the simulator's 7.7–10.7);
     /// a hand swung as a pendulum keeps the force along the arm and tilts less (TyrEx
     /// swinging: median 6.1, p75 7.7).
     pub pendulum_ratio_max: f64,
@@ -175,7 +180,7 @@ pub struct CarryConfig {
     /// at ratios ≥ 16).
     pub side_swing_axis_min: f64,
     /// With a gyroscope: the largest tilt per swing rate of a hand swung about the screen's
-    /// normal, degrees per rad/s. No real pocket window with such an axis came below 12.5.
+    /// normal, degrees per rad/s. No real pocket window with such an axis came below it.
     pub side_swing_ratio_max: f64,
     /// With a gyroscope: the largest step correlation c₁ of the ear when the forward surge is
     /// along the screen's normal. The head sways to the side of each foot in turn (TyrEx at the
@@ -203,9 +208,9 @@ impl Default for CarryConfig {
             forward_z_max: 0.7,
             drift_max_deg: 20.0,
             swing_rate_min: 0.6,
-            pendulum_ratio_max: 9.0,
+            pendulum_ratio_max: 7.5,
             side_swing_axis_min: 0.9,
-            side_swing_ratio_max: 12.0,
+            side_swing_ratio_max: 12.5,
             ear_step_corr_max: 0.35,
         }
     }
@@ -308,6 +313,8 @@ pub struct CarryFeatures {
     /// |z| of the main axis of that horizontal rotation in the device frame: near 1 when the
     /// phone swings about its screen's normal, as a hand at the side swings it.
     pub swing_axis_z: Option<f64>,
+    /// The step period found, s.
+    pub step_s: f64,
     /// The angle between the mean specific force of the window's first half and of its
     /// second, degrees: how far the phone turned over within the window.
     pub drift_deg: f64,
@@ -578,6 +585,7 @@ impl Carry {
             forward_z,
             rate,
             swing_rate: swing.map(|c| libm::sqrt(c.trace().max(0.0))),
+            step_s: step as f64 * SLOT_S,
             drift_deg: drift_deg(a),
             swing_axis_z: swing.map(|c| {
                 let e = SymmetricEigen::new(c);
