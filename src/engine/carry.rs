@@ -621,4 +621,133 @@ mod tests {
             assert_eq!(c.diagnostics().evaluations, 0);
         }
     }
+
+    /// Features with a gyroscope: u, tilt (°), c₁, forward axis, swing rate (rad/s), swing
+    /// axis |z|.
+    fn with_rate(
+        up: [f64; 3],
+        tilt: f64,
+        c1: f64,
+        fz: f64,
+        swing: f64,
+        axis_z: f64,
+    ) -> CarryFeatures {
+        CarryFeatures {
+            up,
+            tilt_deg: tilt,
+            step_corr: c1,
+            stride_corr: 0.6,
+            forward_z: fz,
+            rate: Some(swing),
+            swing_rate: Some(swing),
+            swing_axis_z: Some(axis_z),
+            ..CarryFeatures::default()
+        }
+    }
+
+    #[test]
+    fn with_a_gyroscope_the_swing_tells_the_pocket_the_swinging_hand_and_the_ear_apart() {
+        let c = CarryConfig::default();
+        let down = [0.1, 0.95, 0.1];
+        // TyrEx's medians: a front pocket, a hand swung as a pendulum, one swung about the
+        // screen's normal at a thigh's tilt per rate, the ear, texting.
+        let cases = [
+            (
+                with_rate(down, 13.0, -0.1, 0.96, 0.92, 0.2),
+                CarryMode::Pocket,
+            ),
+            (
+                with_rate(down, 8.8, 0.2, 0.67, 1.55, 0.5),
+                CarryMode::Swinging,
+            ),
+            (
+                with_rate(down, 11.0, 0.0, 0.8, 1.0, 0.95),
+                CarryMode::Swinging,
+            ),
+            (
+                with_rate([0.5, 0.77, -0.32], 5.7, -0.04, 0.88, 0.25, 0.9),
+                CarryMode::Ear,
+            ),
+            (
+                with_rate([0.05, 0.08, 0.99], 4.3, 0.2, 0.07, 0.26, 0.06),
+                CarryMode::Hand,
+            ),
+            // The simulated bag: a trunk repeats each step, its surge along the screen's normal.
+            (
+                with_rate([0.4, 0.9, 0.0], 7.6, 0.92, 0.81, 0.49, 0.93),
+                CarryMode::Bag,
+            ),
+            // Screen up and swinging, not steady: a hand moving the phone, not a pocket.
+            (
+                with_rate([0.0, 0.6, 0.8], 26.0, 0.1, 0.2, 1.3, 0.3),
+                CarryMode::Swinging,
+            ),
+        ];
+        for (f, want) in cases {
+            assert_eq!(c.classify(&f), want, "{f:?}");
+        }
+        // Without a gyroscope the accelerometer's rule decides: the Oxford front pocket.
+        let f = CarryFeatures {
+            up: [0.05, 1.0, 0.06],
+            tilt_deg: 18.7,
+            step_corr: -0.04,
+            stride_corr: 0.8,
+            forward_z: 0.81,
+            ..CarryFeatures::default()
+        };
+        assert_eq!(c.classify(&f), CarryMode::Pocket);
+    }
+
+    #[test]
+    fn the_ballot_decides_switches_and_starts_afresh_after_a_move() {
+        use CarryMode::{Bag, Ear, Hand, Pocket, Swinging};
+        let c = CarryConfig::default();
+        let mut b = Ballot::default();
+        assert_eq!(b.cast(Hand, &c), None);
+        assert_eq!(b.cast(Hand, &c), Some(Hand));
+        for _ in 0..3 {
+            assert_eq!(b.cast(Pocket, &c), Some(Hand));
+        }
+        assert_eq!(b.cast(Pocket, &c), Some(Pocket), "4 of the last 6");
+        // Out of a pocket the mode is not known until two votes decide.
+        b.reopen();
+        assert_eq!(b.mode, None);
+        assert_eq!(b.cast(Swinging, &c), None);
+        assert_eq!(b.cast(Swinging, &c), Some(Swinging));
+        // Moved by the hand holding it: kept until two votes agree on another.
+        b.reopen();
+        assert_eq!(b.cast(Ear, &c), Some(Swinging));
+        assert_eq!(b.cast(Bag, &c), Some(Swinging));
+        assert_eq!(b.cast(Bag, &c), Some(Bag));
+        // Then the usual rule again.
+        assert_eq!(b.cast(Ear, &c), Some(Bag));
+        assert_eq!(b.cast(Ear, &c), Some(Bag));
+    }
+
+    #[test]
+    fn the_drift_is_how_far_the_phone_turned_over_within_the_window() {
+        let slot = |i: usize, a: Vector3<f64>| window::Closed {
+            t0: i as f64 * SLOT_S,
+            a,
+        };
+        let g = Vector3::new(0.0, 9.81, 0.0);
+        let steady: Vec<window::Closed> = (0..100)
+            .map(|i| slot(i, g * (1.0 + 0.1 * libm::sin(i as f64))))
+            .collect();
+        assert!(drift_deg(&steady) < 1.0);
+        let turned: Vec<window::Closed> = (0..100)
+            .map(|i| {
+                slot(
+                    i,
+                    if i < 50 {
+                        g
+                    } else {
+                        Vector3::new(0.0, 0.0, 9.81)
+                    },
+                )
+            })
+            .collect();
+        assert!((drift_deg(&turned) - 90.0).abs() < 1e-9);
+        assert_eq!(drift_deg(&turned[..1]), 0.0);
+    }
 }
