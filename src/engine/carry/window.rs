@@ -53,17 +53,17 @@ impl Closed {
             let w = s.w / s.nw;
             t[12] = 1.0;
             t[13..16].copy_from_slice(w.as_slice());
-            t[16] = w.norm_squared();
+            t[16..22].copy_from_slice(&outer_entries(&w));
         }
         (Closed { t0: s.t0, a }, Sums(t), s.up / s.n)
     }
 }
 
 /// How many sums [`Sums`] holds.
-const TERMS: usize = 17;
+const TERMS: usize = 22;
 
 /// Sums over the window's slots: Σ a (m/s²), Σ a aᵀ (m²/s⁴), Σ a/|a|, and over the slots with
-/// a rate their number, Σ ω (rad/s) and Σ |ω|² (rad²/s²), side by side.
+/// a rate their number, Σ ω (rad/s) and Σ ω ωᵀ (rad²/s²), side by side.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Sums([f64; TERMS]);
 
@@ -75,8 +75,7 @@ impl Sums {
 
     /// Σ a aᵀ, m²/s⁴.
     pub fn aa(&self) -> Matrix3<f64> {
-        let s = &self.0[3..9];
-        Matrix3::new(s[0], s[3], s[4], s[3], s[1], s[5], s[4], s[5], s[2])
+        symmetric(&self.0[3..9])
     }
 
     /// Σ |a|², m²/s⁴.
@@ -92,7 +91,16 @@ impl Sums {
     /// The slots with a rate: how many, Σ ω (rad/s) and Σ |ω|² (rad²/s²).
     pub fn rate(&self) -> (f64, Vector3<f64>, f64) {
         let s = &self.0;
-        (s[12], Vector3::new(s[13], s[14], s[15]), s[16])
+        (
+            s[12],
+            Vector3::new(s[13], s[14], s[15]),
+            s[16] + s[17] + s[18],
+        )
+    }
+
+    /// Σ ω ωᵀ over the slots with a rate, rad²/s².
+    pub fn ww(&self) -> Matrix3<f64> {
+        symmetric(&self.0[16..22])
     }
 
     /// Adds a slot's terms.
@@ -108,6 +116,11 @@ impl Sums {
             self.0[i] -= x.0[i];
         }
     }
+}
+
+/// The symmetric matrix of the six entries [`outer_entries`] gives (xx, yy, zz, xy, xz, yz).
+fn symmetric(e: &[f64]) -> Matrix3<f64> {
+    Matrix3::new(e[0], e[3], e[4], e[3], e[1], e[5], e[4], e[5], e[2])
 }
 
 /// The closed slots of the last window, oldest first, with their running sums.
