@@ -34,10 +34,10 @@
 //! slower turns between two fast ones do not count as steps. Without a gyroscope the rule never
 //! fires.
 
-use super::math::outer_entries;
+use super::math::{from_outer_entries, outer_entries};
 use super::motion::Motion;
 use super::types::{positive, ConfigError, DeviceVec};
-use nalgebra::{Matrix3, SymmetricEigen};
+use nalgebra::SymmetricEigen;
 use std::collections::VecDeque;
 
 /// Settings of the handling detector.
@@ -329,16 +329,14 @@ struct Axis {
 }
 
 fn main_axis(s: &Sums) -> Axis {
-    let [xx, yy, zz, xy, xz, yz] = s.moment;
-    let trace = xx + yy + zz;
+    let trace = s.moment[0] + s.moment[1] + s.moment[2];
     if !(trace > 0.0) {
         return Axis {
             axis: None,
             share: 0.0,
         };
     }
-    let m = Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz);
-    let e = SymmetricEigen::new(m);
+    let e = SymmetricEigen::new(from_outer_entries(&s.moment));
     let k = e.eigenvalues.imax();
     Axis {
         axis: Some(e.eigenvectors.column(k).into_owned()),

@@ -18,6 +18,13 @@ pub fn outer_entries(v: &nalgebra::Vector3<f64>) -> [f64; 6] {
     ]
 }
 
+/// The symmetric matrix whose six distinct entries are `e`, in [`outer_entries`]'s order (xx,
+/// yy, zz, xy, xz, yz).
+pub fn from_outer_entries(e: &[f64; 6]) -> nalgebra::Matrix3<f64> {
+    let [xx, yy, zz, xy, xz, yz] = *e;
+    nalgebra::Matrix3::new(xx, xy, xz, xy, yy, yz, xz, yz, zz)
+}
+
 /// Wraps an angle to (−π, π].
 pub fn wrap_pi(a: f64) -> f64 {
     let mut x = libm::remainder(a, TAU);
@@ -152,6 +159,12 @@ pub fn symmetric<const D: usize>(p: nalgebra::SMatrix<f64, D, D>) -> nalgebra::S
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_outer_entries_rebuild_the_outer_product() {
+        let v = nalgebra::Vector3::new(0.3, -1.7, 2.9);
+        assert_eq!(from_outer_entries(&outer_entries(&v)), v * v.transpose());
+    }
 
     #[test]
     fn wrap_and_mean() {

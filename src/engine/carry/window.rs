@@ -8,7 +8,7 @@
 //! window's length per lag. Every [`RESUM_SLOTS`] slots that left, the sums are summed afresh
 //! so that rounding in them cannot accumulate.
 
-use crate::engine::math::outer_entries;
+use crate::engine::math::{from_outer_entries, outer_entries};
 use nalgebra::{Matrix3, Vector3};
 use std::ops::RangeInclusive;
 
@@ -75,7 +75,7 @@ impl Sums {
 
     /// Σ a aᵀ, m²/s⁴.
     pub fn aa(&self) -> Matrix3<f64> {
-        symmetric(&self.0[3..9])
+        from_outer_entries(&std::array::from_fn(|i| self.0[3 + i]))
     }
 
     /// Σ |a|², m²/s⁴.
@@ -100,7 +100,7 @@ impl Sums {
 
     /// Σ ω ωᵀ over the slots with a rate, rad²/s².
     pub fn ww(&self) -> Matrix3<f64> {
-        symmetric(&self.0[16..22])
+        from_outer_entries(&std::array::from_fn(|i| self.0[16 + i]))
     }
 
     /// Adds a slot's terms.
@@ -116,11 +116,6 @@ impl Sums {
             self.0[i] -= x.0[i];
         }
     }
-}
-
-/// The symmetric matrix of the six entries [`outer_entries`] gives (xx, yy, zz, xy, xz, yz).
-fn symmetric(e: &[f64]) -> Matrix3<f64> {
-    Matrix3::new(e[0], e[3], e[4], e[3], e[1], e[5], e[4], e[5], e[2])
 }
 
 /// The closed slots of the last window, oldest first, with their running sums.
