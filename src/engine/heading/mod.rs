@@ -221,6 +221,12 @@ impl HeadingConfig {
             positive("heading.yaw_aid.gate_deg", a.gate_deg)?;
             positive("heading.yaw_aid.straight_deg", a.straight_deg)?;
             positive("heading.yaw_aid.hand_steady_deg", a.hand_steady_deg)?;
+            if !(a.offset_min_steps >= 0.0 && a.offset_min_steps.is_finite()) {
+                return Err(ConfigError::new(
+                    "heading.yaw_aid.offset_min_steps",
+                    "must be a finite number of steps, 0 or more",
+                ));
+            }
             if !(-1.0..=1.0).contains(&a.hand_screen_up_min) {
                 return Err(ConfigError::new(
                     "heading.yaw_aid.hand_screen_up_min",
@@ -441,7 +447,7 @@ impl Heading {
             (limb_mode, opened.by_limb, self.sign.flipped()),
         );
         let averaged = self.lead(step, averaged, two);
-        let aided = match &self.cfg.yaw_aid {
+        let steered = match &self.cfg.yaw_aid {
             Some(aid) if step.has_heading => pose.attitude.and_then(|attitude| {
                 let x = yaw_aid::SteerInput {
                     attitude,
@@ -456,8 +462,12 @@ impl Heading {
             }),
             _ => None,
         };
-        let walked = self.carry_on(step, aided, aided.or(averaged), opened.by_limb, limb_mode);
-        self.close(step, opened, aided, walked)
+        // The hand's yaw is the walker's own way; the yaw with a learnt offset is the
+        // acceleration heading's, smoothed, and is carried and opened as that.
+        let own = steered.filter(|s| s.own).map(|s| s.heading);
+        let h = steered.map(|s| s.heading).or(averaged);
+        let walked = self.carry_on(step, own, h, opened.by_limb, limb_mode);
+        self.close(step, opened, own, walked)
     }
 
     /// The opening's first part: a new bout releases the last one's held steps; a step whose

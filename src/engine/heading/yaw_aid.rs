@@ -21,13 +21,24 @@
 ///   is a vote over seconds, so a phone being put away or lifted to the ear is still `hand` for
 ///   a few steps, and its yaw then turns with the hand. 20°: smaller limits also refuse real
 ///   steps in sharp turns.
-/// - **Otherwise**, by default, the papers' acceleration heading. With
-///   [`YawAid::learn_offset`] the engine instead walks along ψ̄ + δ: ψ integrated from the
-///   attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on
-///   straight steps ([`YawAid::straight_deg`]) as a circular exponential mean over
-///   [`YawAid::steps`] steps with an outlier gate ([`YawOffset`]). It is off by default because
-///   in a pocket the device yaw sampled at the step instants carries the thigh's sway, which two
-///   steps do not cancel exactly.
+/// - **At the ear** ([`YawAid::ear_offset`]) the engine walks along ψ̄ + δ: ψ integrated from
+///   the attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt
+///   on straight steps as a circular exponential mean over [`YawAid::steps`] steps with an
+///   outlier gate ([`YawOffset`]). A phone held to the ear turns with the head, which faces the
+///   way walked within 5–11° (median, TyrEx's motion capture), while the acceleration heading
+///   there is 19–65° off: δ is steady, θ̄ is not, and the mean over steps keeps the one and
+///   loses the other. A step is straight when the yaw turned by at most
+///   [`YawAid::straight_deg`] over the stride before it (from two steps back): in and just
+///   after a turn θ̄, a stride average, lags the yaw. δ restarts at a change of carrying mode
+///   (another place, another offset), and steers once [`YawAid::offset_min_steps`] steps taught
+///   it. Only while the phone is steady, as the hand's yaw: a phone taken from the ear turns
+///   with the arm. The heading is the acceleration heading's, smoothed: it is carried across a
+///   change of mode and opened as that, not as the walker's own way ([`Steered::own`]).
+///   Measured in `docs/methods/yaw-offset.md`.
+/// - **Otherwise**, by default, the papers' acceleration heading. [`YawAid::learn_offset`] walks
+///   along ψ̄ + δ in every mode, the ear's rule. It is off by default because in a pocket the
+///   device yaw sampled at the step instants carries the thigh's sway, which two steps do not
+///   cancel exactly, and the real pocket and swinging walks get worse.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct YawAid {
@@ -39,9 +50,14 @@ pub struct YawAid {
     pub straight_deg: f64,
     /// Largest tilt of the screen from facing up for the reading pose, degrees; `0` disables it.
     pub reading_tilt_deg: f64,
-    /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ (off by default: in a
-    /// pocket the thigh's sway spoils it, see above).
+    /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ in every carrying mode
+    /// (off by default: in a pocket the thigh's sway spoils it, see above).
     pub learn_offset: bool,
+    /// At the ear, learn the offset δ and walk along ψ̄ + δ (see above).
+    pub ear_offset: bool,
+    /// Straight steps that must have taught δ since it last restarted before it steers (see
+    /// above).
+    pub offset_min_steps: f64,
     /// In the carrying mode `hand`, the device's yaw at any tilt (see above), while the phone is
     /// steady and its screen faces up at the step ([`YawAid::hand_steady_deg`],
     /// [`YawAid::hand_screen_up_min`]).
@@ -62,6 +78,8 @@ impl Default for YawAid {
             straight_deg: 10.0,
             reading_tilt_deg: 35.0,
             learn_offset: false,
+            ear_offset: true,
+            offset_min_steps: 7.0,
             hand_mode: true,
             hand_screen_up_min: 0.2,
             hand_steady_deg: 20.0,
@@ -103,6 +121,11 @@ impl YawOffset {
             .then(|| libm::atan2(self.sum.1, self.sum.0))
     }
 
+    /// Steps taught since the estimate last restarted.
+    pub fn steps(&self) -> f64 {
+        self.n
+    }
+
     /// Feeds one step's δ = θ̄ − ψ̄.
     pub fn update(&mut self, cfg: &YawAid, delta: f64) {
         if let Some(cur) = self.get() {
@@ -127,12 +150,26 @@ impl YawOffset {
     }
 }
 
-/// The yaw aid's stage: the device's yaw at the last step and the learnt offset.
+/// The yaw aid's stage: the device's yaw at the last two steps and the learnt offset.
 #[derive(Debug, Clone, Default)]
 pub struct Steer {
-    // The device's yaw at the previous step of the bout, compass radians, unwrapped.
+    // The device's yaw at the previous step of the bout and the one before, compass radians,
+    // unwrapped.
     last_yaw: Option<f64>,
+    before_last_yaw: Option<f64>,
     offset: YawOffset,
+    // The carrying mode the offset was learnt in.
+    offset_mode: Option<crate::engine::carry::CarryMode>,
+}
+
+/// The yaw aid's heading of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Steered {
+    /// Rad from north.
+    pub heading: f64,
+    /// The device's yaw as it is (the hand, the reading pose): the way the walker looks, not an
+    /// offset learnt from the acceleration heading.
+    pub own: bool,
 }
 
 /// What the yaw aid is given at a step.
@@ -157,9 +194,9 @@ pub struct SteerInput {
 impl Steer {
     /// The step's heading from the device's yaw, rad from north: in the hand, screen up, at any
     /// tilt the carrying mode allows, or (else, and before the mode is known) held nearly flat,
-    /// the top of the phone; elsewhere, with [`YawAid::learn_offset`], the yaw plus the offset
-    /// learnt on straight steps; else none.
-    pub fn push(&mut self, aid: &YawAid, x: &SteerInput) -> Option<f64> {
+    /// the top of the phone; at the ear ([`YawAid::ear_offset`]) or elsewhere with
+    /// [`YawAid::learn_offset`], the yaw plus the offset learnt on straight steps; else none.
+    pub fn push(&mut self, aid: &YawAid, x: &SteerInput) -> Option<Steered> {
         let SteerInput {
             attitude,
             yaw,
@@ -169,7 +206,9 @@ impl Steer {
             continued,
             averaged,
         } = *x;
+        let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
+        self.before_last_yaw = prev;
         let steady = match (up, previous_up) {
             (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
             _ => true,
@@ -179,24 +218,40 @@ impl Steer {
             && steady
             && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
             || reading_pose(&attitude, aid);
+        // A phone being moved from the ear is not steady, as a hand's (its yaw turns with the
+        // arm): the acceleration heading takes those steps.
+        let at_ear =
+            aid.ear_offset && carry == Some(crate::engine::carry::CarryMode::Ear) && steady;
         if reading {
             // Held in front, screen up: the top of the phone is the way forward.
-            device_twist(&attitude)
-        } else if !aid.learn_offset {
+            device_twist(&attitude).map(|heading| Steered { heading, own: true })
+        } else if !aid.learn_offset && !at_ear {
             None
         } else {
+            if self.offset_mode != carry {
+                // Another place on the body: another offset.
+                self.offset = YawOffset::default();
+                self.offset_mode = carry;
+            }
             // Two-step mean, as A-HE, so the sway of a pocket cancels.
             let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
-            // Only straight steps teach the offset: in a turn θ̄ (a stride average of the
-            // acceleration) lags the yaw.
-            let straight = prev.is_some_and(|p| (yaw - p).abs() <= aid.straight_deg.to_radians());
+            // Only straight strides teach the offset: in and just after a turn θ̄ (a stride
+            // average of the acceleration) lags the yaw.
+            let limit = aid.straight_deg.to_radians();
+            let straight = [prev, before_last]
+                .iter()
+                .all(|p| p.is_some_and(|p| (yaw - p).abs() <= limit));
             if let (Some(th), true) = (averaged, straight) {
                 self.offset
                     .update(aid, crate::engine::math::wrap_pi(th - psi));
             }
             self.offset
                 .get()
-                .map(|d| crate::engine::math::wrap_2pi(psi + d))
+                .filter(|_| self.offset.steps() >= aid.offset_min_steps)
+                .map(|d| Steered {
+                    heading: crate::engine::math::wrap_2pi(psi + d),
+                    own: false,
+                })
         }
     }
 
@@ -208,6 +263,7 @@ impl Steer {
     /// The end of a bout: the next step's yaw is not compared with the last.
     pub fn end_bout(&mut self) {
         self.last_yaw = None;
+        self.before_last_yaw = None;
     }
 }
 
