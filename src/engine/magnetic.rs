@@ -45,7 +45,7 @@
 //! simulator's 0.17°/s); an integral term that learnt it learnt the field's bends instead, so
 //! there is none. The figures are in `docs/methods/magnetic-guard.md`.
 
-use super::math::wrap_pi;
+use super::math::{atan2, wrap_pi};
 use super::orientation::NavAccel;
 use super::types::{positive, ConfigError, ImuSample};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -305,7 +305,7 @@ impl Magnetic {
         if let Some(prev) = self.last.filter(|_| dt > 0.0) {
             let predicted = prev * rotation_of(&(gyro * dt));
             let (w, k) = real_and_k_of_product_with_inverse(&predicted, &q);
-            self.delta = wrap_half_turns(2.0 * libm::atan2(k, w));
+            self.delta = wrap_half_turns(2.0 * atan2(k, w));
         }
         // 2. Test the field.
         let clean = self.clean(&q, &b, dt);
