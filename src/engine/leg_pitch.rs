@@ -365,7 +365,7 @@ impl LegPitch {
         if !(cross.abs() + dot.abs() > 1e-12) {
             return None;
         }
-        Some(-libm::atan2(cross, dot).to_degrees())
+        Some(-super::math::atan2(cross, dot).to_degrees())
     }
 
     /// The sign the votes give now: +1 when forward is a positive raw angle.
