@@ -26,10 +26,12 @@ pub struct DetectorInput {
     /// The leg pitch's raw angle about the swing axis, degrees, when known
     /// ([`super::leg_pitch::LegPitch::push`]; its sign is arbitrary).
     pub pitch_deg: Option<f64>,
-    /// How far the swing axis of the thigh the phone rides on is tilted from the horizontal,
-    /// degrees, when the leg pitch knows it is on a thigh
-    /// ([`super::leg_pitch::LegPitch::axis_tilt_deg`]).
-    pub axis_tilt_deg: Option<f64>,
+    /// The sine of how far the swing axis of the thigh the phone rides on is tilted from the
+    /// horizontal, |a·u| (unit), when the leg pitch knows it is on a thigh
+    /// ([`super::leg_pitch::LegPitch::axis_tilt_sin`]). A sine rather than the angle: the
+    /// step detector wants the largest tilt of a cycle, and the arcsine of the largest sine is
+    /// that, one arcsine per cycle instead of one per sample.
+    pub axis_tilt_sin: Option<f64>,
     /// Whether the carrying mode says the phone is in a pocket ([`super::carry::CarryMode::Pocket`]).
     pub pocket: bool,
 }

@@ -365,7 +365,7 @@ impl LegPitch {
         if !(cross.abs() + dot.abs() > 1e-12) {
             return None;
         }
-        Some(-libm::atan2(cross, dot).to_degrees())
+        Some(-super::math::atan2(cross, dot).to_degrees())
     }
 
     /// The sign the votes give now: +1 when forward is a positive raw angle.
@@ -509,9 +509,13 @@ impl LegPitch {
     /// roll are about ±5° each), and grows when the phone turns in a way the thigh does not:
     /// taken out of the pocket (the simulator: 14–39° within the cycle after the walk).
     pub fn axis_tilt_deg(&self) -> Option<f64> {
+        self.axis_tilt_sin().map(|s| libm::asin(s).to_degrees())
+    }
+
+    /// The sine of [`Self::axis_tilt_deg`]: |a·u|, at most 1, without the arcsine.
+    pub fn axis_tilt_sin(&self) -> Option<f64> {
         let (a, u) = (self.axis?, self.up?);
-        self.thigh
-            .then(|| libm::asin(a.dot(&u).abs().min(1.0)).to_degrees())
+        self.thigh.then(|| a.dot(&u).abs().min(1.0))
     }
 
     /// Whether the phone rides on a thigh ([`Self::push_stride`]).

@@ -57,6 +57,19 @@ pub fn circular_mean2(a: f64, b: f64) -> f64 {
     }
 }
 
+/// `libm::atan2(y, x)` bit for bit, rad, cheaper in its usual case: with |y| < x (x > 0, within
+/// 45° of +x) libm's atan2 is `atan(|y/x|)` with y's sign, and libm's `atan` takes the absolute
+/// value and puts the sign back itself, so `atan(y/x)` is the same number without atan2's case
+/// analysis. Anything else (x ≤ |y|, infinities, NaN) goes to `libm::atan2`.
+#[inline]
+pub fn atan2(y: f64, x: f64) -> f64 {
+    if y.abs() < x {
+        libm::atan(y / x)
+    } else {
+        libm::atan2(y, x)
+    }
+}
+
 /// Compass heading (radians clockwise from north) of the horizontal vector (east, north).
 pub fn heading_of(east: f64, north: f64) -> f64 {
     wrap_2pi(libm::atan2(east, north))
@@ -164,6 +177,52 @@ mod tests {
     fn the_outer_entries_rebuild_the_outer_product() {
         let v = nalgebra::Vector3::new(0.3, -1.7, 2.9);
         assert_eq!(from_outer_entries(&outer_entries(&v)), v * v.transpose());
+    }
+
+    #[test]
+    fn atan2_is_libms_bit_for_bit() {
+        let mut r = 0.4321f64;
+        let mut next = || {
+            r = (r * 9301.0 + 49297.0) % 233280.0;
+            r / 233280.0 * 2.0 - 1.0
+        };
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1e-300,
+            -1e-300,
+            5e-324,
+            1e300,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        let same = |y: f64, x: f64| {
+            let (got, want) = (atan2(y, x), libm::atan2(y, x));
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "atan2({y:e}, {x:e}): {got:e} against {want:e}"
+            );
+        };
+        for &y in &special {
+            for &x in &special {
+                same(y, x);
+            }
+        }
+        for i in 0..200_000 {
+            let scale = [1e-12, 1e-3, 1.0, 7.0, 1e9][i % 5];
+            let (y, x) = (
+                next() * scale,
+                next() * [1e-12, 1e-3, 1.0, 7.0, 1e9][(i / 5) % 5],
+            );
+            same(y, x);
+            same(x, y);
+            same(y, y.abs());
+            same(-y.abs(), y.abs());
+        }
     }
 
     #[test]

@@ -364,13 +364,13 @@ impl Pipeline {
             motion: state,
             cadence_hz: m.cadence_hz,
             pitch_deg: None,
-            axis_tilt_deg: None,
+            axis_tilt_sin: None,
             pocket: self.carry.mode() == Some(CarryMode::Pocket),
         };
         self.timed(Stage::LegPitch, |p| {
             p.pocket_sample(s, dt, state, &x);
             x.pitch_deg = p.pocket.pitch;
-            x.axis_tilt_deg = p.pocket.leg.axis_tilt_deg();
+            x.axis_tilt_sin = p.pocket.leg.axis_tilt_sin();
         });
         let (e, n) = nav.horizontal.unwrap_or((0.0, 0.0));
         self.timed(Stage::Window, |p| {
@@ -380,7 +380,7 @@ impl Pipeline {
                 n,
                 up: nav.up,
                 pitch: x.pitch_deg,
-                axis_tilt: x.axis_tilt_deg,
+                axis_tilt_sin: x.axis_tilt_sin,
                 yaw: p.heading.pose().yaw,
                 // q⁻¹·ẑ of this sample's attitude: the leg pitch has just taken it.
                 device_up: p.pocket.leg.device_up().map_or([0.0; 3], Into::into),

@@ -274,7 +274,7 @@ mod tests {
             motion: Motion::Walking,
             cadence_hz: Some(1.8),
             pitch_deg: Some(pitch),
-            axis_tilt_deg: None,
+            axis_tilt_sin: None,
             pocket: false,
         }
     }

@@ -90,7 +90,7 @@ pub struct PllConfig {
     /// stays high while the new cycles are quiet; this gate, not the absolute one, is what keeps
     /// steps from being counted while the window drains. 0.5: a steady gait gives ≈ 1.
     pub cycle_rms_rel: f64,
-    /// With the phone on a thigh ([`DetectorInput::axis_tilt_deg`] given) or in a pocket
+    /// With the phone on a thigh ([`DetectorInput::axis_tilt_sin`] given) or in a pocket
     /// ([`DetectorInput::pocket`]), a cycle that fails
     /// [`PllConfig::cycle_rms_rel`] and [`PllConfig::same_leg_rel`] but reaches this share of
     /// σ_z, right after a counted step, counts when the cycle after it counts too: a far leg's
@@ -120,7 +120,7 @@ pub struct PllConfig {
     /// puts it. The cycle after the last step of a walk (the body settling) carries some motion
     /// but no peak.
     pub peak_share_min: f64,
-    /// [`PllConfig::peak_share_min`] with the phone on a thigh ([`DetectorInput::axis_tilt_deg`]
+    /// [`PllConfig::peak_share_min`] with the phone on a thigh ([`DetectorInput::axis_tilt_sin`]
     /// given) or in a pocket ([`DetectorInput::pocket`]). There the loop holds the phase of the step frequency loosely (lock indicator
     /// 0.1–0.4 against ≈ 0.7 for a sinusoid: a thigh's vertical acceleration is far from one,
     /// with a strong stride harmonic and sharp heel strikes), so a real step's peak can fall at
@@ -155,7 +155,7 @@ pub struct PllConfig {
     /// short first step, and the share sits below that.
     pub first_swing_rel: f64,
     /// With the phone on a thigh, the first cycle over which the thigh's swing axis tilts
-    /// further than this from the horizontal ([`DetectorInput::axis_tilt_deg`]) is no step: the
+    /// further than this from the horizontal ([`DetectorInput::axis_tilt_sin`]) is no step: the
     /// phone is leaving the thigh. The cycles after it count as any phone's until one is level
     /// again, so a phone moved to the hand mid-walk loses one step, not the rest of the walk.
     /// Departure from the paper: taking the phone out of the pocket after a walk jerks it at a
@@ -163,7 +163,7 @@ pub struct PllConfig {
     /// hip's ab- and adduction and the pelvis's roll, ±5° each on a real thigh. Default 15°,
     /// above that.
     pub axis_tilt_max_deg: f64,
-    /// With the phone on a limb ([`DetectorInput::axis_tilt_deg`] given), a step after a
+    /// With the phone on a limb ([`DetectorInput::axis_tilt_sin`] given), a step after a
     /// standing cycle (one below [`PllConfig::cycle_rms_min`]) in a walk under way is held until
     /// the next cycle is judged, and is no step when that cycle moves without a step's peak
     /// (it fails [`PllConfig::peak_share_min`] or the tilt, not the RMS): a lone jolt between
@@ -300,8 +300,9 @@ struct PllState {
     // The leg pitch's least and largest raw angle over the cycle, degrees ([`NO_PITCH_YET`]
     // before its first sample); `None` once a sample of the cycle had none.
     cycle_pitch: Option<(f64, f64)>,
-    // The largest tilt of the thigh's swing axis over the cycle, degrees (0 without one).
-    cycle_tilt: f64,
+    // The sine of the largest tilt of the thigh's swing axis over the cycle (0 without one):
+    // the largest sine, whose arcsine is the largest tilt.
+    cycle_tilt_sin: f64,
     // Whether a cycle counted since the restart.
     counted: bool,
     // The last cycle, when it failed only the σ-relative gate before any counted: its step
@@ -344,7 +345,7 @@ impl PllState {
             peak_max: f64::NEG_INFINITY,
             prev_cycles: [(0.0, false); 2],
             cycle_pitch: Some(NO_PITCH_YET),
-            cycle_tilt: 0.0,
+            cycle_tilt_sin: 0.0,
             counted: false,
             quiet: None,
             late: None,
@@ -442,7 +443,7 @@ impl Pll {
         self.s.peak_max = f64::NEG_INFINITY;
         self.s.prev_cycles = [(0.0, false); 2];
         self.s.cycle_pitch = Some(NO_PITCH_YET);
-        self.s.cycle_tilt = 0.0;
+        self.s.cycle_tilt_sin = 0.0;
         self.s.pending = None;
         // A step held for the next cycle is undecided: counted, as without the rule.
         self.s.late = self.s.late.or(self.s.held.take());
@@ -498,7 +499,7 @@ impl Pll {
         let out = if from < PI && self.s.phase >= PI {
             self.end_cycle(x, d, from)
         } else {
-            self.s.cycle_tilt = self.s.cycle_tilt.max(x.axis_tilt_deg.unwrap_or(0.0));
+            self.s.cycle_tilt_sin = self.s.cycle_tilt_sin.max(x.axis_tilt_sin.unwrap_or(0.0));
             self.s.cycle_sq += d * d * x.dt;
             self.s.cycle_dt += x.dt;
             self.s.cycle_pitch = self
@@ -535,11 +536,12 @@ impl Pll {
     /// ([`Self::judge`]) and the next cycle starts with the rest of the sample. `d` is the
     /// sample's deviation from the mean, m/s².
     fn end_cycle(&mut self, x: &DetectorInput, d: f64, from: f64) -> Option<Candidate> {
-        let (dt, tilt) = (x.dt, x.axis_tilt_deg.unwrap_or(0.0));
+        let (dt, tilt_sin) = (x.dt, x.axis_tilt_sin.unwrap_or(0.0));
         let frac = (PI - from) / (self.s.phase - from);
         let sq = self.s.cycle_sq + d * d * dt * frac;
         let rms = libm::sqrt(sq / (self.s.cycle_dt + dt * frac).max(1e-9));
-        let tilted = self.s.cycle_tilt.max(tilt) > self.cfg.axis_tilt_max_deg;
+        let tilt_deg = libm::asin(self.s.cycle_tilt_sin.max(tilt_sin)).to_degrees();
+        let tilted = tilt_deg > self.cfg.axis_tilt_max_deg;
         let left_thigh = tilted && !self.tilted;
         self.tilted = tilted;
         let out = self.judge(x, sq, rms, left_thigh);
@@ -549,7 +551,7 @@ impl Pll {
         self.s.cycle_sq = d * d * dt * (1.0 - frac);
         self.s.cycle_dt = dt * (1.0 - frac);
         self.s.cycle_pitch = x.pitch_deg.map(|p| (p, p));
-        self.s.cycle_tilt = tilt;
+        self.s.cycle_tilt_sin = tilt_sin;
         out
     }
 
@@ -567,7 +569,7 @@ impl Pll {
         let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
         // On a thigh, or in a pocket by the carrying mode before the leg pitch knows the thigh
         // (and in a back pocket, which it never does).
-        let pocket = x.axis_tilt_deg.is_some() || x.pocket;
+        let pocket = x.axis_tilt_sin.is_some() || x.pocket;
         let peak_share = if pocket {
             self.cfg.thigh_peak_share_min
         } else {
@@ -630,7 +632,7 @@ impl Pll {
             if self.s.counted
                 && after_still
                 && x.motion.is_moving()
-                && x.axis_tilt_deg.is_some()
+                && x.axis_tilt_sin.is_some()
                 && self.cfg.lone_step_confirm
             {
                 self.s.held = Some(c);

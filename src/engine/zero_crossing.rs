@@ -306,7 +306,7 @@ mod tests {
             motion: Motion::Walking,
             cadence_hz: None,
             pitch_deg: None,
-            axis_tilt_deg: None,
+            axis_tilt_sin: None,
             pocket: false,
         }
     }

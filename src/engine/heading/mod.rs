@@ -69,9 +69,9 @@ pub struct NavSample {
     pub up: f64,
     /// The leg pitch, degrees, when known ([`crate::engine::leg_pitch`]).
     pub pitch: Option<f64>,
-    /// How far the limb's swing axis is tilted from the horizontal, degrees, while the phone
-    /// rides on a thigh ([`crate::engine::leg_pitch::LegPitch::axis_tilt_deg`]).
-    pub axis_tilt: Option<f64>,
+    /// The sine of how far the limb's swing axis is tilted from the horizontal, while the phone
+    /// rides on a thigh ([`crate::engine::leg_pitch::LegPitch::axis_tilt_sin`]).
+    pub axis_tilt_sin: Option<f64>,
     /// The device's turn about the vertical since the start, compass radians, unwrapped: the
     /// attitude's increments integrated ([`Heading::push_attitude`]; 0 without an attitude).
     pub yaw: f64,
@@ -105,7 +105,7 @@ impl NavSample {
             n: 0.0,
             up: 0.0,
             pitch: None,
-            axis_tilt: None,
+            axis_tilt_sin: None,
             yaw: 0.0,
             device_up: [0.0; 3],
             sigma_z: 0.0,
@@ -124,7 +124,7 @@ impl NavSample {
             n: a.n + w * (b.n - a.n),
             up: a.up + w * (b.up - a.up),
             pitch: a.pitch,
-            axis_tilt: a.axis_tilt,
+            axis_tilt_sin: a.axis_tilt_sin,
             yaw: a.yaw + w * (b.yaw - a.yaw),
             device_up: a.device_up,
             sigma_z: a.sigma_z,

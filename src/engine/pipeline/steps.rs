@@ -56,7 +56,7 @@ impl Pipeline {
                 motion: state,
                 cadence_hz: m.cadence_hz,
                 pitch_deg: s.pitch,
-                axis_tilt_deg: s.axis_tilt,
+                axis_tilt_sin: s.axis_tilt_sin,
                 pocket,
             });
             out.extend(self.detector.take_late_step());

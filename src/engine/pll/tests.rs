@@ -18,7 +18,7 @@ fn count(f_in: f64, seconds: f64, rate: f64) -> (usize, f64) {
             motion: Motion::Walking,
             cadence_hz: None,
             pitch_deg: None,
-            axis_tilt_deg: None,
+            axis_tilt_sin: None,
             pocket: false,
         };
         if p.push(&x).is_some() {
@@ -65,7 +65,7 @@ fn walk_with(
             motion: Motion::Walking,
             cadence_hz: Some(f),
             pitch_deg: pitch(t),
-            axis_tilt_deg: tilt(t),
+            axis_tilt_sin: tilt(t).map(|d: f64| libm::sin(d.to_radians())),
             pocket: false,
         });
         steps.extend(c.map(|c| c.t));
@@ -253,7 +253,7 @@ fn a_far_legs_quiet_step_counts_between_two_counted_steps_on_a_thigh() {
                 motion: Motion::Walking,
                 cadence_hz: Some(f),
                 pitch_deg: None,
-                axis_tilt_deg: thigh.then_some(0.0),
+                axis_tilt_sin: thigh.then_some(0.0),
                 pocket: false,
             });
             all.extend(c.map(|c| c.t));
