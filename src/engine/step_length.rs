@@ -188,11 +188,18 @@ impl PitchStepLength {
 /// what the thigh's steps so far measured against it: Σ eq. 5 / Σ line over them, once there
 /// are [`Self::min_steps`]. The other models keep their own rule (the pitch model already uses
 /// eq. 5 on every such step).
+///
+/// Off by default: the simulated pocket walks give their thigh the law stride = 0.030·Δθ + 0.06 m
+/// (`sim::thigh`), on which the default's 0.0364 reads 16 % long, and the fusion's tests are
+/// built on the line being the engine's length in the pocket (the city walk's walker steps 1/1.1
+/// of it). On, it takes TyrEx's front-pocket median distance ratio from 1.26 to 1.10.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct ThighStepLength {
-    /// a, m of stride per degree of Δθ_H; 0 keeps the line on every step. Default
-    /// [`POCKET_SLOPE_M_PER_DEG`]. No offset: the line's default is not a walker's either.
+    /// Whether the rule runs. Default off (see above).
+    pub on: bool,
+    /// a, m of stride per degree of Δθ_H. Default [`POCKET_SLOPE_M_PER_DEG`]. No offset: the
+    /// line's default is not a walker's either.
     pub a: f64,
     /// The thigh's steps needed before the pocket's other steps take the line scaled by them;
     /// 0 never scales. Default 8 (four strides): on TyrEx's front pockets 4 and 10 give the
@@ -203,8 +210,39 @@ pub struct ThighStepLength {
 impl Default for ThighStepLength {
     fn default() -> Self {
         ThighStepLength {
+            on: false,
             a: POCKET_SLOPE_M_PER_DEG,
             min_steps: 8,
+        }
+    }
+}
+
+impl ThighStepLength {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if !(self.a.is_finite() && self.a > 0.0 && self.a < 0.1) {
+            return Err(ConfigError::new(
+                "thigh_step_length.a",
+                "must be a slope above 0 and below 0.1 m per degree",
+            ));
+        }
+        Ok(())
+    }
+
+    /// One footfall's length, m, for a step of the frequency line: eq. 5's half stride within
+    /// the profile's range when the rule is on and the step is in a pocket with a thigh's Δθ
+    /// (degrees); `None` otherwise (the line applies).
+    pub fn length(
+        &self,
+        profile: &StepLengthProfile,
+        carry: Option<CarryMode>,
+        amplitude_deg: Option<f64>,
+    ) -> Option<f64> {
+        match (carry, amplitude_deg) {
+            (Some(CarryMode::Pocket), Some(d)) if self.on && d.is_finite() => {
+                Some(footfall_m(self.a, 0.0, d).clamp(profile.min_m, profile.max_m))
+            }
+            _ => None,
         }
     }
 }
@@ -226,36 +264,6 @@ impl ThighScale {
     fn scale(&self, min_steps: u32) -> Option<f64> {
         (min_steps > 0 && self.steps >= min_steps && self.line_m > 0.0)
             .then(|| self.eq5_m / self.line_m)
-    }
-}
-
-impl ThighStepLength {
-    /// Checks the values.
-    pub fn validate(&self) -> Result<(), ConfigError> {
-        if !(self.a.is_finite() && (0.0..0.1).contains(&self.a)) {
-            return Err(ConfigError::new(
-                "thigh_step_length.a",
-                "must be 0 (off) or a slope below 0.1 m per degree",
-            ));
-        }
-        Ok(())
-    }
-
-    /// One footfall's length, m, for a step of the frequency line: eq. 5's half stride within
-    /// the profile's range when the step is in a pocket with a thigh's Δθ (degrees) and the
-    /// slope is on; `None` otherwise (the line applies).
-    pub fn length(
-        &self,
-        profile: &StepLengthProfile,
-        carry: Option<CarryMode>,
-        amplitude_deg: Option<f64>,
-    ) -> Option<f64> {
-        match (carry, amplitude_deg) {
-            (Some(CarryMode::Pocket), Some(d)) if self.a > 0.0 && d.is_finite() => {
-                Some(footfall_m(self.a, 0.0, d).clamp(profile.min_m, profile.max_m))
-            }
-            _ => None,
-        }
     }
 }
 
@@ -507,10 +515,17 @@ mod tests {
         assert_eq!(p.length(0.01), p.min_m);
     }
 
-    /// A fresh default stage's length for one step, and the default line's at `freq_hz`.
+    /// The pocket's rule, on, with its default slope.
+    const ON: ThighStepLength = ThighStepLength {
+        on: true,
+        a: POCKET_SLOPE_M_PER_DEG,
+        min_steps: 8,
+    };
+
+    /// A fresh stage's length for one step (the pocket's rule on), and the default line's at `freq_hz`.
     fn pocket_step(freq_hz: f64, deg: Option<f64>, carry: Option<CarryMode>) -> (f64, f64) {
         let buf = VecDeque::new();
-        let mut stage = StepLength::new(StepLengthModel::default(), ThighStepLength::default());
+        let mut stage = StepLength::new(StepLengthModel::default(), ON);
         let input = StepLengthInput {
             freq_hz,
             buf: &buf,
@@ -537,28 +552,32 @@ mod tests {
             line
         );
         assert_eq!(pocket_step(1.6, None, pocket).0, line);
-        // Off: the line everywhere.
-        let off = ThighStepLength {
-            a: 0.0,
-            min_steps: 8,
-        };
+        // Off (the default): the line everywhere.
+        let off = ThighStepLength::default();
         assert_eq!(
             off.length(&StepLengthProfile::default(), pocket, Some(26.0)),
             None
         );
-        assert!(ThighStepLength {
-            a: f64::NAN,
-            min_steps: 8
-        }
-        .validate()
-        .is_err());
-        assert!(ThighStepLength::default().validate().is_ok());
+        let buf = VecDeque::new();
+        let mut stage = StepLength::new(StepLengthModel::default(), off);
+        let input = StepLengthInput {
+            freq_hz: 1.6,
+            buf: &buf,
+            t0: 0.0,
+            t1: 0.6,
+            pitch_amplitude_deg: Some(26.0),
+            carry: pocket,
+        };
+        assert_eq!(stage.push(&input), line);
+        assert!(ThighStepLength { a: f64::NAN, ..ON }.validate().is_err());
+        assert!(ThighStepLength { a: 0.0, ..ON }.validate().is_err());
+        assert!(off.validate().is_ok());
     }
 
     #[test]
     fn the_thigh_scales_the_pockets_other_steps() {
         let buf = VecDeque::new();
-        let mut stage = StepLength::new(StepLengthModel::default(), ThighStepLength::default());
+        let mut stage = StepLength::new(StepLengthModel::default(), ON);
         let step = |deg: Option<f64>| StepLengthInput {
             freq_hz: 1.8,
             buf: &buf,
