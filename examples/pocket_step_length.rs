@@ -172,7 +172,7 @@ fn path_m(truth: &[[f64; 8]]) -> f64 {
     let (x, y) = (col(1), col(2));
     x.windows(2)
         .zip(y.windows(2))
-        .map(|(a, b)| (a[1] - a[0]).hypot(b[1] - b[0]))
+        .map(|(a, b)| libm::hypot(a[1] - a[0], b[1] - b[0]))
         .sum()
 }
 
@@ -192,7 +192,7 @@ fn cycles(x: &[f64], h: f64) -> usize {
 
 /// The standard deviation of `x` (mean about 0).
 fn sigma(x: &[f64]) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64).sqrt()
+    libm::sqrt(x.iter().map(|v| v * v).sum::<f64>() / x.len().max(1) as f64)
 }
 
 /// The thigh's swings: cycles of the phone's up direction (in the phone's axes) along its
@@ -218,26 +218,30 @@ fn thigh_swings(truth: &[[f64; 8]]) -> usize {
             moving_mean(&hp, (0.15 * FS) as usize)
         })
         .collect();
+    let pts: Vec<[f64; 3]> = comp[0]
+        .iter()
+        .zip(&comp[1])
+        .zip(&comp[2])
+        .map(|((a, b), c)| [*a, *b, *c])
+        .collect();
     let mut cov = [[0.0; 3]; 3];
-    for i in 0..comp[0].len() {
-        for a in 0..3 {
-            for b in 0..3 {
-                cov[a][b] += comp[a][i] * comp[b][i];
+    for &p in &pts {
+        for (row, pa) in cov.iter_mut().zip(p) {
+            for (c, pb) in row.iter_mut().zip(p) {
+                *c += pa * pb;
             }
         }
     }
     // The principal axis by power iteration.
     let mut v = [1.0, 1.0, 1.0];
     for _ in 0..100 {
-        let mut n = [0.0; 3];
-        for a in 0..3 {
-            n[a] = (0..3).map(|b| cov[a][b] * v[b]).sum();
-        }
-        let norm = n.iter().map(|x| x * x).sum::<f64>().sqrt().max(1e-300);
+        let n = cov.map(|row| row.iter().zip(&v).map(|(c, x)| c * x).sum::<f64>());
+        let norm = libm::sqrt(n.iter().map(|x| x * x).sum::<f64>()).max(1e-300);
         v = n.map(|x| x / norm);
     }
-    let pc: Vec<f64> = (0..comp[0].len())
-        .map(|i| (0..3).map(|k| comp[k][i] * v[k]).sum())
+    let pc: Vec<f64> = pts
+        .iter()
+        .map(|p| p.iter().zip(&v).map(|(a, b)| a * b).sum())
         .collect();
     cycles(&pc, 0.25 * sigma(&pc))
 }
