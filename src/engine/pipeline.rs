@@ -258,7 +258,7 @@ impl Pipeline {
             ),
             detector: Detector::new(cfg.detector),
             heading: Heading::new(cfg.heading),
-            step_length: StepLength::new(cfg.step_length.clone()),
+            step_length: StepLength::new(cfg.step_length.clone(), cfg.thigh_step_length),
             orientation: Orientation::new(cfg.orientation),
             bout: bout::Bout::default(),
             track: track::Track::default(),

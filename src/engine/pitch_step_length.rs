@@ -18,6 +18,17 @@
 /// Eq. 5's universal slope, m of stride per degree of Δθ_H (see the module documentation).
 pub const UNIVERSAL_SLOPE_M_PER_DEG: f64 = 0.0314;
 
+/// The slope the default frequency line uses on a recognised thigh's walking steps
+/// ([`crate::engine::step_length::ThighStepLength`]), m of stride per degree of Δθ_H.
+/// Measured on the front-pocket walks of the TyrEx set (two walkers, motion-capture truth,
+/// `docs/methods/step-length-pocket.md`): each walker's stride over the truth's smoothed path
+/// against the stride's Δθ, fitted through the origin, gives 0.0372 (Guillaume, 191 strides) and
+/// 0.0356 (Jakob, 188); this is their mean. It is 16 % above the geometric slope: slow walkers'
+/// thighs swing through 24–28° at 0.45–0.5 m steps, less than the gait data behind
+/// [`UNIVERSAL_SLOPE_M_PER_DEG`] (35° at 0.55 m). Leave-one-walker-out, each walker's slope
+/// put on the other's steps is within 4.5 % of their mean true step.
+pub const POCKET_SLOPE_M_PER_DEG: f64 = 0.0364;
+
 /// One footfall's length, m: half of eq. 5's stride S = a·Δθ_H + b (a in m/°, b in m, Δθ_H in
 /// degrees). The settings and the fallback for steps without a pitch are the step-length
 /// stage's ([`crate::engine::step_length::PitchStepLength`]).

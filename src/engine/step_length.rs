@@ -25,9 +25,10 @@
 //! Between the bands the line is chosen by frequency, switching at the midpoint of the gap
 //! (2.45 Hz by default); outside the bands each line is extrapolated, then clamped.
 
+use super::carry::CarryMode;
 use super::fuzzy_step_length::{vertical_variance, FuzzyConfig, FuzzyStep, FuzzyStepLength};
 use super::heading::NavSample;
-use super::pitch_step_length::{footfall_m, UNIVERSAL_SLOPE_M_PER_DEG};
+use super::pitch_step_length::{footfall_m, POCKET_SLOPE_M_PER_DEG, UNIVERSAL_SLOPE_M_PER_DEG};
 use super::types::{positive, ConfigError};
 use std::collections::VecDeque;
 
@@ -176,6 +177,96 @@ impl PitchStepLength {
     }
 }
 
+/// The frequency line's steps in a trouser pocket: Munoz Diaz 2015 eq. 5 (stride S = a·Δθ_H,
+/// [`super::pitch_step_length`]) instead of the line, for a walking step whose stride showed a
+/// recognised thigh's swing ([`crate::engine::leg_pitch::LegPitch::push_stride`]) while the
+/// carrying mode reads a pocket. The thigh's swing measures the stride itself, where the line
+/// only knows the cadence: on TyrEx's front-pocket walks (slow loops with frequent turns in a
+/// 5 × 6 m room) the line gives 0.55–0.6 m per step at 1.5–1.7 Hz against 0.45–0.5 m true
+/// (`docs/methods/step-length-pocket.md`). The pocket's other steps (strides the leg pitch did
+/// not recognise as a thigh's, often a third or more of a slow walk's) take the line scaled by
+/// what the thigh's steps so far measured against it: Σ eq. 5 / Σ line over them, once there
+/// are [`Self::min_steps`]. The other models keep their own rule (the pitch model already uses
+/// eq. 5 on every such step).
+///
+/// Off by default: the simulated pocket walks give their thigh the law stride = 0.030·Δθ + 0.06 m
+/// (`sim::thigh`), on which the default's 0.0364 reads 16 % long, and the fusion's tests are
+/// built on the line being the engine's length in the pocket (the city walk's walker steps 1/1.1
+/// of it). On, it takes TyrEx's front-pocket median distance ratio from 1.26 to 1.10.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct ThighStepLength {
+    /// Whether the rule runs. Default off (see above).
+    pub on: bool,
+    /// a, m of stride per degree of Δθ_H. Default [`POCKET_SLOPE_M_PER_DEG`]. No offset: the
+    /// line's default is not a walker's either.
+    pub a: f64,
+    /// The thigh's steps needed before the pocket's other steps take the line scaled by them;
+    /// 0 never scales. Default 8 (four strides): on TyrEx's front pockets 4 and 10 give the
+    /// same ratios, 20 waits too long on walks where the thigh shows late.
+    pub min_steps: u32,
+}
+
+impl Default for ThighStepLength {
+    fn default() -> Self {
+        ThighStepLength {
+            on: false,
+            a: POCKET_SLOPE_M_PER_DEG,
+            min_steps: 8,
+        }
+    }
+}
+
+impl ThighStepLength {
+    /// Checks the values.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if !(self.a.is_finite() && self.a > 0.0 && self.a < 0.1) {
+            return Err(ConfigError::new(
+                "thigh_step_length.a",
+                "must be a slope above 0 and below 0.1 m per degree",
+            ));
+        }
+        Ok(())
+    }
+
+    /// One footfall's length, m, for a step of the frequency line: eq. 5's half stride within
+    /// the profile's range when the rule is on and the step is in a pocket with a thigh's Δθ
+    /// (degrees); `None` otherwise (the line applies).
+    pub fn length(
+        &self,
+        profile: &StepLengthProfile,
+        carry: Option<CarryMode>,
+        amplitude_deg: Option<f64>,
+    ) -> Option<f64> {
+        match (carry, amplitude_deg) {
+            (Some(CarryMode::Pocket), Some(d)) if self.on && d.is_finite() => {
+                Some(footfall_m(self.a, 0.0, d).clamp(profile.min_m, profile.max_m))
+            }
+            _ => None,
+        }
+    }
+}
+
+/// What the thigh's steps measured against the frequency line so far
+/// ([`ThighStepLength`]).
+#[derive(Debug, Clone, Copy, Default)]
+struct ThighScale {
+    /// Σ eq. 5 over the thigh's steps, m.
+    eq5_m: f64,
+    /// Σ line over the same steps, m.
+    line_m: f64,
+    /// How many.
+    steps: u32,
+}
+
+impl ThighScale {
+    /// Σ eq. 5 / Σ line once `min_steps` (at least 1) thigh steps are in.
+    fn scale(&self, min_steps: u32) -> Option<f64> {
+        (min_steps > 0 && self.steps >= min_steps && self.line_m > 0.0)
+            .then(|| self.eq5_m / self.line_m)
+    }
+}
+
 /// How step length is computed.
 #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
@@ -259,6 +350,8 @@ pub struct StepLengthInput<'a> {
     pub t1: f64,
     /// The leg pitch amplitude Δθ of the step's stride, degrees, when known.
     pub pitch_amplitude_deg: Option<f64>,
+    /// The carrying mode at the step, when known.
+    pub carry: Option<CarryMode>,
 }
 
 /// The step-length stage's current values; read-only.
@@ -273,14 +366,18 @@ pub struct StepLengthDiagnostics {
 #[derive(Debug, Clone)]
 pub struct StepLength {
     model: StepLengthModel,
+    thigh: ThighStepLength,
+    thigh_scale: ThighScale,
     fuzzy: Option<FuzzyStepLength>,
     last_m: Option<f64>,
 }
 
 impl StepLength {
-    /// A stage with a validated model.
-    pub fn new(model: StepLengthModel) -> Self {
+    /// A stage with a validated model and the pocket's rule for the frequency line.
+    pub fn new(model: StepLengthModel, thigh: ThighStepLength) -> Self {
         StepLength {
+            thigh,
+            thigh_scale: ThighScale::default(),
             fuzzy: match &model {
                 StepLengthModel::Fuzzy(c) => Some(FuzzyStepLength::new(*c)),
                 _ => None,
@@ -298,7 +395,22 @@ impl StepLength {
     /// The length of one step, m.
     pub fn push(&mut self, step: &StepLengthInput) -> f64 {
         let m = match &self.model {
-            StepLengthModel::Frequency(p) => p.length(step.freq_hz),
+            StepLengthModel::Frequency(p) => {
+                let line = p.length(step.freq_hz);
+                match self.thigh.length(p, step.carry, step.pitch_amplitude_deg) {
+                    Some(m) => {
+                        let s = &mut self.thigh_scale;
+                        s.eq5_m += m;
+                        s.line_m += line;
+                        s.steps += 1;
+                        m
+                    }
+                    None => match (step.carry, self.thigh_scale.scale(self.thigh.min_steps)) {
+                        (Some(CarryMode::Pocket), Some(k)) => (k * line).clamp(p.min_m, p.max_m),
+                        _ => line,
+                    },
+                }
+            }
             StepLengthModel::Weinberg { k } => {
                 weinberg(*k, peak_to_peak(step.buf, step.t0, step.t1))
             }
@@ -401,6 +513,95 @@ mod tests {
         assert!(p.length(3.0) > p.length(2.2));
         assert_eq!(p.length(20.0), p.max_m);
         assert_eq!(p.length(0.01), p.min_m);
+    }
+
+    /// The pocket's rule, on, with its default slope.
+    const ON: ThighStepLength = ThighStepLength {
+        on: true,
+        a: POCKET_SLOPE_M_PER_DEG,
+        min_steps: 8,
+    };
+
+    /// A fresh stage's length for one step (the pocket's rule on), and the default line's at `freq_hz`.
+    fn pocket_step(freq_hz: f64, deg: Option<f64>, carry: Option<CarryMode>) -> (f64, f64) {
+        let buf = VecDeque::new();
+        let mut stage = StepLength::new(StepLengthModel::default(), ON);
+        let input = StepLengthInput {
+            freq_hz,
+            buf: &buf,
+            t0: 0.0,
+            t1: 0.6,
+            pitch_amplitude_deg: deg,
+            carry,
+        };
+        (
+            stage.push(&input),
+            StepLengthProfile::default().length(freq_hz),
+        )
+    }
+
+    #[test]
+    fn thigh_steps_in_a_pocket_take_eq5() {
+        let pocket = Some(CarryMode::Pocket);
+        // A thigh's 26° in a pocket: half of 0.0364 · 26 = 0.4732 m, not the line's 0.57 m.
+        let (m, line) = pocket_step(1.6, Some(26.0), pocket);
+        assert!((m - 0.5 * POCKET_SLOPE_M_PER_DEG * 26.0).abs() < 1e-12 && line > 0.55);
+        // A swinging hand's Δθ, or no Δθ: the line.
+        assert_eq!(
+            pocket_step(1.6, Some(60.0), Some(CarryMode::Swinging)).0,
+            line
+        );
+        assert_eq!(pocket_step(1.6, None, pocket).0, line);
+        // Off (the default): the line everywhere.
+        let off = ThighStepLength::default();
+        assert_eq!(
+            off.length(&StepLengthProfile::default(), pocket, Some(26.0)),
+            None
+        );
+        let buf = VecDeque::new();
+        let mut stage = StepLength::new(StepLengthModel::default(), off);
+        let input = StepLengthInput {
+            freq_hz: 1.6,
+            buf: &buf,
+            t0: 0.0,
+            t1: 0.6,
+            pitch_amplitude_deg: Some(26.0),
+            carry: pocket,
+        };
+        assert_eq!(stage.push(&input), line);
+        assert!(ThighStepLength { a: f64::NAN, ..ON }.validate().is_err());
+        assert!(ThighStepLength { a: 0.0, ..ON }.validate().is_err());
+        assert!(off.validate().is_ok());
+    }
+
+    #[test]
+    fn the_thigh_scales_the_pockets_other_steps() {
+        let buf = VecDeque::new();
+        let mut stage = StepLength::new(StepLengthModel::default(), ON);
+        let step = |deg: Option<f64>| StepLengthInput {
+            freq_hz: 1.8,
+            buf: &buf,
+            t0: 0.0,
+            t1: 0.55,
+            pitch_amplitude_deg: deg,
+            carry: Some(CarryMode::Pocket),
+        };
+        let line = StepLengthProfile::default().length(1.8);
+        // Before 8 thigh steps the other steps keep the line.
+        for _ in 0..7 {
+            stage.push(&step(Some(25.0)));
+        }
+        assert_eq!(stage.push(&step(None)), line);
+        let thigh = stage.push(&step(Some(25.0)));
+        // Now Σ eq. 5 / Σ line over the 8 thigh steps scales the line.
+        let scaled = stage.push(&step(None));
+        assert!((scaled - line * thigh / line).abs() < 1e-12 && scaled < line);
+        // Out of the pocket, the line.
+        let hand = StepLengthInput {
+            carry: Some(CarryMode::Hand),
+            ..step(None)
+        };
+        assert_eq!(stage.push(&hand), line);
     }
 
     #[test]

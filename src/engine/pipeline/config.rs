@@ -14,7 +14,7 @@ use crate::engine::leg_pitch::LegPitchConfig;
 use crate::engine::magnetic::MagneticConfig;
 use crate::engine::motion::MotionConfig;
 use crate::engine::orientation::OrientationSource;
-use crate::engine::step_length::StepLengthModel;
+use crate::engine::step_length::{StepLengthModel, ThighStepLength};
 use crate::engine::types::{positive, ConfigError};
 use crate::engine::vertical::VerticalConfig;
 
@@ -39,6 +39,9 @@ pub struct PipelineConfig {
     pub heading: HeadingConfig,
     /// Step-length model.
     pub step_length: StepLengthModel,
+    /// The frequency line's steps on a recognised thigh in a pocket: eq. 5 of Munoz Diaz 2015
+    /// ([`crate::engine::step_length::ThighStepLength`]).
+    pub thigh_step_length: ThighStepLength,
     /// How far back the step detector looks when a gait is confirmed, s (the onset look-back,
     /// see the module notes). Default 3 s, the span of the autocorrelation that confirms a
     /// periodic gait ([`crate::engine::motion::Periodicity`]): the gait began within it.
@@ -95,6 +98,7 @@ impl Default for PipelineConfig {
             detector: StepDetectorConfig::default(),
             heading: HeadingConfig::default(),
             step_length: StepLengthModel::default(),
+            thigh_step_length: ThighStepLength::default(),
             onset_lookback_s: 3.0,
             onset_coherence_min: 0.0,
             onset_pocket_cycles: 2,
@@ -141,6 +145,7 @@ impl PipelineConfig {
         self.vertical.validate()?;
         self.heading.validate()?;
         self.step_length.validate()?;
+        self.thigh_step_length.validate()?;
         self.fusion.validate()?;
         self.hybrid.validate()?;
         self.foot.validate()?;

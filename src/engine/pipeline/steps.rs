@@ -117,6 +117,7 @@ impl Pipeline {
             pitch_amplitude_deg: pocket
                 .amplitude_deg
                 .filter(|_| pocket.activity == Activity::Walking),
+            carry: self.carry.mode(),
         });
         // Stairs: a tread per footfall, whatever the model (the line is for level ground).
         let length = match pocket.activity {
@@ -202,6 +203,7 @@ impl Pipeline {
             t0: step.t - 1.0 / step.freq_hz,
             t1: step.t,
             pitch_amplitude_deg: step.pitch_amplitude_deg,
+            carry: step.carry,
         }
     }
 }
