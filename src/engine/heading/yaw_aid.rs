@@ -29,9 +29,10 @@
 ///   there is 19–65° off: δ is steady, θ̄ is not, and the mean over steps keeps the one and
 ///   loses the other. A step is straight when the yaw turned by at most
 ///   [`YawAid::straight_deg`] over the stride before it (from two steps back): in and just
-///   after a turn θ̄, a stride average, lags the yaw. δ restarts at a change of carrying mode
-///   (another place, another offset), and steers once [`YawAid::offset_min_steps`] steps taught
-///   it. Only while the phone is steady, as the hand's yaw: a phone taken from the ear turns
+///   after a turn θ̄, a stride average, lags the yaw. δ restarts when it is taught in another
+///   carrying mode than before (another place, another offset: with [`YawAid::learn_offset`],
+///   which teaches in every mode; a spell of another mode between steps at the ear leaves the
+///   ear's δ as it was), and steers once [`YawAid::offset_min_steps`] steps taught it. Only while the phone is steady, as the hand's yaw: a phone taken from the ear turns
 ///   with the arm. The heading is the acceleration heading's, smoothed: it is carried across a
 ///   change of mode and opened as that, not as the walker's own way ([`Steered::own`]).
 ///   Measured in `docs/methods/yaw-offset.md`.
@@ -229,7 +230,7 @@ impl Steer {
             None
         } else {
             if self.offset_mode != carry {
-                // Another place on the body: another offset.
+                // Taught in another place on the body: another offset.
                 self.offset = YawOffset::default();
                 self.offset_mode = carry;
             }
@@ -305,5 +306,81 @@ mod tests {
             o.update(&aid, 2.5);
         }
         assert!((o.get().unwrap() - 2.5).abs() < 0.05, "{:?}", o.get());
+    }
+
+    #[test]
+    fn at_the_ear_the_yaw_walks_with_the_offset_the_straight_strides_taught() {
+        use crate::engine::carry::CarryMode;
+        use nalgebra::{UnitQuaternion, Vector3};
+        let aid = YawAid::default();
+        // Upright at the ear: not the reading pose, screen facing sideways.
+        let attitude = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.5);
+        let up = Some(attitude.inverse() * Vector3::z());
+        let step = |steer: &mut Steer, yaw: f64, carry: CarryMode, averaged: f64| {
+            steer.push(
+                &aid,
+                &SteerInput {
+                    attitude,
+                    yaw,
+                    up,
+                    previous_up: up,
+                    carry: Some(carry),
+                    continued: true,
+                    averaged: Some(averaged),
+                },
+            )
+        };
+        let mut steer = Steer::default();
+        // Walking straight, the acceleration heading 0.5 rad off the yaw, either way by 0.3.
+        let mut got = Vec::new();
+        for k in 0..12 {
+            let scatter = if k % 2 == 0 { 0.3 } else { -0.3 };
+            got.push(step(&mut steer, 1.0, CarryMode::Ear, 1.5 + scatter));
+        }
+        // Not before offset_min_steps straight strides (the first two have no stride behind them).
+        assert!(got[..8].iter().all(Option::is_none), "{got:?}");
+        let last = got[11].expect("steered");
+        assert!(!last.own);
+        assert!((last.heading - 1.5).abs() < 0.05, "{last:?}");
+        // In a turn the yaw carries the walk at once, with the offset held.
+        let turned = step(&mut steer, 1.6, CarryMode::Ear, 0.0).expect("steered");
+        assert!((turned.heading - (1.3 + 0.5)).abs() < 0.05, "{turned:?}");
+        // A spell in the pocket steers nothing and leaves the ear's offset as it was.
+        assert_eq!(step(&mut steer, 1.6, CarryMode::Pocket, 2.0), None);
+        let back = step(&mut steer, 1.6, CarryMode::Ear, 2.1).expect("steered");
+        assert!((back.heading - 2.1).abs() < 0.05, "{back:?}");
+        // Taught in another mode (`learn_offset`), the offset starts again.
+        let every = YawAid {
+            learn_offset: true,
+            ..aid
+        };
+        let pocket = steer.push(
+            &every,
+            &SteerInput {
+                attitude,
+                yaw: 1.6,
+                up,
+                previous_up: up,
+                carry: Some(CarryMode::Pocket),
+                continued: true,
+                averaged: Some(2.0),
+            },
+        );
+        assert_eq!(pocket, None);
+        // A phone being moved is not steady.
+        let mut moved = Steer::default();
+        let other = Some(Vector3::z());
+        let x = SteerInput {
+            attitude,
+            yaw: 1.0,
+            up,
+            previous_up: other,
+            carry: Some(CarryMode::Ear),
+            continued: true,
+            averaged: Some(1.5),
+        };
+        for _ in 0..12 {
+            assert_eq!(moved.push(&aid, &x), None);
+        }
     }
 }
