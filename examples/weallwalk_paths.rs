@@ -12,19 +12,20 @@ use pdr::io::import::{import_all, DirSet};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+/// (path, phone) → (walker, default m, thigh on m) of each walk.
+type Paths = BTreeMap<(String, String), Vec<(String, f64, f64)>>;
+
 fn main() {
-    let dir = std::env::args().nth(1).map_or_else(
-        || PathBuf::from("../shared/data/weallwalk"),
-        PathBuf::from,
-    );
+    let dir = std::env::args()
+        .nth(1)
+        .map_or_else(|| PathBuf::from("../shared/data/weallwalk"), PathBuf::from);
     let Ok(mut files) = DirSet::new(&dir) else {
         eprintln!("not found: {}", dir.display());
         return;
     };
     let mut on = PipelineConfig::default();
     on.thigh_step_length.on = true;
-    // (path, phone) → (walker, default m, thigh on m)
-    let mut paths: BTreeMap<(String, String), Vec<(String, f64, f64)>> = BTreeMap::new();
+    let mut paths = Paths::new();
     for log in import_all(&mut files).into_iter().flatten() {
         let name = Path::new(&log.source)
             .file_name()
@@ -56,9 +57,9 @@ fn main() {
                 .join(" / ")
         };
         let spread = |v: Vec<f64>| {
-            let (lo, hi) = v.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &x| {
-                (l.min(x), h.max(x))
-            });
+            let (lo, hi) = v
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
             100.0 * (hi - lo) / (v.iter().sum::<f64>() / v.len() as f64)
         };
         let names: Vec<&str> = walks.iter().map(|w| w.0.as_str()).collect();
