@@ -89,16 +89,19 @@ const look = (page) => page.evaluate(() => {
 });
 
 /**
- * Walks with the virtual sensors until `until` (Unix ms): a 1.8 Hz vertical bounce of ±3 m/s²
- * at the test's clock, each reading changed (Chromium sends a reading only on a change) and
- * waited for. Returns the samples the page counted: `[{at, az, shown, steps}]`, index = sample.
+ * Walks with the virtual sensors until `until` (Unix ms), and on until the page has counted
+ * `MIN_FED` samples (a loaded machine delivers fewer readings a second; at most 30 s more): a
+ * 1.8 Hz vertical bounce of ±3 m/s² at the test's clock, each reading changed (Chromium sends a
+ * reading only on a change) and waited for. Returns the samples the page counted:
+ * `[{at, az, shown, steps}]`, index = sample.
  */
+const MIN_FED = 60;
 async function walkUntil(page, xyz, until) {
   const fed = [];
   let { samples: counted } = await look(page);
   let last = null;
   let k = 0;
-  while (Date.now() < until) {
+  while (Date.now() < until || (fed.length < MIN_FED && Date.now() < until + 30_000)) {
     const t = Date.now() / 1000;
     let az = round1(9.81 + 3 * Math.sin(2 * Math.PI * 1.8 * t));
     if (az === last) az = round1(az + 0.1);
