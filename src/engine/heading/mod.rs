@@ -78,6 +78,10 @@ pub struct NavSample {
     /// Up in the device frame, unit, from the attitude (zero without one): where gravity sits
     /// in the device.
     pub device_up: [f64; 3],
+    /// The horizontal part (east, north) of the screen's normal, the device's z axis, in the
+    /// navigation frame, from the attitude (zero without one): the pocket's yaw reference
+    /// ([`yaw_aid::screen_yaw`]).
+    pub screen: [f64; 2],
     /// The motion detector's σ_z when the sample came, m/s² ([`crate::engine::motion`]): the
     /// onset look-back in a pocket never judges a sample more leniently than the live loop did.
     pub sigma_z: f64,
@@ -108,6 +112,7 @@ impl NavSample {
             axis_tilt_sin: None,
             yaw: 0.0,
             device_up: [0.0; 3],
+            screen: [0.0; 2],
             sigma_z: 0.0,
         }
     }
@@ -127,6 +132,7 @@ impl NavSample {
             axis_tilt_sin: a.axis_tilt_sin,
             yaw: a.yaw + w * (b.yaw - a.yaw),
             device_up: a.device_up,
+            screen: a.screen,
             sigma_z: a.sigma_z,
         }
     }
@@ -457,6 +463,7 @@ impl Heading {
                     carry: step.carry,
                     continued: step.continued,
                     averaged,
+                    screen: yaw_aid::screen_yaw(step.buf, step.window.t_km2, step.window.t_k),
                 };
                 self.steer.push(aid, &x)
             }),

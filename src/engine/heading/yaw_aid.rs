@@ -56,6 +56,9 @@ pub struct YawAid {
     pub learn_offset: bool,
     /// At the ear, learn the offset δ and walk along ψ̄ + δ (see above).
     pub ear_offset: bool,
+    /// In a pocket, learn the offset δ from the screen's yaw over the stride and walk along it
+    /// plus δ (see above).
+    pub pocket_offset: bool,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
     /// above).
     pub offset_min_steps: f64,
@@ -80,6 +83,7 @@ impl Default for YawAid {
             reading_tilt_deg: 35.0,
             learn_offset: false,
             ear_offset: true,
+            pocket_offset: true,
             offset_min_steps: 7.0,
             hand_mode: true,
             hand_screen_up_min: 0.2,
@@ -161,6 +165,10 @@ pub struct Steer {
     offset: YawOffset,
     // The carrying mode the offset was learnt in.
     offset_mode: Option<crate::engine::carry::CarryMode>,
+    // The screen's yaw over the strides of the previous step and the one before, compass
+    // radians, unwrapped.
+    last_screen: Option<f64>,
+    before_last_screen: Option<f64>,
 }
 
 /// The yaw aid's heading of a step.
@@ -190,6 +198,26 @@ pub struct SteerInput {
     pub continued: bool,
     /// The acceleration heading of the step (averaged, turn-led), rad from north.
     pub averaged: Option<f64>,
+    /// The screen's yaw over the stride around the step ([`screen_yaw`]), compass radians.
+    pub screen: Option<f64>,
+}
+
+/// The least mean horizontal part of the screen's normal over a stride for its yaw: the screen
+/// within about 60° of vertical on average (a phone in a pocket: 70–80°, TyrEx's walks).
+pub const SCREEN_MIN_HORIZONTAL: f64 = 0.5;
+
+/// The screen's yaw over (t0, t1): the compass direction of the mean horizontal part of the
+/// screen's normal ([`crate::engine::heading::NavSample::screen`]), compass radians; `None` when
+/// the buffer does not span the window or the mean is shorter than
+/// [`SCREEN_MIN_HORIZONTAL`].
+pub fn screen_yaw(
+    buf: &std::collections::VecDeque<crate::engine::heading::NavSample>,
+    t0: f64,
+    t1: f64,
+) -> Option<f64> {
+    let [e, n] = super::turn::mean_over(buf, t0, t1, |s| s.screen)?;
+    (libm::hypot(e, n) >= SCREEN_MIN_HORIZONTAL)
+        .then(|| crate::engine::math::wrap_2pi(libm::atan2(e, n)))
 }
 
 impl Steer {
@@ -206,10 +234,13 @@ impl Steer {
             carry,
             continued,
             averaged,
+            screen,
         } = *x;
         let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
         self.before_last_yaw = prev;
+        let pocket = aid.pocket_offset && carry == Some(crate::engine::carry::CarryMode::Pocket);
+        let screens = self.screens(screen.filter(|_| pocket), continued);
         let steady = match (up, previous_up) {
             (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
             _ => true,
@@ -225,35 +256,64 @@ impl Steer {
             aid.ear_offset && carry == Some(crate::engine::carry::CarryMode::Ear) && steady;
         if reading {
             // Held in front, screen up: the top of the phone is the way forward.
-            device_twist(&attitude).map(|heading| Steered { heading, own: true })
-        } else if !aid.learn_offset && !at_ear {
-            None
-        } else {
-            if self.offset_mode != carry {
-                // Taught in another place on the body: another offset.
-                self.offset = YawOffset::default();
-                self.offset_mode = carry;
-            }
+            return device_twist(&attitude).map(|heading| Steered { heading, own: true });
+        }
+        let (psi, straight) = if pocket {
+            // The screen's yaw over the stride: read from the attitude, not integrated, so the
+            // thigh's swing leaves no drift in it.
+            let (psi, prev, before_last) = screens?;
+            (psi, Self::straight(aid, psi, prev, before_last))
+        } else if aid.learn_offset || at_ear {
             // Two-step mean, as A-HE, so the sway of a pocket cancels.
             let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
-            // Only straight strides teach the offset: in and just after a turn θ̄ (a stride
-            // average of the acceleration) lags the yaw.
-            let limit = aid.straight_deg.to_radians();
-            let straight = [prev, before_last]
-                .iter()
-                .all(|p| p.is_some_and(|p| (yaw - p).abs() <= limit));
-            if let (Some(th), true) = (averaged, straight) {
-                self.offset
-                    .update(aid, crate::engine::math::wrap_pi(th - psi));
-            }
-            self.offset
-                .get()
-                .filter(|_| self.offset.steps() >= aid.offset_min_steps)
-                .map(|d| Steered {
-                    heading: crate::engine::math::wrap_2pi(psi + d),
-                    own: false,
-                })
+            (psi, Self::straight(aid, yaw, prev, before_last))
+        } else {
+            return None;
+        };
+        if self.offset_mode != carry {
+            // Taught in another place on the body: another offset.
+            self.offset = YawOffset::default();
+            self.offset_mode = carry;
         }
+        if let (Some(th), true) = (averaged, straight) {
+            self.offset
+                .update(aid, crate::engine::math::wrap_pi(th - psi));
+        }
+        self.offset
+            .get()
+            .filter(|_| self.offset.steps() >= aid.offset_min_steps)
+            .map(|d| Steered {
+                heading: crate::engine::math::wrap_2pi(psi + d),
+                own: false,
+            })
+    }
+
+    /// Only straight strides teach the offset: in and just after a turn θ̄ (a stride average
+    /// of the acceleration) lags the yaw. Straight: the yaw `now` within
+    /// [`YawAid::straight_deg`] of the last two steps'.
+    fn straight(aid: &YawAid, now: f64, prev: Option<f64>, before_last: Option<f64>) -> bool {
+        let limit = aid.straight_deg.to_radians();
+        [prev, before_last]
+            .iter()
+            .all(|p| p.is_some_and(|p| (now - p).abs() <= limit))
+    }
+
+    /// The screen's yaw at this step, unwrapped against the last step's, with the last two
+    /// steps' (a step that does not continue the last, or has no screen's yaw, forgets them).
+    fn screens(
+        &mut self,
+        screen: Option<f64>,
+        continued: bool,
+    ) -> Option<(f64, Option<f64>, Option<f64>)> {
+        let prev = self.last_screen.take().filter(|_| continued);
+        let before_last = self.before_last_screen.take().filter(|_| continued);
+        let Some(s) = screen else {
+            return None;
+        };
+        let now = prev.map_or(s, |p| p + crate::engine::math::wrap_pi(s - p));
+        self.last_screen = Some(now);
+        self.before_last_screen = prev;
+        Some((now, prev, before_last))
     }
 
     /// The learnt offset δ from the device's yaw to the direction of walking, rad.
@@ -265,6 +325,8 @@ impl Steer {
     pub fn end_bout(&mut self) {
         self.last_yaw = None;
         self.before_last_yaw = None;
+        self.last_screen = None;
+        self.before_last_screen = None;
     }
 }
 
@@ -327,6 +389,7 @@ mod tests {
                     carry: Some(carry),
                     continued: true,
                     averaged: Some(averaged),
+                    screen: None,
                 },
             )
         };
@@ -352,6 +415,7 @@ mod tests {
         // Taught in another mode (`learn_offset`), the offset starts again.
         let every = YawAid {
             learn_offset: true,
+            pocket_offset: false,
             ..aid
         };
         let pocket = steer.push(
@@ -364,6 +428,7 @@ mod tests {
                 carry: Some(CarryMode::Pocket),
                 continued: true,
                 averaged: Some(2.0),
+                screen: None,
             },
         );
         assert_eq!(pocket, None);
@@ -378,6 +443,7 @@ mod tests {
             carry: Some(CarryMode::Ear),
             continued: true,
             averaged: Some(1.5),
+            screen: None,
         };
         for _ in 0..12 {
             assert_eq!(moved.push(&aid, &x), None);
