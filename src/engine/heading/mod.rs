@@ -224,6 +224,7 @@ impl HeadingConfig {
         }
         if let Some(a) = &self.yaw_aid {
             positive("heading.yaw_aid.steps", a.steps)?;
+            positive("heading.yaw_aid.pocket_steps", a.pocket_steps)?;
             positive("heading.yaw_aid.gate_deg", a.gate_deg)?;
             positive("heading.yaw_aid.straight_deg", a.straight_deg)?;
             positive("heading.yaw_aid.hand_steady_deg", a.hand_steady_deg)?;
@@ -452,6 +453,7 @@ impl Heading {
             step.continued,
             (limb_mode, opened.by_limb, self.sign.flipped()),
         );
+        let unled = averaged.map(|a| (a, two));
         let averaged = self.lead(step, averaged, two);
         let steered = match &self.cfg.yaw_aid {
             Some(aid) if step.has_heading => pose.attitude.and_then(|attitude| {
@@ -463,7 +465,9 @@ impl Heading {
                     carry: step.carry,
                     continued: step.continued,
                     averaged,
-                    screen: yaw_aid::screen_yaw(step.buf, step.window.t_km2, step.window.t_k),
+                    unled,
+                    settled: !opened.waiting,
+                    screen: yaw_aid::screen_stride(step.buf, step.window.t_km2, step.window.t_k),
                 };
                 self.steer.push(aid, &x)
             }),
@@ -474,7 +478,8 @@ impl Heading {
         let own = steered.filter(|s| s.own).map(|s| s.heading);
         let h = steered.map(|s| s.heading).or(averaged);
         let walked = self.carry_on(step, own, h, opened.by_limb, limb_mode);
-        self.close(step, opened, own, walked)
+        let sided = steered.filter(|s| s.sided).map(|s| s.heading);
+        self.close(step, opened, sided, walked)
     }
 
     /// The opening's first part: a new bout releases the last one's held steps; a step whose

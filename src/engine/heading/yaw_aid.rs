@@ -2,6 +2,8 @@
 //! reading pose, and optionally a learnt offset from it elsewhere (see [`YawAid`]).
 //! May import: the rest of `engine`.
 
+use crate::engine::math::wrap_pi;
+
 /// Yaw-aided heading: our addition to the papers.
 ///
 /// Basso's methods find the direction of walking afresh at every step from the acceleration, for
@@ -59,6 +61,8 @@ pub struct YawAid {
     /// In a pocket, learn the offset δ from the screen's yaw over the stride and walk along it
     /// plus δ (see above).
     pub pocket_offset: bool,
+    /// Time constant of the pocket's offset, steps.
+    pub pocket_steps: f64,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
     /// above).
     pub offset_min_steps: f64,
@@ -84,6 +88,7 @@ impl Default for YawAid {
             learn_offset: false,
             ear_offset: true,
             pocket_offset: true,
+            pocket_steps: 40.0,
             offset_min_steps: 7.0,
             hand_mode: true,
             hand_screen_up_min: 0.2,
@@ -165,10 +170,12 @@ pub struct Steer {
     offset: YawOffset,
     // The carrying mode the offset was learnt in.
     offset_mode: Option<crate::engine::carry::CarryMode>,
-    // The screen's yaw over the strides of the previous step and the one before, compass
-    // radians, unwrapped.
+    // The pocket's offset, from the screen's yaw: kept through a spell of another mode.
+    pocket_offset: YawOffset,
+    // The screen's yaw over the stride of the last step, compass radians, unwrapped.
     last_screen: Option<f64>,
-    before_last_screen: Option<f64>,
+    // Gravity's mean direction in the device when the pocket's offset restarted.
+    pocket_up: Option<nalgebra::Vector3<f64>>,
 }
 
 /// The yaw aid's heading of a step.
@@ -179,6 +186,9 @@ pub struct Steered {
     /// The device's yaw as it is (the hand, the reading pose): the way the walker looks, not an
     /// offset learnt from the acceleration heading.
     pub own: bool,
+    /// The heading's side is known: the opening of a bout does not hold the step for it (the
+    /// pocket's screen yaw with an offset the limb-signed steps taught).
+    pub sided: bool,
 }
 
 /// What the yaw aid is given at a step.
@@ -198,26 +208,54 @@ pub struct SteerInput {
     pub continued: bool,
     /// The acceleration heading of the step (averaged, turn-led), rad from north.
     pub averaged: Option<f64>,
-    /// The screen's yaw over the stride around the step ([`screen_yaw`]), compass radians.
-    pub screen: Option<f64>,
+    /// The step's side is settled: it is not held at a bout's opening
+    /// ([`crate::engine::heading::opening`]).
+    pub settled: bool,
+    /// The acceleration heading before the turn lead, rad from north, and whether it is the
+    /// mean of this step's window and the last step's (A-HE).
+    pub unled: Option<(f64, bool)>,
+    /// The screen over the stride before the step ([`screen_stride`]).
+    pub screen: Option<ScreenStride>,
 }
+
+/// The screen over a stride ([`screen_stride`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScreenStride {
+    /// The compass direction of the mean horizontal part of the screen's normal, radians.
+    pub yaw: f64,
+    /// The mean of up in the device frame, unit.
+    pub up: nalgebra::Vector3<f64>,
+}
+
+/// The largest move of gravity's mean direction in the device (over a stride) from where the
+/// pocket's offset was taught, degrees; beyond it the phone sits another way in the pocket and
+/// the offset restarts. A phone turned in the pocket to face the other way moves it by about
+/// 44° (TyrEx's pockets); the mean pitch of a running thigh moved it past 30° on one running
+/// walk.
+pub const RESEAT_DEG: f64 = 35.0;
 
 /// The least mean horizontal part of the screen's normal over a stride for its yaw: the screen
 /// within about 60° of vertical on average (a phone in a pocket: 70–80°, TyrEx's walks).
 pub const SCREEN_MIN_HORIZONTAL: f64 = 0.5;
 
-/// The screen's yaw over (t0, t1): the compass direction of the mean horizontal part of the
-/// screen's normal ([`crate::engine::heading::NavSample::screen`]), compass radians; `None` when
-/// the buffer does not span the window or the mean is shorter than
-/// [`SCREEN_MIN_HORIZONTAL`].
-pub fn screen_yaw(
+/// The screen over (t0, t1): the compass direction of the mean horizontal part of the
+/// screen's normal ([`crate::engine::heading::NavSample::screen`]) and the mean of up in the
+/// device; `None` when the buffer does not span the window, when the mean horizontal part is
+/// shorter than [`SCREEN_MIN_HORIZONTAL`] or when no sample had an attitude.
+pub fn screen_stride(
     buf: &std::collections::VecDeque<crate::engine::heading::NavSample>,
     t0: f64,
     t1: f64,
-) -> Option<f64> {
-    let [e, n] = super::turn::mean_over(buf, t0, t1, |s| s.screen)?;
-    (libm::hypot(e, n) >= SCREEN_MIN_HORIZONTAL)
-        .then(|| crate::engine::math::wrap_2pi(libm::atan2(e, n)))
+) -> Option<ScreenStride> {
+    let [e, n, x, y, z] = super::turn::mean_over(buf, t0, t1, |s| {
+        let u = s.device_up;
+        [s.screen[0], s.screen[1], u[0], u[1], u[2]]
+    })?;
+    let up = nalgebra::Vector3::new(x, y, z).try_normalize(1e-9)?;
+    (libm::hypot(e, n) >= SCREEN_MIN_HORIZONTAL).then(|| ScreenStride {
+        yaw: crate::engine::math::wrap_2pi(libm::atan2(e, n)),
+        up,
+    })
 }
 
 impl Steer {
@@ -234,13 +272,15 @@ impl Steer {
             carry,
             continued,
             averaged,
+            unled,
             screen,
+            settled,
         } = *x;
         let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
         self.before_last_yaw = prev;
         let pocket = aid.pocket_offset && carry == Some(crate::engine::carry::CarryMode::Pocket);
-        let screens = self.screens(screen.filter(|_| pocket), continued);
+        let last_screen = self.screen(screen.filter(|_| pocket), continued);
         let steady = match (up, previous_up) {
             (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
             _ => true,
@@ -256,35 +296,99 @@ impl Steer {
             aid.ear_offset && carry == Some(crate::engine::carry::CarryMode::Ear) && steady;
         if reading {
             // Held in front, screen up: the top of the phone is the way forward.
-            return device_twist(&attitude).map(|heading| Steered { heading, own: true });
+            return device_twist(&attitude).map(|heading| Steered {
+                heading,
+                own: true,
+                sided: true,
+            });
         }
-        let (psi, straight) = if pocket {
+        if pocket {
             // The screen's yaw over the stride: read from the attitude, not integrated, so the
-            // thigh's swing leaves no drift in it.
-            let (psi, prev, before_last) = screens?;
-            (psi, Self::straight(aid, psi, prev, before_last))
-        } else if aid.learn_offset || at_ear {
+            // thigh's swing leaves no drift in it. A phone being moved in the body is not
+            // steady: its screen turns without the walker.
+            let now = screen.filter(|_| steady)?;
+            let now = ScreenStride {
+                yaw: self.last_screen?,
+                ..now
+            };
+            return self.pocket(aid, &now, last_screen, unled.filter(|_| settled));
+        }
+        let (psi, straight) = if aid.learn_offset || at_ear {
             // Two-step mean, as A-HE, so the sway of a pocket cancels.
             let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
             (psi, Self::straight(aid, yaw, prev, before_last))
         } else {
             return None;
         };
+        self.restart_in(carry);
+        if let (Some(th), true) = (averaged, straight) {
+            self.offset
+                .update(aid, crate::engine::math::wrap_pi(th - psi));
+        }
+        self.steered(aid, psi, false)
+    }
+
+    /// In a pocket: the step walks along the screen's yaw over its stride plus δ. δ is taught
+    /// by every step whose side is settled: the acceleration heading before the turn lead
+    /// against the screen's yaw over the same windows (this stride's, and the last step's when
+    /// the heading is the mean of two), so a turn teaches it no lag. It restarts when gravity's
+    /// mean direction in the device moved by more than [`RESEAT_DEG`] from where it was
+    /// taught: the phone sits another way in the pocket.
+    fn pocket(
+        &mut self,
+        aid: &YawAid,
+        now: &ScreenStride,
+        prev: Option<f64>,
+        unled: Option<(f64, bool)>,
+    ) -> Option<Steered> {
+        let reseated = self
+            .pocket_up
+            .is_some_and(|u| u.dot(&now.up) < libm::cos(RESEAT_DEG.to_radians()));
+        if reseated || self.pocket_up.is_none() {
+            self.pocket_offset = YawOffset::default();
+            self.pocket_up = Some(now.up);
+        }
+        let psi = now.yaw;
+        let taught = match unled {
+            Some((th, true)) => prev.map(|p| (th, 0.5 * (p + psi))),
+            Some((th, false)) => Some((th, psi)),
+            None => None,
+        };
+        if let Some((th, over)) = taught {
+            let cfg = YawAid {
+                steps: aid.pocket_steps,
+                ..*aid
+            };
+            self.pocket_offset
+                .update(&cfg, crate::engine::math::wrap_pi(th - over));
+        }
+        self.steered(aid, psi, true)
+    }
+
+    /// A restarted offset when it is taught in another carrying mode than before.
+    fn restart_in(&mut self, carry: Option<crate::engine::carry::CarryMode>) {
         if self.offset_mode != carry {
             // Taught in another place on the body: another offset.
             self.offset = YawOffset::default();
             self.offset_mode = carry;
         }
-        if let (Some(th), true) = (averaged, straight) {
-            self.offset
-                .update(aid, crate::engine::math::wrap_pi(th - psi));
-        }
-        self.offset
+    }
+
+    /// The heading `psi` + δ once δ has been taught by enough steps; `sided` when δ gives its
+    /// side.
+    fn steered(&self, aid: &YawAid, psi: f64, sided: bool) -> Option<Steered> {
+        let offset = if sided {
+            &self.pocket_offset
+        } else {
+            &self.offset
+        };
+        offset
             .get()
-            .filter(|_| self.offset.steps() >= aid.offset_min_steps)
+            .filter(|_| offset.steps() >= aid.offset_min_steps)
             .map(|d| Steered {
                 heading: crate::engine::math::wrap_2pi(psi + d),
                 own: false,
+                sided,
             })
     }
 
@@ -298,22 +402,13 @@ impl Steer {
             .all(|p| p.is_some_and(|p| (now - p).abs() <= limit))
     }
 
-    /// The screen's yaw at this step, unwrapped against the last step's, with the last two
-    /// steps' (a step that does not continue the last, or has no screen's yaw, forgets them).
-    fn screens(
-        &mut self,
-        screen: Option<f64>,
-        continued: bool,
-    ) -> Option<(f64, Option<f64>, Option<f64>)> {
+    /// Keeps the screen's yaw of this step, unwrapped against the last step's, and returns the
+    /// last step's (a step that does not continue the last, or has no screen's yaw, forgets
+    /// it).
+    fn screen(&mut self, screen: Option<ScreenStride>, continued: bool) -> Option<f64> {
         let prev = self.last_screen.take().filter(|_| continued);
-        let before_last = self.before_last_screen.take().filter(|_| continued);
-        let Some(s) = screen else {
-            return None;
-        };
-        let now = prev.map_or(s, |p| p + crate::engine::math::wrap_pi(s - p));
-        self.last_screen = Some(now);
-        self.before_last_screen = prev;
-        Some((now, prev, before_last))
+        self.last_screen = screen.map(|s| prev.map_or(s.yaw, |p| p + wrap_pi(s.yaw - p)));
+        prev
     }
 
     /// The learnt offset δ from the device's yaw to the direction of walking, rad.
@@ -326,7 +421,6 @@ impl Steer {
         self.last_yaw = None;
         self.before_last_yaw = None;
         self.last_screen = None;
-        self.before_last_screen = None;
     }
 }
 
@@ -389,6 +483,8 @@ mod tests {
                     carry: Some(carry),
                     continued: true,
                     averaged: Some(averaged),
+                    unled: None,
+                    settled: true,
                     screen: None,
                 },
             )
@@ -428,6 +524,8 @@ mod tests {
                 carry: Some(CarryMode::Pocket),
                 continued: true,
                 averaged: Some(2.0),
+                unled: None,
+                by_limb: false,
                 screen: None,
             },
         );
@@ -443,6 +541,8 @@ mod tests {
             carry: Some(CarryMode::Ear),
             continued: true,
             averaged: Some(1.5),
+            unled: None,
+            by_limb: false,
             screen: None,
         };
         for _ in 0..12 {
