@@ -468,6 +468,11 @@ impl Heading {
                     unled,
                     settled: !opened.waiting,
                     screen: yaw_aid::screen_stride(step.buf, step.window.t_km2, step.window.t_k),
+                    screen_at_step: if self.cfg.turn_lead {
+                        yaw_aid::screen_at_step(step.buf, step.window)
+                    } else {
+                        None
+                    },
                 };
                 self.steer.push(aid, &x)
             }),

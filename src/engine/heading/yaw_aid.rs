@@ -216,6 +216,9 @@ pub struct SteerInput {
     pub unled: Option<(f64, bool)>,
     /// The screen over the stride before the step ([`screen_stride`]).
     pub screen: Option<ScreenStride>,
+    /// The screen over the stride around the middle of the step ([`screen_at_step`]), with the
+    /// turn lead ([`crate::engine::heading::HeadingConfig::turn_lead`]).
+    pub screen_at_step: Option<ScreenStride>,
 }
 
 /// The screen over a stride ([`screen_stride`]).
@@ -258,6 +261,28 @@ pub fn screen_stride(
     })
 }
 
+/// The screen over the stride around the middle of the step `w`, where the turn lead takes the
+/// acceleration heading ([`crate::engine::heading::turn`]): the stride is the last two steps'
+/// span S = t_k − t_{k−2}, not twice the last step's, which the step detector's uneven steps
+/// (0.4 s and 0.6 s in turn on some of TyrEx's back pockets) would leave short of a stride.
+/// The span (mid − S/2, mid + S/2), or the last span S the buffer holds when it is centred
+/// within S/8 of the middle.
+pub fn screen_at_step(
+    buf: &std::collections::VecDeque<crate::engine::heading::NavSample>,
+    w: crate::engine::heading::StepWindow,
+) -> Option<ScreenStride> {
+    let stride = w.t_k - w.t_km2;
+    let mid = 0.5 * (w.t_km1 + w.t_k);
+    screen_stride(buf, mid - 0.5 * stride, mid + 0.5 * stride).or_else(|| {
+        let end = buf.back()?.t;
+        if end >= mid + 0.375 * stride {
+            screen_stride(buf, end - stride, end)
+        } else {
+            None
+        }
+    })
+}
+
 impl Steer {
     /// The step's heading from the device's yaw, rad from north: in the hand, screen up, at any
     /// tilt the carrying mode allows, or (else, and before the mode is known) held nearly flat,
@@ -274,6 +299,7 @@ impl Steer {
             averaged,
             unled,
             screen,
+            screen_at_step,
             settled,
         } = *x;
         let before_last = self.before_last_yaw.take().filter(|_| continued);
@@ -311,7 +337,10 @@ impl Steer {
                 yaw: self.last_screen?,
                 ..now
             };
-            return self.pocket(aid, &now, last_screen, unled.filter(|_| settled));
+            // Walked along the screen's yaw at the middle of the step, as the turn lead takes
+            // the acceleration heading there (`turn.rs`), when it is given.
+            let led = screen_at_step.map_or(now.yaw, |s| now.yaw + wrap_pi(s.yaw - now.yaw));
+            return self.pocket(aid, &now, led, last_screen, unled.filter(|_| settled));
         }
         let (psi, straight) = if aid.learn_offset || at_ear {
             // Two-step mean, as A-HE, so the sway of a pocket cancels.
@@ -338,6 +367,7 @@ impl Steer {
         &mut self,
         aid: &YawAid,
         now: &ScreenStride,
+        led: f64,
         prev: Option<f64>,
         unled: Option<(f64, bool)>,
     ) -> Option<Steered> {
@@ -362,7 +392,7 @@ impl Steer {
             self.pocket_offset
                 .update(&cfg, crate::engine::math::wrap_pi(th - over));
         }
-        self.steered(aid, psi, true)
+        self.steered(aid, led, true)
     }
 
     /// A restarted offset when it is taught in another carrying mode than before.
@@ -486,6 +516,7 @@ mod tests {
                     unled: None,
                     settled: true,
                     screen: None,
+                    screen_at_step: None,
                 },
             )
         };
