@@ -38,6 +38,20 @@ use crate::engine::math::wrap_pi;
 ///   with the arm. The heading is the acceleration heading's, smoothed: it is carried across a
 ///   change of mode and opened as that, not as the walker's own way ([`Steered::own`]).
 ///   Measured in `docs/methods/yaw-offset.md`.
+/// - **In a pocket** ([`YawAid::pocket_offset`]) the engine walks along ψ_s + δ: ψ_s the
+///   screen's yaw over a stride ([`screen_stride`]: the compass direction of the mean horizontal
+///   part of the screen's normal, from the attitude alone, over the stride around the step's
+///   middle with the turn lead, [`screen_at_step`], else the stride before the step). The
+///   integrated yaw ψ is not the pocket's yaw: the thigh rocks about two axes at once and ψ
+///   drifts against the way walked by up to a turn in two minutes (TyrEx's motion capture as
+///   much as the phone), while the screen comes back with the thigh and holds the way walked
+///   within 2–9° after one offset. δ is learnt from the acceleration heading before the turn lead
+///   against the screen's yaw over the same windows, so every step whose side is settled
+///   teaches, turning or not, as a circular exponential mean over [`YawAid::pocket_steps`]
+///   steps with the outlier gate. The pocket keeps its own δ through a spell of another mode and
+///   restarts it when gravity's mean direction in the device moved by more than [`RESEAT_DEG`]
+///   (the phone sits another way). Only while the phone is steady. Measured in
+///   `docs/methods/pocket-heading.md`.
 /// - **Otherwise**, by default, the papers' acceleration heading. [`YawAid::learn_offset`] walks
 ///   along ψ̄ + δ in every mode, the ear's rule. It is off by default because in a pocket the
 ///   device yaw sampled at the step instants carries the thigh's sway, which two steps do not
@@ -61,7 +75,7 @@ pub struct YawAid {
     /// In a pocket, learn the offset δ from the screen's yaw over the stride and walk along it
     /// plus δ (see above).
     pub pocket_offset: bool,
-    /// Time constant of the pocket's offset, steps.
+    /// Time constant of the pocket's offset, steps (a plateau from 20 to 160 on TyrEx).
     pub pocket_steps: f64,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
     /// above).
@@ -404,10 +418,10 @@ impl Steer {
         }
     }
 
-    /// The heading `psi` + δ once δ has been taught by enough steps; `sided` when δ gives its
-    /// side.
-    fn steered(&self, aid: &YawAid, psi: f64, sided: bool) -> Option<Steered> {
-        let offset = if sided {
+    /// The heading `psi` + δ once δ has been taught by enough steps: the pocket's δ, whose
+    /// side the settled steps gave (the step is sided), or the other modes' δ.
+    fn steered(&self, aid: &YawAid, psi: f64, pocket: bool) -> Option<Steered> {
+        let offset = if pocket {
             &self.pocket_offset
         } else {
             &self.offset
@@ -418,7 +432,7 @@ impl Steer {
             .map(|d| Steered {
                 heading: crate::engine::math::wrap_2pi(psi + d),
                 own: false,
-                sided,
+                sided: pocket,
             })
     }
 
@@ -556,8 +570,9 @@ mod tests {
                 continued: true,
                 averaged: Some(2.0),
                 unled: None,
-                by_limb: false,
+                settled: true,
                 screen: None,
+                screen_at_step: None,
             },
         );
         assert_eq!(pocket, None);
@@ -573,8 +588,9 @@ mod tests {
             continued: true,
             averaged: Some(1.5),
             unled: None,
-            by_limb: false,
+            settled: true,
             screen: None,
+            screen_at_step: None,
         };
         for _ in 0..12 {
             assert_eq!(moved.push(&aid, &x), None);
