@@ -596,4 +596,68 @@ mod tests {
             assert_eq!(moved.push(&aid, &x), None);
         }
     }
+
+    #[test]
+    fn in_a_pocket_the_screen_walks_with_the_offset_every_settled_step_taught() {
+        use crate::engine::carry::CarryMode;
+        use nalgebra::{UnitQuaternion, Vector3};
+        let aid = YawAid::default();
+        // Upright in a pocket, screen facing forward.
+        let attitude = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.4);
+        let up = attitude.inverse() * Vector3::z();
+        let stride = |yaw: f64, up: Vector3<f64>| Some(ScreenStride { yaw, up });
+        let x = |screen: f64, unled: f64, up: Vector3<f64>, carry: CarryMode, settled: bool| {
+            SteerInput {
+                attitude,
+                yaw: 0.0,
+                up: Some(up),
+                previous_up: Some(up),
+                carry: Some(carry),
+                continued: true,
+                averaged: Some(unled),
+                unled: Some((unled, false)),
+                settled,
+                screen: stride(screen, up),
+                screen_at_step: stride(screen + 0.1, up),
+            }
+        };
+        let mut steer = Steer::default();
+        // Turning all the while, the acceleration heading 0.5 rad off the screen, either way by
+        // 0.2: every step teaches.
+        let mut got = Vec::new();
+        for k in 0..10 {
+            let screen = 0.2 * f64::from(k);
+            let scatter = if k % 2 == 0 { 0.2 } else { -0.2 };
+            got.push(steer.push(
+                &aid,
+                &x(screen, screen + 0.5 + scatter, up, CarryMode::Pocket, true),
+            ));
+        }
+        assert!(got[..6].iter().all(Option::is_none), "{got:?}");
+        let last = got[9].expect("steered");
+        assert!(last.sided && !last.own, "{last:?}");
+        // Walked along the screen's yaw at the step's middle (1.8 + 0.1) plus δ.
+        assert!((last.heading - 2.4).abs() < 0.05, "{last:?}");
+        // A step held at a bout's opening teaches nothing, even half a turn off.
+        for _ in 0..10 {
+            let held = steer.push(&aid, &x(2.0, 2.0 + 0.5 + PI, up, CarryMode::Pocket, false));
+            assert!(
+                (held.expect("steered").heading - 2.6).abs() < 0.05,
+                "{held:?}"
+            );
+        }
+        // A spell at the ear leaves the pocket's δ as it was.
+        assert!(!steer
+            .push(&aid, &x(2.0, 0.0, up, CarryMode::Ear, true))
+            .is_some_and(|s| s.sided));
+        let back = steer
+            .push(&aid, &x(2.0, 2.5, up, CarryMode::Pocket, true))
+            .expect("kept");
+        assert!((back.heading - 2.6).abs() < 0.05, "{back:?}");
+        // The phone sits another way in the pocket: δ restarts.
+        let turned = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.0) * up;
+        let mut reseated = x(2.0, 1.0, turned, CarryMode::Pocket, true);
+        reseated.previous_up = Some(turned);
+        assert_eq!(steer.push(&aid, &reseated), None);
+    }
 }
