@@ -384,6 +384,10 @@ impl Pipeline {
                 yaw: p.heading.pose().yaw,
                 // q⁻¹·ẑ of this sample's attitude: the leg pitch has just taken it.
                 device_up: p.pocket.leg.device_up().map_or([0.0; 3], Into::into),
+                screen: nav.attitude.map_or([0.0; 2], |q| {
+                    let z = q * nalgebra::Vector3::z();
+                    [z.x, z.y]
+                }),
                 sigma_z: m.sigma_z,
             })
         });

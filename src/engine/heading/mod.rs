@@ -78,6 +78,10 @@ pub struct NavSample {
     /// Up in the device frame, unit, from the attitude (zero without one): where gravity sits
     /// in the device.
     pub device_up: [f64; 3],
+    /// The horizontal part (east, north) of the screen's normal, the device's z axis, in the
+    /// navigation frame, from the attitude (zero without one): the pocket's yaw reference
+    /// ([`yaw_aid::screen_yaw`]).
+    pub screen: [f64; 2],
     /// The motion detector's σ_z when the sample came, m/s² ([`crate::engine::motion`]): the
     /// onset look-back in a pocket never judges a sample more leniently than the live loop did.
     pub sigma_z: f64,
@@ -108,6 +112,7 @@ impl NavSample {
             axis_tilt_sin: None,
             yaw: 0.0,
             device_up: [0.0; 3],
+            screen: [0.0; 2],
             sigma_z: 0.0,
         }
     }
@@ -127,6 +132,7 @@ impl NavSample {
             axis_tilt_sin: a.axis_tilt_sin,
             yaw: a.yaw + w * (b.yaw - a.yaw),
             device_up: a.device_up,
+            screen: a.screen,
             sigma_z: a.sigma_z,
         }
     }
@@ -218,6 +224,7 @@ impl HeadingConfig {
         }
         if let Some(a) = &self.yaw_aid {
             positive("heading.yaw_aid.steps", a.steps)?;
+            positive("heading.yaw_aid.pocket_steps", a.pocket_steps)?;
             positive("heading.yaw_aid.gate_deg", a.gate_deg)?;
             positive("heading.yaw_aid.straight_deg", a.straight_deg)?;
             positive("heading.yaw_aid.hand_steady_deg", a.hand_steady_deg)?;
@@ -446,6 +453,7 @@ impl Heading {
             step.continued,
             (limb_mode, opened.by_limb, self.sign.flipped()),
         );
+        let unled = averaged.map(|a| (a, two));
         let averaged = self.lead(step, averaged, two);
         let steered = match &self.cfg.yaw_aid {
             Some(aid) if step.has_heading => pose.attitude.and_then(|attitude| {
@@ -457,6 +465,14 @@ impl Heading {
                     carry: step.carry,
                     continued: step.continued,
                     averaged,
+                    unled,
+                    settled: !opened.waiting,
+                    screen: yaw_aid::screen_stride(step.buf, step.window.t_km2, step.window.t_k),
+                    screen_at_step: if self.cfg.turn_lead {
+                        yaw_aid::screen_at_step(step.buf, step.window)
+                    } else {
+                        None
+                    },
                 };
                 self.steer.push(aid, &x)
             }),
@@ -467,7 +483,8 @@ impl Heading {
         let own = steered.filter(|s| s.own).map(|s| s.heading);
         let h = steered.map(|s| s.heading).or(averaged);
         let walked = self.carry_on(step, own, h, opened.by_limb, limb_mode);
-        self.close(step, opened, own, walked)
+        let sided = steered.filter(|s| s.sided).map(|s| s.heading);
+        self.close(step, opened, sided, walked)
     }
 
     /// The opening's first part: a new bout releases the last one's held steps; a step whose

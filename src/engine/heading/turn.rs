@@ -49,7 +49,7 @@ pub fn window(cfg: &HeadingConfig, w: StepWindow) -> (f64, f64) {
 
 /// The trapezoidal mean over (t0, t1) of `channel`; `None` when the buffer does not span the
 /// window.
-fn mean_over<const N: usize>(
+pub(super) fn mean_over<const N: usize>(
     buf: &VecDeque<NavSample>,
     t0: f64,
     t1: f64,

@@ -2,6 +2,8 @@
 //! reading pose, and optionally a learnt offset from it elsewhere (see [`YawAid`]).
 //! May import: the rest of `engine`.
 
+use crate::engine::math::wrap_pi;
+
 /// Yaw-aided heading: our addition to the papers.
 ///
 /// Basso's methods find the direction of walking afresh at every step from the acceleration, for
@@ -36,6 +38,20 @@
 ///   with the arm. The heading is the acceleration heading's, smoothed: it is carried across a
 ///   change of mode and opened as that, not as the walker's own way ([`Steered::own`]).
 ///   Measured in `docs/methods/yaw-offset.md`.
+/// - **In a pocket** ([`YawAid::pocket_offset`]) the engine walks along ψ_s + δ: ψ_s the
+///   screen's yaw over a stride ([`screen_stride`]: the compass direction of the mean horizontal
+///   part of the screen's normal, from the attitude alone, over the stride around the step's
+///   middle with the turn lead, [`screen_at_step`], else the stride before the step). The
+///   integrated yaw ψ is not the pocket's yaw: the thigh rocks about two axes at once and ψ
+///   drifts against the way walked by up to a turn in two minutes (TyrEx's motion capture as
+///   much as the phone), while the screen comes back with the thigh and holds the way walked
+///   within 2–9° after one offset. δ is learnt from the acceleration heading before the turn lead
+///   against the screen's yaw over the same windows, so every step whose side is settled
+///   teaches, turning or not, as a circular exponential mean over [`YawAid::pocket_steps`]
+///   steps with the outlier gate. The pocket keeps its own δ through a spell of another mode and
+///   restarts it when gravity's mean direction in the device moved by more than [`RESEAT_DEG`]
+///   (the phone sits another way). Only while the phone is steady. Measured in
+///   `docs/methods/pocket-heading.md`.
 /// - **Otherwise**, by default, the papers' acceleration heading. [`YawAid::learn_offset`] walks
 ///   along ψ̄ + δ in every mode, the ear's rule. It is off by default because in a pocket the
 ///   device yaw sampled at the step instants carries the thigh's sway, which two steps do not
@@ -56,6 +72,11 @@ pub struct YawAid {
     pub learn_offset: bool,
     /// At the ear, learn the offset δ and walk along ψ̄ + δ (see above).
     pub ear_offset: bool,
+    /// In a pocket, learn the offset δ from the screen's yaw over the stride and walk along it
+    /// plus δ (see above).
+    pub pocket_offset: bool,
+    /// Time constant of the pocket's offset, steps (a plateau from 20 to 160 on TyrEx).
+    pub pocket_steps: f64,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
     /// above).
     pub offset_min_steps: f64,
@@ -80,6 +101,8 @@ impl Default for YawAid {
             reading_tilt_deg: 35.0,
             learn_offset: false,
             ear_offset: true,
+            pocket_offset: true,
+            pocket_steps: 40.0,
             offset_min_steps: 7.0,
             hand_mode: true,
             hand_screen_up_min: 0.2,
@@ -161,6 +184,12 @@ pub struct Steer {
     offset: YawOffset,
     // The carrying mode the offset was learnt in.
     offset_mode: Option<crate::engine::carry::CarryMode>,
+    // The pocket's offset, from the screen's yaw: kept through a spell of another mode.
+    pocket_offset: YawOffset,
+    // The screen's yaw over the stride of the last step, compass radians, unwrapped.
+    last_screen: Option<f64>,
+    // Gravity's mean direction in the device when the pocket's offset restarted.
+    pocket_up: Option<nalgebra::Vector3<f64>>,
 }
 
 /// The yaw aid's heading of a step.
@@ -171,6 +200,9 @@ pub struct Steered {
     /// The device's yaw as it is (the hand, the reading pose): the way the walker looks, not an
     /// offset learnt from the acceleration heading.
     pub own: bool,
+    /// The heading's side is known: the opening of a bout does not hold the step for it (the
+    /// pocket's screen yaw with an offset the limb-signed steps taught).
+    pub sided: bool,
 }
 
 /// What the yaw aid is given at a step.
@@ -190,6 +222,79 @@ pub struct SteerInput {
     pub continued: bool,
     /// The acceleration heading of the step (averaged, turn-led), rad from north.
     pub averaged: Option<f64>,
+    /// The step's side is settled: it is not held at a bout's opening
+    /// ([`crate::engine::heading::opening`]).
+    pub settled: bool,
+    /// The acceleration heading before the turn lead, rad from north, and whether it is the
+    /// mean of this step's window and the last step's (A-HE).
+    pub unled: Option<(f64, bool)>,
+    /// The screen over the stride before the step ([`screen_stride`]).
+    pub screen: Option<ScreenStride>,
+    /// The screen over the stride around the middle of the step ([`screen_at_step`]), with the
+    /// turn lead ([`crate::engine::heading::HeadingConfig::turn_lead`]).
+    pub screen_at_step: Option<ScreenStride>,
+}
+
+/// The screen over a stride ([`screen_stride`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScreenStride {
+    /// The compass direction of the mean horizontal part of the screen's normal, radians.
+    pub yaw: f64,
+    /// The mean of up in the device frame, unit.
+    pub up: nalgebra::Vector3<f64>,
+}
+
+/// The largest move of gravity's mean direction in the device (over a stride) from where the
+/// pocket's offset was taught, degrees; beyond it the phone sits another way in the pocket and
+/// the offset restarts. A phone turned in the pocket to face the other way moves it by about
+/// 44° (TyrEx's pockets); the mean pitch of a running thigh moved it past 30° on one running
+/// walk.
+pub const RESEAT_DEG: f64 = 35.0;
+
+/// The least mean horizontal part of the screen's normal over a stride for its yaw: the screen
+/// within about 60° of vertical on average (a phone in a pocket: 70–80°, TyrEx's walks).
+pub const SCREEN_MIN_HORIZONTAL: f64 = 0.5;
+
+/// The screen over (t0, t1): the compass direction of the mean horizontal part of the
+/// screen's normal ([`crate::engine::heading::NavSample::screen`]) and the mean of up in the
+/// device; `None` when the buffer does not span the window, when the mean horizontal part is
+/// shorter than [`SCREEN_MIN_HORIZONTAL`] or when no sample had an attitude.
+pub fn screen_stride(
+    buf: &std::collections::VecDeque<crate::engine::heading::NavSample>,
+    t0: f64,
+    t1: f64,
+) -> Option<ScreenStride> {
+    let [e, n, x, y, z] = super::turn::mean_over(buf, t0, t1, |s| {
+        let u = s.device_up;
+        [s.screen[0], s.screen[1], u[0], u[1], u[2]]
+    })?;
+    let up = nalgebra::Vector3::new(x, y, z).try_normalize(1e-9)?;
+    (libm::hypot(e, n) >= SCREEN_MIN_HORIZONTAL).then(|| ScreenStride {
+        yaw: crate::engine::math::wrap_2pi(libm::atan2(e, n)),
+        up,
+    })
+}
+
+/// The screen over the stride around the middle of the step `w`, where the turn lead takes the
+/// acceleration heading ([`crate::engine::heading::turn`]): the stride is the last two steps'
+/// span S = t_k − t_{k−2}, not twice the last step's, which the step detector's uneven steps
+/// (0.4 s and 0.6 s in turn on some of TyrEx's back pockets) would leave short of a stride.
+/// The span (mid − S/2, mid + S/2), or the last span S the buffer holds when it is centred
+/// within S/8 of the middle.
+pub fn screen_at_step(
+    buf: &std::collections::VecDeque<crate::engine::heading::NavSample>,
+    w: crate::engine::heading::StepWindow,
+) -> Option<ScreenStride> {
+    let stride = w.t_k - w.t_km2;
+    let mid = 0.5 * (w.t_km1 + w.t_k);
+    screen_stride(buf, mid - 0.5 * stride, mid + 0.5 * stride).or_else(|| {
+        let end = buf.back()?.t;
+        if end >= mid + 0.375 * stride {
+            screen_stride(buf, end - stride, end)
+        } else {
+            None
+        }
+    })
 }
 
 impl Steer {
@@ -206,10 +311,16 @@ impl Steer {
             carry,
             continued,
             averaged,
+            unled,
+            screen,
+            screen_at_step,
+            settled,
         } = *x;
         let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
         self.before_last_yaw = prev;
+        let pocket = aid.pocket_offset && carry == Some(crate::engine::carry::CarryMode::Pocket);
+        let last_screen = self.screen(screen.filter(|_| pocket), continued);
         let steady = match (up, previous_up) {
             (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
             _ => true,
@@ -225,35 +336,123 @@ impl Steer {
             aid.ear_offset && carry == Some(crate::engine::carry::CarryMode::Ear) && steady;
         if reading {
             // Held in front, screen up: the top of the phone is the way forward.
-            device_twist(&attitude).map(|heading| Steered { heading, own: true })
-        } else if !aid.learn_offset && !at_ear {
-            None
-        } else {
-            if self.offset_mode != carry {
-                // Taught in another place on the body: another offset.
-                self.offset = YawOffset::default();
-                self.offset_mode = carry;
-            }
+            return device_twist(&attitude).map(|heading| Steered {
+                heading,
+                own: true,
+                sided: true,
+            });
+        }
+        if pocket {
+            // The screen's yaw over the stride: read from the attitude, not integrated, so the
+            // thigh's swing leaves no drift in it. A phone being moved in the body is not
+            // steady: its screen turns without the walker.
+            let now = screen.filter(|_| steady)?;
+            let now = ScreenStride {
+                yaw: self.last_screen?,
+                ..now
+            };
+            // Walked along the screen's yaw at the middle of the step, as the turn lead takes
+            // the acceleration heading there (`turn.rs`), when it is given.
+            let led = screen_at_step.map_or(now.yaw, |s| now.yaw + wrap_pi(s.yaw - now.yaw));
+            return self.pocket(aid, &now, led, last_screen, unled.filter(|_| settled));
+        }
+        let (psi, straight) = if aid.learn_offset || at_ear {
             // Two-step mean, as A-HE, so the sway of a pocket cancels.
             let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
-            // Only straight strides teach the offset: in and just after a turn θ̄ (a stride
-            // average of the acceleration) lags the yaw.
-            let limit = aid.straight_deg.to_radians();
-            let straight = [prev, before_last]
-                .iter()
-                .all(|p| p.is_some_and(|p| (yaw - p).abs() <= limit));
-            if let (Some(th), true) = (averaged, straight) {
-                self.offset
-                    .update(aid, crate::engine::math::wrap_pi(th - psi));
-            }
+            (psi, Self::straight(aid, yaw, prev, before_last))
+        } else {
+            return None;
+        };
+        self.restart_in(carry);
+        if let (Some(th), true) = (averaged, straight) {
             self.offset
-                .get()
-                .filter(|_| self.offset.steps() >= aid.offset_min_steps)
-                .map(|d| Steered {
-                    heading: crate::engine::math::wrap_2pi(psi + d),
-                    own: false,
-                })
+                .update(aid, crate::engine::math::wrap_pi(th - psi));
         }
+        self.steered(aid, psi, false)
+    }
+
+    /// In a pocket: the step walks along the screen's yaw over its stride plus δ. δ is taught
+    /// by every step whose side is settled: the acceleration heading before the turn lead
+    /// against the screen's yaw over the same windows (this stride's, and the last step's when
+    /// the heading is the mean of two), so a turn teaches it no lag. It restarts when gravity's
+    /// mean direction in the device moved by more than [`RESEAT_DEG`] from where it was
+    /// taught: the phone sits another way in the pocket.
+    fn pocket(
+        &mut self,
+        aid: &YawAid,
+        now: &ScreenStride,
+        led: f64,
+        prev: Option<f64>,
+        unled: Option<(f64, bool)>,
+    ) -> Option<Steered> {
+        let reseated = self
+            .pocket_up
+            .is_some_and(|u| u.dot(&now.up) < libm::cos(RESEAT_DEG.to_radians()));
+        if reseated || self.pocket_up.is_none() {
+            self.pocket_offset = YawOffset::default();
+            self.pocket_up = Some(now.up);
+        }
+        let psi = now.yaw;
+        let taught = match unled {
+            Some((th, true)) => prev.map(|p| (th, 0.5 * (p + psi))),
+            Some((th, false)) => Some((th, psi)),
+            None => None,
+        };
+        if let Some((th, over)) = taught {
+            let cfg = YawAid {
+                steps: aid.pocket_steps,
+                ..*aid
+            };
+            self.pocket_offset
+                .update(&cfg, crate::engine::math::wrap_pi(th - over));
+        }
+        self.steered(aid, led, true)
+    }
+
+    /// A restarted offset when it is taught in another carrying mode than before.
+    fn restart_in(&mut self, carry: Option<crate::engine::carry::CarryMode>) {
+        if self.offset_mode != carry {
+            // Taught in another place on the body: another offset.
+            self.offset = YawOffset::default();
+            self.offset_mode = carry;
+        }
+    }
+
+    /// The heading `psi` + δ once δ has been taught by enough steps: the pocket's δ, whose
+    /// side the settled steps gave (the step is sided), or the other modes' δ.
+    fn steered(&self, aid: &YawAid, psi: f64, pocket: bool) -> Option<Steered> {
+        let offset = if pocket {
+            &self.pocket_offset
+        } else {
+            &self.offset
+        };
+        offset
+            .get()
+            .filter(|_| offset.steps() >= aid.offset_min_steps)
+            .map(|d| Steered {
+                heading: crate::engine::math::wrap_2pi(psi + d),
+                own: false,
+                sided: pocket,
+            })
+    }
+
+    /// Only straight strides teach the offset: in and just after a turn θ̄ (a stride average
+    /// of the acceleration) lags the yaw. Straight: the yaw `now` within
+    /// [`YawAid::straight_deg`] of the last two steps'.
+    fn straight(aid: &YawAid, now: f64, prev: Option<f64>, before_last: Option<f64>) -> bool {
+        let limit = aid.straight_deg.to_radians();
+        [prev, before_last]
+            .iter()
+            .all(|p| p.is_some_and(|p| (now - p).abs() <= limit))
+    }
+
+    /// Keeps the screen's yaw of this step, unwrapped against the last step's, and returns the
+    /// last step's (a step that does not continue the last, or has no screen's yaw, forgets
+    /// it).
+    fn screen(&mut self, screen: Option<ScreenStride>, continued: bool) -> Option<f64> {
+        let prev = self.last_screen.take().filter(|_| continued);
+        self.last_screen = screen.map(|s| prev.map_or(s.yaw, |p| p + wrap_pi(s.yaw - p)));
+        prev
     }
 
     /// The learnt offset δ from the device's yaw to the direction of walking, rad.
@@ -265,6 +464,7 @@ impl Steer {
     pub fn end_bout(&mut self) {
         self.last_yaw = None;
         self.before_last_yaw = None;
+        self.last_screen = None;
     }
 }
 
@@ -327,6 +527,10 @@ mod tests {
                     carry: Some(carry),
                     continued: true,
                     averaged: Some(averaged),
+                    unled: None,
+                    settled: true,
+                    screen: None,
+                    screen_at_step: None,
                 },
             )
         };
@@ -352,6 +556,7 @@ mod tests {
         // Taught in another mode (`learn_offset`), the offset starts again.
         let every = YawAid {
             learn_offset: true,
+            pocket_offset: false,
             ..aid
         };
         let pocket = steer.push(
@@ -364,6 +569,10 @@ mod tests {
                 carry: Some(CarryMode::Pocket),
                 continued: true,
                 averaged: Some(2.0),
+                unled: None,
+                settled: true,
+                screen: None,
+                screen_at_step: None,
             },
         );
         assert_eq!(pocket, None);
@@ -378,9 +587,77 @@ mod tests {
             carry: Some(CarryMode::Ear),
             continued: true,
             averaged: Some(1.5),
+            unled: None,
+            settled: true,
+            screen: None,
+            screen_at_step: None,
         };
         for _ in 0..12 {
             assert_eq!(moved.push(&aid, &x), None);
         }
+    }
+
+    #[test]
+    fn in_a_pocket_the_screen_walks_with_the_offset_every_settled_step_taught() {
+        use crate::engine::carry::CarryMode;
+        use nalgebra::{UnitQuaternion, Vector3};
+        let aid = YawAid::default();
+        // Upright in a pocket, screen facing forward.
+        let attitude = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.4);
+        let up = attitude.inverse() * Vector3::z();
+        let stride = |yaw: f64, up: Vector3<f64>| Some(ScreenStride { yaw, up });
+        let x = |screen: f64, unled: f64, up: Vector3<f64>, carry: CarryMode, settled: bool| {
+            SteerInput {
+                attitude,
+                yaw: 0.0,
+                up: Some(up),
+                previous_up: Some(up),
+                carry: Some(carry),
+                continued: true,
+                averaged: Some(unled),
+                unled: Some((unled, false)),
+                settled,
+                screen: stride(screen, up),
+                screen_at_step: stride(screen + 0.1, up),
+            }
+        };
+        let mut steer = Steer::default();
+        // Turning all the while, the acceleration heading 0.5 rad off the screen, either way by
+        // 0.2: every step teaches.
+        let mut got = Vec::new();
+        for k in 0..10 {
+            let screen = 0.2 * f64::from(k);
+            let scatter = if k % 2 == 0 { 0.2 } else { -0.2 };
+            got.push(steer.push(
+                &aid,
+                &x(screen, screen + 0.5 + scatter, up, CarryMode::Pocket, true),
+            ));
+        }
+        assert!(got[..6].iter().all(Option::is_none), "{got:?}");
+        let last = got[9].expect("steered");
+        assert!(last.sided && !last.own, "{last:?}");
+        // Walked along the screen's yaw at the step's middle (1.8 + 0.1) plus δ.
+        assert!((last.heading - 2.4).abs() < 0.05, "{last:?}");
+        // A step held at a bout's opening teaches nothing, even half a turn off.
+        for _ in 0..10 {
+            let held = steer.push(&aid, &x(2.0, 2.0 + 0.5 + PI, up, CarryMode::Pocket, false));
+            assert!(
+                (held.expect("steered").heading - 2.6).abs() < 0.05,
+                "{held:?}"
+            );
+        }
+        // A spell at the ear leaves the pocket's δ as it was.
+        assert!(!steer
+            .push(&aid, &x(2.0, 0.0, up, CarryMode::Ear, true))
+            .is_some_and(|s| s.sided));
+        let back = steer
+            .push(&aid, &x(2.0, 2.5, up, CarryMode::Pocket, true))
+            .expect("kept");
+        assert!((back.heading - 2.6).abs() < 0.05, "{back:?}");
+        // The phone sits another way in the pocket: δ restarts.
+        let turned = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.0) * up;
+        let mut reseated = x(2.0, 1.0, turned, CarryMode::Pocket, true);
+        reseated.previous_up = Some(turned);
+        assert_eq!(steer.push(&aid, &reseated), None);
     }
 }
