@@ -23,37 +23,30 @@ use crate::engine::math::wrap_pi;
 ///   is a vote over seconds, so a phone being put away or lifted to the ear is still `hand` for
 ///   a few steps, and its yaw then turns with the hand. 20°: smaller limits also refuse real
 ///   steps in sharp turns.
-/// - **At the ear** ([`YawAid::ear_offset`]) the engine walks along ψ̄ + δ: ψ integrated from
-///   the attitude increments about the vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt
-///   on straight steps as a circular exponential mean over [`YawAid::steps`] steps with an
-///   outlier gate ([`YawOffset`]). A phone held to the ear turns with the head, which faces the
-///   way walked within 5–11° (median, TyrEx's motion capture), while the acceleration heading
-///   there is 19–65° off: δ is steady, θ̄ is not, and the mean over steps keeps the one and
-///   loses the other. A step is straight when the yaw turned by at most
-///   [`YawAid::straight_deg`] over the stride before it (from two steps back): in and just
-///   after a turn θ̄, a stride average, lags the yaw. δ restarts when it is taught in another
-///   carrying mode than before (another place, another offset: with [`YawAid::learn_offset`],
-///   which teaches in every mode; a spell of another mode between steps at the ear leaves the
-///   ear's δ as it was), and steers once [`YawAid::offset_min_steps`] steps taught it. Only while the phone is steady, as the hand's yaw: a phone taken from the ear turns
-///   with the arm. The heading is the acceleration heading's, smoothed: it is carried across a
-///   change of mode and opened as that, not as the walker's own way ([`Steered::own`]).
-///   Measured in `docs/methods/yaw-offset.md`.
-/// - **In a pocket** ([`YawAid::pocket_offset`]) the engine walks along ψ_s + δ: ψ_s the
-///   screen's yaw over a stride ([`screen_stride`]: the compass direction of the mean horizontal
-///   part of the screen's normal, from the attitude alone, over the stride around the step's
-///   middle with the turn lead, [`screen_at_step`], else the stride before the step). The
-///   integrated yaw ψ is not the pocket's yaw: the thigh rocks about two axes at once and ψ
-///   drifts against the way walked by up to a turn in two minutes (TyrEx's motion capture as
-///   much as the phone), while the screen comes back with the thigh and holds the way walked
-///   within 2–9° after one offset. δ is learnt from the acceleration heading before the turn lead
-///   against the screen's yaw over the same windows, so every step whose side is settled
-///   teaches, turning or not, as a circular exponential mean over [`YawAid::pocket_steps`]
-///   steps with the outlier gate. The pocket keeps its own δ through a spell of another mode and
-///   restarts it when gravity's mean direction in the device moved by more than [`RESEAT_DEG`]
-///   (the phone sits another way). Only while the phone is steady. Measured in
-///   `docs/methods/pocket-heading.md`.
+/// - **In a pocket and at the ear** ([`YawAid::pocket_offset`], [`YawAid::ear_offset`]), where
+///   the phone is held still against the body, the engine walks along ψ_s + δ: ψ_s the screen's
+///   yaw over a stride ([`screen_stride`]: the compass direction of the mean horizontal part of
+///   the screen's normal, from the attitude alone, over the stride around the step's middle
+///   with the turn lead, [`screen_at_step`], else the stride before the step). The integrated
+///   yaw ψ is not that yaw: the thigh rocks about two axes at once and ψ drifts against the way
+///   walked by up to a turn in two minutes (TyrEx's motion capture as much as the phone), and at
+///   the ear it strays 10–16° from the truth's yaw, while the screen comes back with the thigh
+///   or the head and holds the way walked within 2–9° after one offset in a pocket. δ is learnt
+///   from the acceleration heading before the turn lead against the screen's yaw over the same
+///   windows, so every step whose side is settled teaches, turning or not, as a circular
+///   exponential mean over [`YawAid::pocket_steps`] steps with the outlier gate; it steers once
+///   [`YawAid::offset_min_steps`] steps taught it. The pocket and the ear each keep their own δ
+///   through a spell of another mode and restart it when gravity's mean direction in the device
+///   moved by more than [`RESEAT_DEG`] (the phone sits another way). Only while the phone is
+///   steady, as the hand's yaw: a phone taken from the ear turns with the arm. The heading is
+///   the acceleration heading's, smoothed, not the walker's own way ([`Steered::own`]).
+///   Measured in `docs/methods/pocket-heading.md` and `docs/methods/yaw-offset.md`.
 /// - **Otherwise**, by default, the papers' acceleration heading. [`YawAid::learn_offset`] walks
-///   along ψ̄ + δ in every mode, the ear's rule. It is off by default because in a pocket the
+///   along ψ̄ + δ in every other mode: ψ integrated from the attitude increments about the
+///   vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on straight steps (the yaw turned
+///   by at most [`YawAid::straight_deg`] since two steps back: in and after a turn θ̄, a stride
+///   average, lags the yaw) over [`YawAid::steps`] steps, restarted when taught in another mode
+///   than before. It is off by default because in a pocket the
 ///   device yaw sampled at the step instants carries the thigh's sway, which two steps do not
 ///   cancel exactly, and the real pocket and swinging walks get worse.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -70,12 +63,14 @@ pub struct YawAid {
     /// Outside the reading pose, learn the offset δ and walk along ψ̄ + δ in every carrying mode
     /// (off by default: in a pocket the thigh's sway spoils it, see above).
     pub learn_offset: bool,
-    /// At the ear, learn the offset δ and walk along ψ̄ + δ (see above).
+    /// At the ear, learn the offset δ from the screen's yaw over the stride and walk along it
+    /// plus δ, as in a pocket (see above).
     pub ear_offset: bool,
     /// In a pocket, learn the offset δ from the screen's yaw over the stride and walk along it
     /// plus δ (see above).
     pub pocket_offset: bool,
-    /// Time constant of the pocket's offset, steps (a plateau from 20 to 160 on TyrEx).
+    /// Time constant of the pocket's and the ear's offsets, steps (in a pocket a plateau from 20
+    /// to 160 on TyrEx).
     pub pocket_steps: f64,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
     /// above).
@@ -184,12 +179,20 @@ pub struct Steer {
     offset: YawOffset,
     // The carrying mode the offset was learnt in.
     offset_mode: Option<crate::engine::carry::CarryMode>,
-    // The pocket's offset, from the screen's yaw: kept through a spell of another mode.
-    pocket_offset: YawOffset,
+    // The offsets from the screen's yaw of a phone held still against the body, in a pocket
+    // and at the ear: each kept through a spell of another mode.
+    held: [HeldOffset; 2],
     // The screen's yaw over the stride of the last step, compass radians, unwrapped.
     last_screen: Option<f64>,
-    // Gravity's mean direction in the device when the pocket's offset restarted.
-    pocket_up: Option<nalgebra::Vector3<f64>>,
+}
+
+/// The offset of a phone held still against the body, from its screen's yaw
+/// ([`Steer::held`]).
+#[derive(Debug, Clone, Default)]
+struct HeldOffset {
+    offset: YawOffset,
+    // Gravity's mean direction in the device when the offset restarted.
+    up: Option<nalgebra::Vector3<f64>>,
 }
 
 /// The yaw aid's heading of a step.
@@ -319,8 +322,13 @@ impl Steer {
         let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
         self.before_last_yaw = prev;
-        let pocket = aid.pocket_offset && carry == Some(crate::engine::carry::CarryMode::Pocket);
-        let last_screen = self.screen(screen.filter(|_| pocket), continued);
+        use crate::engine::carry::CarryMode;
+        let held = match carry {
+            Some(CarryMode::Pocket) if aid.pocket_offset => Some(0),
+            Some(CarryMode::Ear) if aid.ear_offset => Some(1),
+            _ => None,
+        };
+        let last_screen = self.screen(screen.filter(|_| held.is_some()), continued);
         let steady = match (up, previous_up) {
             (Some(u), Some(p)) => u.dot(&p) >= libm::cos(aid.hand_steady_deg.to_radians()),
             _ => true,
@@ -330,10 +338,6 @@ impl Steer {
             && steady
             && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
             || reading_pose(&attitude, aid);
-        // A phone being moved from the ear is not steady, as a hand's (its yaw turns with the
-        // arm): the acceleration heading takes those steps.
-        let at_ear =
-            aid.ear_offset && carry == Some(crate::engine::carry::CarryMode::Ear) && steady;
         if reading {
             // Held in front, screen up: the top of the phone is the way forward.
             return device_twist(&attitude).map(|heading| Steered {
@@ -342,10 +346,10 @@ impl Steer {
                 sided: true,
             });
         }
-        if pocket {
+        if let Some(place) = held {
             // The screen's yaw over the stride: read from the attitude, not integrated, so the
-            // thigh's swing leaves no drift in it. A phone being moved in the body is not
-            // steady: its screen turns without the walker.
+            // thigh's swing or the head's sway leaves no drift in it. A phone being moved in the
+            // body, or from the ear, is not steady: its screen turns without the walker.
             let now = screen.filter(|_| steady)?;
             let now = ScreenStride {
                 yaw: self.last_screen?,
@@ -354,43 +358,54 @@ impl Steer {
             // Walked along the screen's yaw at the middle of the step, as the turn lead takes
             // the acceleration heading there (`turn.rs`), when it is given.
             let led = screen_at_step.map_or(now.yaw, |s| now.yaw + wrap_pi(s.yaw - now.yaw));
-            return self.pocket(aid, &now, led, last_screen, unled.filter(|_| settled));
+            return self.held(
+                aid,
+                place,
+                &now,
+                led,
+                last_screen,
+                unled.filter(|_| settled),
+            );
         }
-        let (psi, straight) = if aid.learn_offset || at_ear {
-            // Two-step mean, as A-HE, so the sway of a pocket cancels.
-            let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
-            (psi, Self::straight(aid, yaw, prev, before_last))
-        } else {
+        if !aid.learn_offset {
             return None;
-        };
+        }
+        // Two-step mean, as A-HE, so the sway of a pocket cancels.
+        let psi = prev.map_or(yaw, |p| 0.5 * (p + yaw));
+        let straight = Self::straight(aid, yaw, prev, before_last);
         self.restart_in(carry);
         if let (Some(th), true) = (averaged, straight) {
             self.offset
                 .update(aid, crate::engine::math::wrap_pi(th - psi));
         }
-        self.steered(aid, psi, false)
+        self.steered(aid, psi, None)
     }
 
-    /// In a pocket: the step walks along the screen's yaw over its stride plus δ. δ is taught
+    /// In a pocket or at the ear (`place` 0 or 1): the step walks along the screen's yaw over
+    /// its stride plus that place's δ. δ is taught
     /// by every step whose side is settled: the acceleration heading before the turn lead
     /// against the screen's yaw over the same windows (this stride's, and the last step's when
     /// the heading is the mean of two), so a turn teaches it no lag. It restarts when gravity's
     /// mean direction in the device moved by more than [`RESEAT_DEG`] from where it was
     /// taught: the phone sits another way in the pocket.
-    fn pocket(
+    fn held(
         &mut self,
         aid: &YawAid,
+        place: usize,
         now: &ScreenStride,
         led: f64,
         prev: Option<f64>,
         unled: Option<(f64, bool)>,
     ) -> Option<Steered> {
-        let reseated = self
-            .pocket_up
+        let held = &mut self.held[place];
+        let reseated = held
+            .up
             .is_some_and(|u| u.dot(&now.up) < libm::cos(RESEAT_DEG.to_radians()));
-        if reseated || self.pocket_up.is_none() {
-            self.pocket_offset = YawOffset::default();
-            self.pocket_up = Some(now.up);
+        if reseated || held.up.is_none() {
+            *held = HeldOffset {
+                offset: YawOffset::default(),
+                up: Some(now.up),
+            };
         }
         let psi = now.yaw;
         let taught = match unled {
@@ -403,10 +418,10 @@ impl Steer {
                 steps: aid.pocket_steps,
                 ..*aid
             };
-            self.pocket_offset
+            held.offset
                 .update(&cfg, crate::engine::math::wrap_pi(th - over));
         }
-        self.steered(aid, led, true)
+        self.steered(aid, led, Some(place))
     }
 
     /// A restarted offset when it is taught in another carrying mode than before.
@@ -418,21 +433,18 @@ impl Steer {
         }
     }
 
-    /// The heading `psi` + δ once δ has been taught by enough steps: the pocket's δ, whose
-    /// side the settled steps gave (the step is sided), or the other modes' δ.
-    fn steered(&self, aid: &YawAid, psi: f64, pocket: bool) -> Option<Steered> {
-        let offset = if pocket {
-            &self.pocket_offset
-        } else {
-            &self.offset
-        };
+    /// The heading `psi` + δ once δ has been taught by enough steps: the δ of the place the
+    /// phone is held still in (`held`: a pocket or the ear), whose side the settled steps gave
+    /// (the step is sided), or the other modes' δ.
+    fn steered(&self, aid: &YawAid, psi: f64, held: Option<usize>) -> Option<Steered> {
+        let offset = held.map_or(&self.offset, |place| &self.held[place].offset);
         offset
             .get()
             .filter(|_| offset.steps() >= aid.offset_min_steps)
             .map(|d| Steered {
                 heading: crate::engine::math::wrap_2pi(psi + d),
                 own: false,
-                sided: pocket,
+                sided: held.is_some(),
             })
     }
 
@@ -509,91 +521,64 @@ mod tests {
     }
 
     #[test]
-    fn at_the_ear_the_yaw_walks_with_the_offset_the_straight_strides_taught() {
+    fn with_learn_offset_the_yaw_walks_with_the_offset_the_straight_strides_taught() {
         use crate::engine::carry::CarryMode;
         use nalgebra::{UnitQuaternion, Vector3};
-        let aid = YawAid::default();
+        let aid = YawAid {
+            learn_offset: true,
+            ear_offset: false,
+            pocket_offset: false,
+            ..YawAid::default()
+        };
         // Upright at the ear: not the reading pose, screen facing sideways.
         let attitude = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.5);
         let up = Some(attitude.inverse() * Vector3::z());
-        let step = |steer: &mut Steer, yaw: f64, carry: CarryMode, averaged: f64| {
-            steer.push(
-                &aid,
-                &SteerInput {
-                    attitude,
-                    yaw,
-                    up,
-                    previous_up: up,
-                    carry: Some(carry),
-                    continued: true,
-                    averaged: Some(averaged),
-                    unled: None,
-                    settled: true,
-                    screen: None,
-                    screen_at_step: None,
-                },
-            )
+        let x = |yaw: f64, carry: CarryMode, averaged: f64, previous_up| SteerInput {
+            attitude,
+            yaw,
+            up,
+            previous_up,
+            carry: Some(carry),
+            continued: true,
+            averaged: Some(averaged),
+            unled: None,
+            settled: true,
+            screen: None,
+            screen_at_step: None,
         };
         let mut steer = Steer::default();
         // Walking straight, the acceleration heading 0.5 rad off the yaw, either way by 0.3.
         let mut got = Vec::new();
         for k in 0..12 {
             let scatter = if k % 2 == 0 { 0.3 } else { -0.3 };
-            got.push(step(&mut steer, 1.0, CarryMode::Ear, 1.5 + scatter));
+            got.push(steer.push(&aid, &x(1.0, CarryMode::Ear, 1.5 + scatter, up)));
         }
         // Not before offset_min_steps straight strides (the first two have no stride behind them).
         assert!(got[..8].iter().all(Option::is_none), "{got:?}");
         let last = got[11].expect("steered");
-        assert!(!last.own);
+        assert!(!last.own && !last.sided);
         assert!((last.heading - 1.5).abs() < 0.05, "{last:?}");
         // In a turn the yaw carries the walk at once, with the offset held.
-        let turned = step(&mut steer, 1.6, CarryMode::Ear, 0.0).expect("steered");
+        let turned = steer
+            .push(&aid, &x(1.6, CarryMode::Ear, 0.0, up))
+            .expect("steered");
         assert!((turned.heading - (1.3 + 0.5)).abs() < 0.05, "{turned:?}");
-        // A spell in the pocket steers nothing and leaves the ear's offset as it was.
-        assert_eq!(step(&mut steer, 1.6, CarryMode::Pocket, 2.0), None);
-        let back = step(&mut steer, 1.6, CarryMode::Ear, 2.1).expect("steered");
-        assert!((back.heading - 2.1).abs() < 0.05, "{back:?}");
-        // Taught in another mode (`learn_offset`), the offset starts again.
-        let every = YawAid {
-            learn_offset: true,
-            pocket_offset: false,
-            ..aid
-        };
-        let pocket = steer.push(
-            &every,
-            &SteerInput {
-                attitude,
-                yaw: 1.6,
-                up,
-                previous_up: up,
-                carry: Some(CarryMode::Pocket),
-                continued: true,
-                averaged: Some(2.0),
-                unled: None,
-                settled: true,
-                screen: None,
-                screen_at_step: None,
-            },
-        );
-        assert_eq!(pocket, None);
-        // A phone being moved is not steady.
+        // Taught in another mode, the offset starts again.
+        assert_eq!(steer.push(&aid, &x(1.6, CarryMode::Pocket, 2.0, up)), None);
+        // At the ear by default (the screen's rule), a phone being moved is not steady.
         let mut moved = Steer::default();
-        let other = Some(Vector3::z());
-        let x = SteerInput {
-            attitude,
+        let screen = Some(ScreenStride {
             yaw: 1.0,
-            up,
-            previous_up: other,
-            carry: Some(CarryMode::Ear),
-            continued: true,
-            averaged: Some(1.5),
-            unled: None,
-            settled: true,
-            screen: None,
-            screen_at_step: None,
+            up: up.unwrap(),
+        });
+        let unsteady = SteerInput {
+            screen,
+            screen_at_step: screen,
+            unled: Some((1.5, false)),
+            ..x(1.0, CarryMode::Ear, 1.5, Some(Vector3::z()))
         };
         for _ in 0..12 {
-            assert_eq!(moved.push(&aid, &x), None);
+            assert_eq!(moved.push(&YawAid::default(), &unsteady), None);
         }
     }
 
