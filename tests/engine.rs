@@ -371,4 +371,4 @@ fn replay_is_bit_identical_natively_and_in_wasm() {
     );
 }
 
-const DEMO_DIGEST: u64 = 0xdbd5_c785_cf87_b705;
+const DEMO_DIGEST: u64 = 0xbbda_696c_b127_7500;
