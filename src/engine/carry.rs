@@ -399,6 +399,11 @@ impl Ballot {
         self.votes.clear();
     }
 
+    /// The mode decided, or before any is (or since the phone was moved), the latest vote cast.
+    pub fn provisional(&self) -> Option<CarryMode> {
+        self.mode.or(self.votes.back().copied())
+    }
+
     /// Forgets the votes after the phone was moved. From a hand (screen up, swinging, at the
     /// ear), which also moves it, the mode is kept until two votes agree on one, which then
     /// replaces it (instead of [`CarryConfig::switch_votes`] of them). From a pocket or a bag
@@ -487,6 +492,13 @@ impl Carry {
     /// The mode decided, once one was.
     pub fn mode(&self) -> Option<CarryMode> {
         self.diag.mode
+    }
+
+    /// The mode decided, or while none is (the first second of evaluations, or after the phone
+    /// was moved), the latest evaluation's since then: the best word there is now, for a
+    /// decision that cannot wait for the vote (the onset look-back).
+    pub fn provisional(&self) -> Option<CarryMode> {
+        self.ballot.provisional()
     }
 
     /// The current values.
@@ -722,6 +734,26 @@ mod tests {
         // Then the usual rule again.
         assert_eq!(b.cast(Ear, &c), Some(Bag));
         assert_eq!(b.cast(Ear, &c), Some(Bag));
+    }
+
+    #[test]
+    fn before_the_ballot_decides_its_latest_vote_stands_in() {
+        use CarryMode::{Bag, Hand, Pocket};
+        let c = CarryConfig::default();
+        let mut b = Ballot::default();
+        assert_eq!(b.provisional(), None);
+        b.cast(Pocket, &c);
+        assert_eq!((b.mode, b.provisional()), (None, Some(Pocket)));
+        b.cast(Pocket, &c);
+        assert_eq!(b.provisional(), Some(Pocket));
+        // Decided, the mode stands whatever the latest vote.
+        b.cast(Bag, &c);
+        assert_eq!((b.mode, b.provisional()), (Some(Pocket), Some(Pocket)));
+        // Out of a pocket the mode is undecided, and so is the word until a vote is cast.
+        b.reopen();
+        assert_eq!(b.provisional(), None);
+        b.cast(Hand, &c);
+        assert_eq!((b.mode, b.provisional()), (None, Some(Hand)));
     }
 
     #[test]

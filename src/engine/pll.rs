@@ -161,7 +161,10 @@ pub struct PllConfig {
     /// Departure from the paper: taking the phone out of the pocket after a walk jerks it at a
     /// walking rhythm, which would count as a step; a walk's cycles tilt the axis by about the
     /// hip's ab- and adduction and the pelvis's roll, ±5° each on a real thigh. Default 15°,
-    /// above that.
+    /// above that. A brisk real step can tilt it further for one cycle (UbiComp 2013's fast
+    /// pace: 16–21°, the cycles before and after 3–9°), so the refused step counts, a cycle
+    /// late, when the next cycle is level again (within [`LEVEL_TILT_DEG`]): a phone taken out
+    /// stays tilted.
     pub axis_tilt_max_deg: f64,
     /// With the phone on a limb ([`DetectorInput::axis_tilt_sin`] given), a step after a
     /// standing cycle (one below [`PllConfig::cycle_rms_min`]) in a walk under way is held until
@@ -174,6 +177,12 @@ pub struct PllConfig {
     /// the rule does nothing. `false`: as the paper.
     pub lone_step_confirm: bool,
 }
+
+/// The largest tilt of the thigh's swing axis over a cycle, degrees, for the cycle after one
+/// refused for its tilt ([`PllConfig::axis_tilt_max_deg`]) to say the phone is still on the
+/// thigh: a walk's cycles tilt the axis by about the hip's ab- and adduction and the pelvis's
+/// roll, ±5° each.
+pub const LEVEL_TILT_DEG: f64 = 10.0;
 
 /// The leg pitch's range over a cycle that has had no sample yet.
 const NO_PITCH_YET: (f64, f64) = (f64::INFINITY, f64::NEG_INFINITY);
@@ -318,6 +327,9 @@ struct PllState {
     // A quiet cycle right after a counted step, which counts if the next cycle does
     // ([`PllConfig::between_steps_rel`]).
     between: Option<Candidate>,
+    // A step refused only for its cycle's tilt, which counts if the next cycle is level again
+    // ([`PllConfig::axis_tilt_max_deg`]).
+    tilt_held: Option<Candidate>,
     output: f64,
     phasor: (f64, f64),
     // Acquisition aid: times of upward zero crossings (with hysteresis) of the input.
@@ -351,6 +363,7 @@ impl PllState {
             late: None,
             held: None,
             between: None,
+            tilt_held: None,
             pending: None,
             output: 1.0,
             phasor: (0.0, 1.0),
@@ -447,8 +460,10 @@ impl Pll {
         self.s.pending = None;
         // A step held for the next cycle is undecided: counted, as without the rule.
         self.s.late = self.s.late.or(self.s.held.take());
-        // A quiet cycle waiting for the next one is undecided: not counted, as without the rule.
+        // A quiet cycle waiting for the next one is undecided: not counted, as without the rule;
+        // so is a tilted one.
         self.s.between = None;
+        self.s.tilt_held = None;
         self.s.loop_lpf.reset();
         self.s.n_cross = 0;
     }
@@ -544,7 +559,7 @@ impl Pll {
         let tilted = tilt_deg > self.cfg.axis_tilt_max_deg;
         let left_thigh = tilted && !self.tilted;
         self.tilted = tilted;
-        let out = self.judge(x, sq, rms, left_thigh);
+        let out = self.judge(x, sq, rms, left_thigh, tilt_deg <= LEVEL_TILT_DEG);
         self.s.cycle_xc = 0.0;
         self.s.cycle_cc = 0.0;
         self.s.peak_max = f64::NEG_INFINITY;
@@ -564,6 +579,7 @@ impl Pll {
         sq: f64,
         rms: f64,
         left_thigh: bool,
+        level: bool,
     ) -> Option<Candidate> {
         let (t_peak, period_s) = self.s.pending.take()?;
         let (same_leg, same_leg_counted) = self.s.prev_cycles[1];
@@ -575,11 +591,12 @@ impl Pll {
         } else {
             self.cfg.peak_share_min
         };
-        let moving =
-            rms >= self.cfg.cycle_rms_min && self.s.peak_max >= peak_share * rms && !left_thigh;
-        let counts = moving
-            && (rms >= self.cfg.cycle_rms_rel * x.sigma
-                || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg));
+        let stepped = rms >= self.cfg.cycle_rms_min && self.s.peak_max >= peak_share * rms;
+        let moving = stepped && !left_thigh;
+        let loud = rms >= self.cfg.cycle_rms_rel * x.sigma
+            || (same_leg_counted && rms >= self.cfg.same_leg_rel * same_leg);
+        let counts = moving && loud;
+        self.follow_tilted(level);
         // The step held on the cycle before counts unless this one moved without a step's peak.
         if let Some(h) = self.s.held.take() {
             if moving || rms < self.cfg.cycle_rms_min {
@@ -610,6 +627,9 @@ impl Pll {
             .filter(|s| *s >= 0.0);
         if between {
             self.s.between = Some(c);
+        }
+        if left_thigh && stepped && loud && self.s.counted && x.motion.is_moving() {
+            self.s.tilt_held = Some(c);
         }
         let mut out = None;
         if counts {
@@ -645,6 +665,15 @@ impl Pll {
             .filter(|_| moving && !counts && !self.s.counted)
             .map(|s| (c, s));
         out
+    }
+
+    /// The step refused for the tilt of the cycle before ([`PllConfig::axis_tilt_max_deg`])
+    /// counts, late, when this cycle is `level` again: the phone is still on the thigh.
+    fn follow_tilted(&mut self, level: bool) {
+        if let Some(h) = self.s.tilt_held.take().filter(|_| level) {
+            self.s.late = self.s.late.or(Some(h));
+            self.s.prev_cycles[0].1 = true;
+        }
     }
 
     /// The quiet cycle before this one ([`PllConfig::between_steps_rel`]) counts, late, when
@@ -704,8 +733,9 @@ impl Pll {
     /// it; taken once, right after that push. Either the step before the first one counted
     /// since the restart, when its cycle failed only the σ-relative gate but the limb swung
     /// over it ([`PllConfig::first_swing_rel`]), a step after a standing cycle, once the
-    /// next cycle stepped or stood ([`PllConfig::lone_step_confirm`]), or a quiet cycle
-    /// between two counted steps ([`PllConfig::between_steps_rel`]).
+    /// next cycle stepped or stood ([`PllConfig::lone_step_confirm`]), a quiet cycle
+    /// between two counted steps ([`PllConfig::between_steps_rel`]), or a step refused for its
+    /// cycle's tilt alone, once the next cycle was level ([`PllConfig::axis_tilt_max_deg`]).
     pub fn take_late_step(&mut self) -> Option<Candidate> {
         self.s.late.take()
     }

@@ -52,7 +52,8 @@ pub struct PipelineConfig {
     /// correlation; the first cycles of a walk follow the oscillator loosely, so a higher
     /// threshold refuses them.
     pub onset_coherence_min: f64,
-    /// With the phone in a pocket (the carrying mode at the onset), the gait began after the last
+    /// With the phone in a pocket (the carrying mode at the onset, or its latest evaluation
+    /// while it is undecided: [`crate::engine::carry::Carry::provisional`]), the gait began after the last
     /// run of this many anti-correlated cycles in a row, not after the last one. Default 2: a
     /// thigh's single cycles dip below 0 while it walks (the far leg's steps, a turn), and one
     /// dip dropped every step before it; handling the phone before walking is not in a pocket.

@@ -19,7 +19,10 @@ impl Pipeline {
     /// gives back the steps it decides a cycle late, [`crate::engine::pll::Pll::take_late_step`]);
     /// the peak detector starts empty.
     pub(super) fn look_back(&mut self, t: f64, state: Motion) -> Vec<Candidate> {
-        let pocket = self.carry.mode() == Some(CarryMode::Pocket);
+        // The gait is confirmed about 3 s into a walk, when the carrying mode may not be decided
+        // yet (its vote takes the first two evaluations, over windows still holding the
+        // standing or the handling before): its latest evaluation, over the walk, stands in.
+        let pocket = self.carry.provisional() == Some(CarryMode::Pocket);
         let span = if pocket {
             self.cfg.onset_pocket_lookback_s
         } else {

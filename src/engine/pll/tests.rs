@@ -185,6 +185,40 @@ fn the_cycle_in_which_the_phone_leaves_the_thigh_is_no_step() {
 }
 
 #[test]
+fn a_cycle_tilted_alone_between_level_ones_is_a_step_on_the_thigh() {
+    let f = 1.8;
+    let trough = |k: f64| (k - 0.5) / f;
+    let swing = |t: f64| Some(15.0 * (PI * f * t).sin());
+    let all = |(mut steps, late): (Vec<f64>, Vec<f64>)| {
+        steps.extend(late);
+        steps.sort_by(f64::total_cmp);
+        steps
+    };
+    let level = all(walk(20.0, |_| 3.0, swing, |_| Some(0.0)));
+    // The 11th step's cycle tilts the axis by 20° (a brisk step's hip), the next is level
+    // again: the step counts, a cycle late.
+    let once = |after: f64| {
+        move |t: f64| {
+            // Inside the cycle: the sample at its trough ends the cycle before.
+            Some(if (trough(11.0) + 0.02..trough(12.0)).contains(&t) {
+                20.0
+            } else if t >= trough(12.0) {
+                after
+            } else {
+                0.0
+            })
+        }
+    };
+    let steps = all(walk(20.0, |_| 3.0, swing, once(0.0)));
+    assert_eq!(steps.len(), level.len(), "{steps:?}");
+    assert!(steps.iter().any(|&t| (t - 11.0 / f).abs() < 0.05), "{steps:?}");
+    // Staying at 12°, under the 15° that refuses a cycle but over the level's 10°: the phone
+    // has left the thigh, and the tilted cycle's step is lost.
+    let steps = all(walk(20.0, |_| 3.0, swing, once(12.0)));
+    assert_eq!(steps.len() + 1, level.len(), "{steps:?}");
+}
+
+#[test]
 fn a_quiet_first_step_counts_when_the_limb_swung_over_it() {
     let f = 1.8;
     // The first judged cycle, around the peak at 1/f, at 0.3 of the walk's amplitude: its
