@@ -211,7 +211,10 @@ fn a_cycle_tilted_alone_between_level_ones_is_a_step_on_the_thigh() {
     };
     let steps = all(walk(20.0, |_| 3.0, swing, once(0.0)));
     assert_eq!(steps.len(), level.len(), "{steps:?}");
-    assert!(steps.iter().any(|&t| (t - 11.0 / f).abs() < 0.05), "{steps:?}");
+    assert!(
+        steps.iter().any(|&t| (t - 11.0 / f).abs() < 0.05),
+        "{steps:?}"
+    );
     // Staying at 12°, under the 15° that refuses a cycle but over the level's 10°: the phone
     // has left the thigh, and the tilted cycle's step is lost.
     let steps = all(walk(20.0, |_| 3.0, swing, once(12.0)));
