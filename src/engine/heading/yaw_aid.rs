@@ -532,7 +532,8 @@ mod tests {
         };
         // Upright at the ear: not the reading pose, screen facing sideways.
         let attitude = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), 1.5);
-        let up = Some(attitude.inverse() * Vector3::z());
+        let upright = attitude.inverse() * Vector3::z();
+        let up = Some(upright);
         let x = |yaw: f64, carry: CarryMode, averaged: f64, previous_up| SteerInput {
             attitude,
             yaw,
@@ -569,7 +570,7 @@ mod tests {
         let mut moved = Steer::default();
         let screen = Some(ScreenStride {
             yaw: 1.0,
-            up: up.unwrap(),
+            up: upright,
         });
         let unsteady = SteerInput {
             screen,
