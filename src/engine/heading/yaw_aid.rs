@@ -195,6 +195,13 @@ struct HeldOffset {
     up: Option<nalgebra::Vector3<f64>>,
 }
 
+impl HeldOffset {
+    /// The pocket's place in [`Steer::held`].
+    const POCKET: usize = 0;
+    /// The ear's place in [`Steer::held`].
+    const EAR: usize = 1;
+}
+
 /// The yaw aid's heading of a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Steered {
@@ -324,8 +331,8 @@ impl Steer {
         self.before_last_yaw = prev;
         use crate::engine::carry::CarryMode;
         let held = match carry {
-            Some(CarryMode::Pocket) if aid.pocket_offset => Some(0),
-            Some(CarryMode::Ear) if aid.ear_offset => Some(1),
+            Some(CarryMode::Pocket) if aid.pocket_offset => Some(HeldOffset::POCKET),
+            Some(CarryMode::Ear) if aid.ear_offset => Some(HeldOffset::EAR),
             _ => None,
         };
         let last_screen = self.screen(screen.filter(|_| held.is_some()), continued);
@@ -381,7 +388,7 @@ impl Steer {
         self.steered(aid, psi, None)
     }
 
-    /// In a pocket or at the ear (`place` 0 or 1): the step walks along the screen's yaw over
+    /// In a pocket or at the ear (`place`, [`HeldOffset::POCKET`] or [`HeldOffset::EAR`]): the step walks along the screen's yaw over
     /// its stride plus that place's δ. δ is taught
     /// by every step whose side is settled: the acceleration heading before the turn lead
     /// against the screen's yaw over the same windows (this stride's, and the last step's when
