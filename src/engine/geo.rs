@@ -1,7 +1,7 @@
 //! WGS84 geodetic ↔ local East-North-Up tangent plane, exact (through ECEF), and the haversine
 //! distance and initial bearing Basso 2021 §2.1 uses between two consecutive fixes (after
 //! Veness, "Calculate distance, bearing and more between latitude/longitude points", the
-//! paper's reference [9]). The filter works in the exact tangent plane; between fixes a few
+//! paper's reference \[9\]). The filter works in the exact tangent plane; between fixes a few
 //! steps apart the two agree within 0.3 % (the sphere against the ellipsoid) and 0.2° (a test
 //! checks it).
 //! May import: the rest of `engine`.

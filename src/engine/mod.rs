@@ -17,7 +17,7 @@
 //! - [`recorded_walk`]: a recorded walk of known distance as a calibration walk.
 //! - [`refinement`]: when a live walk's GNSS may refine a profile (the filter's verdict and
 //!   scale), and the refined profile.
-//! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24); [`replay`]: the one
+//! - [`pipeline`]: the one pipeline and dead reckoning (Basso 2021 eq. 24); [`replay`](fn@replay): the one
 //!   loop that feeds a log through it.
 //! - [`fusion`]: the per-step GNSS/PDR Kalman filter (Basso 2021 §2.2.5–2.2.6, §3), energy
 //!   saving, the magnetic declination, and a Rauch–Tung–Striebel smoother.

@@ -324,7 +324,7 @@ const AC_STEP_MAX_S: f64 = 1.0 / 1.15;
 ///
 /// The input is band-passed (one-pole high-pass at 0.5 Hz, two one-pole low-passes at 5 Hz),
 /// resampled at fixed times every [`AC_DT`] by linear interpolation (so dt comes from the
-/// timestamps and any input rate works), and the lagged products Σ x[n]·x[n−τ] over the last
+/// timestamps and any input rate works), and the lagged products Σ x\[n\]·x\[n−τ\] over the last
 /// [`AC_N`] resampled points are kept as running sums for every lag τ ≤ [`AC_L`] (two
 /// multiply-adds per lag per resampled point). R(τ) = S(τ)/S(0).
 ///

@@ -2,7 +2,7 @@
 //! May import: the rest of `engine`.
 //!
 //! Live sensor events and uploaded logs go through the same [`Pipeline::push`]; replaying a log
-//! ([`crate::engine::replay`]) is a loop over it.
+//! ([`crate::engine::replay`](fn@crate::engine::replay)) is a loop over it.
 //!
 //! Per IMU sample: validate → orientation into ENU → motion detector (σ_z) → heading window →
 //! step detector → for each step: period and frequency, heading, step length, dead reckoning
@@ -152,7 +152,7 @@ pub struct Diagnostics {
     /// Where the phone is carried, once decided ([`crate::engine::carry`]).
     pub carry: Option<CarryMode>,
     /// Steps counted, with those a bout's opening still holds off the track
-    /// ([`heading::opening`]).
+    /// ([`heading::opening`](crate::engine::heading::opening)).
     pub steps: u64,
     /// Steps recovered by the onset look-back.
     pub onset_steps: u64,
@@ -283,7 +283,7 @@ impl Pipeline {
 
     /// Feeds one record of a log: the one entry every caller uses, live or replayed. Returns the
     /// steps it placed on the track (usually none, sometimes several: the onset look-back's, or
-    /// those a bout's opening held, [`heading::opening`]). A refused record leaves the state
+    /// those a bout's opening held, [`heading::opening`](crate::engine::heading::opening)). A refused record leaves the state
     /// untouched.
     pub fn push(&mut self, r: &Record) -> Result<&[StepRecord], InputError> {
         match r {
@@ -549,7 +549,7 @@ impl Pipeline {
     }
 
     /// The input has ended: places the steps still held at a bout's opening
-    /// ([`heading::opening`]) and returns them.
+    /// ([`heading::opening`](crate::engine::heading::opening)) and returns them.
     pub fn finish(&mut self) -> &[StepRecord] {
         let first = self.track.len();
         self.release_opening();
@@ -562,7 +562,7 @@ impl Pipeline {
     }
 
     /// The steps a bout's opening holds off the track, in order: they follow [`Self::track`]
-    /// when released ([`heading::opening`]); their positions are not yet known (0).
+    /// when released ([`heading::opening`](crate::engine::heading::opening)); their positions are not yet known (0).
     pub fn held_steps(&self) -> impl Iterator<Item = &StepRecord> {
         self.bout.held_steps()
     }

@@ -6,7 +6,7 @@
 //!   and one for running (about 2.7–4.2 Hz): a piecewise-linear function. (Basso 2021 eq. 23 writes
 //!   the same law as a·f − b.) The user's lines come from calibration by least squares
 //!   ([`fit_line`], with f̄ by eq. 1 [`harmonic_mean_frequency`] and SL̄ = D/N by eq. 2).
-//! - Weinberg (Analog Devices AN-602, cited by Basso 2016 as [18]): SL = K·(a_max − a_min)^¼ of
+//! - Weinberg (Analog Devices AN-602, cited by Basso 2016 as \[18\]): SL = K·(a_max − a_min)^¼ of
 //!   the vertical acceleration over the step.
 //! - Fuzzy (Ibarra 2015 §4.4.2): [`super::fuzzy_step_length`].
 //!

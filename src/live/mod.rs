@@ -1,6 +1,6 @@
 //! Live input: browser sensor events into the engine's records ([`events`], the one place where
 //! the platforms' quirks are converted), and the live session around the one pipeline uploaded
-//! logs also go through ([`session`]). Pure Rust (the wasm glue in [`crate::web`] only reads the
+//! logs also go through ([`session`]). Pure Rust (the wasm glue in `crate::web` only reads the
 //! events' fields), so it is tested natively and in the browser alike. The step-length
 //! calibration wizard's words and fits box are here too ([`wizard`]): its walks are live walks.
 //! May import: `engine`, `io`, `view`.

@@ -1,5 +1,5 @@
 //! The live readouts in words: what the page writes into each readout (and the pocket guard's),
-//! from the session's [`Readouts`](super::session::Readouts).
+//! from the session's [`Readouts`].
 //! May import: [`super::session`].
 
 use super::session::Readouts;

@@ -3,7 +3,7 @@
 //!
 //! A slot adds its terms as it enters the window and takes them out as it leaves, so an
 //! evaluation reads the sums instead of going over the window again. The lagged products of
-//! the vertical acceleration, S(k) = Σ up[i]·up[i + k] over the window's pairs, cost two
+//! the vertical acceleration, S(k) = Σ up\[i\]·up\[i + k\] over the window's pairs, cost two
 //! multiply-adds per lag per slot this way; summed afresh at each evaluation they cost a
 //! window's length per lag. Every [`RESUM_SLOTS`] slots that left, the sums are summed afresh
 //! so that rounding in them cannot accumulate.
@@ -264,8 +264,8 @@ impl Window {
         total / (self.up.len() - self.first) as f64
     }
 
-    /// Σ v[i]·v[i + k] over the window's pairs, v = up − μ; for `k` 0 or one of the lags kept,
-    /// S(k) − μ·(Σ up[i] over the first n − k + Σ up[i] over the last n − k) + (n − k)·μ².
+    /// Σ v\[i\]·v\[i + k\] over the window's pairs, v = up − μ; for `k` 0 or one of the lags kept,
+    /// S(k) − μ·(Σ up\[i\] over the first n − k + Σ up\[i\] over the last n − k) + (n − k)·μ².
     /// 0 without a pair. [`Window::centre`] gave μ, since the last slot came.
     pub fn centred_lag_sum(&self, k: usize, mu: f64) -> f64 {
         let n = self.up.len() - self.first;
@@ -283,7 +283,7 @@ impl Window {
     }
 }
 
-/// Σ v[i]·v[i + k] over the pairs the window has, summed in order of i (0 without a pair).
+/// Σ v\[i\]·v\[i + k\] over the pairs the window has, summed in order of i (0 without a pair).
 pub(super) fn lag_sum(v: &[f64], k: usize) -> f64 {
     (0..v.len().saturating_sub(k))
         .map(|i| v[i] * v[i + k])

@@ -80,7 +80,7 @@ pub struct NavSample {
     pub device_up: [f64; 3],
     /// The horizontal part (east, north) of the screen's normal, the device's z axis, in the
     /// navigation frame, from the attitude (zero without one): the pocket's yaw reference
-    /// ([`yaw_aid::screen_yaw`]).
+    /// ([`yaw_aid::screen_stride`]).
     pub screen: [f64; 2],
     /// The motion detector's σ_z when the sample came, m/s² ([`crate::engine::motion`]): the
     /// onset look-back in a pocket never judges a sample more leniently than the live loop did.

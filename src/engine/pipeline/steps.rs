@@ -13,8 +13,8 @@ use crate::engine::step_length::StepLengthInput;
 
 impl Pipeline {
     /// Restarts the step detector at time `t` on the samples of the last
-    /// [`PipelineConfig::onset_lookback_s`] (in a pocket
-    /// [`PipelineConfig::onset_pocket_lookback_s`]) and returns the steps it finds in them. The PLL
+    /// [`crate::engine::PipelineConfig::onset_lookback_s`] (in a pocket
+    /// [`crate::engine::PipelineConfig::onset_pocket_lookback_s`]) and returns the steps it finds in them. The PLL
     /// starts at the motion detector's cadence with its phase fitted to those samples (and
     /// gives back the steps it decides a cycle late, [`crate::engine::pll::Pll::take_late_step`]);
     /// the peak detector starts empty.

@@ -16,7 +16,7 @@ pub struct Recovered {
     /// Every good record in time order, with a `gap` record where pieces are missing.
     pub records: Vec<Record>,
     /// Whether the pieces, joined in order, are a whole and good log: their text is then the
-    /// log as it is; otherwise [`to_string`] of `records` is.
+    /// log as it is; otherwise [`to_string`](crate::io::pdrlog::to_string) of `records` is.
     pub whole: bool,
     /// The IMU samples among `records`.
     pub samples: usize,

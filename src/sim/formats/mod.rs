@@ -1,7 +1,7 @@
 //! A simulated walk written in every format the import reads, as the recording app writes it.
 //! May import: `engine` and `io`.
 //!
-//! [`write`] turns a [`Simulation`] into the files an app (or a data set) would have produced for
+//! [`write`](fn@write) turns a [`Simulation`] into the files an app (or a data set) would have produced for
 //! the same walk: file and folder names, header lines, column names and order, units, clocks,
 //! sign and quaternion conventions. The readers of [`crate::io::import`] are the specification:
 //! every recording written here reads back through [`crate::io::import::import_all`] (the plain

@@ -51,7 +51,7 @@ pub struct FileData {
     /// Its samples, in file order.
     pub samples: Samples,
     /// The first [`PREVIEW_ROWS`] rows as parsed, SI units, in the order of
-    /// [`check::preview_columns`].
+    /// [`check::preview_columns`](super::check::preview_columns).
     pub preview: Vec<Vec<f64>>,
     /// Lines skipped.
     pub(crate) warnings: Warnings,
