@@ -41,6 +41,13 @@ use crate::engine::math::wrap_pi;
 ///   steady, as the hand's yaw: a phone taken from the ear turns with the arm. The heading is
 ///   the acceleration heading's, smoothed, not the walker's own way ([`Steered::own`]).
 ///   Measured in `docs/methods/pocket-heading.md` and `docs/methods/yaw-offset.md`.
+/// - **In a swinging hand** ([`YawAid::swinging_offset`]) the same, with a δ of its own: the
+///   arm swings the phone about the body's lateral axis, which leaves the stride's mean of the
+///   screen's direction where the hand holds it (TyrEx's motion capture: within 6–19° of the
+///   way walked after one offset), while the acceleration heading flips by half a turn for
+///   stretches. Not steady from one step to the next (the arm is at the other end of its swing),
+///   so that is not asked; a new grip restarts δ as in a pocket. Measured in
+///   `docs/methods/yaw-offset.md`.
 /// - **Otherwise**, by default, the papers' acceleration heading. [`YawAid::learn_offset`] walks
 ///   along ψ̄ + δ in every other mode: ψ integrated from the attitude increments about the
 ///   vertical and averaged over two steps, δ = θ̄ − ψ̄ learnt on straight steps (the yaw turned
@@ -69,7 +76,10 @@ pub struct YawAid {
     /// In a pocket, learn the offset δ from the screen's yaw over the stride and walk along it
     /// plus δ (see above).
     pub pocket_offset: bool,
-    /// Time constant of the pocket's and the ear's offsets, steps (in a pocket a plateau from 20
+    /// In a swinging hand, learn the offset δ from the screen's yaw over the stride and walk
+    /// along it plus δ, as in a pocket (see above).
+    pub swinging_offset: bool,
+    /// Time constant of the pocket's, the ear's and the swinging hand's offsets, steps (in a pocket a plateau from 20
     /// to 160 on TyrEx).
     pub pocket_steps: f64,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
@@ -97,6 +107,7 @@ impl Default for YawAid {
             learn_offset: false,
             ear_offset: true,
             pocket_offset: true,
+            swinging_offset: true,
             pocket_steps: 40.0,
             offset_min_steps: 7.0,
             hand_mode: true,
@@ -179,9 +190,9 @@ pub struct Steer {
     offset: YawOffset,
     // The carrying mode the offset was learnt in.
     offset_mode: Option<crate::engine::carry::CarryMode>,
-    // The offsets from the screen's yaw of a phone held still against the body, in a pocket
-    // and at the ear: each kept through a spell of another mode.
-    held: [HeldOffset; 2],
+    // The offsets from the screen's yaw of a phone held against the body or in a swinging
+    // hand, in a pocket, at the ear and in the hand: each kept through a spell of another mode.
+    held: [HeldOffset; 3],
     // The screen's yaw over the stride of the last step, compass radians, unwrapped.
     last_screen: Option<f64>,
 }
@@ -200,6 +211,8 @@ impl HeldOffset {
     const POCKET: usize = 0;
     /// The ear's place in [`Steer::held`].
     const EAR: usize = 1;
+    /// The swinging hand's place in [`Steer::held`].
+    const SWINGING: usize = 2;
 }
 
 /// The yaw aid's heading of a step.
@@ -333,6 +346,7 @@ impl Steer {
         let held = match carry {
             Some(CarryMode::Pocket) if aid.pocket_offset => Some(HeldOffset::POCKET),
             Some(CarryMode::Ear) if aid.ear_offset => Some(HeldOffset::EAR),
+            Some(CarryMode::Swinging) if aid.swinging_offset => Some(HeldOffset::SWINGING),
             _ => None,
         };
         let last_screen = self.screen(screen.filter(|_| held.is_some()), continued);
@@ -356,8 +370,9 @@ impl Steer {
         if let Some(place) = held {
             // The screen's yaw over the stride: read from the attitude, not integrated, so the
             // thigh's swing or the head's sway leaves no drift in it. A phone being moved in the
-            // body, or from the ear, is not steady: its screen turns without the walker.
-            let now = screen.filter(|_| steady)?;
+            // body, or from the ear, is not steady: its screen turns without the walker. A
+            // swinging arm is at the other end of its swing at each step.
+            let now = screen.filter(|_| steady || place == HeldOffset::SWINGING)?;
             let now = ScreenStride {
                 yaw: self.last_screen?,
                 ..now
@@ -388,7 +403,8 @@ impl Steer {
         self.steered(aid, psi, None)
     }
 
-    /// In a pocket or at the ear (`place`, [`HeldOffset::POCKET`] or [`HeldOffset::EAR`]): the step walks along the screen's yaw over
+    /// In a pocket, at the ear or in a swinging hand (`place`: [`HeldOffset::POCKET`],
+    /// [`HeldOffset::EAR`], [`HeldOffset::SWINGING`]): the step walks along the screen's yaw over
     /// its stride plus that place's δ. δ is taught
     /// by every step whose side is settled: the acceleration heading before the turn lead
     /// against the screen's yaw over the same windows (this stride's, and the last step's when
@@ -441,7 +457,7 @@ impl Steer {
     }
 
     /// The heading `psi` + δ once δ has been taught by enough steps: the δ of the place the
-    /// phone is held still in (`held`: a pocket or the ear), whose side the settled steps gave
+    /// phone is held in (`held`: a pocket, the ear or a swinging hand), whose side the settled steps gave
     /// (the step is sided), or the other modes' δ.
     fn steered(&self, aid: &YawAid, psi: f64, held: Option<usize>) -> Option<Steered> {
         let offset = held.map_or(&self.offset, |place| &self.held[place].offset);
@@ -491,7 +507,7 @@ impl Steer {
 #[allow(clippy::disallowed_methods)] // expected values from std are fine in tests
 mod tests {
     use super::*;
-    use std::f64::consts::PI;
+    use std::f64::consts::{FRAC_PI_2, PI};
 
     #[test]
     fn device_twist_is_the_compass_heading_of_the_top_of_a_flat_phone() {
@@ -652,5 +668,68 @@ mod tests {
         let mut reseated = x(2.0, 1.0, turned, CarryMode::Pocket, true);
         reseated.previous_up = Some(turned);
         assert_eq!(steer.push(&aid, &reseated), None);
+    }
+
+    #[test]
+    fn a_swinging_hand_walks_along_its_screen_though_the_arm_swings_between_steps() {
+        use crate::engine::carry::CarryMode;
+        use nalgebra::{UnitQuaternion, Vector3};
+        // Held down at the side, top up, screen towards the thigh; at each step the arm is at
+        // one end of its swing, 35° forward or back about the screen's normal, while the
+        // stride's mean stays where the hand holds it.
+        let attitude = UnitQuaternion::from_axis_angle(&Vector3::x_axis(), FRAC_PI_2);
+        let mean_up = attitude.inverse() * Vector3::z();
+        let swung = |k: i32| {
+            let a = if k % 2 == 0 { 0.6 } else { -0.6 };
+            UnitQuaternion::from_axis_angle(&Vector3::z_axis(), a) * mean_up
+        };
+        let x = |k: i32, screen: f64, unled: f64, carry: CarryMode| SteerInput {
+            attitude,
+            yaw: 0.0,
+            up: Some(swung(k)),
+            previous_up: Some(swung(k - 1)),
+            carry: Some(carry),
+            continued: true,
+            averaged: Some(unled),
+            unled: Some((unled, false)),
+            settled: true,
+            screen: Some(ScreenStride {
+                yaw: screen,
+                up: mean_up,
+            }),
+            screen_at_step: None,
+        };
+        let mut steer = Steer::default();
+        let mut got = Vec::new();
+        // Turning; the acceleration heading a quarter turn off the screen, give or take 0.2.
+        for k in 0..12 {
+            let screen = 0.1 * f64::from(k);
+            let scatter = if k % 3 == 0 { 0.2 } else { -0.1 };
+            got.push(steer.push(
+                &aid(),
+                &x(k, screen, screen + FRAC_PI_2 + scatter, CarryMode::Swinging),
+            ));
+        }
+        let last = got[11].expect("steered");
+        assert!(last.sided && !last.own, "{last:?}");
+        assert!((last.heading - (1.1 + FRAC_PI_2)).abs() < 0.1, "{last:?}");
+        // Off, the swinging hand keeps the acceleration heading.
+        let off = YawAid {
+            swinging_offset: false,
+            ..aid()
+        };
+        assert_eq!(
+            Steer::default().push(&off, &x(0, 0.0, 1.0, CarryMode::Swinging)),
+            None
+        );
+        // The same swing in a pocket is a phone being moved: no heading from the screen.
+        let mut pocket = Steer::default();
+        assert!((0..12).all(|k| pocket
+            .push(&aid(), &x(k, 0.0, FRAC_PI_2, CarryMode::Pocket))
+            .is_none()));
+
+        fn aid() -> YawAid {
+            YawAid::default()
+        }
     }
 }
