@@ -79,8 +79,8 @@ pub struct YawAid {
     /// In a swinging hand, learn the offset δ from the screen's yaw over the stride and walk
     /// along it plus δ, as in a pocket (see above).
     pub swinging_offset: bool,
-    /// Time constant of the pocket's, the ear's and the swinging hand's offsets, steps (in a pocket a plateau from 20
-    /// to 160 on TyrEx).
+    /// Time constant of the pocket's, the ear's and the swinging hand's offsets, steps (in a
+    /// pocket a plateau from 20 to 160 on TyrEx).
     pub pocket_steps: f64,
     /// Straight steps that must have taught δ since it last restarted before it steers (see
     /// above).
@@ -190,8 +190,8 @@ pub struct Steer {
     offset: YawOffset,
     // The carrying mode the offset was learnt in.
     offset_mode: Option<crate::engine::carry::CarryMode>,
-    // The offsets from the screen's yaw of a phone held against the body or in a swinging
-    // hand, in a pocket, at the ear and in the hand: each kept through a spell of another mode.
+    // The offsets from the screen's yaw in a pocket, at the ear and in a swinging hand: each
+    // kept through a spell of another mode.
     held: [HeldOffset; 3],
     // The screen's yaw over the stride of the last step, compass radians, unwrapped.
     last_screen: Option<f64>,
@@ -405,8 +405,7 @@ impl Steer {
 
     /// In a pocket, at the ear or in a swinging hand (`place`: [`HeldOffset::POCKET`],
     /// [`HeldOffset::EAR`], [`HeldOffset::SWINGING`]): the step walks along the screen's yaw over
-    /// its stride plus that place's δ. δ is taught
-    /// by every step whose side is settled: the acceleration heading before the turn lead
+    /// its stride plus that place's δ. δ is taught by every step whose side is settled: the acceleration heading before the turn lead
     /// against the screen's yaw over the same windows (this stride's, and the last step's when
     /// the heading is the mean of two), so a turn teaches it no lag. It restarts when gravity's
     /// mean direction in the device moved by more than [`RESEAT_DEG`] from where it was
@@ -457,8 +456,8 @@ impl Steer {
     }
 
     /// The heading `psi` + δ once δ has been taught by enough steps: the δ of the place the
-    /// phone is held in (`held`: a pocket, the ear or a swinging hand), whose side the settled steps gave
-    /// (the step is sided), or the other modes' δ.
+    /// phone is held in (`held`: a pocket, the ear or a swinging hand), whose side the settled
+    /// steps gave (the step is sided), or the other modes' δ.
     fn steered(&self, aid: &YawAid, psi: f64, held: Option<usize>) -> Option<Steered> {
         let offset = held.map_or(&self.offset, |place| &self.held[place].offset);
         offset
@@ -699,6 +698,7 @@ mod tests {
             }),
             screen_at_step: None,
         };
+        let aid = YawAid::default();
         let mut steer = Steer::default();
         let mut got = Vec::new();
         // Turning; the acceleration heading a quarter turn off the screen, give or take 0.2.
@@ -706,7 +706,7 @@ mod tests {
             let screen = 0.1 * f64::from(k);
             let scatter = if k % 3 == 0 { 0.2 } else { -0.1 };
             got.push(steer.push(
-                &aid(),
+                &aid,
                 &x(k, screen, screen + FRAC_PI_2 + scatter, CarryMode::Swinging),
             ));
         }
@@ -716,7 +716,7 @@ mod tests {
         // Off, the swinging hand keeps the acceleration heading.
         let off = YawAid {
             swinging_offset: false,
-            ..aid()
+            ..aid
         };
         assert_eq!(
             Steer::default().push(&off, &x(0, 0.0, 1.0, CarryMode::Swinging)),
@@ -725,11 +725,7 @@ mod tests {
         // The same swing in a pocket is a phone being moved: no heading from the screen.
         let mut pocket = Steer::default();
         assert!((0..12).all(|k| pocket
-            .push(&aid(), &x(k, 0.0, FRAC_PI_2, CarryMode::Pocket))
+            .push(&aid, &x(k, 0.0, FRAC_PI_2, CarryMode::Pocket))
             .is_none()));
-
-        fn aid() -> YawAid {
-            YawAid::default()
-        }
     }
 }

@@ -99,7 +99,8 @@ impl Fusion {
         self.cfg.baseline_min_m > 0.0 && self.white_share < WHITE_FIXES
     }
 
-    /// Holds the corrections within their physical bounds ([`FusionConfig::scale_bounds`](crate::engine::fusion::FusionConfig::scale_bounds),
+    /// Holds the corrections within their physical bounds
+    /// ([`FusionConfig::scale_bounds`](crate::engine::fusion::FusionConfig::scale_bounds),
     /// [`FusionConfig::bias_bound_deg`](crate::engine::fusion::FusionConfig::bias_bound_deg)).
     pub(super) fn bound(&mut self) {
         self.x[B] = wrap_pi(self.x[B]);
@@ -113,10 +114,11 @@ impl Fusion {
     /// taken while walking at most [`WHITE_PAIR_S`] apart, the change of their error is
     /// δ = (z₂ − z₁) − k R(β) (d₂ − d₁), d the PDR alone. Its expected square is
     /// 4σ²(w + (1 − w)(1 − ρ)), ρ = e^(−Δt/τ): 4σ² for white errors (a simulator's), far less
-    /// for a phone's, whose error persists. Over the last [`FusionConfig::white_share_window`](crate::engine::fusion::FusionConfig::white_share_window)
+    /// for a phone's, whose error persists. Over the last
+    /// [`FusionConfig::white_share_window`](crate::engine::fusion::FusionConfig::white_share_window)
     /// pairs, q = Σ|δ|² / Σ4σ² gives w = (q − (1 − ρ)) / ρ, held within
-    /// [[`FusionConfig::fix_white_share`](crate::engine::fusion::FusionConfig::fix_white_share), 1]. Until the window is half full, the configured
-    /// share holds.
+    /// [[`FusionConfig::fix_white_share`](crate::engine::fusion::FusionConfig::fix_white_share),
+    /// 1]. Until the window is half full, the configured share holds.
     pub(super) fn measure_white_share(&mut self, t: f64, z: Vector2<f64>, sigma: f64) {
         let n = self.cfg.white_share_window as usize;
         let here = (t, z, self.dead_reckoned);
