@@ -377,22 +377,13 @@ fn the_acceleration_heading_does_not_cut_the_corners() {
     // (`yaw_aid.ear_offset`): the yaw turns with the head, a two-step mean half a step behind.
     // Measured: 0.38 m, against 0.28 m for the led acceleration heading and 0.70 m unled (the
     // simulated ear's acceleration heading is 1–2° off, the real ear's 19–65°).
-    let (unled, ear) = (
-        shift(Carry::Ear, false, false),
-        shift(Carry::Ear, true, true),
-    );
-    assert!(
-        ear < 0.7 * unled,
-        "Ear: {ear:.2} m with the learnt offset against {unled:.2} m unled"
-    );
     // The swinging hand's screen, led to the step's middle as the pocket's. Measured: 0.36 m
     // against 0.85 m unled.
-    let (unled, swinging) = (
-        shift(Carry::Swinging, false, false),
-        shift(Carry::Swinging, true, true),
-    );
-    assert!(
-        swinging < 0.5 * unled,
-        "Swinging: {swinging:.2} m with the learnt offset against {unled:.2} m unled"
-    );
+    for (carry, share) in [(Carry::Ear, 0.7), (Carry::Swinging, 0.5)] {
+        let (unled, offset) = (shift(carry, false, false), shift(carry, true, true));
+        assert!(
+            offset < share * unled,
+            "{carry:?}: {offset:.2} m with the learnt offset against {unled:.2} m unled"
+        );
+    }
 }
