@@ -23,15 +23,10 @@ const MIN_SPEED: f64 = 0.5;
 
 /// (t, x, y, screen's normal x, y) of each complete row of `truth.csv`.
 fn read(path: &Path) -> Option<Vec<[f64; 5]>> {
-    let text = std::fs::read_to_string(path).ok()?;
-    let rows = text.lines().skip(1).filter_map(|l| {
-        let v: Vec<f64> = l
-            .split(',')
-            .map(|f| f.parse().ok())
-            .collect::<Option<_>>()?;
-        let [t, x, y, _, w, qx, qy, qz] = v[..] else {
-            return None;
-        };
+    let mut reader = csv::Reader::from_path(path).ok()?;
+    // Rows with an empty field (the cameras lost the phone) are left out.
+    let rows = reader.deserialize::<[f64; 8]>().filter_map(|r| {
+        let [t, x, y, _, w, qx, qy, qz] = r.ok()?;
         // The device's z axis in the room: the rotation's third column.
         Some([t, x, y, 2.0 * (qx * qz + w * qy), 2.0 * (qy * qz - w * qx)])
     });
