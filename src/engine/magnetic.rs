@@ -392,6 +392,11 @@ impl Magnetic {
         super::math::wrap_2pi(heading_rad + self.delta)
     }
 
+    /// The yaw correction δ handed on now, radians counter-clockwise about up.
+    pub fn correction(&self) -> f64 {
+        self.delta
+    }
+
     /// The current values.
     pub fn diagnostics(&self) -> MagneticDiagnostics {
         self.diag

@@ -388,6 +388,7 @@ impl Pipeline {
                     let z = q * nalgebra::Vector3::z();
                     [z.x, z.y]
                 }),
+                guard: p.magnetic.correction(),
                 sigma_z: m.sigma_z,
             })
         });

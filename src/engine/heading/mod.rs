@@ -82,6 +82,10 @@ pub struct NavSample {
     /// navigation frame, from the attitude (zero without one): the pocket's yaw reference
     /// ([`yaw_aid::screen_stride`]).
     pub screen: [f64; 2],
+    /// The magnetic guard's yaw correction δ when the sample came, radians counter-clockwise
+    /// about up (0 without the guard; [`crate::engine::magnetic::Magnetic::correction`]): the
+    /// integrated [`NavSample::yaw`] carries its changes.
+    pub guard: f64,
     /// The motion detector's σ_z when the sample came, m/s² ([`crate::engine::motion`]): the
     /// onset look-back in a pocket never judges a sample more leniently than the live loop did.
     pub sigma_z: f64,
@@ -113,8 +117,15 @@ impl NavSample {
             yaw: 0.0,
             device_up: [0.0; 3],
             screen: [0.0; 2],
+            guard: 0.0,
             sigma_z: 0.0,
         }
+    }
+
+    /// The sample at `t`, linear between the two around it; `None` outside the buffer.
+    pub(crate) fn at(buf: &VecDeque<NavSample>, t: f64) -> Option<NavSample> {
+        let i = buf.partition_point(|s| s.t <= t);
+        (i > 0 && i < buf.len()).then(|| NavSample::lerp(&buf[i - 1], &buf[i], t))
     }
 
     fn lerp(a: &NavSample, b: &NavSample, t: f64) -> NavSample {
@@ -133,6 +144,7 @@ impl NavSample {
             yaw: a.yaw + w * (b.yaw - a.yaw),
             device_up: a.device_up,
             screen: a.screen,
+            guard: a.guard,
             sigma_z: a.sigma_z,
         }
     }
@@ -331,6 +343,11 @@ pub struct StepHeading {
     pub held: bool,
     /// The steps held before this one are released, turned by 180° when `true`.
     pub release: Option<bool>,
+    /// The magnetic guard's correction ([`NavSample::guard`]) at the moment whose yaw the
+    /// heading took, when that is not the latest (a late step in the hand,
+    /// [`yaw_aid::late_hand_moment`]): the heading without the guard adds it, not the current
+    /// one.
+    pub guard_then: Option<f64>,
 }
 
 /// The heading stage's current values; read-only.
@@ -455,6 +472,18 @@ impl Heading {
         );
         let unled = averaged.map(|a| (a, two));
         let averaged = self.lead(step, averaged, two);
+        // A late step in the hand takes the yaw of its own moment; a step the detector held
+        // for a cycle has its own pose already.
+        let late = self
+            .cfg
+            .yaw_aid
+            .filter(|a| a.hand_late_yaw && step.judged_at.is_none())
+            .and_then(|_| {
+                Some((
+                    yaw_aid::late_hand_moment(step.buf, step.window.t_k)?,
+                    step.buf.back()?.yaw,
+                ))
+            });
         let steered = match &self.cfg.yaw_aid {
             Some(aid) if step.has_heading => pose.attitude.and_then(|attitude| {
                 let x = yaw_aid::SteerInput {
@@ -473,6 +502,7 @@ impl Heading {
                     } else {
                         None
                     },
+                    turned_since: late.map_or(0.0, |(then, now)| now - then.yaw),
                 };
                 self.steer.push(aid, &x)
             }),
@@ -484,7 +514,10 @@ impl Heading {
         let h = steered.map(|s| s.heading).or(averaged);
         let walked = self.carry_on(step, own, h, opened.by_limb, limb_mode);
         let sided = steered.filter(|s| s.sided).map(|s| s.heading);
-        self.close(step, opened, sided, walked)
+        StepHeading {
+            guard_then: late.filter(|_| own.is_some()).map(|(then, _)| then.guard),
+            ..self.close(step, opened, sided, walked)
+        }
     }
 
     /// The opening's first part: a new bout releases the last one's held steps; a step whose
@@ -668,6 +701,7 @@ impl Heading {
             single: theta,
             held,
             release,
+            guard_then: None,
         }
     }
 

@@ -22,7 +22,8 @@ use crate::engine::math::wrap_pi;
 ///   turned in the device by at most [`YawAid::hand_steady_deg`] since the last step: the mode
 ///   is a vote over seconds, so a phone being put away or lifted to the ear is still `hand` for
 ///   a few steps, and its yaw then turns with the hand. 20°: smaller limits also refuse real
-///   steps in sharp turns.
+///   steps in sharp turns. A step given late (a walk's first steps) takes the yaw from
+///   [`HAND_LATENCY_S`] after its end ([`YawAid::hand_late_yaw`]).
 /// - **In a pocket and at the ear** ([`YawAid::pocket_offset`], [`YawAid::ear_offset`]), where
 ///   the phone is held still against the body, the engine walks along ψ_s + δ: ψ_s the screen's
 ///   yaw over a stride ([`screen_stride`]: the compass direction of the mean horizontal part of
@@ -95,6 +96,10 @@ pub struct YawAid {
     /// The largest turn of gravity in the device from the last step for the hand's yaw,
     /// degrees: a phone being moved to another place is not steady.
     pub hand_steady_deg: f64,
+    /// A step the detector gives later than [`HAND_LATENCY_S`] after its end (the first steps
+    /// of a walk, found looking back) takes the hand's yaw from that long after its end, not
+    /// the latest: the device's turn since then is taken off (see [`HAND_LATENCY_S`]).
+    pub hand_late_yaw: bool,
 }
 
 impl Default for YawAid {
@@ -113,6 +118,7 @@ impl Default for YawAid {
             hand_mode: true,
             hand_screen_up_min: 0.2,
             hand_steady_deg: 20.0,
+            hand_late_yaw: true,
         }
     }
 }
@@ -127,6 +133,25 @@ pub fn device_twist(q: &nalgebra::UnitQuaternion<f64>) -> Option<f64> {
     }
     // 2·atan2(z, w) is counter-clockwise about up; a compass heading turns the other way.
     Some(crate::engine::math::wrap_2pi(-2.0 * libm::atan2(z, w)))
+}
+
+/// How long after a step's end the step detector usually gives it, s: the PLL judges a step
+/// about a third of a period after it (median 0.29–0.47 s on TyrEx's front-pocket and texting
+/// walks). An on-time step's heading is the yaw of that moment. A step given later, up to 3 s
+/// on those walks (a walk's first steps, which the motion detector's onset finds looking back),
+/// takes the hand's yaw from this long after its end
+/// ([`YawAid::hand_late_yaw`]): in the hand the walker turns with the phone, and a turn since
+/// then is not the step's. Measured in `docs/methods/hand-yaw.md`.
+pub const HAND_LATENCY_S: f64 = 0.3;
+
+/// The buffer's sample [`HAND_LATENCY_S`] after the end `t_k` of a step, when the buffer runs
+/// past it: the moment whose yaw a late step in the hand takes. `None` for a step given within
+/// that time, or when the buffer does not reach back.
+pub fn late_hand_moment(
+    buf: &std::collections::VecDeque<crate::engine::heading::NavSample>,
+    t_k: f64,
+) -> Option<crate::engine::heading::NavSample> {
+    crate::engine::heading::NavSample::at(buf, t_k + HAND_LATENCY_S)
 }
 
 /// Whether the phone is in the reading pose: screen up, tilted less than
@@ -256,6 +281,10 @@ pub struct SteerInput {
     /// The screen over the stride around the middle of the step ([`screen_at_step`]), with the
     /// turn lead ([`crate::engine::heading::HeadingConfig::turn_lead`]).
     pub screen_at_step: Option<ScreenStride>,
+    /// How far the device turned about the vertical since the moment whose yaw a late step in
+    /// the hand takes ([`late_hand_moment`]), compass radians; 0 when
+    /// [`YawAid::hand_late_yaw`] is off or the step is on time.
+    pub turned_since: f64,
 }
 
 /// The screen over a stride ([`screen_stride`]).
@@ -338,6 +367,7 @@ impl Steer {
             screen,
             screen_at_step,
             settled,
+            turned_since,
         } = *x;
         let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
@@ -360,9 +390,10 @@ impl Steer {
             && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
             || reading_pose(&attitude, aid);
         if reading {
-            // Held in front, screen up: the top of the phone is the way forward.
-            return device_twist(&attitude).map(|heading| Steered {
-                heading,
+            // Held in front, screen up: the top of the phone is the way forward, as it was when
+            // the step was judged.
+            return device_twist(&attitude).map(|twist| Steered {
+                heading: crate::engine::math::wrap_2pi(twist - turned_since),
                 own: true,
                 sided: true,
             });
@@ -526,6 +557,63 @@ mod tests {
     }
 
     #[test]
+    fn a_late_step_in_the_hand_walks_the_way_the_phone_pointed_just_after_it() {
+        use crate::engine::heading::NavSample;
+        use nalgebra::{UnitQuaternion, Vector3};
+        // The walker turns at 0.5 rad/s; the buffer runs to 3 s, sampled at 100 Hz.
+        let buf: std::collections::VecDeque<NavSample> = (0..=300)
+            .map(|i| {
+                let t = 0.01 * f64::from(i);
+                NavSample {
+                    yaw: 0.5 * t,
+                    ..NavSample::empty(t)
+                }
+            })
+            .collect();
+        // A step that ended at 1.0 s, given at 3.0 s: its moment is 1.3 s, and the phone has
+        // turned by 0.5 · 1.7 rad since. One given within the usual latency is on time.
+        let then = late_hand_moment(&buf, 1.0).unwrap();
+        assert!((then.t - 1.0 - HAND_LATENCY_S).abs() < 1e-12, "{then:?}");
+        let turned = buf.back().unwrap().yaw - then.yaw;
+        assert!(
+            (turned - 0.5 * (3.0 - 1.0 - HAND_LATENCY_S)).abs() < 1e-9,
+            "{turned}"
+        );
+        assert_eq!(late_hand_moment(&buf, 2.8), None);
+        // Flat in the hand, the top of the phone at 1.2 rad now: the late step goes 0.85 rad
+        // before that.
+        let attitude = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), -1.2);
+        let x = SteerInput {
+            attitude,
+            yaw: 1.5,
+            up: Some(Vector3::z()),
+            previous_up: Some(Vector3::z()),
+            carry: Some(crate::engine::carry::CarryMode::Hand),
+            continued: true,
+            averaged: None,
+            settled: true,
+            unled: None,
+            screen: None,
+            screen_at_step: None,
+            turned_since: turned,
+        };
+        let aid = YawAid::default();
+        let late = Steer::default().push(&aid, &x).unwrap();
+        assert!((late.heading - (1.2 - turned)).abs() < 1e-9, "{late:?}");
+        assert!(late.own);
+        let on_time = Steer::default()
+            .push(
+                &aid,
+                &SteerInput {
+                    turned_since: 0.0,
+                    ..x
+                },
+            )
+            .unwrap();
+        assert!((on_time.heading - 1.2).abs() < 1e-9, "{on_time:?}");
+    }
+
+    #[test]
     fn yaw_offset_ignores_a_flip_and_follows_a_moved_phone() {
         let aid = YawAid::default();
         let mut o = YawOffset::default();
@@ -568,6 +656,7 @@ mod tests {
             settled: true,
             screen: None,
             screen_at_step: None,
+            turned_since: 0.0,
         };
         let mut steer = Steer::default();
         // Walking straight, the acceleration heading 0.5 rad off the yaw, either way by 0.3.
@@ -597,6 +686,7 @@ mod tests {
         let unsteady = SteerInput {
             screen,
             screen_at_step: screen,
+            turned_since: 0.0,
             unled: Some((1.5, false)),
             ..x(1.0, CarryMode::Ear, 1.5, Some(Vector3::z()))
         };
@@ -627,6 +717,7 @@ mod tests {
                 settled,
                 screen: stride(screen, up),
                 screen_at_step: stride(screen + 0.1, up),
+                turned_since: 0.0,
             }
         };
         let mut steer = Steer::default();
@@ -697,6 +788,7 @@ mod tests {
                 up: mean_up,
             }),
             screen_at_step: None,
+            turned_since: 0.0,
         };
         let aid = YawAid::default();
         let mut steer = Steer::default();
