@@ -390,8 +390,8 @@ impl Steer {
             && up.is_some_and(|u| u.z >= aid.hand_screen_up_min))
             || reading_pose(&attitude, aid);
         if reading {
-            // Held in front, screen up: the top of the phone is the way forward, as it was when
-            // the step was judged.
+            // Held in front, screen up: the top of the phone is the way forward, as it pointed
+            // just after the step (a late step's turn since then taken off).
             return device_twist(&attitude).map(|twist| Steered {
                 heading: crate::engine::math::wrap_2pi(twist - turned_since),
                 own: true,
