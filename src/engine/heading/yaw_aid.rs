@@ -138,8 +138,8 @@ pub fn device_twist(q: &nalgebra::UnitQuaternion<f64>) -> Option<f64> {
 /// How long after a step's end the step detector usually gives it, s: the PLL judges a step
 /// about a third of a period after it (median 0.29–0.47 s on TyrEx's front-pocket and texting
 /// walks). An on-time step's heading is the yaw of that moment. A step given later, up to 3 s
-/// on those walks (a walk's first steps, which the motion detector's onset finds looking back),
-/// takes the hand's yaw from this long after its end
+/// on those walks (the first steps of a walk or of a bout, which the motion detector's onset
+/// finds looking back), takes the hand's yaw from this long after its end
 /// ([`YawAid::hand_late_yaw`]): in the hand the walker turns with the phone, and a turn since
 /// then is not the step's. Measured in `docs/methods/hand-yaw.md`.
 pub const HAND_LATENCY_S: f64 = 0.3;
