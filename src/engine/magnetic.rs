@@ -387,9 +387,11 @@ impl Magnetic {
     }
 
     /// A compass heading (radians, clockwise from north) taken in the guarded attitude, turned
-    /// back into the source's: what the heading would have been without the guard.
-    pub fn unguarded(&self, heading_rad: f64) -> f64 {
-        super::math::wrap_2pi(heading_rad + self.delta)
+    /// back into the source's: what the heading would have been without the guard. `then`: the
+    /// correction of the moment the heading was taken, when that is not now (a late step in the
+    /// hand, [`crate::engine::heading::StepHeading::guard_then`]).
+    pub fn unguarded(&self, heading_rad: f64, then: Option<f64>) -> f64 {
+        super::math::wrap_2pi(heading_rad + then.unwrap_or(self.delta))
     }
 
     /// The yaw correction δ handed on now, radians counter-clockwise about up.

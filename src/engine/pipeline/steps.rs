@@ -109,7 +109,6 @@ impl Pipeline {
             judged_at,
         });
         let heading_used = h.used;
-        let h_guard_then = h.guard_then;
         let pocket = self.step_pocket(c.t, state);
         let freq = 1.0 / period;
         let modelled = self.step_length.push(&StepLengthInput {
@@ -150,12 +149,7 @@ impl Pipeline {
         };
         // The fusion keeps the magnetometer's yaw: its heading correction is one constant,
         // which a yaw held on the gyroscope does not have.
-        // A late step in the hand took the yaw of its own moment, and the guard's correction of
-        // then.
-        let unguarded = heading_used.map(|h| match h_guard_then {
-            Some(d) => crate::engine::math::wrap_2pi(h + d),
-            None => self.magnetic.unguarded(h),
-        });
+        let unguarded = heading_used.map(|u| self.magnetic.unguarded(u, h.guard_then));
         if let Some(turn) = h.release {
             self.release_held(turn);
         }
