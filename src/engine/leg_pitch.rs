@@ -542,6 +542,12 @@ impl LegPitch {
         self.axis.map(|a| a * self.sign())
     }
 
+    /// The swing axis's share of the gyroscope's horizontal second moment, once an axis is
+    /// known ([`crate::engine::back_pocket`] tells the pocket by it).
+    pub fn swing_share(&self) -> Option<f64> {
+        self.axis.map(|_| self.share)
+    }
+
     /// The current values.
     pub fn diagnostics(&self) -> LegPitchDiagnostics {
         LegPitchDiagnostics {

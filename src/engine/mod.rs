@@ -5,7 +5,8 @@
 //! - [`orientation`]: OS quaternion, Madgwick (Basso 2021 §2.2.1), gravity low-pass;
 //!   [`orientation::kf_nfa`]: the KF-NFA (Ibarra 2015 ch. 3, fuzzy covariance matching of R).
 //! - [`motion`]: σ_z motion detection (Basso 2016 §II.B); [`handling`]: the phone turned over in
-//!   the hand is not a gait (ours).
+//!   the hand is not a gait (ours); [`back_pocket`]: a back pocket told from a front one by the
+//!   leg pitch's swing axis, its path lagging the turns (ours).
 //! - [`pll`]: PLL step detection (Basso 2016 §II.C, Basso 2021 §2.2.2); [`peak`]: the comparison;
 //!   [`zero_crossing`]: zero crossings + area (Ibarra 2015 §4.4.1, eqs. 4.8–4.9);
 //!   [`detector`]: what all three are fed and find.
@@ -40,6 +41,7 @@
 //! | [`handling::Handling`] | [`handling::HandlingConfig`] | t, angular rate, motion state | handled or not | rate, axis share, time handled |
 //! | [`carry::Carry`] | [`carry::CarryConfig`] | t, specific force, vertical acceleration, angular rate, handled | the carrying mode | features, raw answer, evaluations, switches |
 //! | [`pll::Pll`], [`peak::PeakDetector`], [`zero_crossing::ZeroCrossing`] | [`pll::PllConfig`], [`peak::PeakConfig`], [`zero_crossing::ZeroCrossingConfig`] | [`detector::DetectorInput`] | `Option<`[`detector::Candidate`]`>` | frequency, lock; period |
+//! | [`back_pocket::BackPocket`] | [`back_pocket::BackPocketConfig`] | [`back_pocket::BackPocketInput`] (a step: the swing axis's share, pocket, walking) | whether the phone rides behind the hip | mean share, behind |
 //! | [`heading::Heading`] | [`HeadingConfig`] | [`heading::StepInput`] (and each sample's attitude, `push_attitude`) | [`heading::StepHeading`] | last heading, yaw offset |
 //! | [`step_length::StepLength`] | [`StepLengthModel`] | [`step_length::StepLengthInput`] | the length, m | last length |
 //! | [`foot::Foot`] | [`foot::FootConfig`] | a sample and its dt | `Option<`[`foot::Stride`]`>` (T_min late) | stances, strides, distance |
@@ -63,6 +65,7 @@
 //! - [`calibration`] fits lines to whole walks; it is a set of functions, not a stage.
 
 pub mod activity;
+pub mod back_pocket;
 pub mod calibration;
 pub mod carry;
 pub mod detector;

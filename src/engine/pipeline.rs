@@ -203,6 +203,8 @@ pub struct Diagnostics {
     pub pitch_deg: Option<f64>,
     /// The leg pitch stage: the swing axis's share and the sign's vote.
     pub leg_pitch: Option<super::leg_pitch::LegPitchDiagnostics>,
+    /// Which pocket: the mean swing-axis share, and whether the last step rode behind the hip.
+    pub back_pocket: super::back_pocket::BackPocketDiagnostics,
     /// Height now above the walk's start, m.
     pub up_m: f64,
     /// Floor now, relative to the walk's start.
@@ -629,6 +631,7 @@ impl Pipeline {
         });
         d.pitch_deg = self.pocket.pitch.map(|r| self.pocket.leg.signed(r));
         d.leg_pitch = Some(self.pocket.leg.diagnostics());
+        d.back_pocket = self.pocket.side.diagnostics();
         d.pressure_samples = self.pocket.pressure_samples;
         let v = self.pocket.vertical.diagnostics();
         d.up_m = v.up_m;

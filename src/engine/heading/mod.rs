@@ -319,6 +319,9 @@ pub struct StepInput<'a> {
     /// For a step the step detector decided a cycle late, the stage's [`Pose`] when it was
     /// judged: the step's heading takes it, not the latest sample's.
     pub judged_at: Option<Pose>,
+    /// The phone rides behind the hip, in a back pocket ([`crate::engine::back_pocket`]): its
+    /// path lags the turns, and the pocket's heading is not led to the step's middle.
+    pub behind_hip: bool,
 }
 
 /// The heading stage's view of the device at one sample ([`Heading::pose`]).
@@ -503,6 +506,7 @@ impl Heading {
                         None
                     },
                     turned_since: late.map_or(0.0, |(then, now)| now - then.yaw),
+                    behind_hip: step.behind_hip,
                 };
                 self.steer.push(aid, &x)
             }),
@@ -796,6 +800,7 @@ mod tests {
                 carry: Some(CarryMode::Pocket),
                 limb_forward: Some(forward),
                 judged_at: None,
+                behind_hip: false,
             })
             .used
             .unwrap()

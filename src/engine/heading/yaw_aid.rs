@@ -285,6 +285,9 @@ pub struct SteerInput {
     /// the hand takes ([`late_hand_moment`]), compass radians; 0 when
     /// [`YawAid::hand_late_yaw`] is off or the step is on time.
     pub turned_since: f64,
+    /// The phone rides behind the hip ([`crate::engine::back_pocket`]): in a pocket, the
+    /// screen's yaw over the stride before the step, not led to its middle.
+    pub behind_hip: bool,
 }
 
 /// The screen over a stride ([`screen_stride`]).
@@ -368,6 +371,7 @@ impl Steer {
             screen_at_step,
             settled,
             turned_since,
+            behind_hip,
         } = *x;
         let before_last = self.before_last_yaw.take().filter(|_| continued);
         let prev = self.last_yaw.replace(yaw).filter(|_| continued);
@@ -409,8 +413,11 @@ impl Steer {
                 ..now
             };
             // Walked along the screen's yaw at the middle of the step, as the turn lead takes
-            // the acceleration heading there (`turn.rs`), when it is given.
-            let led = screen_at_step.map_or(now.yaw, |s| now.yaw + wrap_pi(s.yaw - now.yaw));
+            // the acceleration heading there (`turn.rs`), when it is given; behind the hip, the
+            // phone's path lags the walker's by about that much, and the stride before is its.
+            let led = screen_at_step
+                .filter(|_| !behind_hip)
+                .map_or(now.yaw, |s| now.yaw + wrap_pi(s.yaw - now.yaw));
             return self.held(
                 aid,
                 place,
@@ -596,6 +603,7 @@ mod tests {
             screen: None,
             screen_at_step: None,
             turned_since: turned,
+            behind_hip: false,
         };
         let aid = YawAid::default();
         let late = Steer::default().push(&aid, &x).unwrap();
@@ -606,6 +614,7 @@ mod tests {
                 &aid,
                 &SteerInput {
                     turned_since: 0.0,
+                    behind_hip: false,
                     ..x
                 },
             )
@@ -657,6 +666,7 @@ mod tests {
             screen: None,
             screen_at_step: None,
             turned_since: 0.0,
+            behind_hip: false,
         };
         let mut steer = Steer::default();
         // Walking straight, the acceleration heading 0.5 rad off the yaw, either way by 0.3.
@@ -687,6 +697,7 @@ mod tests {
             screen,
             screen_at_step: screen,
             turned_since: 0.0,
+            behind_hip: false,
             unled: Some((1.5, false)),
             ..x(1.0, CarryMode::Ear, 1.5, Some(Vector3::z()))
         };
@@ -718,6 +729,7 @@ mod tests {
                 screen: stride(screen, up),
                 screen_at_step: stride(screen + 0.1, up),
                 turned_since: 0.0,
+                behind_hip: false,
             }
         };
         let mut steer = Steer::default();
@@ -789,6 +801,7 @@ mod tests {
             }),
             screen_at_step: None,
             turned_since: 0.0,
+            behind_hip: false,
         };
         let aid = YawAid::default();
         let mut steer = Steer::default();

@@ -3,6 +3,7 @@
 
 use super::StepDetectorConfig;
 use crate::engine::activity::ActivityConfig;
+use crate::engine::back_pocket::BackPocketConfig;
 use crate::engine::carry::CarryConfig;
 use crate::engine::foot::placement::Placement;
 use crate::engine::foot::FootConfig;
@@ -82,6 +83,8 @@ pub struct PipelineConfig {
     pub foot: FootConfig,
     /// The leg pitch ([`crate::engine::leg_pitch`], Munoz Diaz 2015).
     pub leg_pitch: LegPitchConfig,
+    /// Which pocket: a back pocket's path lags the turns ([`crate::engine::back_pocket`]).
+    pub back_pocket: BackPocketConfig,
     /// The activities from the leg pitch ([`crate::engine::activity`]).
     pub activity: ActivityConfig,
     /// The height, the stairs and the floors ([`crate::engine::vertical`]).
@@ -110,6 +113,7 @@ impl Default for PipelineConfig {
             placement: Placement::Auto,
             foot: FootConfig::default(),
             leg_pitch: LegPitchConfig::default(),
+            back_pocket: BackPocketConfig::default(),
             activity: ActivityConfig::default(),
             vertical: VerticalConfig::default(),
         }
@@ -142,6 +146,7 @@ impl PipelineConfig {
             StepDetectorConfig::Pitch(c) => c.validate()?,
         }
         self.leg_pitch.validate()?;
+        self.back_pocket.validate()?;
         self.activity.validate()?;
         self.vertical.validate()?;
         self.heading.validate()?;

@@ -14,6 +14,7 @@
 use super::step_detector::{Detector, StepDetectorConfig};
 use super::{Pipeline, PipelineConfig};
 use crate::engine::activity::{Activity, ActivityClassifier};
+use crate::engine::back_pocket::BackPocket;
 use crate::engine::carry::CarryMode;
 use crate::engine::detector::DetectorInput;
 use crate::engine::leg_pitch::{LegPitch, LegPitchInput};
@@ -42,6 +43,8 @@ pub(super) struct StepPocket {
 /// The pocket stages of a pipeline.
 pub(super) struct Pocket {
     pub leg: LegPitch,
+    /// Which pocket: the back one's path lags the turns.
+    pub side: BackPocket,
     /// Strides beside a detector that is not the pitch detector.
     pub strides: Option<PitchDetector>,
     pub activity: ActivityClassifier,
@@ -64,6 +67,7 @@ impl Pocket {
     pub(super) fn new(cfg: &PipelineConfig) -> Self {
         Pocket {
             leg: LegPitch::new(cfg.leg_pitch),
+            side: BackPocket::new(cfg.back_pocket),
             strides: (!matches!(cfg.detector, StepDetectorConfig::Pitch(_)))
                 .then(|| PitchDetector::new(PitchDetectorConfig::default())),
             activity: ActivityClassifier::new(cfg.activity),

@@ -4,6 +4,7 @@
 use super::bout::{BoutStep, Held};
 use super::{Pipeline, StepRecord};
 use crate::engine::activity::Activity;
+use crate::engine::back_pocket::BackPocketInput;
 use crate::engine::carry::CarryMode;
 use crate::engine::detector::{Candidate, DetectorInput};
 use crate::engine::fusion;
@@ -95,6 +96,11 @@ impl Pipeline {
         } = self.bout.window(&c);
         let has_heading = self.orientation.has_heading();
         let attitude = judged_at.map_or(self.attitude, |p| p.attitude);
+        let behind_hip = self.pocket.side.push(&BackPocketInput {
+            share: self.pocket.leg.swing_share(),
+            pocket: self.carry.mode() == Some(CarryMode::Pocket),
+            walking: state == Motion::Walking,
+        });
         let h = self.heading.push(&heading::StepInput {
             buf: &self.window.buf,
             window: w,
@@ -107,6 +113,7 @@ impl Pipeline {
                 (-l.y, l.x)
             }),
             judged_at,
+            behind_hip,
         });
         let heading_used = h.used;
         let pocket = self.step_pocket(c.t, state);
