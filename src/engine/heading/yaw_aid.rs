@@ -749,6 +749,17 @@ mod tests {
         assert!(last.sided && !last.own, "{last:?}");
         // Walked along the screen's yaw at the step's middle (1.8 + 0.1) plus δ.
         assert!((last.heading - 2.4).abs() < 0.05, "{last:?}");
+        // Behind the hip, in a back pocket, along the stride before the step: 1.8 + δ.
+        let next = x(1.8, 2.3, up, CarryMode::Pocket, true);
+        let (mut front, mut back) = (steer.clone(), steer.clone());
+        let led = front.push(&aid, &next).expect("steered");
+        let behind = SteerInput {
+            behind_hip: true,
+            ..next
+        };
+        let unled = back.push(&aid, &behind).expect("steered");
+        assert!((led.heading - 2.4).abs() < 0.05, "{led:?}");
+        assert!((unled.heading - 2.3).abs() < 0.05, "{unled:?}");
         // A step held at a bout's opening teaches nothing, even half a turn off.
         for _ in 0..10 {
             let held = steer.push(&aid, &x(2.0, 2.0 + 0.5 + PI, up, CarryMode::Pocket, false));
