@@ -192,6 +192,30 @@ mod tests {
     }
 
     #[test]
+    fn bad_settings_are_refused_by_name() {
+        for (cfg, name) in [
+            (
+                BackPocketConfig {
+                    max_share: 0.0,
+                    ..Default::default()
+                },
+                "back_pocket.max_share",
+            ),
+            (
+                BackPocketConfig {
+                    steps: f64::NAN,
+                    ..Default::default()
+                },
+                "back_pocket.steps",
+            ),
+        ] {
+            let e = cfg.validate().unwrap_err();
+            assert!(e.to_string().contains(name), "{e}");
+        }
+        assert!(BackPocketConfig::default().validate().is_ok());
+    }
+
+    #[test]
     fn no_share_yet_is_the_front_pocket() {
         let mut b = BackPocket::new(BackPocketConfig::default());
         let x = BackPocketInput {
