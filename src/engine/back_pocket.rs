@@ -13,8 +13,8 @@
 //! buttock the hip's swing mixes with the pelvis's tilt and roll. The leg pitch's swing axis
 //! ([`crate::engine::leg_pitch::LegPitch::swing_share`]) therefore holds a smaller share of the
 //! gyroscope's horizontal rotation in a back pocket. Each walking step in a pocket adds the
-//! share to an exponential mean over [`BackPocketConfig::steps`] steps; below
-//! [`BackPocketConfig::max_share`] the phone rides behind the hip.
+//! share to a mean: of the steps so far, then exponential over [`BackPocketConfig::steps`]
+//! steps. Below [`BackPocketConfig::max_share`] the phone rides behind the hip.
 //!
 //! **The threshold** was chosen on the walks of `ubicomp13-pocket` alone, whose placement is
 //! labelled: 23 walks by 12 people, the walks' means 0.83–0.91 in a front pocket and 0.68–0.84

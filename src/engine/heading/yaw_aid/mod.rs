@@ -413,8 +413,8 @@ impl Steer {
                 ..now
             };
             // Walked along the screen's yaw at the middle of the step, as the turn lead takes
-            // the acceleration heading there (`turn.rs`), when it is given; behind the hip, the
-            // phone's path lags the walker's by about that much, and the stride before is its.
+            // the acceleration heading there (`turn.rs`), when it is given. Behind the hip the
+            // phone's own path lags the walker's by about as much: the stride before the step.
             let led = screen_at_step
                 .filter(|_| !behind_hip)
                 .map_or(now.yaw, |s| now.yaw + wrap_pi(s.yaw - now.yaw));
