@@ -311,6 +311,7 @@ function setupGuard() {
 // --- start, stop, recovery -----------------------------------------------------------------
 let current = null;
 let lastFinished = null;
+let starting = false; // between a tap on Start and its session: the permission prompt may be open
 
 function controls(state) {
   for (const [id, hidden] of live_controls(state)) $(id).hidden = hidden;
@@ -339,6 +340,16 @@ async function askMotionPermission() {
  * `opts.messages` is the message list's id, `opts.title` the guard's title.
  */
 async function begin(makeLive, rec, opts = {}) {
+  if (busy()) return false; // a second tap while the first one's permission prompt is open
+  starting = true;
+  try {
+    return await beginSession(makeLive, rec, opts);
+  } finally {
+    starting = false;
+  }
+}
+
+async function beginSession(makeLive, rec, opts) {
   delete document.documentElement.dataset.source; // set again once the sensors listen
   const live = !opts.onTick;
   messageList = opts.messages ?? 'live-messages';
@@ -396,8 +407,8 @@ export async function startWalk({ onTick, gnss, messages, title }) {
   return ok ? current : null;
 }
 
-/** Whether a live recording or a calibration walk is running. */
-export const busy = () => !!current && !current.ended;
+/** Whether a live recording or a calibration walk is running, or starting. */
+export const busy = () => starting || (!!current && !current.ended);
 
 async function stop() {
   const s = current;
@@ -471,7 +482,6 @@ export function setupLive() {
     return;
   }
   $('start').addEventListener('click', () => {
-    if (busy()) return;
     const started = Date.now();
     const config = settings();
     begin((ios) => new Live(config, ios, performance.timeOrigin), { id: `rec-${started}`, started });

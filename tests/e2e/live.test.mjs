@@ -326,6 +326,21 @@ test('energy saving: the geolocation watch is really stopped between windows and
   await context.close();
 });
 
+test('two taps on Start while the permission prompt is open start one recording', async () => {
+  // A prompt the user answers after half a second, as on iOS.
+  const { context, page } = await open({ init: () => {
+    DeviceMotionEvent.requestPermission = () => new Promise((resolve) => setTimeout(() => resolve('granted'), 500));
+  } });
+  await page.click('#start');
+  await page.waitForTimeout(100); // the second tap, on another millisecond: another recording's id
+  await page.click('#start');
+  await page.waitForFunction(() => document.documentElement.dataset.source, null, { timeout: 10_000 });
+  await page.waitForTimeout(500); // the second tap's prompt, had it been asked, has been answered
+  const recordings = await page.evaluate(async () => (await import('./www/store.js')).list());
+  assert.equal(recordings.filter((r) => r.state === 'recording').length, 1, JSON.stringify(recordings));
+  await context.close();
+});
+
 test('permission denied, no sensors, no location, insecure page: each says what to do', async () => {
   // iOS, motion refused.
   {
