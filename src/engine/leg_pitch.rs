@@ -422,8 +422,8 @@ impl LegPitch {
     /// [`LegPitchConfig::thigh_strides`] strides.
     ///
     /// A thigh's strides are regular, last two steps, and swing a leg's angle. Three tests say
-    /// no: a stride beyond [`THIGH_MAX_AMPLITUDE_DEG`] (no thigh swings that far: the angle is
-    /// about another axis, a turning hand), a stride shorter than [`THIGH_MIN_STRIDE_S`] (a hand
+    /// no: a stride beyond `THIGH_MAX_AMPLITUDE_DEG` (no thigh swings that far: the angle is
+    /// about another axis, a turning hand), a stride shorter than `THIGH_MIN_STRIDE_S` (a hand
     /// rocks once per step, a thigh once per two), and amplitudes that spread by more than
     /// their median (the hand-held IPIN walks' strides range 8–70° within five).
     pub fn push_stride(&mut self, stride: &PitchStride, votes: bool) -> bool {

@@ -323,14 +323,14 @@ const AC_STEP_MAX_S: f64 = 1.0 / 1.15;
 /// Periodicity of the vertical acceleration in the step band, by autocorrelation.
 ///
 /// The input is band-passed (one-pole high-pass at 0.5 Hz, two one-pole low-passes at 5 Hz),
-/// resampled at fixed times every [`AC_DT`] by linear interpolation (so dt comes from the
+/// resampled at fixed times every `AC_DT` by linear interpolation (so dt comes from the
 /// timestamps and any input rate works), and the lagged products Σ x\[n\]·x\[n−τ\] over the last
-/// [`AC_N`] resampled points are kept as running sums for every lag τ ≤ [`AC_L`] (two
+/// `AC_N` resampled points are kept as running sums for every lag τ ≤ `AC_L` (two
 /// multiply-adds per lag per resampled point). R(τ) = S(τ)/S(0).
 ///
 /// The step period is the smallest lag whose local maximum of R reaches
-/// [`PERIODIC_PEAK_SHARE`] of the largest local maximum up to [`AC_L`] (which may be the stride,
-/// two steps, for a phone on the thigh), and which is no longer than [`AC_STEP_MAX_S`]. Its R is
+/// [`PERIODIC_PEAK_SHARE`] of the largest local maximum up to `AC_L` (which may be the stride,
+/// two steps, for a phone on the thigh), and which is no longer than `AC_STEP_MAX_S`. Its R is
 /// the periodicity score: near 1 for a steady gait, near 0 for noise or slow handling.
 #[derive(Debug, Clone)]
 pub struct Periodicity {
@@ -525,7 +525,7 @@ impl Periodicity {
         self.freq
     }
 
-    /// Normalised autocorrelation R(τ) for τ = 0, [`AC_DT`], … (diagnostics).
+    /// Normalised autocorrelation R(τ) for τ = 0, `AC_DT`, … (diagnostics).
     pub fn autocorrelation(&self) -> Vec<f64> {
         let s0 = self.sums[0];
         self.sums.iter().map(|s| s / s0).collect()

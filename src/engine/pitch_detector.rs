@@ -10,9 +10,9 @@
 //! gives two steps: the other foot's at the stride's mid-time, and the pocket leg's at the
 //! maximum. A bout's ends are decided by the pitch too (the paper is silent on them):
 //! - the first maximum gives one step, or two when the rise to it is a whole stride's
-//!   ([`FULL_RISE`] of the last amplitude): the thigh first went back while the other foot took
+//!   (`FULL_RISE` of the last amplitude): the thigh first went back while the other foot took
 //!   the first step, at the thigh's backward extreme;
-//! - when no maximum follows for [`STOP_PERIODS`] stride periods, the walk stopped, and the
+//! - when no maximum follows for `STOP_PERIODS` stride periods, the walk stopped, and the
 //!   other foot's closing step is given half a stride after the last maximum.
 //!
 //! A maximum is taken once the pitch has fallen [`PitchDetectorConfig::hysteresis_deg`] below
@@ -242,7 +242,7 @@ impl PitchDetector {
         self.stride
     }
 
-    /// The strides whose maximum came after `t_max` (every one kept, [`RECENT_STRIDES`], for
+    /// The strides whose maximum came after `t_max` (every one kept, `RECENT_STRIDES`, for
     /// `None`), oldest first.
     pub fn strides_after(&self, t_max: Option<f64>) -> impl Iterator<Item = &PitchStride> {
         self.recent

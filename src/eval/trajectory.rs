@@ -20,7 +20,7 @@
 //!   direction and is left out. The differences are then freed of one constant, the offset
 //!   between the truth's frame and north: the circular median of the differences, taken over
 //!   those within 90° of their axial mean so that steps turned by half a turn (they happen)
-//!   neither pull it nor escape being counted as 180° off ([`robust_offset`]). The walk's figure
+//!   neither pull it nor escape being counted as 180° off (`robust_offset`). The walk's figure
 //!   is the median absolute error that remains.
 //! - **Distance ratio**: the track's length (the steps with a heading, which move the track)
 //!   over the smoothed truth's path length over the same span, from the start of the first

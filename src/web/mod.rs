@@ -1,5 +1,5 @@
 //! WebAssembly entry points (wasm-bindgen): one file per class the page uses, and the choices it
-//! offers. Errors become `JsError` here and only here ([`to_js`]).
+//! offers. Errors become `JsError` here and only here (`to_js`).
 //! May import: everything below it (`engine`, `io`, `plot`, `settings`, `live`, `analysis`,
 //! `eval`, `demo`); nothing imports it.
 

@@ -50,7 +50,7 @@ impl Smoother {
     /// filter did not learn from single fixes (a Schmidt "consider" state: zero gain): the
     /// backward pass leaves them as the filter had them, or it would learn from the fixes what
     /// the filter was built not to. It smooths the other states given them: every covariance
-    /// is conditioned on the consider states (the Schur complement, [`condition`]), which keeps
+    /// is conditioned on the consider states (the Schur complement, `condition`), which keeps
     /// the recursion an exact RTS pass over the other states; the smoothed covariance then gets
     /// back the share the consider states' own uncertainty adds, as the filter had it. (Only
     /// zeroing their rows of Cₖ would leave Pₖˢ without meaning: it can turn negative.)

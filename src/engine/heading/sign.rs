@@ -38,7 +38,7 @@ impl LimbSign {
     ///   swinging arm passes for a thigh, one axis and a leg's amplitude, but its swing says
     ///   nothing of the way forward);
     /// - in a swinging hand, the pelvis with the arm's pendulum taken out ([`arm`]), voted over
-    ///   the last steps ([`ARM_KEEP`]): the phone is moved into the hand over seconds, and one
+    ///   the last steps (`ARM_KEEP`): the phone is moved into the hand over seconds, and one
     ///   stride of it can point back.
     ///
     /// `keep`: while a heading is carried across a change ([`super::continuity`]), the heading

@@ -25,7 +25,7 @@ use plotters::style::text_anchor::{HPos, Pos, VPos};
 /// time when given. The time axis is in seconds from the log's first sample. Returns the plot
 /// area's pixel columns (where `t0` and `t1` fall, for the page to map a pointer to a time) and
 /// rows (from the top of the first lane to the bottom of the last: where the legibility tests
-/// look). The series are computed first ([`PlotSeries`]), then drawn.
+/// look). The series are computed first (`PlotSeries`), then drawn.
 #[allow(clippy::type_complexity)]
 pub fn draw_plot_area<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,

@@ -7,7 +7,7 @@ use super::{fixed, Walk};
 use nalgebra::Vector3;
 use std::fmt::Write as _;
 
-/// The recipe that reads [`Walk::plain_csv`]'s folder (the example recipe of docs/recipes.md).
+/// The recipe that reads `Walk::plain_csv`'s folder (the example recipe of docs/recipes.md).
 pub const RECIPE_JSON: &str = r#"{
   "recipe": 1,
   "name": "plain CSV, ms",

@@ -1,6 +1,6 @@
 //! The recipe form's words and first guesses: how a file, its columns, sensors and units are
 //! named to people, how its preview writes numbers, and which columns a sensor's fields start on.
-//! May import: [`super::check`] and [`super::schema`].
+//! May import: [`super::check`] and `super::schema`.
 
 use super::check::FileGuess;
 use super::schema::{Delimiter, Sensor, TimeUnit, ValueUnit};

@@ -3,7 +3,7 @@
 //! rule or the engine's first guess), the recipe the form's values make, and the preview of
 //! what a recipe read. `render` in `www/util.js` builds the elements; `www/recipes.js` keeps the
 //! events, the storage and the downloads.
-//! May import: [`super::check`], [`super::form`], [`super::schema`], `io` and `view`.
+//! May import: [`super::check`], [`super::form`], `super::schema`, `io` and `view`.
 
 use super::check::{FileGuess, Report};
 use super::form::{

@@ -511,7 +511,7 @@ impl Recipe {
         serde_json::to_string_pretty(self).map_err(|e| RecipeError::Write(e.to_string()))
     }
 
-    /// Checks what serde cannot: the version, a name, 1 to [`MAX_FILES`] file entries, the
+    /// Checks what serde cannot: the version, a name, 1 to `MAX_FILES` file entries, the
     /// columns each sensor needs and no others, column numbers from 1, names only with a
     /// header, units that fit the sensor, an accelerometer (the engine counts steps from
     /// acceleration) and something to restore gravity to a linear accelerometer.
