@@ -340,7 +340,7 @@ async function askMotionPermission() {
  * `opts.messages` is the message list's id, `opts.title` the guard's title.
  */
 async function begin(makeLive, rec, opts = {}) {
-  if (busy()) return false; // a second tap while the first one's permission prompt is open
+  if (busy()) return false; // a session runs or starts (its permission prompt may be open)
   starting = true;
   try {
     return await beginSession(makeLive, rec, opts);
@@ -401,7 +401,6 @@ async function beginSession(makeLive, rec, opts) {
  * could not start (the reason is in the list `messages`).
  */
 export async function startWalk({ onTick, gnss, messages, title }) {
-  if (busy()) return null; // a live recording runs: the wizard says so
   const ok = await begin((ios) => new Live({ set: { 'fusion.mode.kind': gnss } }, ios, performance.timeOrigin), null,
     { onTick, gnss, messages, title });
   return ok ? current : null;
